@@ -1,0 +1,134 @@
+#pragma once
+/// \file cloud_io.h
+/// \brief One entry point to read and write point clouds (PCD, PLY, LAS 1.0–1.4, ASCII XYZ) in
+///        local coordinates, with the georeferenced origin kept in double.
+///
+/// Coordinates. PCL points are float; a UTM northing (5e6 m) in float is quantised to 0.5 m. Every
+/// reader therefore computes file coordinates in double and stores x_local = x_file - origin in
+/// float; every writer restores x_file = x_local + origin in double.
+///
+/// Auto-origin rule (LoadOptions::use_origin == false), per axis k, over the finite points:
+///   origin_k = 0                                   if max(|min_k|, |max_k|) < 1e4
+///   origin_k = round((min_k + max_k) / 2)          otherwise (bounding-box centre, whole unit)
+/// Below 1e4 a float's step is <= 1 mm (rounding <= 0.5 mm), so small clouds (bunny, Kinect) are not
+/// shifted; a UTM tile is centred. Registering two clouds: load the first, then load the second with
+/// LoadOptions{use_origin = true, origin = info_first.origin} so both share one frame.
+///
+/// Non-finite points. Points with a NaN/inf x, y or z are dropped by every reader and counted in
+/// CloudInfo::points_dropped_nonfinite; the result is always dense and unorganized (height 1).
+/// If nothing finite is left, loadCloud() returns false with "no finite points in ..." unless
+/// LoadOptions::allow_empty is set (then it returns true with points_loaded == 0).
+
+#include <pcl_ls3d/point_types.h>
+
+#include <pcl/point_cloud.h>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace io {
+
+/// \brief One variable-length record of a LAS file (kept so a LAS→LAS conversion can carry the CRS).
+struct LasVlr
+{
+  std::string user_id;               ///< 16-byte user id, trailing NULs removed
+  std::uint16_t record_id = 0;
+  std::string description;           ///< 32-byte description, trailing NULs removed
+  std::vector<std::uint8_t> data;    ///< payload (record length after header bytes)
+};
+
+/// \brief LAS public-header summary (filled when CloudInfo::format == "las").
+struct LasHeaderInfo
+{
+  std::uint8_t version_major = 1, version_minor = 2;
+  std::uint8_t point_format = 0;            ///< 0–10 (compression bits masked off)
+  std::uint16_t record_length = 0;          ///< bytes per point record in the file
+  std::uint16_t extra_bytes_per_record = 0; ///< record_length minus the format's minimum (skipped)
+  std::uint16_t header_size = 0;            ///< 227 (1.0–1.2), 235 (1.3), 375 (1.4) or larger
+  std::uint32_t offset_to_points = 0;
+  std::uint32_t number_of_vlrs = 0;
+  std::uint16_t global_encoding = 0;        ///< bit 0: adjusted standard GPS time; bit 4: WKT CRS
+  std::uint16_t file_source_id = 0;
+  std::uint64_t point_count = 0;            ///< legacy or 64-bit count, whichever the version uses
+  std::uint32_t legacy_point_count = 0;
+  std::uint64_t points_by_return[15] = {};  ///< legacy 5 counts, or the 15 of LAS 1.4
+  std::string system_identifier, generating_software;
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< header bounds (file units)
+  Eigen::Vector3d max = Eigen::Vector3d::Zero();
+  std::vector<LasVlr> vlrs;                 ///< the VLRs between header and points
+};
+
+/// \brief How loadCloud() reads a file.
+struct LoadOptions
+{
+  bool use_origin = false;                           ///< true: shift by `origin` instead of choosing one
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< forced origin (file units) when use_origin
+  bool allow_empty = false;                          ///< true: 0 finite points is not an error
+  /// ASCII XYZ column names, comma separated, e.g. "x,y,z,intensity,classification". Empty: use a
+  /// header line if the file has one (see xyz_io.h), else x y z in columns 1–3, the rest ignored.
+  std::string xyz_columns;
+};
+
+/// \brief How saveCloud() writes a file.
+struct SaveOptions
+{
+  bool overwrite = false;                            ///< refuse to replace an existing file unless true
+  bool binary = true;                                ///< PCD/PLY: binary (true) or ASCII
+  Eigen::Vector3d las_scale{0.001, 0.001, 0.001};    ///< LAS writer quantum (file units)
+  /// LAS offset. When las_use_offset is false the writer uses the rounded bbox centre.
+  bool las_use_offset = false;
+  Eigen::Vector3d las_offset = Eigen::Vector3d::Zero();
+  std::uint8_t las_point_format = 3;                 ///< 0–10 (6–10 need version 1.4)
+  std::uint8_t las_minor_version = 2;                ///< 0–4 (LAS 1.x)
+  /// Sets global-encoding bit 0 (LAS 1.2+): the gps_time values are adjusted standard GPS time
+  /// (GPS seconds − 1e9). Default false = GPS week time. The writer never converts the values.
+  bool las_adjusted_standard_gps_time = false;
+  std::vector<LasVlr> las_vlrs;                      ///< VLRs to write (e.g. copied from the input)
+  int xyz_decimals = 4;                              ///< ASCII XYZ: decimals for x, y, z
+};
+
+/// \brief What a reader found.
+struct CloudInfo
+{
+  std::string format;                                ///< "las", "pcd", "ply", "xyz"
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< local origin subtracted from every point (double)
+  std::size_t points_in_file = 0, points_loaded = 0, points_dropped_nonfinite = 0;
+  Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units
+  Eigen::Vector3d max_file = Eigen::Vector3d::Zero();
+  std::vector<std::string> fields;                   ///< point fields mapped into PointLiDAR
+  LasHeaderInfo las;                                 ///< valid when format == "las"
+};
+
+/// Loads PCD, PLY, LAS (1.0–1.4, formats 0–10, uncompressed) or ASCII XYZ (by extension and/or
+/// signature) into local coordinates x_local = x_file - origin. Returns false with a one-line reason.
+bool
+loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+          std::string& error, const LoadOptions& options = {});
+
+/// Writes by extension (.pcd .ply .las .xyz/.txt), restoring x_file = x_local + origin in double.
+/// PCD/PLY store x, y, z as FLOAT64 when origin is non-zero (FLOAT32 otherwise).
+bool
+saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
+          const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options = {});
+
+/// Same file (after resolving paths/links)? Tools use it to refuse overwriting an input.
+bool
+isSameFile(const std::string& a, const std::string& b);
+
+/// The auto-origin rule above applied to file-coordinate bounds.
+Eigen::Vector3d
+chooseOrigin(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file);
+
+/// Lower-case extension without the dot ("las", "pcd", ...), "" when none.
+std::string
+fileExtension(const std::string& path);
+
+}  // namespace io
+}  // namespace pcl_ls3d
