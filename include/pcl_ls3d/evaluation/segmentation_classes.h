@@ -1,0 +1,53 @@
+#pragma once
+/// \file segmentation_classes.h
+/// \brief Reference class groups for segmentation evaluation: which ASPRS/LAS class codes make
+///        "ground", "building", ... and which codes are left out of the evaluation. PCL-free.
+
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+/// \brief One evaluated class: a name and the reference label codes it gathers.
+struct ClassGroup
+{
+  std::string name;
+  std::vector<int> codes;
+};
+
+/// \brief ground {2}, building {6}, vegetation {3, 4, 5}, wire {14} (Wang et al. 2021 §4.1 scenes).
+std::vector<ClassGroup>
+defaultClassGroups();
+
+/// \brief Codes left out of the evaluation by default: 0 (never classified) and 1 (unclassified).
+std::vector<int>
+defaultExcludedCodes();
+
+/// \brief Parses "ground=2,building=6,vegetation=3-5,wire=14,car=64" ('+' also joins codes:
+///        "veg=3+4+5"). Names must be unique and non-empty, codes 0..255, no code in two groups.
+/// \return false with a one-line reason in `error`
+bool
+parseClassGroups(const std::string& spec, std::vector<ClassGroup>& groups, std::string& error);
+
+/// \brief Per code 0..255: index of its group, -1 for "other" (evaluated, in no group),
+///        -2 for excluded. Codes outside 0..255 map to -2 (excluded) when looked up.
+class ClassLookup
+{
+ public:
+  static constexpr int kOther = -1;
+  static constexpr int kExcluded = -2;
+
+  ClassLookup(const std::vector<ClassGroup>& groups, const std::vector<int>& excluded);
+  int
+  groupOf(int code) const
+  {
+    return (code < 0 || code > 255) ? kExcluded : table_[static_cast<std::size_t>(code)];
+  }
+
+ private:
+  std::vector<int> table_;
+};
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d

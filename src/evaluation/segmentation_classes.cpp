@@ -1,0 +1,104 @@
+#include <pcl_ls3d/evaluation/segmentation_classes.h>
+
+#include <algorithm>
+#include <set>
+#include <sstream>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+namespace {
+bool
+parseCode(const std::string& s, int& code)
+{
+  if (s.empty() || s.size() > 3 || !std::all_of(s.begin(), s.end(), ::isdigit))
+    return false;
+  code = std::stoi(s);
+  return code <= 255;
+}
+
+/// "3-5" or "2" or "3+4+5" -> codes.
+bool
+parseCodes(const std::string& s, std::vector<int>& codes)
+{
+  std::stringstream ss(s);
+  std::string part;
+  while (std::getline(ss, part, '+')) {
+    const auto dash = part.find('-');
+    int a = 0, b = 0;
+    if (dash == std::string::npos) {
+      if (!parseCode(part, a))
+        return false;
+      b = a;
+    }
+    else if (!parseCode(part.substr(0, dash), a) || !parseCode(part.substr(dash + 1), b) || b < a)
+      return false;
+    for (int c = a; c <= b; ++c)
+      codes.push_back(c);
+  }
+  return !codes.empty();
+}
+}  // namespace
+
+std::vector<ClassGroup>
+defaultClassGroups()
+{
+  return {{"ground", {2}}, {"building", {6}}, {"vegetation", {3, 4, 5}}, {"wire", {14}}};
+}
+
+std::vector<int>
+defaultExcludedCodes()
+{
+  return {0, 1};
+}
+
+bool
+parseClassGroups(const std::string& spec, std::vector<ClassGroup>& groups, std::string& error)
+{
+  std::vector<ClassGroup> out;
+  std::set<std::string> names;
+  std::set<int> used;
+  std::stringstream ss(spec);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    const auto eq = item.find('=');
+    ClassGroup g;
+    if (eq == std::string::npos || eq == 0 || !parseCodes(item.substr(eq + 1), g.codes)) {
+      error = "bad class group '" + item + "' (expected name=codes, e.g. vegetation=3-5)";
+      return false;
+    }
+    g.name = item.substr(0, eq);
+    if (!names.insert(g.name).second) {
+      error = "class group '" + g.name + "' given twice";
+      return false;
+    }
+    for (int c : g.codes)
+      if (!used.insert(c).second) {
+        error = "class code " + std::to_string(c) + " is in two groups";
+        return false;
+      }
+    out.push_back(g);
+  }
+  if (out.empty()) {
+    error = "empty class group list";
+    return false;
+  }
+  groups = out;
+  return true;
+}
+
+ClassLookup::ClassLookup(const std::vector<ClassGroup>& groups, const std::vector<int>& excluded)
+: table_(256, kOther)
+{
+  for (int c : excluded)
+    if (c >= 0 && c <= 255)
+      table_[static_cast<std::size_t>(c)] = kExcluded;
+  // A code named in a group is evaluated even if it is also in `excluded`.
+  for (std::size_t g = 0; g < groups.size(); ++g)
+    for (int c : groups[g].codes)
+      if (c >= 0 && c <= 255)
+        table_[static_cast<std::size_t>(c)] = static_cast<int>(g);
+}
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d
