@@ -1,0 +1,156 @@
+#include "sampling.h"
+
+#include <pcl_ls3d/synth/li_surface.h>
+#include <pcl_ls3d/synth/terrain.h>
+
+#include <pcl/console/print.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+
+namespace pcl_ls3d {
+namespace synth {
+
+namespace {
+const std::array<const char*, 9> kNames{"upper_left", "upper",      "upper_right",
+                                        "left",       "middle",     "right",
+                                        "lower_left", "lower",      "lower_right"};
+}  // namespace
+
+const char*
+toString(DeformationPosition p)
+{
+  return kNames[static_cast<int>(p)];
+}
+
+bool
+parseDeformationPosition(const std::string& name, DeformationPosition& p)
+{
+  for (int i = 0; i < 9; ++i)
+    if (name == kNames[i]) {
+      p = static_cast<DeformationPosition>(i);
+      return true;
+    }
+  return false;
+}
+
+SimilarityTransform
+defaultLiTruth()
+{
+  Vector7d p;
+  p << 30.0, -20.0, 15.0, -1.5e-3, 2e-3, 3e-3, 1.0;
+  return SimilarityTransform(p);
+}
+
+bool
+LiSurfaceSettings::isValid(std::string* why) const
+{
+  auto fail = [why](const char* msg) {
+    if (why)
+      *why = msg;
+    return false;
+  };
+  if (grid_size < 2 || grid_size > 20000)
+    return fail("grid_size must be in [2, 20000]");
+  if (!(spacing > 0.0 && relief >= 0.0 && wavelength > 0.0))
+    return fail("spacing and wavelength must be positive, relief >= 0");
+  if (!(noise_sigma >= 0.0))
+    return fail("noise_sigma must be >= 0");
+  if (!(deformation_percent >= 0.0 && deformation_percent <= 100.0))
+    return fail("deformation_percent must be in [0, 100]");
+  if (!std::isfinite(deformation_c))
+    return fail("deformation_c must be finite");
+  if (!(truth.m > 0.0) || !truth.vector().allFinite())
+    return fail("truth must be finite with m > 0");
+  return true;
+}
+
+/// Deformed nodes: the k nearest to the anchor (Chebyshev, then Euclidean, then index).
+static std::vector<int>
+gatheredNodes(int n, DeformationPosition position, std::size_t k)
+{
+  const int p = static_cast<int>(position);
+  const double ax = 0.5 * (n - 1) * (p % 3);        // left, centre, right column
+  const double ay = 0.5 * (n - 1) * (2 - p / 3);    // upper = last row (largest y)
+  std::vector<int> order(static_cast<std::size_t>(n) * n);
+  std::iota(order.begin(), order.end(), 0);
+  auto key = [&](int i) {
+    const double dx = std::abs(i % n - ax), dy = std::abs(i / n - ay);
+    return std::make_pair(std::max(dx, dy), dx * dx + dy * dy);
+  };
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  order.resize(k);
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+LiSurface
+makeLiSurface(const LiSurfaceSettings& s)
+{
+  LiSurface out;
+  out.reference.reset(new pcl::PointCloud<PointLiDAR>);
+  out.mate.reset(new pcl::PointCloud<PointLiDAR>);
+  out.truth = s.truth;
+  std::string why;
+  if (!s.isValid(&why)) {
+    PCL_ERROR("[pcl_ls3d::synth::makeLiSurface] invalid settings: %s\n", why.c_str());
+    return out;
+  }
+  const int n = s.grid_size;
+  const std::size_t total = static_cast<std::size_t>(n) * n;
+  const double half = 0.5 * (n - 1) * s.spacing;
+  auto nodeX = [&](std::size_t i) { return -half + s.spacing * static_cast<double>(i % n); };
+  auto nodeY = [&](std::size_t i) { return -half + s.spacing * static_cast<double>(i / n); };
+
+  // Heights rescaled to exactly `relief` peak-to-peak, centred on 0.
+  const Terrain terrain(s.seed, 1.0, s.wavelength);
+  out.height.resize(total);
+  for (std::size_t i = 0; i < total; ++i)
+    out.height[i] = terrain.height(nodeX(i), nodeY(i));
+  const auto mm = std::minmax_element(out.height.begin(), out.height.end());
+  const double lo = *mm.first, range = *mm.second - *mm.first;
+  for (double& h : out.height)
+    h = range > 0.0 ? s.relief * ((h - lo) / range - 0.5) : 0.0;
+
+  const auto k = static_cast<std::size_t>(std::lround(s.deformation_percent / 100.0 * total));
+  out.deformed_indices = gatheredNodes(n, s.position, k);
+  out.deformed.assign(total, 0);
+  for (int i : out.deformed_indices)
+    out.deformed[i] = 1;
+  out.percent = 100.0 * static_cast<double>(k) / static_cast<double>(total);
+
+  Random rng(s.seed, 0x11u, 0u);
+  out.deformation.assign(total, 0.0);
+  out.mate_noise.resize(total);
+  const double sigma = s.noise_sigma;
+  const Eigen::Matrix4d inverse = s.truth.matrix().inverse();
+  out.reference->resize(total);
+  out.mate->resize(total);
+  for (std::size_t i = 0; i < total; ++i) {
+    const double x = nodeX(i), y = nodeY(i);
+    const double ref_noise = s.noise_on_reference ? rng.normal(0.0, sigma) : 0.0;
+    out.mate_noise[i] = rng.normal(0.0, sigma);
+    if (out.deformed[i])
+      out.deformation[i] = rng.normal(s.deformation_c * sigma, sigma);
+    PointLiDAR& r = (*out.reference)[i];
+    r = detail::makePoint({x, y, out.height[i] + ref_noise});
+    r.classification = 2;
+    r.point_source_id = 1;
+    const Eigen::Vector4d m(x, y, out.height[i] + out.mate_noise[i] + out.deformation[i], 1.0);
+    PointLiDAR& q = (*out.mate)[i];
+    q = detail::makePoint((inverse * m).head<3>());
+    q.classification = 2;
+    q.point_source_id = 2;
+  }
+  for (auto* c : {out.reference.get(), out.mate.get()}) {
+    c->width = static_cast<std::uint32_t>(total);
+    c->height = 1;
+    c->is_dense = true;
+  }
+  return out;
+}
+
+}  // namespace synth
+}  // namespace pcl_ls3d
