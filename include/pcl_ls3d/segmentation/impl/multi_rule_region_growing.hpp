@@ -1,0 +1,325 @@
+#pragma once
+/// \file impl/multi_rule_region_growing.hpp
+/// \brief Template members of pcl_ls3d::MultiRuleRegionGrowing.
+
+#include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
+#include <pcl_ls3d/stats/descriptive.h>
+
+#include <pcl/common/point_tests.h>
+#include <pcl/console/print.h>
+#include <pcl/search/kdtree.h>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace pcl_ls3d {
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::setNeighbourhoodRange(int k_min, int k_max, int k_step)
+{
+  nbh_.k_min = k_min;
+  nbh_.k_max = k_max;
+  nbh_.k_step = k_step;
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::setMode(Mode mode)
+{
+  grow_.use_seed_condition = (mode == Mode::IMRG);
+  merge_.rule = (mode == Mode::IMRG) ? MergeRule::DistanceSimilarityVolume
+                                     : MergeRule::DistanceOnly;
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>& clusters)
+{
+  clusters.clear();
+  clusters_.clear();
+  cluster_of_.clear();
+  features_.clear();
+  segment_of_.clear();
+  merge_report_ = segmentation::MergeReport{};
+  grow_.residual_threshold = std::numeric_limits<double>::quiet_NaN();
+  initial_segments_ = 0;
+
+  if (!initCompute())
+    return;
+  if (!prepareForSegmentation() || !computeFeatures()) {
+    deinitCompute();
+    return;
+  }
+  growSegments();
+  mergeSegments();
+  assembleRegions();
+  clusters = clusters_;
+  deinitCompute();
+}
+
+template <typename PointT, typename NormalT>
+bool
+MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
+{
+  const char* name = getClassName().c_str();
+  if (!input_ || input_->empty()) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] Input cloud is empty.\n", name);
+    return false;
+  }
+  if (nbh_.k_min < 3 || nbh_.k_max < nbh_.k_min || nbh_.k_step < 1 || nbh_.k_max > 65535) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] Invalid neighbourhood range k = %d..%d step %d "
+              "(need 3 <= k_min <= k_max <= 65535, step >= 1).\n",
+              name, nbh_.k_min, nbh_.k_max, nbh_.k_step);
+    return false;
+  }
+  if (grow_.graph_k < 1 || !(grow_.principal_angle > 0.0) || !(grow_.normal_angle > 0.0) ||
+      !std::isfinite(user_growth_radius_) || !std::isfinite(user_volumetric_radius_)) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] Invalid growing settings (neighbours %d, angles must be "
+              "> 0, radii finite).\n", name, grow_.graph_k);
+    return false;
+  }
+  if (normals_ && normals_->size() != input_->size()) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] %zu normals for %zu points.\n", name,
+              static_cast<std::size_t>(normals_->size()), static_cast<std::size_t>(input_->size()));
+    return false;
+  }
+
+  valid_indices_.clear();
+  position_of_.assign(input_->size(), -1);
+  for (const auto i : *indices_) {
+    if (i < 0 || static_cast<std::size_t>(i) >= input_->size() || position_of_[i] >= 0 ||
+        !pcl::isXYZFinite((*input_)[i]))
+      continue;
+    position_of_[i] = static_cast<int>(valid_indices_.size());
+    valid_indices_.push_back(static_cast<int>(i));
+  }
+  if (valid_indices_.size() < static_cast<std::size_t>(nbh_.k_min)) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] %zu finite points, fewer than the smallest "
+              "neighbourhood k_min = %d.\n", name, valid_indices_.size(), nbh_.k_min);
+    return false;
+  }
+  if (valid_indices_.size() < indices_->size())
+    PCL_WARN("[pcl_ls3d::%s::extract] Ignoring %zu non-finite or repeated indices.\n", name,
+             indices_->size() - valid_indices_.size());
+
+  origin_ = (*input_)[valid_indices_.front()].getVector3fMap();
+  points_.resize(valid_indices_.size());
+  for (std::size_t p = 0; p < valid_indices_.size(); ++p)
+    points_[p] = (*input_)[valid_indices_[p]].getVector3fMap() - origin_;
+
+  if (!search_)
+    search_.reset(new pcl::search::KdTree<PointT>);
+  search_->setInputCloud(input_, pcl::IndicesConstPtr(new pcl::Indices(valid_indices_.begin(),
+                                                                       valid_indices_.end())));
+  return true;
+}
+
+template <typename PointT, typename NormalT>
+bool
+MultiRuleRegionGrowing<PointT, NormalT>::computeFeatures()
+{
+  const int n = static_cast<int>(valid_indices_.size());
+  const int gk = grow_.graph_k;
+  const int k_query = std::min(n, std::max(nbh_.k_max, gk + 1));
+  features_.assign(n, PointFeatures{});
+  graph_.assign(static_cast<std::size_t>(n) * gk, -1);
+  std::vector<double> scale(n, 0.0);  // distance to the k_min-th neighbour
+
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads_ > 0 ? threads_ : omp_get_max_threads())
+#endif
+  {
+    pcl::Indices nn;
+    std::vector<float> d2;
+    std::vector<std::pair<float, int>> sorted;
+    std::vector<Eigen::Vector3f> xyz;
+#pragma omp for schedule(dynamic, 256)
+    for (int p = 0; p < n; ++p) {
+      const PointT& q = (*input_)[valid_indices_[p]];
+      if (search_->nearestKSearch(q, k_query, nn, d2) <= 0)
+        continue;
+      sorted.clear();
+      for (std::size_t t = 0; t < nn.size(); ++t) {
+        const int pos = (nn[t] >= 0 && static_cast<std::size_t>(nn[t]) < position_of_.size())
+                            ? position_of_[nn[t]] : -1;
+        if (pos >= 0)
+          sorted.emplace_back(d2[t], pos);
+      }
+      if (!std::is_sorted(sorted.begin(), sorted.end()))
+        std::sort(sorted.begin(), sorted.end());
+      xyz.clear();
+      xyz.push_back(points_[p]);  // the point itself first, whatever the duplicate order
+      int g = 0;
+      for (const auto& [dist2, pos] : sorted) {
+        if (pos == p)
+          continue;
+        xyz.push_back(points_[pos]);
+        if (g < gk)
+          graph_[static_cast<std::size_t>(p) * gk + g++] = pos;
+      }
+      features_[p] = segmentation::computePointFeatures(xyz, nbh_);
+      const std::size_t ks = std::min<std::size_t>(nbh_.k_min, sorted.size()) - 1;
+      scale[p] = std::sqrt(static_cast<double>(sorted[ks].first));
+    }
+  }
+  spacing_ = stats::median(scale);
+  if (!(spacing_ > 0.0)) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] All neighbourhoods have zero extent (duplicate points "
+              "only); nothing to segment.\n", getClassName().c_str());
+    return false;
+  }
+  return true;
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::growSegments()
+{
+  const std::size_t n = points_.size();
+  grow_.growth_radius = user_growth_radius_ > 0.0 ? user_growth_radius_ : 2.0 * spacing_;
+  grow_.volumetric_radius =
+      user_volumetric_radius_ > 0.0 ? user_volumetric_radius_ : 1.0 * spacing_;
+
+  // v_t (§3.1): median plane-fit residual of the linear set unless given.
+  if (user_residual_threshold_ >= 0.0) {
+    grow_.residual_threshold = user_residual_threshold_;
+  } else {
+    std::vector<double> linear;
+    for (const auto& f : features_)
+      if (f.dimensionality == Dimensionality::Linear)
+        linear.push_back(f.residual);
+    grow_.residual_threshold = linear.empty() ? std::numeric_limits<double>::infinity()
+                                              : stats::median(linear);
+  }
+
+  std::vector<Eigen::Vector3f> normals(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    normals[p] = features_[p].normal;
+    if (normals_) {
+      const NormalT& u = (*normals_)[valid_indices_[p]];
+      const Eigen::Vector3f v(u.normal_x, u.normal_y, u.normal_z);
+      if (v.allFinite() && v.norm() > 0.f)
+        normals[p] = v.normalized();
+    }
+  }
+  segment_of_ = segmentation::growRegions(points_, features_, normals, graph_, grow_);
+  initial_segments_ = segment_of_.empty()
+                          ? 0 : static_cast<std::size_t>(
+                                    *std::max_element(segment_of_.begin(), segment_of_.end()) + 1);
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::mergeSegments()
+{
+  std::vector<float> residuals(features_.size());
+  for (std::size_t p = 0; p < features_.size(); ++p)
+    residuals[p] = features_[p].residual;
+  merge_report_ = segmentation::mergeSegments(points_, segment_of_, residuals, merge_,
+                                              spacing_ * spacing_ * spacing_);
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::assembleRegions()
+{
+  std::vector<pcl::PointIndices> all(merge_report_.segments_after);
+  for (std::size_t p = 0; p < segment_of_.size(); ++p)
+    if (segment_of_[p] >= 0)
+      all[segment_of_[p]].indices.push_back(valid_indices_[p]);
+  cluster_of_.assign(segment_of_.size(), -1);
+  for (auto& c : all) {
+    if (c.indices.size() < min_cluster_size_ || c.indices.size() > max_cluster_size_)
+      continue;
+    for (const auto i : c.indices)
+      cluster_of_[position_of_[i]] = static_cast<int>(clusters_.size());
+    clusters_.push_back(std::move(c));
+  }
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::getSegmentFromPoint(pcl::index_t index,
+                                                             pcl::PointIndices& cluster)
+{
+  cluster.indices.clear();
+  if (index < 0 || static_cast<std::size_t>(index) >= position_of_.size())
+    return;
+  const int pos = position_of_[index];
+  if (pos < 0 || static_cast<std::size_t>(pos) >= cluster_of_.size() || cluster_of_[pos] < 0)
+    return;
+  cluster = clusters_[cluster_of_[pos]];
+}
+
+template <typename PointT, typename NormalT>
+pcl::PointCloud<pcl::PointXYZRGB>::Ptr
+MultiRuleRegionGrowing<PointT, NormalT>::getColoredCloud() const
+{
+  pcl::PointCloud<pcl::PointXYZRGB>::Ptr out;
+  if (!input_ || clusters_.empty())
+    return out;
+  out.reset(new pcl::PointCloud<pcl::PointXYZRGB>);
+  out->resize(input_->size());
+  for (std::size_t i = 0; i < input_->size(); ++i) {
+    (*out)[i].getVector3fMap() = (*input_)[i].getVector3fMap();
+    (*out)[i].r = (*out)[i].g = (*out)[i].b = 255;
+  }
+  std::mt19937 rng(12345);
+  std::uniform_int_distribution<int> colour(0, 255);
+  for (const auto& c : clusters_) {
+    const auto r = static_cast<std::uint8_t>(colour(rng));
+    const auto g = static_cast<std::uint8_t>(colour(rng));
+    const auto b = static_cast<std::uint8_t>(colour(rng));
+    for (const auto i : c.indices) {
+      (*out)[i].r = r;
+      (*out)[i].g = g;
+      (*out)[i].b = b;
+    }
+  }
+  return out;
+}
+
+template <typename PointT, typename NormalT>
+std::vector<segmentation::Dimensionality>
+MultiRuleRegionGrowing<PointT, NormalT>::getDimensionality() const
+{
+  std::vector<Dimensionality> out(position_of_.size(), Dimensionality::Invalid);
+  for (std::size_t p = 0; p < features_.size(); ++p)
+    out[valid_indices_[p]] = features_[p].dimensionality;
+  return out;
+}
+
+template <typename PointT, typename NormalT>
+bool
+MultiRuleRegionGrowing<PointT, NormalT>::getPointFeatures(pcl::index_t index,
+                                                          PointFeatures& features) const
+{
+  if (index < 0 || static_cast<std::size_t>(index) >= position_of_.size())
+    return false;
+  const int pos = position_of_[index];
+  if (pos < 0 || static_cast<std::size_t>(pos) >= features_.size())
+    return false;
+  features = features_[pos];
+  return features.dimensionality != Dimensionality::Invalid;
+}
+
+template <typename PointT, typename NormalT>
+std::vector<int>
+MultiRuleRegionGrowing<PointT, NormalT>::getPointLabels() const
+{
+  std::vector<int> out(position_of_.size(), -1);
+  for (std::size_t p = 0; p < cluster_of_.size(); ++p)
+    out[valid_indices_[p]] = cluster_of_[p];
+  return out;
+}
+
+}  // namespace pcl_ls3d
+
+#define PCL_LS3D_INSTANTIATE_MultiRuleRegionGrowing(T)                                   \
+  template class PCL_EXPORTS pcl_ls3d::MultiRuleRegionGrowing<T, pcl::Normal>;

@@ -1,0 +1,207 @@
+#pragma once
+/// \file multi_rule_region_growing.h
+/// \brief Improved multi-rule region growing (IMRG, Wang et al. 2021) as a pcl::PCLBase subclass
+///        used like pcl::RegionGrowing.
+
+#include <pcl_ls3d/segmentation/dimensionality_features.h>
+#include <pcl_ls3d/segmentation/rule_growing.h>
+#include <pcl_ls3d/segmentation/segment_merging.h>
+
+#include <pcl/PointIndices.h>
+#include <pcl/pcl_base.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+#include <pcl/search/search.h>
+
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+
+/// \brief Multi-factor segmentation by improved multi-rule region growing (IMRG).
+///
+/// Pipeline of extract() (Wang et al. 2021, §2–3):
+///  1. one k-NN query (k_max) per point; the optimal neighbourhood k minimises the
+///     eigen-entropy (Weinmann et al.); from λ1 ≥ λ2 ≥ λ3 of its covariance:
+///     a1D = (√λ1−√λ2)/√λ1, a2D = (√λ2−√λ3)/√λ1, a3D = √λ3/√λ1; the argmax puts the point in
+///     the linear, planar or volumetric set. Normal (λ3 eigenvector), principal direction
+///     (λ1 eigenvector) and the plane-fitting residual √λ3 (RMS distance to the LS plane, metres)
+///     come from the same neighbourhood.
+///  2. growing per set, over the k-NN graph (setNumberOfNeighbours) restricted to the set:
+///     linear: principal directions within M_t and distance ≤ growth radius;
+///     planar: normals within N_t and distance ≤ growth radius;
+///     volumetric: Euclidean connectivity within the volumetric radius (vegetation has no
+///     stable normal or direction, so only proximity is meaningful; the radius follows the
+///     local point spacing so it adapts to density).
+///  3. IMRG seed condition (§3.1): a planar point propagates growth only if its residual is
+///     below v_t; v_t defaults to the median residual of the linear set.
+///  4. merging (§3.2, Fig. 8), smallest segment first, into its nearest segment by convex-hull
+///     contour distance, when distance < d_t, |R_i − R_j| < s_t and ΔV = (V_j'' − V_j')/V_i < V_t.
+///     d_t, V_t: Baarda data snooping (backward elimination) then max of the rest; s_t: smallest
+///     gap of 3 k-means centres of segment residuals. See segment_merging.h for hull rules.
+///
+/// Plain MRG (the paper's comparison) = setMode(Mode::MRG): no seed condition, distance-only
+/// merging. Every adaptive threshold can be overridden by its setter (a negative value restores
+/// the adaptive rule) and read after extract().
+template <typename PointT, typename NormalT = pcl::Normal>
+class MultiRuleRegionGrowing : public pcl::PCLBase<PointT>
+{
+public:
+  using Ptr = std::shared_ptr<MultiRuleRegionGrowing<PointT, NormalT>>;
+  using ConstPtr = std::shared_ptr<const MultiRuleRegionGrowing<PointT, NormalT>>;
+  using KdTree = pcl::search::Search<PointT>;
+  using KdTreePtr = typename KdTree::Ptr;
+  using Normal = pcl::PointCloud<NormalT>;
+  using NormalPtr = typename Normal::Ptr;
+  using PointCloud = pcl::PointCloud<PointT>;
+  using Dimensionality = segmentation::Dimensionality;
+  using PointFeatures = segmentation::PointFeatures;
+  using MergeRule = segmentation::MergeRule;
+
+  using pcl::PCLBase<PointT>::input_;
+  using pcl::PCLBase<PointT>::indices_;
+  using pcl::PCLBase<PointT>::initCompute;
+  using pcl::PCLBase<PointT>::deinitCompute;
+
+  /// \brief IMRG (seed condition + distance/similarity/volume merging) or plain MRG.
+  enum class Mode
+  {
+    IMRG,
+    MRG
+  };
+
+  MultiRuleRegionGrowing() = default;
+  ~MultiRuleRegionGrowing() override = default;
+
+  /// \brief Class name for messages.
+  std::string getClassName() const { return "MultiRuleRegionGrowing"; }
+
+  // ---- neighbourhood and features --------------------------------------------------------
+  /// \brief Scan k = k_min, k_min + step, ..., k_max for the minimal eigen-entropy.
+  void setNeighbourhoodRange(int k_min, int k_max, int k_step = 10);
+  /// \brief Fixed-k mode: every point uses exactly k neighbours (including itself).
+  void setFixedNeighbourhood(int k) { setNeighbourhoodRange(k, k, 1); }
+  const segmentation::NeighbourhoodSettings& getNeighbourhoodRange() const { return nbh_; }
+  /// \brief Size of the k-NN graph used for growing (default 16).
+  void setNumberOfNeighbours(int k) { grow_.graph_k = k; }
+  int getNumberOfNeighbours() const { return grow_.graph_k; }
+  /// \brief Threads for the per-point stages (0: OpenMP default).
+  void setNumberOfThreads(int n) { threads_ = n; }
+
+  // ---- growing rules -----------------------------------------------------------------------
+  /// \brief M_t [rad]: max angle between principal directions of linear points (default 15°).
+  void setPrincipalAngleThreshold(double rad) { grow_.principal_angle = rad; }
+  double getPrincipalAngleThreshold() const { return grow_.principal_angle; }
+  /// \brief N_t [rad]: max angle between normals of planar points (default 10°).
+  void setNormalAngleThreshold(double rad) { grow_.normal_angle = rad; }
+  double getNormalAngleThreshold() const { return grow_.normal_angle; }
+  /// \brief Max neighbour distance [m] for linear/planar growth; ≤ 0: auto (see getSpacing()).
+  void setGrowthRadius(double r) { user_growth_radius_ = r; }
+  double getGrowthRadius() const { return grow_.growth_radius; }
+  /// \brief Connectivity radius [m] of volumetric growth; ≤ 0: auto (see getSpacing()).
+  void setVolumetricRadius(double r) { user_volumetric_radius_ = r; }
+  double getVolumetricRadius() const { return grow_.volumetric_radius; }
+  /// \brief Local spacing scale [m] of the last extract(): median distance to the k_min-th
+  ///        neighbour. Auto growth radius = 2 × spacing, auto volumetric radius = 1 × spacing.
+  double getSpacing() const { return spacing_; }
+
+  // ---- IMRG seed condition -----------------------------------------------------------------
+  /// \brief Enable/disable the planar seed condition (IMRG §3.1).
+  void setUseSeedCondition(bool on) { grow_.use_seed_condition = on; }
+  bool getUseSeedCondition() const { return grow_.use_seed_condition; }
+  /// \brief v_t [m]; negative: adaptive median residual of the linear set (default).
+  void setResidualThreshold(double v) { user_residual_threshold_ = v; }
+  /// \brief v_t used by the last extract() (NaN before).
+  double getResidualThreshold() const { return grow_.residual_threshold; }
+
+  // ---- merging -----------------------------------------------------------------------------
+  void setMergeRule(MergeRule rule) { merge_.rule = rule; }
+  MergeRule getMergeRule() const { return merge_.rule; }
+  /// \brief Mode::IMRG: seed condition + full merge rule; Mode::MRG: neither (distance only).
+  void setMode(Mode mode);
+  /// \brief d_t [m]; negative: adaptive (Baarda snooping over nearest-segment distances).
+  void setDistanceThreshold(double d) { merge_.distance_threshold = d; }
+  /// \brief s_t [m]; negative: adaptive (smallest gap of 3 k-means centres of R_i).
+  void setSimilarityThreshold(double s) { merge_.similarity_threshold = s; }
+  /// \brief V_t; negative: adaptive (Baarda snooping over candidate ΔV).
+  void setVolumeChangeThreshold(double v) { merge_.volume_threshold = v; }
+  /// \brief Significance α of each w-test in the data snooping (default 0.001).
+  void setSnoopingSignificance(double alpha) { merge_.alpha = alpha; }
+  /// \brief Thresholds actually used by the last extract() and merge statistics.
+  const segmentation::MergeReport& getMergeReport() const { return merge_report_; }
+  double getDistanceThreshold() const { return merge_report_.distance_threshold; }
+  double getSimilarityThreshold() const { return merge_report_.similarity_threshold; }
+  double getVolumeChangeThreshold() const { return merge_report_.volume_threshold; }
+
+  // ---- output filtering (as pcl::RegionGrowing) ---------------------------------------------
+  void setMinClusterSize(pcl::uindex_t n) { min_cluster_size_ = n; }
+  pcl::uindex_t getMinClusterSize() const { return min_cluster_size_; }
+  void setMaxClusterSize(pcl::uindex_t n) { max_cluster_size_ = n; }
+  pcl::uindex_t getMaxClusterSize() const { return max_cluster_size_; }
+
+  // ---- inputs -------------------------------------------------------------------------------
+  /// \brief Search method (a pcl::search::KdTree is created when none is given).
+  void setSearchMethod(const KdTreePtr& tree) { search_ = tree; }
+  KdTreePtr getSearchMethod() const { return search_; }
+  /// \brief Optional normals used by the planar rule instead of the computed ones.
+  void setInputNormals(const NormalPtr& normals) { normals_ = normals; }
+  NormalPtr getInputNormals() const { return normals_; }
+
+  // ---- run and results -----------------------------------------------------------------------
+  /// \brief Segment the cloud. On bad input logs PCL_ERROR and returns no clusters.
+  void extract(std::vector<pcl::PointIndices>& clusters);
+  /// \brief The cluster containing the cloud point \a index (empty if none).
+  void getSegmentFromPoint(pcl::index_t index, pcl::PointIndices& cluster);
+  /// \brief Input cloud with one random colour per cluster; other points white.
+  pcl::PointCloud<pcl::PointXYZRGB>::Ptr getColoredCloud() const;
+  /// \brief Per input-cloud point: its dimensionality (Invalid if not processed).
+  std::vector<Dimensionality> getDimensionality() const;
+  /// \brief Features of input-cloud point \a index; false if it was not processed.
+  bool getPointFeatures(pcl::index_t index, PointFeatures& features) const;
+  /// \brief Per input-cloud point: index of its returned cluster, −1 if none.
+  std::vector<int> getPointLabels() const;
+  /// \brief Number of segments before merging (all sizes).
+  std::size_t getNumberOfInitialSegments() const { return initial_segments_; }
+
+protected:
+  bool prepareForSegmentation();
+  bool computeFeatures();
+  void growSegments();
+  void mergeSegments();
+  void assembleRegions();
+
+  // settings
+  segmentation::NeighbourhoodSettings nbh_;
+  segmentation::GrowingSettings grow_;
+  segmentation::MergeSettings merge_;
+  double user_growth_radius_ = 0.0;
+  double user_volumetric_radius_ = 0.0;
+  double user_residual_threshold_ = -1.0;
+  pcl::uindex_t min_cluster_size_ = 1;
+  pcl::uindex_t max_cluster_size_ = std::numeric_limits<pcl::uindex_t>::max();
+  int threads_ = 0;
+  KdTreePtr search_;
+  NormalPtr normals_;
+
+  // state of the last run; "position" = index into valid_indices_
+  std::vector<int> valid_indices_;            ///< cloud indices processed (finite, in indices_)
+  std::vector<int> position_of_;              ///< cloud index -> position or -1
+  std::vector<Eigen::Vector3f> points_;       ///< coordinates minus origin_, per position
+  Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();
+  std::vector<PointFeatures> features_;       ///< per position
+  std::vector<int> graph_;                    ///< k-NN graph, graph_k positions per position
+  std::vector<int> segment_of_;               ///< per position: segment id or -1
+  std::vector<pcl::PointIndices> clusters_;   ///< returned clusters (cloud indices)
+  std::vector<int> cluster_of_;               ///< per position: cluster id or -1
+  segmentation::MergeReport merge_report_;
+  double spacing_ = 0.0;
+  std::size_t initial_segments_ = 0;
+};
+
+}  // namespace pcl_ls3d
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_ls3d/segmentation/impl/multi_rule_region_growing.hpp>
+#endif

@@ -1,0 +1,112 @@
+/// \file rule_growing.cpp
+/// \brief Per-set region growing of (I)MRG (Wang et al. 2021 §2, seed condition §3.1).
+
+#include <pcl_ls3d/segmentation/rule_growing.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+namespace pcl_ls3d {
+namespace segmentation {
+namespace {
+
+/// Thresholds of one run, precomputed once.
+struct Rules
+{
+  double cos_principal;
+  double cos_normal;
+  double growth_sq;
+  double volumetric_sq;
+  bool seed_condition;
+  double residual_threshold;
+};
+
+/// Does neighbour j join the segment growing through i (same set assumed)?
+bool
+joins(std::size_t i, std::size_t j, const std::vector<Eigen::Vector3f>& points,
+      const std::vector<PointFeatures>& features, const std::vector<Eigen::Vector3f>& normals,
+      const Rules& r)
+{
+  const double d2 = (points[i] - points[j]).squaredNorm();
+  switch (features[i].dimensionality) {
+  case Dimensionality::Linear:
+    return d2 <= r.growth_sq &&
+           std::abs(features[i].principal.dot(features[j].principal)) >= r.cos_principal;
+  case Dimensionality::Planar:
+    return d2 <= r.growth_sq && std::abs(normals[i].dot(normals[j])) >= r.cos_normal;
+  case Dimensionality::Volumetric:
+    return d2 <= r.volumetric_sq;
+  default:
+    return false;
+  }
+}
+
+/// IMRG §3.1: may point i (not the seed) carry the growth on?
+bool
+propagates(std::size_t i, const std::vector<PointFeatures>& features, const Rules& r)
+{
+  if (!r.seed_condition || features[i].dimensionality != Dimensionality::Planar)
+    return true;
+  return features[i].residual < r.residual_threshold;
+}
+
+}  // namespace
+
+std::vector<int>
+growRegions(const std::vector<Eigen::Vector3f>& points,
+            const std::vector<PointFeatures>& features,
+            const std::vector<Eigen::Vector3f>& normals,
+            const std::vector<int>& graph,
+            const GrowingSettings& settings)
+{
+  const std::size_t n = points.size();
+  std::vector<int> labels(n, -1);
+  const std::size_t k = settings.graph_k > 0 ? static_cast<std::size_t>(settings.graph_k) : 0;
+  if (n == 0 || features.size() != n || normals.size() != n || graph.size() != n * k)
+    return labels;
+
+  Rules r;
+  r.cos_principal = std::cos(settings.principal_angle);
+  r.cos_normal = std::cos(settings.normal_angle);
+  r.growth_sq = settings.growth_radius * settings.growth_radius;
+  r.volumetric_sq = settings.volumetric_radius * settings.volumetric_radius;
+  r.seed_condition = settings.use_seed_condition && std::isfinite(settings.residual_threshold);
+  r.residual_threshold = settings.residual_threshold;
+
+  // Seeds in order of increasing residual: flat interiors first, boundaries last.
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return features[a].residual < features[b].residual;
+  });
+
+  int next_label = 0;
+  std::vector<std::size_t> queue;
+  for (const std::size_t seed : order) {
+    if (labels[seed] >= 0 || features[seed].dimensionality == Dimensionality::Invalid)
+      continue;
+    const Dimensionality set = features[seed].dimensionality;
+    labels[seed] = next_label;
+    queue.assign(1, seed);
+    for (std::size_t q = 0; q < queue.size(); ++q) {
+      const std::size_t i = queue[q];
+      if (i != seed && !propagates(i, features, r))
+        continue;  // absorbed boundary point: does not grow further
+      for (std::size_t c = 0; c < k; ++c) {
+        const int j = graph[i * k + c];
+        if (j < 0 || labels[j] >= 0 || features[j].dimensionality != set)
+          continue;
+        if (!joins(i, static_cast<std::size_t>(j), points, features, normals, r))
+          continue;
+        labels[j] = next_label;
+        queue.push_back(static_cast<std::size_t>(j));
+      }
+    }
+    ++next_label;
+  }
+  return labels;
+}
+
+}  // namespace segmentation
+}  // namespace pcl_ls3d

@@ -1,0 +1,285 @@
+/// \file segment_merging.cpp
+/// \brief IMRG segment merging (Wang et al. 2021 §3.2.1, Fig. 8) and the adaptive thresholds
+///        of §3.2.2 (d_t, V_t: Baarda snooping; s_t: 3-centre k-means).
+
+#include <pcl_ls3d/segmentation/segment_merging.h>
+
+#include <pcl_ls3d/segmentation/segment_hull.h>
+#include <pcl_ls3d/stats/data_snooping.h>
+#include <pcl_ls3d/stats/kmeans_1d.h>
+
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+namespace pcl_ls3d {
+namespace segmentation {
+namespace {
+
+constexpr int kNearestContourCandidates = 64;
+
+/// Working state of the merge loop (Fig. 8); segment ids are the initial labels.
+struct MergeState
+{
+  std::vector<std::vector<int>> members;  ///< positions per initial segment
+  std::vector<double> residual_sum;       ///< Σ r_j over the (merged) segment
+  std::vector<std::vector<int>> contour;  ///< global contour-point ids per root segment
+  std::vector<double> volume;             ///< hull volume per root segment
+  std::vector<int> parent;                ///< union-find
+  std::vector<Eigen::Vector3f> contour_xyz;  ///< all initial contour points
+  std::vector<int> contour_owner;         ///< initial segment of each contour point
+  std::vector<char> contour_active;       ///< still a hull vertex of its (merged) segment
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+
+  int find(int s)
+  {
+    while (parent[s] != s)
+      s = parent[s] = parent[parent[s]];
+    return s;
+  }
+  double meanResidual(int s) const
+  {
+    return residual_sum[s] / static_cast<double>(std::max<std::size_t>(1, members[s].size()));
+  }
+};
+
+/// Hull of a set of global contour points; returns the surviving global ids and the volume.
+SegmentHull
+hullOfContour(const MergeState& st, const std::vector<int>& ids)
+{
+  std::vector<Eigen::Vector3f> xyz(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i)
+    xyz[i] = st.contour_xyz[ids[i]];
+  SegmentHull h = computeSegmentHull(xyz);
+  for (int& c : h.contour)
+    c = ids[c];
+  return h;
+}
+
+/// Nearest other live segment of root \a s within \a radius (or unlimited if radius < 0)
+/// through active contour points. Returns (segment, distance) or (−1, inf).
+std::pair<int, double>
+nearestSegment(MergeState& st, int s, double radius, const std::vector<char>& finished)
+{
+  std::pair<int, double> best{-1, std::numeric_limits<double>::infinity()};
+  std::vector<int> idx;
+  std::vector<float> d2;
+  const int n_contour = static_cast<int>(st.contour_xyz.size());
+  for (const int c : st.contour[s]) {
+    pcl::PointXYZ q;
+    q.getVector3fMap() = st.contour_xyz[c];
+    if (radius >= 0.0)
+      st.tree.radiusSearch(q, radius, idx, d2);
+    else
+      st.tree.nearestKSearch(q, std::min(kNearestContourCandidates, n_contour), idx, d2);
+    for (std::size_t t = 0; t < idx.size(); ++t) {
+      if (!st.contour_active[idx[t]])
+        continue;
+      const int owner = st.find(st.contour_owner[idx[t]]);
+      if (owner == s || finished[owner])
+        continue;
+      const double d = std::sqrt(static_cast<double>(d2[t]));
+      if (d < best.second)
+        best = {owner, d};
+      break;  // results are sorted: the first valid one is the nearest for this query
+    }
+  }
+  return best;
+}
+
+/// ΔV = (V_j'' − V_j') / max(V_i, floor)  (eq. 2); also returns the merged hull.
+double
+volumeChange(const MergeState& st, int i, int j, double floor, SegmentHull* merged)
+{
+  std::vector<int> ids = st.contour[j];
+  ids.insert(ids.end(), st.contour[i].begin(), st.contour[i].end());
+  SegmentHull h = hullOfContour(st, ids);
+  const double dv = (h.volume - st.volume[j]) / std::max(st.volume[i], floor);
+  if (merged)
+    *merged = std::move(h);
+  return std::max(0.0, dv);
+}
+
+/// Baarda backward elimination of large values, then the maximum of what remains (§3.2.2).
+double
+snoopedMaximum(const std::vector<double>& values, double alpha)
+{
+  if (values.empty())
+    return 0.0;
+  stats::DataSnoopingSettings s;
+  s.alpha = alpha;
+  s.one_sided_upper = true;
+  const stats::DataSnoopingResult r = stats::dataSnooping(values, s);
+  return r.valid ? r.max_kept : 0.0;
+}
+
+void
+buildState(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+           const std::vector<float>& residuals, int n_segments, MergeState& st)
+{
+  st.members.assign(n_segments, {});
+  st.residual_sum.assign(n_segments, 0.0);
+  for (std::size_t p = 0; p < labels.size(); ++p) {
+    if (labels[p] < 0)
+      continue;
+    st.members[labels[p]].push_back(static_cast<int>(p));
+    st.residual_sum[labels[p]] += residuals[p];
+  }
+  st.contour.assign(n_segments, {});
+  st.volume.assign(n_segments, 0.0);
+  st.parent.resize(n_segments);
+  std::iota(st.parent.begin(), st.parent.end(), 0);
+  std::vector<Eigen::Vector3f> xyz;
+  for (int s = 0; s < n_segments; ++s) {
+    xyz.clear();
+    for (const int p : st.members[s])
+      xyz.push_back(points[p]);
+    const SegmentHull h = computeSegmentHull(xyz);
+    st.volume[s] = h.volume;
+    for (const int c : h.contour) {
+      st.contour[s].push_back(static_cast<int>(st.contour_xyz.size()));
+      st.contour_xyz.push_back(xyz[c]);
+      st.contour_owner.push_back(s);
+    }
+  }
+  st.contour_active.assign(st.contour_xyz.size(), 1);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  cloud->resize(st.contour_xyz.size());
+  for (std::size_t c = 0; c < st.contour_xyz.size(); ++c)
+    (*cloud)[c].getVector3fMap() = st.contour_xyz[c];
+  if (!cloud->empty())
+    st.tree.setInputCloud(cloud);
+}
+
+}  // namespace
+
+MergeReport
+mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labels,
+              const std::vector<float>& residuals, const MergeSettings& settings,
+              double volume_floor_default)
+{
+  MergeReport rep;
+  const int n_segments = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
+  rep.segments_before = rep.segments_after = static_cast<std::size_t>(std::max(0, n_segments));
+  if (settings.rule == MergeRule::None || n_segments < 2 || points.size() != labels.size() ||
+      residuals.size() != labels.size())
+    return rep;
+  const bool full = settings.rule == MergeRule::DistanceSimilarityVolume;
+  const double floor = settings.volume_floor > 0.0 ? settings.volume_floor
+                                                   : std::max(volume_floor_default, 1e-12);
+
+  MergeState st;
+  buildState(points, labels, residuals, n_segments, st);
+  std::vector<char> none_finished(n_segments, 0);
+
+  // Nearest neighbour segment of every segment: the sample D (§3.2.2, 1).
+  std::vector<std::pair<int, double>> nearest(n_segments);
+  std::vector<double> D;
+  for (int s = 0; s < n_segments; ++s) {
+    nearest[s] = nearestSegment(st, s, -1.0, none_finished);
+    if (nearest[s].first >= 0)
+      D.push_back(nearest[s].second);
+  }
+  rep.distance_samples = D.size();
+  rep.distance_threshold = settings.distance_threshold >= 0.0
+                               ? settings.distance_threshold
+                               : snoopedMaximum(D, settings.alpha);
+
+  // s_t: smallest gap between 3 k-means centres of the segment residuals R_i (eq. 1).
+  rep.similarity_threshold = std::numeric_limits<double>::infinity();
+  if (full) {
+    if (settings.similarity_threshold >= 0.0) {
+      rep.similarity_threshold = settings.similarity_threshold;
+    } else {
+      std::vector<double> R(n_segments);
+      for (int s = 0; s < n_segments; ++s)
+        R[s] = st.meanResidual(s);
+      const stats::KMeans1DResult km =
+          stats::kMeans1D(R, static_cast<std::size_t>(std::max(2, settings.kmeans_centres)));
+      if (km.valid && std::isfinite(km.smallest_gap))
+        rep.similarity_threshold = km.smallest_gap;  // one centre only: all alike, no limit
+    }
+  }
+
+  // V_t: ΔV over the nearest pairs that pass d_t and s_t, smaller segment into larger.
+  rep.volume_threshold = std::numeric_limits<double>::infinity();
+  if (full) {
+    if (settings.volume_threshold >= 0.0) {
+      rep.volume_threshold = settings.volume_threshold;
+    } else {
+      std::vector<double> dV;
+      for (int s = 0; s < n_segments; ++s) {
+        const int j = nearest[s].first;
+        if (j < 0 || nearest[s].second > rep.distance_threshold ||
+            std::abs(st.meanResidual(s) - st.meanResidual(j)) >= rep.similarity_threshold)
+          continue;
+        const bool s_small = st.members[s].size() <= st.members[j].size();
+        dV.push_back(s_small ? volumeChange(st, s, j, floor, nullptr)
+                             : volumeChange(st, j, s, floor, nullptr));
+      }
+      rep.volume_samples = dV.size();
+      rep.volume_threshold = snoopedMaximum(dV, settings.alpha);
+    }
+  }
+
+  // Fig. 8: smallest segment first; merge into its nearest unfinished segment or finish it.
+  std::vector<int> order(n_segments);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return st.members[a].size() < st.members[b].size();
+  });
+  std::vector<char> finished(n_segments, 0);
+  for (const int s : order) {
+    finished[s] = 1;  // S_1 leaves S_u whatever happens
+    const auto [j, d] = nearestSegment(st, s, rep.distance_threshold, finished);
+    if (j < 0 || d > rep.distance_threshold)
+      continue;
+    SegmentHull merged;
+    if (full) {
+      if (std::abs(st.meanResidual(s) - st.meanResidual(j)) >= rep.similarity_threshold)
+        continue;
+      if (volumeChange(st, s, j, floor, &merged) >= rep.volume_threshold)
+        continue;
+    } else {
+      std::vector<int> ids = st.contour[j];
+      ids.insert(ids.end(), st.contour[s].begin(), st.contour[s].end());
+      merged = hullOfContour(st, ids);
+    }
+    // Merge S_1 into S_j: union-find, members, residual sum, new hull H_j (Fig. 8).
+    st.parent[s] = j;
+    st.residual_sum[j] += st.residual_sum[s];
+    st.members[j].insert(st.members[j].end(), st.members[s].begin(), st.members[s].end());
+    st.members[s].clear();
+    for (const int c : st.contour[j])
+      st.contour_active[c] = 0;
+    for (const int c : st.contour[s])
+      st.contour_active[c] = 0;
+    for (const int c : merged.contour)
+      st.contour_active[c] = 1;
+    st.contour[j] = merged.contour;
+    st.contour[s].clear();
+    st.volume[j] = merged.volume;
+    ++rep.merges;
+  }
+
+  // Dense relabelling of the roots.
+  std::vector<int> dense(n_segments, -1);
+  int next = 0;
+  for (int& l : labels) {
+    if (l < 0)
+      continue;
+    const int root = st.find(l);
+    if (dense[root] < 0)
+      dense[root] = next++;
+    l = dense[root];
+  }
+  rep.segments_after = static_cast<std::size_t>(next);
+  return rep;
+}
+
+}  // namespace segmentation
+}  // namespace pcl_ls3d
