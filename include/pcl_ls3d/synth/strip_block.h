@@ -1,0 +1,110 @@
+#pragma once
+/// \file strip_block.h
+/// \brief Airborne-like flight strips over the synthetic terrain, each strip displaced by its
+///        own known 7-parameter similarity (the errors a strip adjustment must remove).
+///
+/// Geometry (block-local frame, the TRUE frame; metres, seconds):
+///  - Flight direction d = (cos heading, sin heading), across a = (−sin heading, cos heading).
+///    Strip s (0-based) flies along the line through c_s = (s − (N−1)/2)·spacing·a, with
+///    spacing = swath_width·(1 − side_overlap), from −length/2 to +length/2 along d. So
+///    neighbouring swaths share side_overlap·swath_width across track.
+///  - Scan lines across track: n_c = max(1, round(swath·√density)) points per line at spacing
+///    swath/n_c, lines da = 1/(density·swath/n_c) apart along track, so the nominal density is
+///    exact. Point j of line k sits at across = (j + ½)/n_c·swath − swath/2 (reversed on odd
+///    lines for ZIGZAG) and along = −length/2 + (k + (j + ½)/n_c)·da: the aircraft advances
+///    while the mirror sweeps, which draws the zig-zag (oscillating mirror) or the parallel slanted
+///    lines (rotating polygon) on the ground.
+///  - True point: that (x, y), z = true surface (terrain + roofs), plus isotropic noise.
+///    OBSERVED point (what the cloud holds) = truth[s].transform.inverse() applied to it, so
+///    truth[s].transform maps strip s's observed coordinates onto the true frame.
+///  - gps_time = start_time + s·(length/speed + turn_time) + (k + (j + ½)/n_c)·da/speed.
+///    point_source_id = first_source_id + s. Classification 2 ground / 6 roof; return 1 of 1.
+///  - Clouds hold local coordinates; written coordinates = local + origin.
+
+#include <pcl_ls3d/common/similarity_transform.h>
+#include <pcl_ls3d/point_types.h>
+#include <pcl_ls3d/synth/buildings.h>
+
+#include <pcl/point_cloud.h>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace synth {
+
+enum class ScanPattern : std::uint8_t { ZIGZAG = 0, PARALLEL = 1 };
+
+/// \brief Settings of makeStripBlock().
+struct StripSettings
+{
+  std::uint32_t seed = 1;
+  int num_strips = 3;
+  double heading = 0.0;            ///< flight direction from +x [rad]
+  double strip_length = 600.0;     ///< [m]
+  double swath_width = 300.0;      ///< [m]
+  double side_overlap = 0.3;       ///< shared fraction of the swath between neighbours, [0, 1)
+  double density = 4.0;            ///< nominal points per m² within a strip
+  ScanPattern pattern = ScanPattern::ZIGZAG;
+  double speed = 60.0;             ///< ground speed [m/s] (gps_time)
+  double start_time = 0.0;         ///< gps_time of the first point [s]
+  double turn_time = 120.0;        ///< time between strips [s]
+  double noise_sigma = 0.05;       ///< isotropic noise per axis [m]
+  double relief = 10.0;            ///< Terrain relief [m]
+  double wavelength = 60.0;        ///< Terrain wavelength [m]
+  bool buildings = true;
+  BuildingSettings building_settings;
+  std::uint16_t first_source_id = 1;
+  /// Strip 1 is the fixed reference (identity truth).
+  bool fix_first = true;
+  /// Random per-strip errors (when `transforms` is empty), drawn about the strip centre:
+  /// shift per axis N(0, shift_sigma) [m], angles N(0, angle_sigma) [rad], m − 1 ~ N(0, scale_sigma).
+  double shift_sigma = 0.15, angle_sigma = 3e-4, scale_sigma = 5e-5;
+  /// Explicit per-strip truths (block-local frame, observed → true); size num_strips or empty.
+  std::vector<SimilarityTransform> transforms;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< georeference offset
+
+  bool
+  isValid(std::string* why = nullptr) const;
+};
+
+/// \brief What is known about one strip.
+struct StripTruth
+{
+  std::uint16_t point_source_id = 0;
+  bool fixed = false;                 ///< the reference strip (identity)
+  SimilarityTransform transform;      ///< observed → true, block-local frame (rotation about 0)
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< strip centre c_s (true frame, z = 0)
+  /// The same map written about the centre: x' = centre + t_centre + m R (x − centre).
+  Eigen::Vector3d t_centre = Eigen::Vector3d::Zero();
+  std::array<Eigen::Vector2d, 4> footprint;  ///< true-frame corners (start-left, start-right, end-right, end-left)
+  std::size_t first_index = 0, point_count = 0;  ///< the strip's points in the block cloud
+  std::size_t scan_lines = 0, points_per_line = 0;
+  double start_time = 0.0, end_time = 0.0;  ///< [s]
+};
+
+/// \brief All strips in one cloud (ordered by strip, then by time) and the per-strip truths.
+struct StripBlock
+{
+  pcl::PointCloud<PointLiDAR>::Ptr cloud;
+  std::vector<StripTruth> strips;
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  std::shared_ptr<const SurfaceModel> surface;  ///< the true surface
+  Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  ///< d
+  double strip_spacing = 0.0;                   ///< distance between neighbouring centre lines [m]
+
+  /// The points of strip s (copy).
+  pcl::PointCloud<PointLiDAR>::Ptr
+  stripCloud(std::size_t s) const;
+};
+
+/// Generates the block; deterministic in the seed (independent of thread count). Invalid
+/// settings: PCL_ERROR and an empty (non-null) cloud.
+StripBlock
+makeStripBlock(const StripSettings& settings);
+
+}  // namespace synth
+}  // namespace pcl_ls3d
