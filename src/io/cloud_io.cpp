@@ -1,0 +1,229 @@
+/// \file cloud_io.cpp
+/// \brief loadCloud()/saveCloud(): format detection, overwrite protection and the local origin.
+
+#include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/las_io.h>
+#include <pcl_ls3d/io/xyz_io.h>
+
+#include "local_origin.h"
+#include "pcl_formats.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace pcl_ls3d {
+namespace io {
+
+namespace fs = std::filesystem;
+
+Eigen::Vector3d
+chooseOrigin(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file)
+{
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    if (!std::isfinite(min_file[k]) || !std::isfinite(max_file[k]))
+      continue;
+    if (std::max(std::abs(min_file[k]), std::abs(max_file[k])) >= 1e4)
+      origin[k] = std::round(0.5 * (min_file[k] + max_file[k]));
+  }
+  return origin;
+}
+
+std::string
+fileExtension(const std::string& path)
+{
+  std::string ext = fs::path(path).extension().string();
+  if (!ext.empty() && ext[0] == '.')
+    ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+bool
+isSameFile(const std::string& a, const std::string& b)
+{
+  std::error_code ec;
+  if (fs::exists(a, ec) && fs::exists(b, ec)) {
+    const bool same = fs::equivalent(a, b, ec);
+    if (!ec)
+      return same;
+  }
+  // At least one does not exist yet: compare the normalised absolute paths.
+  const fs::path pa = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  const fs::path pb = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  return pa == pb;
+}
+
+namespace detail {
+
+void
+applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cloud,
+                 CloudInfo& info, const LoadOptions& options)
+{
+  const std::size_t n = cloud.size();
+  info.points_in_file = n;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  std::size_t kept = 0;
+  std::vector<std::size_t> keep;
+  keep.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    if (!p.allFinite())
+      continue;
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+    keep.push_back(i);
+  }
+  kept = keep.size();
+  info.points_dropped_nonfinite = n - kept;
+  info.points_loaded = kept;
+  if (kept > 0) {
+    info.min_file = lo;
+    info.max_file = hi;
+  }
+  info.origin = options.use_origin ? options.origin : chooseOrigin(info.min_file, info.max_file);
+  for (std::size_t j = 0; j < kept; ++j) {
+    const std::size_t i = keep[j];
+    PointLiDAR p = cloud[i];
+    p.x = static_cast<float>(xyz[3 * i] - info.origin[0]);
+    p.y = static_cast<float>(xyz[3 * i + 1] - info.origin[1]);
+    p.z = static_cast<float>(xyz[3 * i + 2] - info.origin[2]);
+    cloud[j] = p;
+  }
+  cloud.resize(kept);  // also sets width = kept, height = 1
+  cloud.is_dense = true;
+}
+
+}  // namespace detail
+
+namespace {
+
+/// "las", "laz", "pcd", "ply", "xyz" from the first bytes, else "".
+std::string
+sniffFormat(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  char head[16] = {};
+  in.read(head, sizeof(head));
+  const std::streamsize got = in.gcount();
+  const std::string s(head, static_cast<std::size_t>(got));
+  if (s.compare(0, 4, "LASF") == 0)
+    return "las";
+  if (s.compare(0, 4, "ply\n") == 0 || s.compare(0, 4, "ply\r") == 0)
+    return "ply";
+  if (s.compare(0, 6, "# .PCD") == 0 || s.compare(0, 7, "VERSION") == 0 ||
+      s.compare(0, 6, "FIELDS") == 0)
+    return "pcd";
+  return "";
+}
+
+std::string
+formatOf(const std::string& ext)
+{
+  if (ext == "las" || ext == "pcd" || ext == "ply" || ext == "laz")
+    return ext;
+  if (ext == "xyz" || ext == "txt" || ext == "csv" || ext == "asc" || ext == "pts")
+    return "xyz";
+  return "";
+}
+
+bool
+loadByFormat(const std::string& format, const std::string& path,
+             pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
+             const LoadOptions& options)
+{
+  if (format == "las")
+    return readLasFile(path, cloud, info, error, options);
+  if (format == "pcd" || format == "ply")
+    return detail::readPclFile(path, format, cloud, info, error, options);
+  std::ifstream in(path);
+  if (!in) {
+    error = "cannot open file";
+    return false;
+  }
+  return readXyz(in, cloud, info, error, options);
+}
+
+}  // namespace
+
+bool
+loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+          std::string& error, const LoadOptions& options)
+{
+  cloud.clear();
+  info = CloudInfo();
+  std::string reason;
+  std::error_code ec;
+  const std::string ext = fileExtension(path);
+  std::string format;
+  if (!fs::exists(path, ec))
+    reason = "file does not exist";
+  else if (fs::is_directory(path, ec))
+    reason = "is a directory, not a point-cloud file";
+  else if (fs::file_size(path, ec) == 0)
+    reason = "empty file";
+  else if (ext == "laz")
+    reason = kLazNotSupported;
+  else {
+    format = sniffFormat(path);
+    if (format.empty())
+      format = formatOf(ext);
+    if (format.empty())
+      reason = "unknown file type '." + ext + "' (supported: .las .pcd .ply .xyz .txt .csv)";
+  }
+  if (reason.empty() && !options.origin.allFinite() && options.use_origin)
+    reason = "the forced origin is not finite";
+  if (reason.empty() && !loadByFormat(format, path, cloud, info, reason, options))
+    cloud.clear();
+  else if (reason.empty() && info.points_loaded == 0 && !options.allow_empty) {
+    reason = info.points_in_file == 0
+                 ? std::string("no points in the file")
+                 : "no finite points (all " + std::to_string(info.points_in_file) +
+                       " points are NaN/inf)";
+  }
+  if (!reason.empty()) {
+    error = path + ": " + reason;
+    return false;
+  }
+  return true;
+}
+
+bool
+saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
+          const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+{
+  const std::string ext = fileExtension(path);
+  const std::string format = formatOf(ext);
+  std::string reason;
+  std::error_code ec;
+  if (format.empty() || format == "laz")
+    reason = "cannot write '." + ext + "' files (supported: .las .pcd .ply .xyz .txt .csv)";
+  else if (cloud.empty())
+    reason = "refusing to write an empty cloud";
+  else if (!origin.allFinite())
+    reason = "the origin is not finite";
+  else if (fs::exists(path, ec) && !options.overwrite)
+    reason = "exists already (use -overwrite to replace it)";
+  else if (fs::is_directory(path, ec))
+    reason = "is a directory";
+  else if (format == "las")
+    writeLasFile(path, cloud, origin, reason, options);
+  else if (format == "xyz")
+    writeXyzFile(path, cloud, origin, reason, options);
+  else
+    detail::writePclFile(path, format, cloud, origin, reason, options);
+  if (!reason.empty()) {
+    error = path + ": " + reason;
+    return false;
+  }
+  return true;
+}
+
+}  // namespace io
+}  // namespace pcl_ls3d

@@ -1,0 +1,307 @@
+/// \file las_reader.cpp
+/// \brief LAS 1.0–1.4 reader: validates the header against the buffer size before touching a
+///        point, then decodes the point block in one pass (see las_io.h).
+
+#include <pcl_ls3d/io/las_io.h>
+
+#include "las_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace pcl_ls3d {
+namespace io {
+
+const char* const kLazNotSupported =
+    "compressed LAZ is not supported; decompress first, e.g. `las2las -i in.laz -o out.las` or "
+    "`pdal translate in.laz out.las`";
+
+std::uint16_t
+lasPointRecordLength(int point_format)
+{
+  static const std::uint16_t kLength[11] = {20, 28, 26, 34, 57, 63, 30, 36, 38, 59, 67};
+  return (point_format >= 0 && point_format <= 10) ? kLength[point_format] : 0;
+}
+
+namespace {
+
+std::string
+fixedString(const std::uint8_t* p, std::size_t n)
+{
+  std::size_t len = 0;
+  while (len < n && p[len] != 0)
+    ++len;
+  return std::string(reinterpret_cast<const char*>(p), len);
+}
+
+template <typename... Args>
+std::string
+concat(const Args&... args)
+{
+  std::ostringstream s;
+  (s << ... << args);
+  return s.str();
+}
+
+/// Reads the VLRs between the header and the points; a VLR that would run past the point block is
+/// an error (the file is inconsistent). Detects the LASzip VLR.
+bool
+readVlrs(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
+{
+  std::size_t pos = h.header_size;
+  const std::size_t end = h.offset_to_points;
+  h.vlrs.clear();
+  for (std::uint32_t i = 0; i < h.number_of_vlrs; ++i) {
+    if (pos + las::kVlrHeaderSize > end) {
+      error = concat("VLR ", i + 1, " of ", h.number_of_vlrs, " starts at byte ", pos,
+                     " but does not fit before the point data at byte ", end);
+      return false;
+    }
+    const std::uint8_t* v = data + pos;
+    LasVlr vlr;
+    vlr.user_id = fixedString(v + 2, 16);
+    vlr.record_id = las::get<std::uint16_t>(v + 18);
+    const std::size_t length = las::get<std::uint16_t>(v + 20);
+    vlr.description = fixedString(v + 22, 32);
+    if (vlr.user_id == "laszip encoded" || vlr.record_id == 22204) {
+      error = kLazNotSupported;
+      return false;
+    }
+    if (pos + las::kVlrHeaderSize + length > end) {
+      error = concat("VLR ", i + 1, " (", vlr.user_id, "/", vlr.record_id, ") of ", length,
+                     " bytes runs past the point data at byte ", end);
+      return false;
+    }
+    vlr.data.assign(v + las::kVlrHeaderSize, v + las::kVlrHeaderSize + length);
+    h.vlrs.push_back(std::move(vlr));
+    pos += las::kVlrHeaderSize + length;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool
+readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
+{
+  if (size == 0) {
+    error = "empty file";
+    return false;
+  }
+  if (size < 4 || std::memcmp(data, "LASF", 4) != 0) {
+    error = "not a LAS file (signature is not 'LASF')";
+    return false;
+  }
+  if (size < las::kHeaderSize10) {
+    error = concat("truncated LAS header: file has ", size, " bytes, a header needs at least 227");
+    return false;
+  }
+  h = LasHeaderInfo();
+  h.version_major = data[las::kVersionMajor];
+  h.version_minor = data[las::kVersionMinor];
+  if (h.version_major != 1 || h.version_minor > 4) {
+    error = concat("unsupported LAS version ", int(h.version_major), ".", int(h.version_minor),
+                   " (1.0-1.4 supported)");
+    return false;
+  }
+  h.header_size = las::get<std::uint16_t>(data + las::kHeaderSize);
+  const std::size_t required = las::headerSizeFor(h.version_minor);
+  if (h.header_size < required) {
+    error = concat("LAS 1.", int(h.version_minor), " header size field is ", h.header_size,
+                   ", smaller than the ", required, " bytes the version requires");
+    return false;
+  }
+  if (size < h.header_size) {
+    error = concat("truncated LAS header: file has ", size, " bytes, header size is ",
+                   h.header_size);
+    return false;
+  }
+  const std::uint8_t format_byte = data[las::kPointFormat];
+  if (format_byte & 0xC0) {  // LASzip sets bit 7 (and bit 6 in some writers)
+    error = kLazNotSupported;
+    return false;
+  }
+  h.point_format = format_byte & 0x3F;
+  const std::uint16_t min_length = lasPointRecordLength(h.point_format);
+  if (min_length == 0) {
+    error = concat("unsupported LAS point format ", int(h.point_format), " (0-10 supported)");
+    return false;
+  }
+  h.record_length = las::get<std::uint16_t>(data + las::kRecordLength);
+  if (h.record_length < min_length) {
+    error = concat("point record length ", h.record_length, " is smaller than the ", min_length,
+                   " bytes point format ", int(h.point_format), " needs");
+    return false;
+  }
+  h.extra_bytes_per_record = static_cast<std::uint16_t>(h.record_length - min_length);
+  h.file_source_id = las::get<std::uint16_t>(data + las::kFileSourceId);
+  h.global_encoding = las::get<std::uint16_t>(data + las::kGlobalEncoding);
+  h.system_identifier = fixedString(data + las::kSystemId, 32);
+  h.generating_software = fixedString(data + las::kSoftware, 32);
+  h.offset_to_points = las::get<std::uint32_t>(data + las::kOffsetToPoints);
+  h.number_of_vlrs = las::get<std::uint32_t>(data + las::kNumberOfVlrs);
+  h.legacy_point_count = las::get<std::uint32_t>(data + las::kLegacyCount);
+  for (int r = 0; r < 5; ++r)
+    h.points_by_return[r] = las::get<std::uint32_t>(data + las::kLegacyByReturn + 4 * r);
+  for (int k = 0; k < 3; ++k) {
+    h.scale[k] = las::get<double>(data + las::kScale + 8 * k);
+    h.offset[k] = las::get<double>(data + las::kOffset + 8 * k);
+    h.max[k] = las::get<double>(data + las::kMaxX + 16 * k);
+    h.min[k] = las::get<double>(data + las::kMaxX + 16 * k + 8);
+    if (!std::isfinite(h.scale[k]) || h.scale[k] == 0.0 || !std::isfinite(h.offset[k])) {
+      error = concat("invalid scale factor or offset for ", "xyz"[k], " (scale ", h.scale[k],
+                     ", offset ", h.offset[k], ")");
+      return false;
+    }
+  }
+  h.point_count = h.legacy_point_count;
+  if (h.version_minor >= 4) {
+    const std::uint64_t count64 = las::get<std::uint64_t>(data + las::kCount64);
+    if (count64 != 0 && h.legacy_point_count != 0 && count64 != h.legacy_point_count) {
+      error = concat("point count mismatch: legacy count ", h.legacy_point_count,
+                     " vs 64-bit count ", count64);
+      return false;
+    }
+    if (count64 != 0) {
+      h.point_count = count64;
+      for (int r = 0; r < 15; ++r)
+        h.points_by_return[r] = las::get<std::uint64_t>(data + las::kByReturn64 + 8 * r);
+    }
+  }
+  if (h.offset_to_points < h.header_size) {
+    error = concat("offset to point data (", h.offset_to_points, ") lies inside the ",
+                   h.header_size, "-byte header");
+    return false;
+  }
+  if (h.offset_to_points > size) {
+    error = concat("offset to point data (", h.offset_to_points,
+                   ") is beyond the end of the file (", size, " bytes)");
+    return false;
+  }
+  if (!readVlrs(data, h, error))
+    return false;
+  // The point block must fit; later EVLRs / waveform data may follow it, so more bytes are fine.
+  const std::uint64_t available = size - h.offset_to_points;
+  if (h.point_count > available / h.record_length) {
+    error = concat("point block truncated or point count wrong: header says ", h.point_count,
+                   " points of ", h.record_length, " bytes from byte ", h.offset_to_points,
+                   " but only ", available, " bytes follow (room for ",
+                   available / h.record_length, " points)");
+    return false;
+  }
+  return true;
+}
+
+bool
+readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
+        CloudInfo& info, std::string& error, const LoadOptions& options)
+{
+  info = CloudInfo();
+  info.format = "las";
+  cloud.clear();
+  if (!readLasHeader(data, size, info.las, error))
+    return false;
+  const LasHeaderInfo& h = info.las;
+  const std::size_t n = static_cast<std::size_t>(h.point_count);
+  const std::size_t stride = h.record_length;
+  const std::uint8_t* block = data + h.offset_to_points;
+  info.points_in_file = n;
+  info.fields = {"x", "y", "z", "intensity", "return_number", "number_of_returns",
+                 "classification", "point_source_id"};
+  const std::size_t gps_offset = las::gpsTimeOffset(h.point_format);
+  if (gps_offset)
+    info.fields.push_back("gps_time");
+
+  // Pass 1: integer bounds -> file bounds -> origin.
+  std::int32_t lo[3] = {std::numeric_limits<std::int32_t>::max(),
+                        std::numeric_limits<std::int32_t>::max(),
+                        std::numeric_limits<std::int32_t>::max()};
+  std::int32_t hi[3] = {std::numeric_limits<std::int32_t>::min(),
+                        std::numeric_limits<std::int32_t>::min(),
+                        std::numeric_limits<std::int32_t>::min()};
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t* r = block + i * stride;
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t v = las::get<std::int32_t>(r + 4 * k);
+      lo[k] = std::min(lo[k], v);
+      hi[k] = std::max(hi[k], v);
+    }
+  }
+  if (n > 0) {
+    for (int k = 0; k < 3; ++k) {
+      const double a = lo[k] * h.scale[k] + h.offset[k], b = hi[k] * h.scale[k] + h.offset[k];
+      info.min_file[k] = std::min(a, b);  // a negative scale swaps them
+      info.max_file[k] = std::max(a, b);
+    }
+    if (!info.min_file.allFinite() || !info.max_file.allFinite()) {
+      error = "scale and offset give non-finite coordinates";
+      return false;
+    }
+  }
+  info.origin = options.use_origin ? options.origin : chooseOrigin(info.min_file, info.max_file);
+  // x_local = X * s + (offset - origin): one double multiply-add per coordinate.
+  const Eigen::Vector3d shift = h.offset - info.origin;
+  const bool new_layout = h.point_format >= 6;
+
+  cloud.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t* r = block + i * stride;
+    PointLiDAR& p = cloud[i];
+    p.x = static_cast<float>(las::get<std::int32_t>(r) * h.scale[0] + shift[0]);
+    p.y = static_cast<float>(las::get<std::int32_t>(r + 4) * h.scale[1] + shift[1]);
+    p.z = static_cast<float>(las::get<std::int32_t>(r + 8) * h.scale[2] + shift[2]);
+    p.intensity = static_cast<float>(las::get<std::uint16_t>(r + 12));
+    const std::uint8_t returns = r[14];
+    if (new_layout) {
+      p.return_number = returns & 0x0F;
+      p.number_of_returns = returns >> 4;
+      p.classification = r[16];
+      p.point_source_id = las::get<std::uint16_t>(r + 20);
+    }
+    else {
+      p.return_number = returns & 0x07;
+      p.number_of_returns = (returns >> 3) & 0x07;
+      p.classification = r[15] & 0x1F;
+      p.point_source_id = las::get<std::uint16_t>(r + 18);
+    }
+    p.gps_time = gps_offset ? las::get<double>(r + gps_offset) : 0.0;
+  }
+  cloud.width = static_cast<std::uint32_t>(n);
+  cloud.height = 1;
+  cloud.is_dense = true;
+  info.points_loaded = n;
+  if (n == 0 && !options.allow_empty) {
+    error = "the LAS file holds no points";
+    return false;
+  }
+  return true;
+}
+
+bool
+readLasFile(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+            std::string& error, const LoadOptions& options)
+{
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in) {
+    error = "cannot open file";
+    return false;
+  }
+  const std::streamoff size = in.tellg();
+  if (size < 0) {
+    error = "cannot determine the file size";
+    return false;
+  }
+  std::vector<std::uint8_t> buffer(static_cast<std::size_t>(size));
+  in.seekg(0);
+  if (size > 0 && !in.read(reinterpret_cast<char*>(buffer.data()), size)) {
+    error = "read error";
+    return false;
+  }
+  return readLas(buffer.data(), buffer.size(), cloud, info, error, options);
+}
+
+}  // namespace io
+}  // namespace pcl_ls3d

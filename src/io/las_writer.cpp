@@ -1,0 +1,251 @@
+/// \file las_writer.cpp
+/// \brief LAS 1.0–1.4 writer (formats 0–10): header per the ASPRS specification, bounds and
+///        return counts computed from the quantised records, VLRs passed through.
+
+#include <pcl_ls3d/io/las_io.h>
+
+#include "las_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace pcl_ls3d {
+namespace io {
+
+namespace {
+
+void
+putString(std::uint8_t* p, const std::string& s, std::size_t n)
+{
+  std::memcpy(p, s.data(), std::min(n, s.size()));
+}
+
+/// Smallest LAS 1.x minor version that defines a point format.
+int
+minimumMinorFor(int format)
+{
+  return format <= 1 ? 0 : (format <= 3 ? 2 : (format <= 5 ? 3 : 4));
+}
+
+bool
+checkOptions(const pcl::PointCloud<PointLiDAR>& cloud, const SaveOptions& o, std::string& error)
+{
+  const int format = o.las_point_format, minor = o.las_minor_version;
+  if (format > 10) {
+    error = "LAS point format " + std::to_string(format) + " does not exist (0-10)";
+    return false;
+  }
+  if (minor > 4) {
+    error = "LAS version 1." + std::to_string(minor) + " is not supported (1.0-1.4)";
+    return false;
+  }
+  if (minor < minimumMinorFor(format)) {
+    error = "LAS point format " + std::to_string(format) + " needs LAS 1." +
+            std::to_string(minimumMinorFor(format)) + " or later";
+    return false;
+  }
+  if (!o.las_scale.allFinite() || (o.las_scale.array() <= 0.0).any()) {
+    error = "LAS scale must be positive";
+    return false;
+  }
+  if (minor < 4 && cloud.size() > std::numeric_limits<std::uint32_t>::max()) {
+    error = "more than 2^32-1 points need LAS 1.4";
+    return false;
+  }
+  // Formats 0-5 hold 5-bit classes and 3-bit return numbers; refuse rather than truncate.
+  const unsigned max_class = format >= 6 ? 255 : 31, max_return = format >= 6 ? 15 : 7;
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const PointLiDAR& p = cloud[i];
+    if (p.classification > max_class) {
+      error = "point " + std::to_string(i) + " has class " + std::to_string(p.classification) +
+              ", which LAS point format " + std::to_string(format) +
+              " cannot store (max 31); use format 6-10 (LAS 1.4)";
+      return false;
+    }
+    if (p.return_number > max_return || p.number_of_returns > max_return) {
+      error = "point " + std::to_string(i) + " has return " + std::to_string(p.return_number) +
+              "/" + std::to_string(p.number_of_returns) + ", beyond the " +
+              std::to_string(max_return) + " that LAS point format " + std::to_string(format) +
+              " can store";
+      return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+bool
+writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+         std::vector<std::uint8_t>& out, std::string& error, const SaveOptions& o)
+{
+  if (!checkOptions(cloud, o, error))
+    return false;
+  const int format = o.las_point_format, minor = o.las_minor_version;
+  const std::size_t n = cloud.size();
+  const std::size_t header_size = las::headerSizeFor(minor);
+  const std::size_t record_length = lasPointRecordLength(format);
+
+  // File coordinates in double; offset = rounded bbox centre unless given.
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const auto& p : cloud) {
+    const Eigen::Vector3d x = p.getVector3fMap().cast<double>() + origin;
+    if (!x.allFinite()) {
+      error = "the cloud holds a NaN/inf point, which LAS cannot store";
+      return false;
+    }
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  Eigen::Vector3d offset = o.las_offset;
+  if (!o.las_use_offset)
+    offset = n ? Eigen::Vector3d((0.5 * (lo + hi)).array().round()) : Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3 && n; ++k) {
+    const double a = (lo[k] - offset[k]) / o.las_scale[k], b = (hi[k] - offset[k]) / o.las_scale[k];
+    if (std::max(std::abs(a), std::abs(b)) > 2147483000.0) {
+      error = std::string("the ") + "xyz"[k] +
+              " extent does not fit in 32-bit LAS integers at this scale; use a larger scale";
+      return false;
+    }
+  }
+
+  // VLRs that describe the input's records (extra bytes, LASzip) would lie about ours: drop them.
+  std::vector<const LasVlr*> vlrs;
+  for (const auto& v : o.las_vlrs)
+    if (!(v.user_id == "LASF_Spec" && v.record_id == 4) && v.user_id != "laszip encoded")
+      vlrs.push_back(&v);
+  std::size_t vlr_bytes = 0;
+  for (const LasVlr* pv : vlrs) {
+    const LasVlr& v = *pv;
+    if (v.data.size() > 65535) {
+      error = "VLR " + v.user_id + "/" + std::to_string(v.record_id) + " exceeds 65535 bytes";
+      return false;
+    }
+    vlr_bytes += las::kVlrHeaderSize + v.data.size();
+  }
+  const std::size_t offset_to_points = header_size + vlr_bytes;
+  if (offset_to_points > std::numeric_limits<std::uint32_t>::max()) {
+    error = "VLRs too large";
+    return false;
+  }
+  out.assign(offset_to_points + n * record_length, 0);
+  std::uint8_t* h = out.data();
+
+  // Point records, with quantised bounds and return counts.
+  const bool new_layout = format >= 6;
+  const std::size_t gps_offset = las::gpsTimeOffset(format);
+  std::int32_t qlo[3] = {std::numeric_limits<std::int32_t>::max(),
+                         std::numeric_limits<std::int32_t>::max(),
+                         std::numeric_limits<std::int32_t>::max()};
+  std::int32_t qhi[3] = {std::numeric_limits<std::int32_t>::min(),
+                         std::numeric_limits<std::int32_t>::min(),
+                         std::numeric_limits<std::int32_t>::min()};
+  std::uint64_t by_return[15] = {};
+  for (std::size_t i = 0; i < n; ++i) {
+    const PointLiDAR& p = cloud[i];
+    std::uint8_t* r = h + offset_to_points + i * record_length;
+    for (int k = 0; k < 3; ++k) {
+      const double x = static_cast<double>(p.data[k]) + origin[k];
+      const auto q = static_cast<std::int32_t>(std::llround((x - offset[k]) / o.las_scale[k]));
+      las::put<std::int32_t>(r + 4 * k, q);
+      qlo[k] = std::min(qlo[k], q);
+      qhi[k] = std::max(qhi[k], q);
+    }
+    const float in = p.intensity;
+    las::put<std::uint16_t>(r + 12, !(in > 0.f) ? 0 : (in >= 65535.f ? 65535 : static_cast<std::uint16_t>(std::lround(in))));
+    if (new_layout) {
+      r[14] = static_cast<std::uint8_t>((p.return_number & 0x0F) | (p.number_of_returns << 4));
+      r[16] = p.classification;
+      las::put<std::uint16_t>(r + 20, p.point_source_id);
+    }
+    else {
+      r[14] = static_cast<std::uint8_t>((p.return_number & 0x07) |
+                                        ((p.number_of_returns & 0x07) << 3));
+      r[15] = p.classification & 0x1F;
+      las::put<std::uint16_t>(r + 18, p.point_source_id);
+    }
+    if (gps_offset)
+      las::put<double>(r + gps_offset, p.gps_time);
+    if (p.return_number >= 1 && p.return_number <= 15)
+      ++by_return[p.return_number - 1];
+  }
+
+  // Public header.
+  std::memcpy(h, "LASF", 4);
+  std::uint16_t encoding = 0;
+  if (minor >= 2 && o.las_adjusted_standard_gps_time)
+    encoding |= 1;
+  if (minor >= 4 && format >= 6)
+    encoding |= 1 << 4;  // LAS 1.4: the CRS of formats 6-10 is WKT
+  las::put<std::uint16_t>(h + las::kGlobalEncoding, encoding);
+  h[las::kVersionMajor] = 1;
+  h[las::kVersionMinor] = static_cast<std::uint8_t>(minor);
+  putString(h + las::kSystemId, "pcl_ls3d", 32);
+  putString(h + las::kSoftware, "pcl_ls3d io", 32);
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  las::put<std::uint16_t>(h + las::kCreationDay, static_cast<std::uint16_t>(utc.tm_yday + 1));
+  las::put<std::uint16_t>(h + las::kCreationYear, static_cast<std::uint16_t>(utc.tm_year + 1900));
+  las::put<std::uint16_t>(h + las::kHeaderSize, static_cast<std::uint16_t>(header_size));
+  las::put<std::uint32_t>(h + las::kOffsetToPoints, static_cast<std::uint32_t>(offset_to_points));
+  las::put<std::uint32_t>(h + las::kNumberOfVlrs, static_cast<std::uint32_t>(vlrs.size()));
+  h[las::kPointFormat] = static_cast<std::uint8_t>(format);
+  las::put<std::uint16_t>(h + las::kRecordLength, static_cast<std::uint16_t>(record_length));
+  // LAS 1.4 with formats 6-10: the legacy count and legacy by-return counts must be zero.
+  const bool legacy = !(minor >= 4 && format >= 6) && n <= std::numeric_limits<std::uint32_t>::max();
+  if (legacy) {
+    las::put<std::uint32_t>(h + las::kLegacyCount, static_cast<std::uint32_t>(n));
+    for (int r = 0; r < 5; ++r)
+      las::put<std::uint32_t>(h + las::kLegacyByReturn + 4 * r, static_cast<std::uint32_t>(by_return[r]));
+  }
+  for (int k = 0; k < 3; ++k) {
+    las::put<double>(h + las::kScale + 8 * k, o.las_scale[k]);
+    las::put<double>(h + las::kOffset + 8 * k, offset[k]);
+    las::put<double>(h + las::kMaxX + 16 * k, n ? qhi[k] * o.las_scale[k] + offset[k] : 0.0);
+    las::put<double>(h + las::kMaxX + 16 * k + 8, n ? qlo[k] * o.las_scale[k] + offset[k] : 0.0);
+  }
+  if (minor >= 4) {
+    las::put<std::uint64_t>(h + las::kCount64, n);
+    for (int r = 0; r < 15; ++r)
+      las::put<std::uint64_t>(h + las::kByReturn64 + 8 * r, by_return[r]);
+  }
+  // Waveform start (1.3+) and EVLR start/count (1.4) stay 0: none are written.
+
+  std::uint8_t* v = h + header_size;
+  for (const LasVlr* pv : vlrs) {
+    const LasVlr& vlr = *pv;
+    putString(v + 2, vlr.user_id, 16);
+    las::put<std::uint16_t>(v + 18, vlr.record_id);
+    las::put<std::uint16_t>(v + 20, static_cast<std::uint16_t>(vlr.data.size()));
+    putString(v + 22, vlr.description, 32);
+    if (!vlr.data.empty())
+      std::memcpy(v + las::kVlrHeaderSize, vlr.data.data(), vlr.data.size());
+    v += las::kVlrHeaderSize + vlr.data.size();
+  }
+  return true;
+}
+
+bool
+writeLasFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
+             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+{
+  std::vector<std::uint8_t> bytes;
+  if (!writeLas(cloud, origin, bytes, error, options))
+    return false;
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out || !out.write(reinterpret_cast<const char*>(bytes.data()),
+                         static_cast<std::streamsize>(bytes.size()))) {
+    error = "cannot write the file";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace io
+}  // namespace pcl_ls3d

@@ -1,0 +1,232 @@
+/// \file xyz_io.cpp
+/// \brief ASCII XYZ: column mapping by option, header line or position (see xyz_io.h).
+
+#include <pcl_ls3d/io/xyz_io.h>
+
+#include "local_origin.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+
+namespace pcl_ls3d {
+namespace io {
+
+namespace {
+
+enum class Column { X, Y, Z, Intensity, Classification, PointSourceId, GpsTime, ReturnNumber,
+                    NumberOfReturns, Skip, Unknown };
+
+Column
+columnOf(std::string name)
+{
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (name == "x") return Column::X;
+  if (name == "y") return Column::Y;
+  if (name == "z") return Column::Z;
+  if (name == "intensity" || name == "i") return Column::Intensity;
+  if (name == "classification" || name == "class" || name == "label") return Column::Classification;
+  if (name == "point_source_id" || name == "psid" || name == "source_id") return Column::PointSourceId;
+  if (name == "gps_time" || name == "time" || name == "t") return Column::GpsTime;
+  if (name == "return_number") return Column::ReturnNumber;
+  if (name == "number_of_returns") return Column::NumberOfReturns;
+  if (name == "_" || name == "skip") return Column::Skip;
+  return Column::Unknown;
+}
+
+const char* const kColumnNames[] = {"x", "y", "z", "intensity", "classification",
+                                    "point_source_id", "gps_time", "return_number",
+                                    "number_of_returns"};
+
+bool
+isSeparator(char c)
+{
+  return c == ' ' || c == '\t' || c == ',' || c == ';' || c == '\r' || c == '\n';
+}
+
+void
+tokenize(const std::string& line, std::size_t start, std::vector<std::string_view>& out)
+{
+  out.clear();
+  std::size_t i = start;
+  while (i < line.size()) {
+    while (i < line.size() && isSeparator(line[i]))
+      ++i;
+    const std::size_t b = i;
+    while (i < line.size() && !isSeparator(line[i]))
+      ++i;
+    if (i > b)
+      out.emplace_back(line.data() + b, i - b);
+  }
+}
+
+bool
+parseNumber(std::string_view t, double& v)
+{
+  if (!t.empty() && t[0] == '+')
+    t.remove_prefix(1);
+  const auto r = std::from_chars(t.data(), t.data() + t.size(), v);
+  return r.ec == std::errc() && r.ptr == t.data() + t.size();
+}
+
+/// Mapping from names; valid only if it names x, y and z. Unknown names are skipped.
+bool
+mappingFromNames(const std::vector<std::string_view>& names, std::vector<Column>& map)
+{
+  map.clear();
+  bool has[3] = {false, false, false};
+  for (const auto& n : names) {
+    Column c = columnOf(std::string(n));
+    if (c == Column::Unknown)
+      c = Column::Skip;
+    if (c <= Column::Z)
+      has[static_cast<int>(c)] = true;
+    map.push_back(c);
+  }
+  return has[0] && has[1] && has[2];
+}
+
+template <typename T>
+T
+clampTo(double v)
+{
+  if (!(v > 0.0))
+    return 0;
+  const double hi = static_cast<double>(std::numeric_limits<T>::max());
+  return static_cast<T>(v >= hi ? hi : std::round(v));
+}
+
+}  // namespace
+
+bool
+readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
+        const LoadOptions& options)
+{
+  info = CloudInfo();
+  info.format = "xyz";
+  cloud.clear();
+  std::vector<Column> map;
+  std::vector<std::string_view> tokens;
+  if (!options.xyz_columns.empty()) {
+    std::string spec = options.xyz_columns;
+    tokenize(spec, 0, tokens);
+    for (const auto& t : tokens)
+      if (columnOf(std::string(t)) == Column::Unknown) {
+        error = "unknown XYZ column name '" + std::string(t) + "'";
+        return false;
+      }
+    if (!mappingFromNames(tokens, map)) {
+      error = "XYZ column list '" + spec + "' must name x, y and z";
+      return false;
+    }
+  }
+  std::vector<double> xyz;
+  std::string line;
+  std::size_t line_number = 0, needed = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    std::size_t start = line.find_first_not_of(" \t\r");
+    if (start == std::string::npos)
+      continue;
+    const bool comment = line[start] == '#' || line.compare(start, 2, "//") == 0;
+    if (comment)
+      start += line[start] == '#' ? 1 : 2;
+    tokenize(line, start, tokens);
+    if (tokens.empty())
+      continue;
+    double v = 0.0;
+    if (map.empty() && (comment || !parseNumber(tokens[0], v))) {
+      // A header names the columns; any other text before the data is an error unless commented.
+      std::vector<Column> candidate;
+      if (mappingFromNames(tokens, candidate))
+        map = candidate;
+      else if (!comment) {
+        error = "line " + std::to_string(line_number) + ": cannot parse '" +
+                std::string(tokens[0]) + "' as a number";
+        return false;
+      }
+      continue;
+    }
+    if (comment)
+      continue;
+    if (map.empty())
+      map = {Column::X, Column::Y, Column::Z};
+    if (needed == 0) {
+      for (std::size_t c = 0; c < map.size(); ++c)
+        if (map[c] != Column::Skip)
+          needed = c + 1;
+      for (std::size_t c = 0; c < needed; ++c)
+        if (map[c] != Column::Skip)
+          info.fields.push_back(kColumnNames[static_cast<int>(map[c])]);
+    }
+    if (tokens.size() < needed) {
+      error = "line " + std::to_string(line_number) + ": expected at least " +
+              std::to_string(needed) + " columns, found " + std::to_string(tokens.size());
+      return false;
+    }
+    PointLiDAR p;
+    double c3[3] = {0.0, 0.0, 0.0};
+    for (std::size_t c = 0; c < needed; ++c) {
+      if (map[c] == Column::Skip)
+        continue;
+      if (!parseNumber(tokens[c], v)) {
+        error = "line " + std::to_string(line_number) + ": cannot parse '" +
+                std::string(tokens[c]) + "' as a number";
+        return false;
+      }
+      switch (map[c]) {
+      case Column::X: c3[0] = v; break;
+      case Column::Y: c3[1] = v; break;
+      case Column::Z: c3[2] = v; break;
+      case Column::Intensity: p.intensity = static_cast<float>(v); break;
+      case Column::Classification: p.classification = clampTo<std::uint8_t>(v); break;
+      case Column::PointSourceId: p.point_source_id = clampTo<std::uint16_t>(v); break;
+      case Column::GpsTime: p.gps_time = v; break;
+      case Column::ReturnNumber: p.return_number = clampTo<std::uint8_t>(v); break;
+      case Column::NumberOfReturns: p.number_of_returns = clampTo<std::uint8_t>(v); break;
+      default: break;
+      }
+    }
+    xyz.insert(xyz.end(), c3, c3 + 3);
+    cloud.push_back(p);
+  }
+  if (in.bad()) {
+    error = "read error";
+    return false;
+  }
+  detail::applyLocalOrigin(xyz, cloud, info, options);
+  return true;
+}
+
+bool
+writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
+             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+{
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (!f) {
+    error = "cannot open the file for writing";
+    return false;
+  }
+  const int d = std::clamp(options.xyz_decimals, 0, 12);
+  bool ok = std::fputs("# x y z intensity classification point_source_id gps_time return_number "
+                       "number_of_returns\n", f) >= 0;
+  for (std::size_t i = 0; ok && i < cloud.size(); ++i) {
+    const PointLiDAR& p = cloud[i];
+    ok = std::fprintf(f, "%.*f %.*f %.*f %.9g %u %u %.6f %u %u\n", d, p.x + origin[0], d,
+                      p.y + origin[1], d, p.z + origin[2], static_cast<double>(p.intensity),
+                      unsigned(p.classification), unsigned(p.point_source_id), p.gps_time,
+                      unsigned(p.return_number), unsigned(p.number_of_returns)) > 0;
+  }
+  ok = (std::fclose(f) == 0) && ok;
+  if (!ok)
+    error = "write error";
+  return ok;
+}
+
+}  // namespace io
+}  // namespace pcl_ls3d
