@@ -12,7 +12,7 @@ Terrain::Terrain(std::uint32_t seed, double relief, double wavelength)
   Random rng(seed, 0x7e44a1u, 0u);
   constexpr int kShort = 6;
   constexpr double kPi = 3.14159265358979323846;
-  double sum = 0.0;
+  double sum_sq = 0.0;
   for (int k = 0; k < kShort + 2; ++k) {
     double direction, lambda;
     if (k < kShort) {
@@ -28,10 +28,12 @@ Terrain::Terrain(std::uint32_t seed, double relief, double wavelength)
     const double w = 2.0 * kPi / lambda;
     waves_.push_back({w * std::cos(direction), w * std::sin(direction), amplitude,
                       rng.uniform(0.0, 2.0 * kPi)});
-    sum += amplitude;
+    sum_sq += amplitude * amplitude;
   }
+  // RMS height sqrt(Σa²/2) = relief/4, so ±2 RMS spans `relief`.
+  const double scale = sum_sq > 0.0 ? 0.25 * relief / std::sqrt(0.5 * sum_sq) : 0.0;
   for (auto& wave : waves_)
-    wave.amplitude *= 0.5 * relief / sum;
+    wave.amplitude *= scale;
 }
 
 double

@@ -16,14 +16,14 @@ namespace synth {
 /// [0.6, 1.6]·wavelength, two long ones (3·wavelength) that add broad undulation. Because the
 /// directions cover the half circle, the surface has slope in every horizontal direction and a
 /// horizontal shift is determinable by surface matching; the wavelengths are incommensurate, so
-/// there is no short period. Amplitudes sum to relief/2: the peak-to-peak height is at most
-/// `relief` and approaches ~0.7–0.9·relief over an area a few wavelengths wide. The largest
-/// possible slope is about 0.87 for the defaults (relief 10 m, wavelength 60 m).
+/// there is no short period. Amplitudes are scaled so that the RMS height is relief/4: ±2 RMS
+/// spans `relief`, which is about the peak-to-peak height over an area a few wavelengths wide
+/// (seed 1, defaults, 420 m × 300 m: range 9.2 m, RMS slope 0.12, max slope 0.31).
 class Terrain
 {
 public:
   /// \param seed       selects directions, wavelengths, phases and amplitudes
-  /// \param relief     upper bound of the peak-to-peak height [m]
+  /// \param relief     nominal peak-to-peak height, 4 × RMS height [m]
   /// \param wavelength typical horizontal wavelength [m]
   explicit Terrain(std::uint32_t seed, double relief = 10.0, double wavelength = 60.0);
 
