@@ -1,0 +1,84 @@
+#pragma once
+/// \file segmentation_runner.h
+/// \brief Runs one segmentation method on a cloud with timings and the figures a report needs:
+///        IMRG, MRG (pcl_ls3d::MultiRuleRegionGrowing) or PCL's own normals + pcl::RegionGrowing.
+///        Shared by pcl_ls3d_segment, the benchmark and the tests so all three run the same thing.
+
+#include <pcl/PointIndices.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+/// \brief The methods compared.
+enum class SegmentationMethod
+{
+  IMRG,             ///< MultiRuleRegionGrowing, Mode::IMRG (seed condition + 3-rule merging)
+  MRG,              ///< MultiRuleRegionGrowing, Mode::MRG (no seed condition, distance merging)
+  PclRegionGrowing  ///< pcl::NormalEstimationOMP + pcl::RegionGrowing
+};
+
+/// "imrg" / "mrg" / "pcl_rg" and back. parse returns false for anything else.
+std::string
+toString(SegmentationMethod m);
+bool
+parseSegmentationMethod(const std::string& s, SegmentationMethod& m);
+
+/// \brief Settings. For IMRG/MRG a value ≤ 0 (angles, k) keeps the class default and a negative
+///        threshold keeps the adaptive rule. The pcl::RegionGrowing defaults are the "looser"
+///        setting of shared/data/MANIFEST.md §D (k 20, 10°, curvature 0.1, min 30), which beat
+///        PCL's tutorial values (k 30, 3°, 1.0, 50) on the IGN tile.
+struct SegmentationRunSettings
+{
+  SegmentationMethod method = SegmentationMethod::IMRG;
+  int k_min = 0, k_max = 0;               ///< optimal-neighbourhood scan range; 0: class default
+  double normal_angle_deg = 0.0;          ///< N_t [deg]; ≤ 0: class default
+  double principal_angle_deg = 0.0;       ///< M_t [deg]; ≤ 0: class default
+  double residual_threshold = -1.0;       ///< v_t [m]; < 0: adaptive
+  double distance_threshold = -1.0;       ///< d_t [m]; < 0: adaptive
+  double similarity_threshold = -1.0;     ///< s_t [m]; < 0: adaptive
+  double volume_threshold = -1.0;         ///< V_t [-]; < 0: adaptive
+  int threads = 0;                        ///< OpenMP threads; 0: default
+
+  int rg_normal_k = 20;                   ///< NormalEstimationOMP k
+  int rg_k = 20;                          ///< RegionGrowing k
+  double rg_smoothness_deg = 10.0;        ///< RegionGrowing smoothness threshold [deg]
+  double rg_curvature = 0.1;              ///< RegionGrowing curvature threshold
+  int rg_min_cluster = 30;                ///< RegionGrowing min cluster size
+
+  /// False with a one-line reason for impossible values (k_min > k_max, angles ≥ 180°, ...).
+  bool
+  isValid(std::string* why) const;
+};
+
+/// \brief Output of runSegmentation(). Multi-rule fields stay NaN / 0 for pcl_rg.
+struct SegmentationRun
+{
+  SegmentationMethod method = SegmentationMethod::IMRG;
+  std::vector<pcl::PointIndices> segments;
+  double seconds_total = 0.0;         ///< wall time of the method (normals included for pcl_rg)
+  double seconds_normals = 0.0;       ///< pcl_rg: NormalEstimationOMP
+  double seconds_segmentation = 0.0;  ///< extract()
+  double residual_threshold = 0.0;    ///< v_t used [m]
+  double distance_threshold = 0.0;    ///< d_t used [m]
+  double similarity_threshold = 0.0;  ///< s_t used [m]
+  double volume_threshold = 0.0;      ///< V_t used [-]
+  double spacing = 0.0, growth_radius = 0.0, volumetric_radius = 0.0;  ///< [m]
+  std::size_t linear = 0, planar = 0, volumetric = 0, invalid = 0;      ///< points per class
+  std::size_t segments_before_merge = 0, segments_after_merge = 0, merges = 0;
+  std::size_t distance_samples = 0, volume_samples = 0;  ///< |D| and |ΔV| fed to the snooping
+};
+
+/// \brief Runs settings.method on `cloud` (finite points; local coordinates).
+/// \return false with a one-line reason (invalid settings, empty cloud, no segment found)
+bool
+runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
+                const SegmentationRunSettings& settings, SegmentationRun& run, std::string& error);
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d

@@ -1,0 +1,171 @@
+#include <pcl_ls3d/evaluation/segmentation_runner.h>
+#include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
+
+#include <pcl/common/time.h>
+#include <pcl/features/normal_3d_omp.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/region_growing.h>
+
+#include <cmath>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+namespace {
+constexpr double kDegToRad = M_PI / 180.0;
+
+void
+runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
+             const SegmentationRunSettings& s, SegmentationRun& run)
+{
+  using MRG = MultiRuleRegionGrowing<pcl::PointXYZ>;
+  MRG seg;
+  seg.setInputCloud(cloud);
+  seg.setMode(s.method == SegmentationMethod::IMRG ? MRG::Mode::IMRG : MRG::Mode::MRG);
+  if (s.k_min > 0 && s.k_max > 0)
+    seg.setNeighbourhoodRange(s.k_min, s.k_max, seg.getNeighbourhoodRange().k_step);
+  if (s.normal_angle_deg > 0.0)
+    seg.setNormalAngleThreshold(s.normal_angle_deg * kDegToRad);
+  if (s.principal_angle_deg > 0.0)
+    seg.setPrincipalAngleThreshold(s.principal_angle_deg * kDegToRad);
+  seg.setResidualThreshold(s.residual_threshold);
+  seg.setDistanceThreshold(s.distance_threshold);
+  seg.setSimilarityThreshold(s.similarity_threshold);
+  seg.setVolumeChangeThreshold(s.volume_threshold);
+  if (s.threads > 0)
+    seg.setNumberOfThreads(s.threads);
+
+  pcl::StopWatch watch;
+  seg.extract(run.segments);
+  run.seconds_segmentation = run.seconds_total = watch.getTimeSeconds();
+
+  run.residual_threshold = seg.getResidualThreshold();
+  const auto& m = seg.getMergeReport();
+  run.distance_threshold = m.distance_threshold;
+  run.similarity_threshold = m.similarity_threshold;
+  run.volume_threshold = m.volume_threshold;
+  run.segments_before_merge = seg.getNumberOfInitialSegments();
+  run.segments_after_merge = m.segments_after;
+  run.merges = m.merges;
+  run.distance_samples = m.distance_samples;
+  run.volume_samples = m.volume_samples;
+  run.spacing = seg.getSpacing();
+  run.growth_radius = seg.getGrowthRadius();
+  run.volumetric_radius = seg.getVolumetricRadius();
+  using D = segmentation::Dimensionality;
+  for (D d : seg.getDimensionality()) {
+    switch (d) {
+      case D::Linear: ++run.linear; break;
+      case D::Planar: ++run.planar; break;
+      case D::Volumetric: ++run.volumetric; break;
+      default: ++run.invalid; break;
+    }
+  }
+}
+
+void
+runPclRegionGrowing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
+                    const SegmentationRunSettings& s, SegmentationRun& run)
+{
+  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
+  pcl::StopWatch watch;
+  pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::Normal> ne;
+  if (s.threads > 0)
+    ne.setNumberOfThreads(static_cast<unsigned>(s.threads));
+  ne.setInputCloud(cloud);
+  ne.setSearchMethod(tree);
+  ne.setKSearch(s.rg_normal_k);
+  ne.compute(*normals);
+  run.seconds_normals = watch.getTimeSeconds();
+
+  watch.reset();
+  pcl::RegionGrowing<pcl::PointXYZ, pcl::Normal> rg;
+  rg.setMinClusterSize(static_cast<pcl::uindex_t>(s.rg_min_cluster));
+  rg.setSearchMethod(tree);
+  rg.setNumberOfNeighbours(static_cast<unsigned>(s.rg_k));
+  rg.setInputCloud(cloud);
+  rg.setInputNormals(normals);
+  rg.setSmoothnessThreshold(static_cast<float>(s.rg_smoothness_deg * kDegToRad));
+  rg.setCurvatureThreshold(static_cast<float>(s.rg_curvature));
+  rg.extract(run.segments);
+  run.seconds_segmentation = watch.getTimeSeconds();
+  run.seconds_total = run.seconds_normals + run.seconds_segmentation;
+  run.segments_before_merge = run.segments_after_merge = run.segments.size();
+  const double nan = std::nan("");
+  run.residual_threshold = run.distance_threshold = run.similarity_threshold =
+      run.volume_threshold = run.spacing = run.growth_radius = run.volumetric_radius = nan;
+}
+}  // namespace
+
+std::string
+toString(SegmentationMethod m)
+{
+  switch (m) {
+    case SegmentationMethod::IMRG: return "imrg";
+    case SegmentationMethod::MRG: return "mrg";
+    default: return "pcl_rg";
+  }
+}
+
+bool
+parseSegmentationMethod(const std::string& s, SegmentationMethod& m)
+{
+  for (auto c : {SegmentationMethod::IMRG, SegmentationMethod::MRG,
+                 SegmentationMethod::PclRegionGrowing})
+    if (s == toString(c)) {
+      m = c;
+      return true;
+    }
+  return false;
+}
+
+bool
+SegmentationRunSettings::isValid(std::string* why) const
+{
+  auto fail = [why](const std::string& msg) {
+    if (why)
+      *why = msg;
+    return false;
+  };
+  if ((k_min > 0) != (k_max > 0) || (k_min > 0 && (k_min < 3 || k_max < k_min || k_max > 65535)))
+    return fail("neighbourhood range needs 3 <= kmin <= kmax <= 65535 (got " +
+                std::to_string(k_min) + "," + std::to_string(k_max) + ")");
+  if (!(normal_angle_deg < 180.0) || !(principal_angle_deg < 180.0))
+    return fail("angle thresholds must be below 180 degrees");
+  for (double t : {residual_threshold, distance_threshold, similarity_threshold, volume_threshold})
+    if (std::isnan(t))
+      return fail("thresholds must be numbers (negative = adaptive)");
+  if (rg_normal_k < 3 || rg_k < 1 || rg_min_cluster < 1 || !(rg_smoothness_deg > 0.0) ||
+      !(rg_curvature > 0.0))
+    return fail("invalid pcl::RegionGrowing settings");
+  if (threads < 0)
+    return fail("threads must be >= 0");
+  return true;
+}
+
+bool
+runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
+                const SegmentationRunSettings& settings, SegmentationRun& run, std::string& error)
+{
+  run = SegmentationRun{};
+  run.method = settings.method;
+  if (!settings.isValid(&error))
+    return false;
+  if (!cloud || cloud->empty()) {
+    error = "empty cloud";
+    return false;
+  }
+  if (settings.method == SegmentationMethod::PclRegionGrowing)
+    runPclRegionGrowing(cloud, settings, run);
+  else
+    runMultiRule(cloud, settings, run);
+  if (run.segments.empty()) {
+    error = toString(settings.method) + " found no segment";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d

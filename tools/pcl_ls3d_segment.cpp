@@ -1,0 +1,379 @@
+/// \file pcl_ls3d_segment.cpp
+/// \brief Multi-factor segmentation of a point cloud (IMRG, MRG or PCL region growing), with an
+///        optional evaluation of all three against the reference labels of the input.
+///
+/// Output SEGMENTS.pcd (pcl::PointXYZRGBL): the loaded points in input order (readers drop
+/// non-finite points; the count dropped is printed), local coordinates (origin printed and
+/// written to the JSON report), label = segment id (0 = in no segment), rgb per segment.
+
+#include <pcl_ls3d/evaluation/segmentation_classes.h>
+#include <pcl_ls3d/evaluation/segmentation_labels.h>
+#include <pcl_ls3d/evaluation/segmentation_metrics.h>
+#include <pcl_ls3d/evaluation/segmentation_report.h>
+#include <pcl_ls3d/evaluation/segmentation_runner.h>
+#include <pcl_ls3d/io/cloud_io.h>
+
+#include <pcl/common/time.h>
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+#include <pcl/io/pcd_io.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+using namespace pcl_ls3d;
+using nlohmann::json;
+namespace ev = pcl_ls3d::evaluation;
+
+namespace {
+
+const std::set<std::string> kValueOptions{"-o", "-mode", "-json", "-k", "-Nt", "-Mt", "-vt",
+                                          "-dt", "-st", "-Vt", "-classes", "-threads"};
+const std::set<std::string> kFlagOptions{"-evaluate", "-overwrite", "-h", "--help", "-help"};
+
+void
+printHelp(const char* prog)
+{
+  print_info("Multi-factor segmentation by improved multi-rule region growing (Wang et al. 2021).\n\n"
+             "Syntax: %s INPUT [options]\n"
+             "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference)\n"
+             "  -o SEGMENTS.pcd    write points (input order, local coords) with label = segment id\n"
+             "                     (0 = none) and an rgb per segment\n"
+             "  -mode imrg|mrg|pcl_rg   method for -o and the JSON report (default imrg)\n"
+             "  -json REPORT.json  thresholds, dimensionality counts, segment counts, timings\n"
+             "  -k kmin,kmax       optimal-neighbourhood range (default: class default 10,100)\n"
+             "  -Nt deg, -Mt deg   normal / principal-direction angle thresholds\n"
+             "  -vt m, -dt m, -st m, -Vt v   seed residual, merge distance, similarity and volume\n"
+             "                     thresholds; negative or absent = adaptive (median, Baarda, k-means)\n"
+             "  -evaluate          run IMRG, MRG and normals + pcl::RegionGrowing on the same cloud\n"
+             "                     and print per-class P/R/F1 against the reference labels\n"
+             "  -classes SPEC      class groups, default ground=2,building=6,vegetation=3-5,wire=14\n"
+             "                     (codes 0 and 1 are excluded from the evaluation)\n"
+             "  -threads n         OpenMP threads (default: all)\n"
+             "  -overwrite         allow replacing existing output files\n"
+             "pcl::RegionGrowing uses NormalEstimationOMP k 20, k 20, 10 deg, curvature 0.1, min 30.\n",
+             prog);
+}
+
+/// Scans argv: exactly one positional INPUT, only known options, values present.
+bool
+checkArguments(int argc, char** argv, std::string& input, std::string& error)
+{
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (kValueOptions.count(a)) {
+      if (++i >= argc) {
+        error = "option " + a + " needs a value";
+        return false;
+      }
+    }
+    else if (kFlagOptions.count(a))
+      continue;
+    else if (!a.empty() && a[0] == '-') {
+      error = "unknown option " + a + " (see -h)";
+      return false;
+    }
+    else if (!input.empty()) {
+      error = "more than one input given ('" + input + "', '" + a + "')";
+      return false;
+    }
+    else
+      input = a;
+  }
+  if (input.empty())
+    error = "no input file given (see -h)";
+  return !input.empty();
+}
+
+/// Strict number: the whole string must parse and be finite.
+bool
+parseNumber(int argc, char** argv, const char* name, double& value, std::string& error)
+{
+  std::string s;
+  if (parse_argument(argc, argv, name, s) < 0)
+    return true;
+  char* end = nullptr;
+  const double v = std::strtod(s.c_str(), &end);
+  if (s.empty() || *end != '\0' || !std::isfinite(v)) {
+    error = std::string("option ") + name + " expects a number, got '" + s + "'";
+    return false;
+  }
+  value = v;
+  return true;
+}
+
+bool
+parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string& error)
+{
+  std::string mode = "imrg";
+  parse_argument(argc, argv, "-mode", mode);
+  if (!ev::parseSegmentationMethod(mode, s.method)) {
+    error = "unknown -mode '" + mode + "' (imrg, mrg or pcl_rg)";
+    return false;
+  }
+  std::string k;
+  if (parse_argument(argc, argv, "-k", k) >= 0) {
+    char *e1 = nullptr, *e2 = nullptr;
+    const long a = std::strtol(k.c_str(), &e1, 10);
+    const long b = (*e1 == ',') ? std::strtol(e1 + 1, &e2, 10) : 0;
+    if (*e1 != ',' || !e2 || *e2 != '\0' || a < 3 || b < a || b > 65535) {
+      error = "-k expects kmin,kmax with 3 <= kmin <= kmax, got '" + k + "'";
+      return false;
+    }
+    s.k_min = static_cast<int>(a);
+    s.k_max = static_cast<int>(b);
+  }
+  double threads = 0;
+  if (!parseNumber(argc, argv, "-Nt", s.normal_angle_deg, error) ||
+      !parseNumber(argc, argv, "-Mt", s.principal_angle_deg, error) ||
+      !parseNumber(argc, argv, "-vt", s.residual_threshold, error) ||
+      !parseNumber(argc, argv, "-dt", s.distance_threshold, error) ||
+      !parseNumber(argc, argv, "-st", s.similarity_threshold, error) ||
+      !parseNumber(argc, argv, "-Vt", s.volume_threshold, error) ||
+      !parseNumber(argc, argv, "-threads", threads, error))
+    return false;
+  for (const char* o : {"-Nt", "-Mt"}) {
+    double v = 1.0;
+    parseNumber(argc, argv, o, v, error);
+    if (!(v > 0.0 && v < 180.0)) {
+      error = std::string(o) + " must be in (0, 180) degrees";
+      return false;
+    }
+  }
+  if (threads < 0 || threads != std::floor(threads)) {
+    error = "-threads must be a non-negative integer";
+    return false;
+  }
+  s.threads = static_cast<int>(threads);
+  return s.isValid(&error);
+}
+
+/// Refuses an output equal to the input, or an existing one without -overwrite.
+bool
+checkOutput(const std::string& out, const std::string& input, bool overwrite, std::string& error)
+{
+  if (out.empty())
+    return true;
+  if (io::isSameFile(out, input)) {
+    error = "output '" + out + "' is the input file; refusing to overwrite it";
+    return false;
+  }
+  if (std::filesystem::exists(out) && !overwrite) {
+    error = "output '" + out + "' exists (use -overwrite to replace it)";
+    return false;
+  }
+  return true;
+}
+
+json
+runToJson(const ev::SegmentationRun& r)
+{
+  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json j;
+  j["method"] = ev::toString(r.method);
+  j["segments"] = r.segments.size();
+  j["segments_before_merging"] = r.segments_before_merge;
+  j["segments_after_merging"] = r.segments_after_merge;
+  j["merges"] = r.merges;
+  j["thresholds"] = {{"v_t_m", num(r.residual_threshold)}, {"d_t_m", num(r.distance_threshold)},
+                     {"s_t_m", num(r.similarity_threshold)}, {"V_t", num(r.volume_threshold)},
+                     {"distance_samples", r.distance_samples},
+                     {"volume_samples", r.volume_samples}};
+  j["spacing_m"] = num(r.spacing);
+  j["growth_radius_m"] = num(r.growth_radius);
+  j["volumetric_radius_m"] = num(r.volumetric_radius);
+  j["dimensionality"] = {{"linear", r.linear}, {"planar", r.planar},
+                         {"volumetric", r.volumetric}, {"invalid", r.invalid}};
+  j["seconds"] = {{"total", r.seconds_total}, {"normals", r.seconds_normals},
+                  {"segmentation", r.seconds_segmentation}};
+  return j;
+}
+
+json
+evaluationToJson(const ev::SegmentationEvaluation& e)
+{
+  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json j;
+  j["method"] = e.method;
+  j["seconds"] = e.seconds;
+  j["segments"] = e.segments;
+  j["points_evaluated"] = e.points_evaluated;
+  j["points_unsegmented"] = e.points_unsegmented;
+  for (const auto& c : e.classes)
+    j["classes"][c.name] = {{"precision", num(c.precision)}, {"recall", num(c.recall)},
+                            {"f1", num(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn},
+                            {"reference_points", c.reference_points}, {"segments", c.segments}};
+  return j;
+}
+
+bool
+saveSegments(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
+             const std::vector<pcl::PointIndices>& segments, std::string& error)
+{
+  const auto labels = ev::labelsFromSegments(segments, cloud.size());
+  pcl::PointCloud<pcl::PointXYZRGBL> out;
+  out.resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    auto& p = out[i];
+    p.x = cloud[i].x;
+    p.y = cloud[i].y;
+    p.z = cloud[i].z;
+    p.rgba = ev::segmentColour(labels[i]);
+    p.label = labels[i];
+  }
+  if (pcl::io::savePCDFileBinary(path, out) < 0) {
+    error = "cannot write '" + path + "'";
+    return false;
+  }
+  return true;
+}
+
+int
+fail(const std::string& msg)
+{
+  print_error("[pcl_ls3d_segment] %s\n", msg.c_str());
+  return EXIT_FAILURE;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help") ||
+      find_switch(argc, argv, "-help")) {
+    printHelp(argv[0]);
+    return argc < 2 ? EXIT_FAILURE : EXIT_SUCCESS;
+  }
+  std::string input, error, out_pcd, out_json, class_spec;
+  if (!checkArguments(argc, argv, input, error))
+    return fail(error);
+  ev::SegmentationRunSettings settings;
+  if (!parseSettings(argc, argv, settings, error))
+    return fail(error);
+  parse_argument(argc, argv, "-o", out_pcd);
+  parse_argument(argc, argv, "-json", out_json);
+  const bool overwrite = find_switch(argc, argv, "-overwrite");
+  const bool evaluate = find_switch(argc, argv, "-evaluate");
+  ev::SegmentationEvaluationSettings eval_settings;
+  if (parse_argument(argc, argv, "-classes", class_spec) >= 0 &&
+      !ev::parseClassGroups(class_spec, eval_settings.groups, error))
+    return fail("-classes: " + error);
+  if (!out_pcd.empty() && io::fileExtension(out_pcd) != "pcd")
+    return fail("-o must name a .pcd file, got '" + out_pcd + "'");
+  if (!out_pcd.empty() && !out_json.empty() && io::isSameFile(out_pcd, out_json))
+    return fail("-o and -json name the same file");
+  if (!checkOutput(out_pcd, input, overwrite, error) ||
+      !checkOutput(out_json, input, overwrite, error))
+    return fail(error);
+
+  // ---- load ----------------------------------------------------------------------------
+  TicToc tt;
+  tt.tic();
+  pcl::PointCloud<PointLiDAR> cloud;
+  io::CloudInfo info;
+  if (!io::loadCloud(input, cloud, info, error))
+    return fail(error);
+  if (cloud.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    return fail("cloud too large for pcl::PointIndices");
+  const double t_load = tt.toc() / 1000.0;
+  print_info("Loaded %s: %zu points (%zu non-finite dropped), origin (%.3f, %.3f, %.3f) in %.3f s\n",
+             input.c_str(), cloud.size(), info.points_dropped_nonfinite, info.origin.x(),
+             info.origin.y(), info.origin.z(), t_load);
+  if (cloud.size() < 3)
+    return fail("need at least 3 finite points, got " + std::to_string(cloud.size()));
+
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz(new pcl::PointCloud<pcl::PointXYZ>);
+  xyz->resize(cloud.size());
+  std::vector<int> reference(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    (*xyz)[i].x = cloud[i].x;
+    (*xyz)[i].y = cloud[i].y;
+    (*xyz)[i].z = cloud[i].z;
+    reference[i] = cloud[i].classification;
+  }
+  if (evaluate) {
+    const ev::ClassLookup lookup(eval_settings.groups, eval_settings.excluded_codes);
+    std::size_t labelled = 0;
+    for (int c : reference)
+      labelled += lookup.groupOf(c) >= 0;
+    if (labelled == 0)
+      return fail("-evaluate: no point of '" + input + "' carries a label of the evaluated classes");
+  }
+
+  // ---- segment (one method, or all three for -evaluate) ---------------------------------
+  std::vector<ev::SegmentationMethod> methods{settings.method};
+  if (evaluate)
+    methods = {ev::SegmentationMethod::IMRG, ev::SegmentationMethod::MRG,
+               ev::SegmentationMethod::PclRegionGrowing};
+  json report;
+  report["input"] = input;
+  report["points"] = cloud.size();
+  report["points_dropped_nonfinite"] = info.points_dropped_nonfinite;
+  report["origin"] = {info.origin.x(), info.origin.y(), info.origin.z()};
+  report["seconds_load"] = t_load;
+  std::vector<ev::SegmentationEvaluation> evaluations;
+  std::vector<pcl::PointIndices> selected;
+  for (auto m : methods) {
+    ev::SegmentationRunSettings s = settings;
+    s.method = m;
+    ev::SegmentationRun run;
+    tt.tic();
+    if (!ev::runSegmentation(xyz, s, run, error))
+      return fail(error);
+    print_info("%s: %zu segments (%zu before merging) in %.3f s", ev::toString(m).c_str(),
+               run.segments.size(), run.segments_before_merge, tt.toc() / 1000.0);
+    if (m != ev::SegmentationMethod::PclRegionGrowing)
+      print_info("; v_t %.4f m, d_t %.4f m, s_t %.4f m, V_t %.3f; linear/planar/volumetric "
+                 "%zu/%zu/%zu\n",
+                 run.residual_threshold, run.distance_threshold, run.similarity_threshold,
+                 run.volume_threshold, run.linear, run.planar, run.volumetric);
+    else
+      print_info(" (normals %.3f s)\n", run.seconds_normals);
+    report["runs"].push_back(runToJson(run));
+    if (m == settings.method)
+      selected = run.segments;
+    if (evaluate) {
+      ev::SegmentationEvaluation e;
+      e.method = ev::toString(m);
+      e.seconds = run.seconds_total;
+      if (!ev::evaluateSegmentation(run.segments, reference, eval_settings, e, error))
+        return fail(error);
+      report["evaluation"].push_back(evaluationToJson(e));
+      evaluations.push_back(e);
+    }
+  }
+  if (evaluate) {
+    print_info("\nPer-class precision / recall / F1 (%%); segments mapped to their majority class;\n"
+               "points in no segment count as false negatives; codes 0/1 excluded.\n%s",
+               ev::formatSegmentationTable(evaluations).c_str());
+    for (const auto& e : evaluations)
+      print_info("%s confusion:\n%s", e.method.c_str(), ev::describeConfusion(e).c_str());
+  }
+
+  // ---- write -----------------------------------------------------------------------------
+  if (!out_pcd.empty()) {
+    tt.tic();
+    if (!saveSegments(out_pcd, cloud, selected, error))
+      return fail(error);
+    print_info("Wrote %s (%zu points, %zu segments, local coordinates: add the origin) in %.3f s\n",
+               out_pcd.c_str(), cloud.size(), selected.size(), tt.toc() / 1000.0);
+  }
+  if (!out_json.empty()) {
+    std::ofstream f(out_json);
+    f << report.dump(2) << '\n';
+    if (!f)
+      return fail("cannot write '" + out_json + "'");
+    print_info("Wrote %s\n", out_json.c_str());
+  }
+  return EXIT_SUCCESS;
+}
