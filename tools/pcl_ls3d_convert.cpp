@@ -1,0 +1,290 @@
+/// \file pcl_ls3d_convert.cpp
+/// \brief Converts point clouds between LAS, PCD, PLY and ASCII XYZ in local coordinates with the
+///        georeferenced origin restored on output; splits by flight strip and filters by class.
+
+#include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/las_io.h>
+#include <pcl_ls3d/io/strip_tools.h>
+
+#include <pcl/common/io.h>
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+namespace fs = std::filesystem;
+using Cloud = pcl::PointCloud<pcl_ls3d::PointLiDAR>;
+
+namespace {
+
+void
+printHelp(const char* name)
+{
+  print_error("Syntax is: %s input.{las,pcd,ply,xyz,txt,csv} output.{las,pcd,ply,xyz,txt} <options>\n"
+              "       or: %s input.ext -split_strips DIR <options>\n", name, name);
+  print_info("  where options are:\n");
+  print_info("    -split_strips DIR  : write one file per point-source id (flight strip) into DIR,\n"
+             "                         named <input stem>_psid<ID>.<ext>\n");
+  print_info("    -format EXT        : output format for -split_strips (las pcd ply xyz; default: input's)\n");
+  print_info("    -classes C1,C2,... : keep only these classification codes\n");
+  print_info("    -origin x,y,z      : local origin to use instead of the automatic one\n");
+  print_info("    -columns x,y,z,... : column names of an ASCII XYZ input (x y z intensity\n"
+             "                         classification point_source_id gps_time return_number\n"
+             "                         number_of_returns, _ to skip)\n");
+  print_info("    -las_format N      : LAS output point format 0-10 (default: input's, else 3)\n");
+  print_info("    -las_version 1.N   : LAS output version 1.0-1.4 (default: input's, else 1.2)\n");
+  print_info("    -las_scale S       : LAS output quantum (default: input's, else 0.001)\n");
+  print_info("    -ascii             : write PCD/PLY in ASCII instead of binary\n");
+  print_info("    -overwrite         : replace existing output files (never an input)\n");
+  print_info("    -h                 : this help\n");
+  print_info("Coordinates are shifted to a local origin on reading (double precision) and restored\n"
+             "on writing; the origin used is printed.\n");
+}
+
+bool
+parseNumbers(const std::string& text, std::vector<double>& values)
+{
+  values.clear();
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(v))
+      return false;
+    values.push_back(v);
+  }
+  return !values.empty();
+}
+
+/// Rejects options this tool does not know (pcl::console silently ignores them).
+bool
+checkOptions(int argc, char** argv, std::vector<std::string>& positional)
+{
+  const std::set<std::string> with_value = {"-split_strips", "-format", "-classes", "-origin",
+                                            "-columns", "-las_format", "-las_version", "-las_scale"};
+  const std::set<std::string> switches = {"-ascii", "-overwrite", "-h", "--help"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (with_value.count(a)) {
+      if (i + 1 >= argc) {
+        print_error("Option %s needs a value.\n", a.c_str());
+        return false;
+      }
+      ++i;
+    }
+    else if (switches.count(a) == 0) {
+      if (a.size() > 1 && a[0] == '-') {
+        print_error("Unknown option %s (see -h).\n", a.c_str());
+        return false;
+      }
+      positional.push_back(a);
+    }
+  }
+  return true;
+}
+
+bool
+save(const std::string& path, const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info,
+     const pcl_ls3d::io::SaveOptions& options)
+{
+  TicToc tt;
+  tt.tic();
+  std::string error;
+  if (!pcl_ls3d::io::saveCloud(path, cloud, info.origin, error, options)) {
+    print_error("Cannot write %s\n", error.c_str());
+    return false;
+  }
+  print_info("Wrote ");
+  print_value("%s", path.c_str());
+  print_info(" (");
+  print_value("%zu", cloud.size());
+  print_info(" points) in ");
+  print_value("%g", tt.toc());
+  print_info(" ms\n");
+  return true;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
+    printHelp(argv[0]);
+    return argc < 2 ? -1 : 0;
+  }
+  std::vector<std::string> files;
+  if (!checkOptions(argc, argv, files))
+    return -1;
+  std::string split_dir, format, classes_text, origin_text, columns;
+  parse_argument(argc, argv, "-split_strips", split_dir);
+  parse_argument(argc, argv, "-format", format);
+  parse_argument(argc, argv, "-classes", classes_text);
+  parse_argument(argc, argv, "-origin", origin_text);
+  parse_argument(argc, argv, "-columns", columns);
+  const bool splitting = !split_dir.empty();
+  if (files.size() != (splitting ? 1u : 2u)) {
+    print_error("Expected %s, got %zu file names (see -h).\n",
+                splitting ? "one input file with -split_strips" : "an input and an output file",
+                files.size());
+    return -1;
+  }
+  const std::string input = files[0];
+
+  pcl_ls3d::io::LoadOptions load;
+  load.xyz_columns = columns;
+  std::vector<double> values;
+  if (!origin_text.empty()) {
+    if (!parseNumbers(origin_text, values) || values.size() != 3) {
+      print_error("-origin needs three finite numbers x,y,z, got '%s'.\n", origin_text.c_str());
+      return -1;
+    }
+    load.use_origin = true;
+    load.origin = Eigen::Vector3d(values[0], values[1], values[2]);
+  }
+  std::set<std::uint8_t> classes;
+  if (!classes_text.empty()) {
+    if (!parseNumbers(classes_text, values)) {
+      print_error("-classes needs a comma-separated list of class codes, got '%s'.\n",
+                  classes_text.c_str());
+      return -1;
+    }
+    for (double v : values) {
+      if (v < 0 || v > 255 || v != std::floor(v)) {
+        print_error("-classes: %g is not a class code 0-255.\n", v);
+        return -1;
+      }
+      classes.insert(static_cast<std::uint8_t>(v));
+    }
+  }
+
+  // Load.
+  TicToc tt;
+  tt.tic();
+  Cloud::Ptr cloud(new Cloud);
+  pcl_ls3d::io::CloudInfo info;
+  std::string error;
+  if (!pcl_ls3d::io::loadCloud(input, *cloud, info, error, load)) {
+    print_error("Cannot load %s\n", error.c_str());
+    return -1;
+  }
+  print_info("Loaded ");
+  print_value("%s", input.c_str());
+  print_info(" (%s, ", info.format.c_str());
+  print_value("%zu", info.points_loaded);
+  print_info(" points");
+  if (info.points_dropped_nonfinite)
+    print_info(", %zu NaN/inf dropped", info.points_dropped_nonfinite);
+  print_info(") in ");
+  print_value("%g", tt.toc());
+  print_info(" ms\n");
+  print_info("Local origin (%s): ", load.use_origin ? "forced" : "auto");
+  print_value("%.3f %.3f %.3f\n", info.origin[0], info.origin[1], info.origin[2]);
+
+  if (!classes.empty()) {
+    const pcl::Indices kept = pcl_ls3d::io::filterByClassification(*cloud, classes, true);
+    Cloud::Ptr filtered(new Cloud);
+    pcl::copyPointCloud(*cloud, kept, *filtered);
+    print_info("Kept %zu of %zu points in classes %s\n", filtered->size(), cloud->size(),
+               classes_text.c_str());
+    if (filtered->empty()) {
+      print_error("No point of %s is in classes %s.\n", input.c_str(), classes_text.c_str());
+      return -1;
+    }
+    cloud = filtered;
+  }
+
+  // Save options: LAS output keeps the input's LAS layout unless told otherwise.
+  pcl_ls3d::io::SaveOptions save_options;
+  save_options.overwrite = find_switch(argc, argv, "-overwrite");
+  save_options.binary = !find_switch(argc, argv, "-ascii");
+  if (info.format == "las") {
+    save_options.las_point_format = info.las.point_format;
+    save_options.las_minor_version = info.las.version_minor;
+    save_options.las_scale = info.las.scale;
+    save_options.las_vlrs = info.las.vlrs;
+    save_options.las_adjusted_standard_gps_time = info.las.global_encoding & 1;
+  }
+  else {
+    for (const auto& p : *cloud)
+      if (p.classification > 31 || p.return_number > 7 || p.number_of_returns > 7) {
+        save_options.las_point_format = 6;  // formats 0-5 cannot hold these values
+        save_options.las_minor_version = 4;
+        break;
+      }
+  }
+  int las_format = -1;
+  if (parse_argument(argc, argv, "-las_format", las_format) >= 0) {
+    if (las_format < 0 || las_format > 10) {
+      print_error("-las_format must be 0-10, got %d.\n", las_format);
+      return -1;
+    }
+    save_options.las_point_format = static_cast<std::uint8_t>(las_format);
+    if (las_format >= 6)
+      save_options.las_minor_version = 4;
+  }
+  std::string version;
+  if (parse_argument(argc, argv, "-las_version", version) >= 0) {
+    if (version.size() != 3 || version.compare(0, 2, "1.") != 0 || version[2] < '0' ||
+        version[2] > '4') {
+      print_error("-las_version must be 1.0-1.4, got '%s'.\n", version.c_str());
+      return -1;
+    }
+    save_options.las_minor_version = static_cast<std::uint8_t>(version[2] - '0');
+  }
+  double scale = 0.0;
+  if (parse_argument(argc, argv, "-las_scale", scale) >= 0) {
+    if (!(scale > 0.0) || !std::isfinite(scale)) {
+      print_error("-las_scale must be positive, got %g.\n", scale);
+      return -1;
+    }
+    save_options.las_scale = Eigen::Vector3d::Constant(scale);
+  }
+
+  if (!splitting) {
+    const std::string output = files[1];
+    if (pcl_ls3d::io::isSameFile(input, output)) {
+      print_error("Output %s is the input file; refusing to overwrite it.\n", output.c_str());
+      return -1;
+    }
+    return save(output, *cloud, info, save_options) ? 0 : -1;
+  }
+
+  // -split_strips DIR: one file per point-source id.
+  if (format.empty())
+    format = pcl_ls3d::io::fileExtension(input);
+  if (format != "las" && format != "pcd" && format != "ply" && format != "xyz" && format != "txt") {
+    print_error("-format must be las, pcd, ply, xyz or txt, got '%s'.\n", format.c_str());
+    return -1;
+  }
+  std::error_code ec;
+  fs::create_directories(split_dir, ec);
+  if (!fs::is_directory(split_dir, ec)) {
+    print_error("Cannot create the output directory %s.\n", split_dir.c_str());
+    return -1;
+  }
+  const auto strips = pcl_ls3d::io::splitByPointSource(*cloud);
+  print_info("Splitting into %zu strips\n", strips.size());
+  const std::string stem = fs::path(input).stem().string();
+  for (const auto& [id, indices] : strips) {
+    const std::string path =
+        (fs::path(split_dir) / (stem + "_psid" + std::to_string(id) + "." + format)).string();
+    if (pcl_ls3d::io::isSameFile(input, path)) {
+      print_error("Output %s is the input file; refusing to overwrite it.\n", path.c_str());
+      return -1;
+    }
+    Cloud strip;
+    pcl::copyPointCloud(*cloud, indices, strip);
+    if (!save(path, strip, info, save_options))
+      return -1;
+  }
+  return 0;
+}
