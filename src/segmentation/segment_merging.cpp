@@ -117,6 +117,24 @@ snoopedMaximum(const std::vector<double>& values, double alpha)
   return r.valid ? r.max_kept : 0.0;
 }
 
+/// V_t from the candidate ΔV (§3.2.2, 3). ΔV is a ratio of volumes with a long right tail and
+/// many exact zeros (small segments inside the other hull); on the raw values the backward
+/// elimination keeps eating the tail down to 0. The snooping therefore runs on ∛ΔV
+/// (Wilson–Hilferty: the cube root of a gamma-like positive variable is near-normal; it is also
+/// the ratio of length scales), and V_t = (max kept)³.
+double
+snoopedVolumeThreshold(const std::vector<double>& dv, double alpha)
+{
+  std::vector<double> roots;
+  for (const double v : dv)
+    if (v >= 0.0 && std::isfinite(v))
+      roots.push_back(std::cbrt(v));
+  if (roots.empty())
+    return 0.0;
+  const double m = snoopedMaximum(roots, alpha);
+  return m * m * m;
+}
+
 void
 buildState(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
            const std::vector<float>& residuals, int n_segments, MergeState& st)
@@ -215,14 +233,14 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
       for (int s = 0; s < n_segments; ++s) {
         const int j = nearest[s].first;
         if (j < 0 || nearest[s].second > rep.distance_threshold ||
-            std::abs(st.meanResidual(s) - st.meanResidual(j)) >= rep.similarity_threshold)
+            std::abs(st.meanResidual(s) - st.meanResidual(j)) > rep.similarity_threshold)
           continue;
         const bool s_small = st.members[s].size() <= st.members[j].size();
         dV.push_back(s_small ? volumeChange(st, s, j, floor, nullptr)
                              : volumeChange(st, j, s, floor, nullptr));
       }
       rep.volume_samples = dV.size();
-      rep.volume_threshold = snoopedMaximum(dV, settings.alpha);
+      rep.volume_threshold = snoopedVolumeThreshold(dV, settings.alpha);
     }
   }
 
@@ -240,9 +258,9 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
       continue;
     SegmentHull merged;
     if (full) {
-      if (std::abs(st.meanResidual(s) - st.meanResidual(j)) >= rep.similarity_threshold)
+      if (std::abs(st.meanResidual(s) - st.meanResidual(j)) > rep.similarity_threshold)
         continue;
-      if (volumeChange(st, s, j, floor, &merged) >= rep.volume_threshold)
+      if (volumeChange(st, s, j, floor, &merged) > rep.volume_threshold)
         continue;
     } else {
       std::vector<int> ids = st.contour[j];
