@@ -79,6 +79,10 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
   std::vector<char> claimed(n, 0);
   std::vector<std::size_t> segs_per_col(G + 1, 0);
   for (const auto& seg : segments) {
+    if (seg.indices.size() < settings.min_segment_size) {
+      ++res.segments_too_small;
+      continue;
+    }
     const int col = majorityGroup(seg, ref_group, G);
     if (col >= 0) {
       ++res.segments_evaluated;

@@ -109,6 +109,26 @@ TEST(SegmentationMetrics, PerfectAndCustomGroups)
   EXPECT_FALSE(describeConfusion(e).empty());
 }
 
+TEST(SegmentationMetrics, MinSegmentSizeTurnsFragmentsIntoFalseNegatives)
+{
+  // Ground 0..3 in one segment of 4, building 4 and 5 as two single-point segments.
+  // With min_segment_size 2 the singletons are ignored: building TP 0, FN 2.
+  const std::vector<int> labels{2, 2, 2, 2, 6, 6};
+  SegmentationEvaluationSettings s;
+  s.min_segment_size = 2;
+  SegmentationEvaluation e;
+  std::string err;
+  ASSERT_TRUE(evaluateSegmentation({seg({0, 1, 2, 3}), seg({4}), seg({5})}, labels, s, e, err));
+  EXPECT_EQ(e.segments_too_small, 2u);
+  EXPECT_EQ(e.points_unsegmented, 2u);
+  EXPECT_EQ(e.classes[1].fn, 2u);
+  EXPECT_DOUBLE_EQ(e.classes[1].f1, 0.0);
+  EXPECT_DOUBLE_EQ(e.classes[0].f1, 1.0);
+  // Without the minimum the same fragments score perfectly (why the option exists).
+  ASSERT_TRUE(evaluateSegmentation({seg({0, 1, 2, 3}), seg({4}), seg({5})}, labels, {}, e, err));
+  EXPECT_DOUBLE_EQ(e.classes[1].f1, 1.0);
+}
+
 TEST(SegmentationMetrics, BadInput)
 {
   SegmentationEvaluation e;

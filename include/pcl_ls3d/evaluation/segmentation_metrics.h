@@ -12,7 +12,11 @@
 ///  - evaluated codes in no group form the pseudo-class "other": they vote, and count as FP of a
 ///    group whose segment they sit in; "other" itself is reported but not a target class;
 ///  - evaluated points in no segment are false negatives of their class (predicted "none");
-///  - a point listed in several segments counts once, for the first segment listing it.
+///  - a point listed in several segments counts once, for the first segment listing it;
+///  - optionally, segments smaller than min_segment_size are treated as no segment (their points
+///    become false negatives). Majority mapping rewards over-segmentation (one point per segment
+///    would score F1 = 1), so comparing at the minimum cluster size of pcl::RegionGrowing shows
+///    how much of a score rests on fragments.
 /// Only pcl::PointIndices is used from PCL.
 
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
@@ -43,6 +47,7 @@ struct SegmentationEvaluationSettings
 {
   std::vector<ClassGroup> groups = defaultClassGroups();
   std::vector<int> excluded_codes = defaultExcludedCodes();
+  std::size_t min_segment_size = 0;  ///< smaller segments count as no segment (0: keep all)
 };
 
 /// \brief Result of evaluateSegmentation(). `classes` follows the settings' group order.
@@ -54,6 +59,7 @@ struct SegmentationEvaluation
   ClassScores other;                    ///< pseudo-class "other" (codes in no group)
   std::size_t segments = 0;             ///< segments given
   std::size_t segments_evaluated = 0;   ///< segments with at least one evaluated point
+  std::size_t segments_too_small = 0;   ///< segments ignored by min_segment_size
   std::size_t points_total = 0;         ///< size of the reference label vector
   std::size_t points_evaluated = 0;     ///< points not excluded
   std::size_t points_unsegmented = 0;   ///< evaluated points in no segment (all FN)
