@@ -1,0 +1,89 @@
+#pragma once
+/// \file registration_run.h
+/// \brief The one result row every registration method produces in pcl_ls3d_compare and the
+///        benchmarks, and the method-independent quality figures computed for every row alike.
+
+#include <pcl_ls3d/evaluation/transform_error.h>
+
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+/// \brief What one method did on one input (all clouds in their common local frame).
+struct RegistrationRun
+{
+  std::string name;                 ///< "PCL-ICP", "PCL-ICP-N", "PCL-GICP", "PCL-NDT", "LS3D-LND", ...
+  bool ran = false;                 ///< false: the method could not be set up or threw
+  std::string message;              ///< why it failed / how it stopped
+  int iterations = 0;               ///< iterations of this alignment (not accumulated)
+  /// Wall time [s] from handing over the clouds to the end of align(): search structures,
+  /// covariances, NDT grid and (PCL-ICP-N) normal estimation included.
+  double time_s = 0.0;
+  double normals_time_s = 0.0;      ///< part of time_s spent estimating normals (PCL-ICP-N)
+  /// Stopped by its own convergence criterion before the iteration limit. PCL's hasConverged()
+  /// is also true when ICP/GICP/NDT merely hit the limit; that value is kept in pcl_converged.
+  bool converged = false;
+  bool pcl_converged = false;       ///< the method's hasConverged()
+  /// RMS of the nearest-neighbour distances source→target after alignment, over the source
+  /// points whose neighbour is within RunEvaluation::rms_max_distance (same for every method).
+  double rms = std::numeric_limits<double>::quiet_NaN();
+  std::size_t rms_points = 0;       ///< source points inside that distance
+  double sigma0 = std::numeric_limits<double>::quiet_NaN();  ///< LS3D's σ̂0 (NaN for PCL)
+  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();  ///< source → target, local
+  TransformError error;             ///< against the truth, when one was given (error.valid)
+};
+
+/// \brief Shared, untimed evaluation of every run: the uniform RMS and the truth errors.
+struct RunEvaluation
+{
+  using CloudXYZ = pcl::PointCloud<pcl::PointXYZ>;
+
+  /// Builds the target kd-tree once and keeps the source points in double.
+  RunEvaluation(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
+                double rms_max_distance);
+
+  /// Fills run.rms, run.rms_points and, when truth is not null, run.error.
+  void
+  evaluate(RegistrationRun& run, const Eigen::Matrix4d* truth) const;
+
+  double rms_max_distance;          ///< [length] neighbours farther than this are not counted
+  Eigen::Matrix3Xd source_points;   ///< source (local frame), double
+  pcl::KdTreeFLANN<pcl::PointXYZ> target_tree;
+};
+
+/// x, y, z of a cloud in double, one column per point.
+template <typename PointT>
+Eigen::Matrix3Xd
+cloudToMatrix(const pcl::PointCloud<PointT>& cloud)
+{
+  Eigen::Matrix3Xd m(3, static_cast<Eigen::Index>(cloud.size()));
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    m.col(static_cast<Eigen::Index>(i)) = cloud[i].getVector3fMap().template cast<double>();
+  return m;
+}
+
+/// Copies x, y, z of any point cloud into a PointXYZ cloud (skipping non-finite points).
+template <typename PointT>
+pcl::PointCloud<pcl::PointXYZ>::Ptr
+toXYZ(const pcl::PointCloud<PointT>& cloud)
+{
+  pcl::PointCloud<pcl::PointXYZ>::Ptr out(new pcl::PointCloud<pcl::PointXYZ>);
+  out->reserve(cloud.size());
+  for (const auto& p : cloud)
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+      out->push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  return out;
+}
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d
