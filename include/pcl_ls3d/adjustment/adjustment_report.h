@@ -1,0 +1,99 @@
+#pragma once
+/// \file adjustment_report.h
+/// \brief The plain result of one LS3D adjustment (Ceres `Summary` / small_gicp
+///        `RegistrationResult` style): estimate, precision (Zuo et al. 2012, eqs. 11, 14),
+///        reliability (redundancy numbers), why it stopped, and a per-iteration log.
+
+#include <pcl_ls3d/common/similarity_transform.h>
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+
+/// \brief Why the adjustment stopped.
+enum class TerminationType {
+  NOT_RUN,                   ///< no adjustment has been run yet
+  CONVERGED,                 ///< parameter changes fell below the epsilons
+  MAX_ITERATIONS,            ///< iteration limit reached before convergence
+  INVALID_INPUT,             ///< empty / NaN-only clouds, invalid settings
+  NO_OVERLAP,                ///< no source observation lies over the target surface
+  TOO_FEW_OBSERVATIONS,      ///< fewer usable observations than settings.min_observations
+  SINGULAR,                  ///< no free parameter could be determined / solve failed
+  DIVERGED                   ///< estimate became non-finite
+};
+
+/// "CONVERGED", "MAX_ITERATIONS", ...
+const char*
+terminationTypeToString(TerminationType type);
+
+/// \brief One line of the iteration log.
+struct IterationRecord
+{
+  int iteration = 0;
+  std::size_t observations_used = 0;      ///< observations with non-zero weight
+  std::size_t observations_rejected = 0;  ///< correspondences given weight 0 by the estimator
+  double sigma0 = 0.0;                    ///< σ̂0 of this iteration's solve (eq. 11)
+  double max_angle_change = 0.0;          ///< [rad] max |dφ|, |dω|, |dκ|
+  double translation_change = 0.0;        ///< [length] |dt|
+  double scale_change = 0.0;              ///< |dm|
+  Vector7d parameters = Vector7d::Zero(); ///< estimate after this iteration (reduced frame)
+};
+
+/// \brief Everything one adjustment produced. Parameter order: tx, ty, tz, φ, ω, κ, m.
+struct AdjustmentReport
+{
+  TerminationType termination = TerminationType::NOT_RUN;
+  std::string message;                     ///< human-readable reason / warnings
+  int iterations = 0;
+
+  /// X̂ in the reduced frame: x_t − o_t = t + m R (x_s − o_s) (eq. 2 on reduced coordinates).
+  Vector7d parameters = (Vector7d() << 0, 0, 0, 0, 0, 0, 1).finished();
+  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity(); ///< same, in cloud coordinates
+  Eigen::Vector3d local_origin_source = Eigen::Vector3d::Zero(); ///< o_s (cloud coordinates)
+  Eigen::Vector3d local_origin_target = Eigen::Vector3d::Zero(); ///< o_t = guess(o_s)
+
+  double sigma0 = 0.0;                     ///< σ̂0 = sqrt((VᵀPV + V_eᵀP_eV_e) / r), eq. 11
+  Vector7d sigmas = Vector7d::Zero();      ///< σ_i = σ0 √q_ii (eq. 14); 0 fixed, +inf undeterminable
+  Matrix7d qxx = Matrix7d::Zero();         ///< cofactor matrix (AᵀPA + P_e)⁻¹, zero for held parameters
+  Matrix7d correlation = Matrix7d::Zero(); ///< ρ_ij = q_ij / √(q_ii q_jj); zero rows for held parameters
+  std::array<bool, 7> fixed{};             ///< infinite a-priori weight
+  std::array<bool, 7> determinable{};      ///< free and resolvable by the geometry (rank test)
+  long redundancy = 0;                     ///< r = n − u (eq. 11), including soft a-priori observations
+
+  std::size_t source_points = 0;           ///< valid source points used as candidate observations
+  std::size_t correspondences = 0;         ///< observations for which the rule found a conjugate point
+  std::size_t observations_used = 0;       ///< with non-zero weight in the last iteration
+  std::size_t observations_rejected = 0;   ///< zero weight from the robust estimator (eq. 15)
+
+  /// Per observation of the last iteration (settings.store_observations): source point index,
+  /// residual v_i, weight p_i, redundancy number r_i = 1 − p_i a_iᵀ Qxx a_i.
+  std::vector<int> observation_source_index;
+  std::vector<double> residuals;
+  std::vector<double> weights;
+  std::vector<double> redundancy_numbers;
+
+  std::vector<IterationRecord> log;        ///< one record per iteration
+  std::string rule_name;                   ///< conjugate-point rule used
+  std::string estimator_name;              ///< robust estimator used
+
+  /// Parameters as a SimilarityTransform (reduced frame).
+  SimilarityTransform
+  similarity() const
+  {
+    return SimilarityTransform(parameters);
+  }
+  /// True when the estimate can be used (converged or hit the iteration limit with finite values).
+  bool
+  isSolutionUsable() const;
+  /// One line: termination, iterations, σ0, observations.
+  std::string
+  brief() const;
+  /// Multi-line human-readable report (parameters ± σ, correlation matrix, origins, log).
+  std::string
+  fullReport() const;
+};
+
+}  // namespace pcl_ls3d

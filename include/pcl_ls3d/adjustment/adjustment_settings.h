@@ -1,0 +1,94 @@
+#pragma once
+/// \file adjustment_settings.h
+/// \brief Every knob of the LS3D Gauss–Markoff adjustment in one plain struct (Ceres `Options`
+///        style): in-class defaults, named presets, and isValid() for tools and setters.
+
+#include <pcl_ls3d/common/similarity_transform.h>
+
+#include <limits>
+#include <string>
+
+namespace pcl_ls3d {
+
+/// \brief Which of the 7 similarity parameters (tx, ty, tz, φ, ω, κ, m) are estimated.
+enum class ParameterModel {
+  SIMILARITY_7,      ///< all seven free
+  RIGID_6,           ///< m fixed (Zuo's 6-parameter case; LHD = LZD rule + RIGID_6)
+  TRANSLATION_3,     ///< tx, ty, tz free; rotations and scale fixed
+  HEIGHT_1           ///< only tz free (classic strip height offset)
+};
+
+/// \brief Settings of the adjustment. Units: lengths in the unit of the data, angles [rad].
+///
+/// A-priori parameter observations (Zuo et al. 2012, eq. 9): V_e = X − L_e with weight P_e.
+/// A weight is relative to a unit-weight observation (P_e = σ0² / σ_e²): 0 = free,
+/// +infinity = fixed (the column is eliminated, the parameter stays exactly at its a-priori
+/// value), anything in between = soft constraint.
+///
+/// Parameters refer to the transform in the reduced frame: x_t − o_t = t + m R (x_s − o_s),
+/// with o_s the centroid of the source observations and o_t its image under the initial guess
+/// (both reported); the final 4×4 matrix is given in the clouds' own coordinates.
+struct AdjustmentSettings
+{
+  // --- a-priori parameter observations (eq. 9) ---------------------------------------------
+  /// P_e per parameter: 0 free, +inf fixed, otherwise a soft constraint.
+  Vector7d apriori_weights = Vector7d::Zero();
+  /// L_e per parameter (reduced frame). Used when apriori_from_guess is false.
+  Vector7d apriori_values = (Vector7d() << 0, 0, 0, 0, 0, 0, 1).finished();
+  /// When true (default), L_e is the initial guess expressed in the reduced frame, so fixed
+  /// parameters keep the guess's value (identity guess: t = 0, angles = 0, m = 1).
+  bool apriori_from_guess = true;
+
+  // --- iteration and convergence (Zuo §4: angle change < 1e-6 rad, < ~20 iterations) --------
+  int max_iterations = 30;                 ///< upper bound on Gauss–Newton iterations
+  double angle_epsilon = 1e-6;             ///< [rad] converged when every |dφ|,|dω|,|dκ| below
+  double translation_epsilon = 1e-5;       ///< [length] ... and |dt| below
+  double scale_epsilon = 1e-8;             ///< [-] ... and |dm| below
+
+  // --- observations --------------------------------------------------------------------------
+  /// Conjugate points farther than this (|signed distance| and nearest target point) are no
+  /// correspondence. Default: unlimited, as in pcl::Registration.
+  double max_correspondence_distance = std::numeric_limits<double>::max();
+  /// Regular thinning of the source observations: one source point per voxel of this edge
+  /// [length]; 0 = use every source point.
+  double source_thinning = 0.0;
+  /// Fewer observations than this (after rejection) stop the adjustment as a failure.
+  int min_observations = 20;
+
+  // --- determinability -------------------------------------------------------------------------
+  /// A free parameter is undeterminable when the reduced normal matrix, scaled so every column
+  /// is "displacement at the source extent", has an eigenvalue below this fraction of the
+  /// largest one along that parameter (rank test). It is then held at its current value.
+  double determinability_threshold = 1e-7;
+
+  // --- results ----------------------------------------------------------------------------------
+  /// Keep per-observation residuals, weights and redundancy numbers r_i in the report
+  /// (needed by Baarda's test; 3 doubles per observation).
+  bool store_observations = true;
+
+  /// Fixes (infinite weight) or frees (zero weight) one parameter.
+  void
+  fixParameter(int index, bool fixed = true);
+  /// True when parameter `index` has infinite a-priori weight.
+  bool
+  isFixed(int index) const;
+  /// Applies a preset: frees the model's parameters, fixes the rest (soft weights are lost).
+  void
+  setParameterModel(ParameterModel model);
+
+  /// Named presets (defaults otherwise).
+  static AdjustmentSettings
+  similarity7();
+  static AdjustmentSettings
+  rigid6();
+  static AdjustmentSettings
+  translationOnly();
+  static AdjustmentSettings
+  heightOnly();
+
+  /// True when the settings can be used; otherwise `why` (if given) says which field is wrong.
+  bool
+  isValid(std::string* why = nullptr) const;
+};
+
+}  // namespace pcl_ls3d

@@ -1,0 +1,180 @@
+#pragma once
+/// \file least_squares_surface_matching.h
+/// \brief Least-squares 3-D surface matching (LS3D, Zuo et al. 2012) as a pcl::Registration:
+///        a drop-in for pcl::IterativeClosestPoint that estimates a 7-parameter similarity with
+///        pluggable conjugate-point rules (LND, LZD, ICP or your own), a-priori parameter
+///        observations, robust weights, and a full precision / reliability report.
+
+#include <pcl_ls3d/adjustment/adjustment_report.h>
+#include <pcl_ls3d/adjustment/adjustment_settings.h>
+#include <pcl_ls3d/adjustment/surface_matching_core.h>
+#include <pcl_ls3d/estimators/robust_estimator.h>
+#include <pcl_ls3d/rules/conjugate_rule.h>
+
+#include <pcl/registration/registration.h>
+
+#include <memory>
+#include <string>
+
+namespace pcl_ls3d {
+
+/// \brief LS3D registration. Usage is that of pcl::IterativeClosestPoint:
+/// \code
+///   pcl_ls3d::LeastSquaresSurfaceMatching<PointT, PointT> ls3d;
+///   ls3d.setInputSource(source); ls3d.setInputTarget(target);
+///   ls3d.align(aligned);                      // or align(aligned, guess)
+///   if (ls3d.hasConverged()) T = ls3d.getFinalTransformation();
+///   const auto& report = ls3d.getReport();    // σ0, σ_i, Qxx, correlation, r_i, ...
+/// \endcode
+/// getFinalTransformation() maps source into target coordinates (x' = m R x + t, as a 4×4).
+/// Defaults: LND rule, Zuo's 0/1 weight at 6σ0 (eq. 15), all 7 parameters free, 30 iterations,
+/// convergence when every angle change < 1e-6 rad and |dt| < 1e-5 (and |dm| < 1e-8).
+/// Base-class knobs keep their PCL meaning: setMaximumIterations(), setMaxCorrespondenceDistance(),
+/// setTransformationEpsilon() (a squared translation, as in ICP: its square root replaces the
+/// translation epsilon when > 0), setSearchMethodTarget() (the kd-tree is reused across
+/// iterations and across align() calls on the same target).
+template <typename PointSource, typename PointTarget, typename Scalar = float>
+class LeastSquaresSurfaceMatching : public pcl::Registration<PointSource, PointTarget, Scalar>
+{
+public:
+  using Base = pcl::Registration<PointSource, PointTarget, Scalar>;
+  using PointCloudSource = typename Base::PointCloudSource;
+  using PointCloudSourcePtr = typename PointCloudSource::Ptr;
+  using PointCloudSourceConstPtr = typename PointCloudSource::ConstPtr;
+  using PointCloudTarget = typename Base::PointCloudTarget;
+  using PointCloudTargetPtr = typename PointCloudTarget::Ptr;
+  using PointCloudTargetConstPtr = typename PointCloudTarget::ConstPtr;
+  using KdTree = typename Base::KdTree;
+  using KdTreePtr = typename Base::KdTreePtr;
+  using Matrix4 = typename Base::Matrix4;
+
+  using Ptr = std::shared_ptr<LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>>;
+  using ConstPtr =
+      std::shared_ptr<const LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>>;
+
+  using Base::converged_;
+  using Base::corr_dist_threshold_;
+  using Base::final_transformation_;
+  using Base::getClassName;
+  using Base::indices_;
+  using Base::input_;
+  using Base::max_iterations_;
+  using Base::nr_iterations_;
+  using Base::previous_transformation_;
+  using Base::reg_name_;
+  using Base::target_;
+  using Base::transformation_;
+  using Base::transformation_epsilon_;
+  using Base::tree_;
+
+  LeastSquaresSurfaceMatching();
+  ~LeastSquaresSurfaceMatching() override = default;
+
+  /// \brief Use one of the shipped conjugate-point rules (default LND).
+  void
+  setConjugateRule(ConjugateRuleType type);
+  /// \brief Use any rule, including your own ConjugateRule subclass. Null is ignored (error).
+  void
+  setConjugateRule(const ConjugateRule::Ptr& rule);
+  ConjugateRule::Ptr
+  getConjugateRule() const
+  {
+    return rule_;
+  }
+
+  /// \brief Robust estimator (default ZuoEstimator(6)). Null is ignored (error).
+  void
+  setRobustEstimator(const RobustEstimator::Ptr& estimator);
+  RobustEstimator::Ptr
+  getRobustEstimator() const
+  {
+    return estimator_;
+  }
+
+  /// \brief A-priori weights P_e (eq. 9): 0 free, +inf fixed, else soft (relative to unit weight).
+  void
+  setParameterWeights(const Vector7d& weights)
+  {
+    settings_.apriori_weights = weights;
+  }
+  /// \brief A-priori values L_e (reduced frame); also switches off apriori_from_guess.
+  void
+  setParameterValues(const Vector7d& values)
+  {
+    settings_.apriori_values = values;
+    settings_.apriori_from_guess = false;
+  }
+  /// \brief Preset: 7-parameter similarity, 6-parameter rigid, translation only, height only.
+  void
+  setParameterModel(ParameterModel model)
+  {
+    settings_.setParameterModel(model);
+  }
+  /// \brief Fix (or free) one parameter, e.g. fixParameter(pcl_ls3d::SCALE).
+  void
+  fixParameter(int index, bool fixed = true)
+  {
+    settings_.fixParameter(index, fixed);
+  }
+
+  /// \brief Convergence threshold on every angle change [rad] (Zuo: 1e-6).
+  void
+  setAngleEpsilon(double epsilon)
+  {
+    settings_.angle_epsilon = epsilon;
+  }
+  /// \brief Regular thinning of source observations: one per voxel of this edge (0 = off).
+  void
+  setSourceThinning(double voxel_step)
+  {
+    settings_.source_thinning = voxel_step;
+  }
+  double
+  getSourceThinning() const
+  {
+    return settings_.source_thinning;
+  }
+
+  /// \brief All settings at once; also copies max_iterations, max_correspondence_distance and
+  ///        translation_epsilon into the pcl::Registration members. Invalid settings are
+  ///        rejected with PCL_ERROR and false.
+  bool
+  setAdjustmentSettings(const AdjustmentSettings& settings);
+  /// \brief The settings as the next align() will use them (base-class knobs merged in).
+  AdjustmentSettings
+  getAdjustmentSettings() const;
+
+  /// \brief As pcl::DefaultConvergenceCriteria::setFailureAfterMaximumIterations: when true,
+  ///        hitting the iteration limit leaves hasConverged() false (default false, like ICP).
+  void
+  setFailureAfterMaximumIterations(bool failure)
+  {
+    failure_after_max_iter_ = failure;
+  }
+
+  /// \brief Report of the last align(): parameters, σ0, σ_i, Qxx, correlation, redundancy, log.
+  const AdjustmentReport&
+  getReport() const
+  {
+    return report_;
+  }
+
+protected:
+  /// \brief The LS3D iteration; called by pcl::Registration::align().
+  void
+  computeTransformation(PointCloudSource& output, const Matrix4& guess) override;
+
+private:
+  AdjustmentSettings settings_;
+  ConjugateRule::Ptr rule_;
+  RobustEstimator::Ptr estimator_;
+  AdjustmentReport report_;
+  SurfaceMatchingCore core_;
+  bool failure_after_max_iter_ = false;
+};
+
+}  // namespace pcl_ls3d
+
+#ifdef PCL_NO_PRECOMPILE
+#include <pcl_ls3d/registration/impl/least_squares_surface_matching.hpp>
+#endif

@@ -1,0 +1,112 @@
+#pragma once
+/// \file conjugate_rule.h
+/// \brief The conjugate-point rule strategy (Zuo et al. 2012, §2.2): given a transformed source
+///        point and the target surface, return 0–3 observations — a unit direction u, the signed
+///        distance l = uᵀ(x' − q) and the conjugate (foot) point q — or "no correspondence".
+///        The engine turns each into the row a = uᵀ ∂x'/∂X of the design matrix.
+///
+/// Writing a new rule: derive from ConjugateRule, implement name() and findConjugate(), and
+/// hand a shared pointer to LeastSquaresSurfaceMatching::setConjugateRule(). Nothing else.
+
+#include <pcl_ls3d/rules/target_surface.h>
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace pcl_ls3d {
+
+/// \brief One observation: residual l = uᵀ(x' − q) along unit direction u.
+struct ConjugateObservation
+{
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< unit u (target coordinates)
+  double distance = 0.0;                                ///< signed l = uᵀ(x' − q)
+  Eigen::Vector3d foot = Eigen::Vector3d::Zero();       ///< conjugate point q on the target
+};
+
+/// \brief Up to three observations of one source point (fixed capacity, no allocation).
+struct ConjugateObservations
+{
+  std::array<ConjugateObservation, 3> items;
+  int count = 0;
+
+  void
+  clear()
+  {
+    count = 0;
+  }
+  /// Appends one observation (ignored beyond three).
+  void
+  add(const Eigen::Vector3d& direction, double distance, const Eigen::Vector3d& foot)
+  {
+    if (count < 3)
+      items[static_cast<std::size_t>(count++)] = {direction, distance, foot};
+  }
+};
+
+/// \brief Per-source-point memory a rule may keep between iterations (e.g. the TIN triangle
+///        last used, so a point that still projects into it needs no neighbour search).
+struct CorrespondenceCache
+{
+  std::array<std::int32_t, 3> vertices{{-1, -1, -1}};
+};
+
+/// \brief Strategy interface for conjugate-point rules. Implementations must be thread-safe in
+///        findConjugate() (it is called from OpenMP threads; keep scratch space thread_local).
+class ConjugateRule
+{
+public:
+  using Ptr = std::shared_ptr<ConjugateRule>;
+  using ConstPtr = std::shared_ptr<const ConjugateRule>;
+
+  virtual ~ConjugateRule() = default;
+
+  /// Short name for reports ("LND", "LZD", "ICP", ...).
+  virtual std::string
+  name() const = 0;
+
+  /// Most observations findConjugate() can return for one point (1 for LND/LZD, 3 for ICP).
+  virtual int
+  maxObservations() const
+  {
+    return 1;
+  }
+
+  /// Called once per alignment before the first iteration (build caches on the target here).
+  virtual bool
+  prepare(const TargetSurface& target, std::string* why)
+  {
+    return true;
+  }
+
+  /// Conjugate observations of `query` (a transformed source point, target coordinates).
+  /// \param[in] max_distance reject correspondences farther than this
+  /// \param[in,out] cache this source point's memory from the previous iteration
+  /// \param[out] out observations; return false (or leave out.count == 0) for none
+  virtual bool
+  findConjugate(const Eigen::Vector3d& query,
+                const TargetSurface& target,
+                double max_distance,
+                CorrespondenceCache& cache,
+                ConjugateObservations& out) const = 0;
+};
+
+/// The rules shipped with the library.
+enum class ConjugateRuleType {
+  LND,  ///< least normal distance: foot point on the local TIN triangle, u = triangle normal
+  LZD,  ///< least z-difference: vertical intersection with the XY triangle, u = z
+  ICP   ///< closest target point, three observations along the axes
+};
+
+/// Creates one of the shipped rules.
+ConjugateRule::Ptr
+makeConjugateRule(ConjugateRuleType type);
+
+/// Parses "lnd", "lzd", "icp" (case-insensitive); false when unknown.
+bool
+parseConjugateRuleType(const std::string& text, ConjugateRuleType& type);
+
+}  // namespace pcl_ls3d

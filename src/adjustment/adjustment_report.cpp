@@ -1,0 +1,97 @@
+#include <pcl_ls3d/adjustment/adjustment_report.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace pcl_ls3d {
+
+const char*
+terminationTypeToString(TerminationType type)
+{
+  switch (type) {
+  case TerminationType::NOT_RUN: return "NOT_RUN";
+  case TerminationType::CONVERGED: return "CONVERGED";
+  case TerminationType::MAX_ITERATIONS: return "MAX_ITERATIONS";
+  case TerminationType::INVALID_INPUT: return "INVALID_INPUT";
+  case TerminationType::NO_OVERLAP: return "NO_OVERLAP";
+  case TerminationType::TOO_FEW_OBSERVATIONS: return "TOO_FEW_OBSERVATIONS";
+  case TerminationType::SINGULAR: return "SINGULAR";
+  case TerminationType::DIVERGED: return "DIVERGED";
+  }
+  return "UNKNOWN";
+}
+
+bool
+AdjustmentReport::isSolutionUsable() const
+{
+  return (termination == TerminationType::CONVERGED ||
+          termination == TerminationType::MAX_ITERATIONS) &&
+         parameters.allFinite();
+}
+
+std::string
+AdjustmentReport::brief() const
+{
+  char line[256];
+  std::snprintf(line, sizeof(line), "%s after %d iterations, sigma0 = %.6g, %zu observations used, %zu rejected",
+                terminationTypeToString(termination), iterations, sigma0, observations_used,
+                observations_rejected);
+  return line;
+}
+
+namespace {
+std::string
+format(const char* fmt, double a, double b = 0.0, double c = 0.0)
+{
+  char buf[128];
+  std::snprintf(buf, sizeof(buf), fmt, a, b, c);
+  return buf;
+}
+}  // namespace
+
+std::string
+AdjustmentReport::fullReport() const
+{
+  std::ostringstream os;
+  os << "LS3D adjustment (" << rule_name << ", " << estimator_name << "): " << brief() << "\n";
+  if (!message.empty())
+    os << "  message: " << message << "\n";
+  os << format("  local origin (source) = (%.4f, %.4f, %.4f)\n", local_origin_source.x(),
+               local_origin_source.y(), local_origin_source.z());
+  os << format("  local origin (target) = (%.4f, %.4f, %.4f)\n", local_origin_target.x(),
+               local_origin_target.y(), local_origin_target.z());
+  os << "  source points " << source_points << ", correspondences " << correspondences
+     << ", redundancy r = " << redundancy << "\n";
+  const auto& names = similarityParameterNames();
+  os << "  parameters (reduced frame) +- sigma:\n";
+  for (int i = 0; i < 7; ++i) {
+    const std::size_t s = static_cast<std::size_t>(i);
+    os << "    " << names[s] << (names[s].size() < 5 ? std::string(6 - names[s].size(), ' ') : " ");
+    os << format("% .9f", parameters[i]);
+    if (fixed[s])
+      os << "  (fixed)";
+    else if (!determinable[s])
+      os << "  (UNDETERMINABLE: held, geometry gives no information)";
+    else
+      os << format("  +- %.3e", sigmas[i]);
+    os << "\n";
+  }
+  os << "  correlation matrix:\n";
+  for (int r = 0; r < 7; ++r) {
+    os << "    ";
+    for (int c = 0; c < 7; ++c)
+      os << format("% .3f ", correlation(r, c));
+    os << "\n";
+  }
+  os << "  iterations:\n";
+  for (const IterationRecord& it : log)
+    os << format("    %3.0f  sigma0 %.5g", it.iteration, it.sigma0)
+       << format("  used %.0f  rejected %.0f", static_cast<double>(it.observations_used),
+                 static_cast<double>(it.observations_rejected))
+       << format("  dangle %.2e  dt %.2e  dm %.2e\n", it.max_angle_change, it.translation_change,
+                 it.scale_change);
+  return os.str();
+}
+
+}  // namespace pcl_ls3d

@@ -1,0 +1,103 @@
+#include <pcl_ls3d/adjustment/adjustment_settings.h>
+
+#include <cmath>
+
+namespace pcl_ls3d {
+
+void
+AdjustmentSettings::fixParameter(int index, bool fixed)
+{
+  if (index < 0 || index > 6)
+    return;
+  apriori_weights[index] = fixed ? std::numeric_limits<double>::infinity() : 0.0;
+}
+
+bool
+AdjustmentSettings::isFixed(int index) const
+{
+  return index >= 0 && index < 7 && std::isinf(apriori_weights[index]);
+}
+
+void
+AdjustmentSettings::setParameterModel(ParameterModel model)
+{
+  // Which parameters each preset estimates, in the order tx, ty, tz, φ, ω, κ, m.
+  static const bool free_params[4][7] = {{true, true, true, true, true, true, true},
+                                         {true, true, true, true, true, true, false},
+                                         {true, true, true, false, false, false, false},
+                                         {false, false, true, false, false, false, false}};
+  const int row = static_cast<int>(model);
+  for (int i = 0; i < 7; ++i)
+    fixParameter(i, !free_params[row][i]);
+}
+
+AdjustmentSettings
+AdjustmentSettings::similarity7()
+{
+  AdjustmentSettings s;
+  s.setParameterModel(ParameterModel::SIMILARITY_7);
+  return s;
+}
+
+AdjustmentSettings
+AdjustmentSettings::rigid6()
+{
+  AdjustmentSettings s;
+  s.setParameterModel(ParameterModel::RIGID_6);
+  return s;
+}
+
+AdjustmentSettings
+AdjustmentSettings::translationOnly()
+{
+  AdjustmentSettings s;
+  s.setParameterModel(ParameterModel::TRANSLATION_3);
+  return s;
+}
+
+AdjustmentSettings
+AdjustmentSettings::heightOnly()
+{
+  AdjustmentSettings s;
+  s.setParameterModel(ParameterModel::HEIGHT_1);
+  return s;
+}
+
+bool
+AdjustmentSettings::isValid(std::string* why) const
+{
+  auto fail = [why](const std::string& text) {
+    if (why)
+      *why = text;
+    return false;
+  };
+  bool any_free = false;
+  for (int i = 0; i < 7; ++i) {
+    if (std::isnan(apriori_weights[i]) || apriori_weights[i] < 0.0)
+      return fail("a-priori weight of " + similarityParameterNames()[static_cast<std::size_t>(i)] +
+                  " must be >= 0 (0 free, inf fixed)");
+    if (!std::isfinite(apriori_values[i]))
+      return fail("a-priori value of " + similarityParameterNames()[static_cast<std::size_t>(i)] +
+                  " is not finite");
+    any_free = any_free || !std::isinf(apriori_weights[i]);
+  }
+  if (!any_free)
+    return fail("every parameter is fixed: nothing to estimate");
+  if (!apriori_from_guess && !(apriori_values[SCALE] > 0.0))
+    return fail("a-priori scale m must be > 0");
+  if (max_iterations < 1)
+    return fail("max_iterations must be >= 1");
+  if (!(angle_epsilon > 0.0) || !(translation_epsilon > 0.0) || !(scale_epsilon > 0.0))
+    return fail("convergence epsilons must be > 0");
+  if (!(max_correspondence_distance > 0.0))
+    return fail("max_correspondence_distance must be > 0");
+  if (!(source_thinning >= 0.0) || std::isinf(source_thinning))
+    return fail("source_thinning must be >= 0 and finite");
+  if (min_observations < 1)
+    return fail("min_observations must be >= 1");
+  if (!(determinability_threshold > 0.0) || determinability_threshold >= 1.0)
+    return fail("determinability_threshold must be in (0, 1)");
+  return true;
+}
+
+}  // namespace pcl_ls3d

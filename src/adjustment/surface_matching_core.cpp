@@ -1,0 +1,322 @@
+#include <pcl_ls3d/adjustment/gauss_markov.h>
+#include <pcl_ls3d/adjustment/surface_matching_core.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_set>
+
+namespace pcl_ls3d {
+
+namespace {
+
+using Index = std::ptrdiff_t;
+
+// Centroid of the source points whose image under the guess falls into the target's bounding
+// box (grown by a margin): the reduction origin o_s, near the overlap. False: no overlap.
+bool
+overlapCentroid(const std::vector<Eigen::Vector3d>& source, const TargetSurface& target,
+                const Eigen::Matrix4d& guess, double max_distance, Eigen::Vector3d& centroid)
+{
+  Eigen::AlignedBox3d box;
+  for (std::size_t i = 0; i < target.size(); ++i) {
+    const Eigen::Vector3d p = target.point(static_cast<int>(i));
+    if (p.allFinite())
+      box.extend(p);
+  }
+  if (box.isEmpty())
+    return false;
+  const double margin = std::min(max_distance, 0.1 * box.diagonal().norm());
+  box.min().array() -= margin;
+  box.max().array() += margin;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::size_t n = 0;
+  for (const Eigen::Vector3d& p : source)
+    if (box.contains((guess * p.homogeneous()).head<3>())) {
+      sum += p;
+      ++n;
+    }
+  if (n == 0)
+    return false;
+  centroid = sum / static_cast<double>(n);
+  return true;
+}
+
+bool
+converged(const Vector7d& dx, const AdjustmentSettings& s)
+{
+  return dx.segment<3>(PHI).cwiseAbs().maxCoeff() < s.angle_epsilon &&
+         dx.head<3>().norm() < s.translation_epsilon && std::abs(dx[SCALE]) < s.scale_epsilon;
+}
+
+AdjustmentReport
+failed(AdjustmentReport report, TerminationType type, const std::string& message)
+{
+  report.termination = type;
+  report.message = message;
+  return report;
+}
+
+}  // namespace
+
+std::vector<int>
+thinByVoxel(const std::vector<Eigen::Vector3d>& points, double step)
+{
+  std::vector<int> kept;
+  kept.reserve(step > 0.0 ? points.size() / 4 : points.size());
+  if (!(step > 0.0)) {
+    for (std::size_t i = 0; i < points.size(); ++i)
+      kept.push_back(static_cast<int>(i));
+    return kept;
+  }
+  std::unordered_set<std::uint64_t> seen;
+  seen.reserve(points.size() / 2);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    // 21 bits per axis (wraps for huge extents, which only merges far-apart voxels rarely).
+    std::uint64_t key = 0;
+    for (int a = 0; a < 3; ++a)
+      key = (key << 21) |
+            (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(points[i][a] / step))) &
+             0x1FFFFF);
+    if (seen.insert(key).second)
+      kept.push_back(static_cast<int>(i));
+  }
+  return kept;
+}
+
+AdjustmentReport
+SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
+                         const std::vector<int>& source_indices,
+                         const TargetSurface& target,
+                         const ConjugateRule& rule,
+                         const RobustEstimator& estimator,
+                         const AdjustmentSettings& settings,
+                         const Eigen::Matrix4d& guess)
+{
+  AdjustmentReport report;
+  report.rule_name = rule.name();
+  report.estimator_name = estimator.name();
+  report.source_points = source.size();
+  std::string why;
+  if (!settings.isValid(&why))
+    return failed(report, TerminationType::INVALID_INPUT, "invalid settings: " + why);
+  if (source.empty())
+    return failed(report, TerminationType::INVALID_INPUT, "no valid (finite) source points");
+  if (target.size() < 3)
+    return failed(report, TerminationType::INVALID_INPUT, "fewer than 3 valid target points");
+  if (!guess.allFinite())
+    return failed(report, TerminationType::INVALID_INPUT, "initial guess is not finite");
+
+  // Reduction to a local origin near the overlap (DESIGN: conditioning on georeferenced data).
+  Eigen::Vector3d o_s;
+  if (!overlapCentroid(source, target, guess, settings.max_correspondence_distance, o_s))
+    return failed(report, TerminationType::NO_OVERLAP,
+                  "no source point falls over the target's extent under the initial guess");
+  const Eigen::Vector3d o_t = (guess * o_s.homogeneous()).head<3>();
+  report.local_origin_source = o_s;
+  report.local_origin_target = o_t;
+
+  // Initial estimate and a-priori values (eq. 9); fixed parameters start exactly at L_e.
+  Vector7d X = SimilarityTransform::fromMatrix(globalToLocal(guess, o_s, o_t)).vector();
+  X.head<3>().setZero();  // o_t = guess(o_s) by construction
+  const Vector7d apriori = settings.apriori_from_guess ? X : settings.apriori_values;
+  for (int i = 0; i < 7; ++i)
+    if (settings.isFixed(i))
+      X[i] = apriori[i];
+
+  const std::size_t n = source.size();
+  reduced_.resize(n);
+  double radius = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    reduced_[i] = source[i] - o_s;
+    radius = std::max(radius, reduced_[i].norm());
+  }
+  caches_.assign(n, CorrespondenceCache());
+  const std::size_t slots = n * static_cast<std::size_t>(std::max(1, std::min(3, rule.maxObservations())));
+  counts_.resize(n);
+  if (obs_u_.size() < slots) {
+    obs_u_.resize(slots);
+    obs_l_.resize(slots);
+    obs_point_.resize(slots);
+  }
+  const int stride = static_cast<int>(slots / n);
+
+  GaussMarkovProblem problem;
+  problem.apriori_values = apriori;
+  problem.apriori_weights = settings.apriori_weights;
+  problem.determinability_threshold = settings.determinability_threshold;
+  problem.scaling << 1, 1, 1, radius, radius, radius, radius;
+
+  GaussMarkovSolution sol;
+  SimilarityLinearization lin{SimilarityTransform(X)};
+  double sigma0_prev = 0.0;
+  std::size_t m = 0;
+  for (int it = 1; it <= settings.max_iterations; ++it) {
+    lin = SimilarityLinearization(SimilarityTransform(X));
+
+    // 1. Conjugate points of every transformed source point (rule strategy, §2.2).
+#pragma omp parallel for schedule(dynamic, 512)
+    for (Index i = 0; i < static_cast<Index>(n); ++i) {
+      ConjugateObservations out;
+      const Eigen::Vector3d q = o_t + lin.apply(reduced_[static_cast<std::size_t>(i)]);
+      int c = 0;
+      if (rule.findConjugate(q, target, settings.max_correspondence_distance,
+                             caches_[static_cast<std::size_t>(i)], out))
+        for (int k = 0; k < std::min(out.count, stride); ++k) {
+          const ConjugateObservation& o = out.items[static_cast<std::size_t>(k)];
+          if (!std::isfinite(o.distance) || !o.direction.allFinite())
+            continue;
+          const std::size_t slot = static_cast<std::size_t>(i) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(c++);
+          obs_u_[slot] = o.direction;
+          obs_l_[slot] = o.distance;
+        }
+      counts_[static_cast<std::size_t>(i)] = static_cast<unsigned char>(c);
+    }
+    // Compact the slots in place (target index never exceeds the slot index).
+    m = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < counts_[i]; ++c, ++m) {
+        const std::size_t slot = i * static_cast<std::size_t>(stride) + static_cast<std::size_t>(c);
+        obs_u_[m] = obs_u_[slot];
+        obs_l_[m] = obs_l_[slot];
+        obs_point_[m] = static_cast<int>(i);
+      }
+    report.correspondences = m;
+    if (m == 0 && it == 1)
+      return failed(report, TerminationType::NO_OVERLAP,
+                    "the rule found no conjugate point on the target (no overlap)");
+    if (m < static_cast<std::size_t>(settings.min_observations)) {
+      report.iterations = it - 1;
+      return failed(report, TerminationType::TOO_FEW_OBSERVATIONS,
+                    "only " + std::to_string(m) + " observations (minimum " +
+                        std::to_string(settings.min_observations) + ")");
+    }
+
+    // 2. Robust weights (eq. 15 by default), optionally with σ_vi from the previous Qxx.
+    const Eigen::Map<const Eigen::VectorXd> l(obs_l_.data(), static_cast<Index>(m));
+    weights_.resize(static_cast<Index>(m));
+    sigma_v_.resize(0);
+    if (estimator.needsResidualSigmas() && sigma0_prev > 0.0) {
+      sigma_v_.resize(static_cast<Index>(m));
+#pragma omp parallel for schedule(static)
+      for (Index j = 0; j < static_cast<Index>(m); ++j) {
+        const RowVector7d a = lin.designRow(obs_u_[static_cast<std::size_t>(j)], reduced_[static_cast<std::size_t>(obs_point_[static_cast<std::size_t>(j)])]);
+        sigma_v_[j] = sigma0_prev * std::sqrt(std::max(0.0, 1.0 - a * sol.qxx * a.transpose()));
+      }
+    }
+    estimator.computeWeights(l, sigma_v_, sigma0_prev, weights_);
+
+    // 3. Normal equations AᵀPA, AᵀPL (eq. 8), one set per thread, then summed.
+    NormalEquations ne;
+#pragma omp parallel
+    {
+      NormalEquations local;
+#pragma omp for schedule(static) nowait
+      for (Index j = 0; j < static_cast<Index>(m); ++j) {
+        const std::size_t s = static_cast<std::size_t>(j);
+        const double w = std::min(1.0, std::max(0.0, weights_[j]));
+        local.add(lin.designRow(obs_u_[s], reduced_[static_cast<std::size_t>(obs_point_[s])]), obs_l_[s], w);
+      }
+#pragma omp critical
+      ne += local;
+    }
+    ne.symmetrize();
+    if (ne.n < static_cast<std::size_t>(settings.min_observations)) {
+      report.iterations = it - 1;
+      return failed(report, TerminationType::TOO_FEW_OBSERVATIONS,
+                    "only " + std::to_string(ne.n) + " observations kept after robust weighting");
+    }
+
+    // 4. Gauss–Markoff solve with a-priori observations (eqs. 9–11).
+    problem.current = X;
+    sol = solveGaussMarkov(ne, problem);
+    if (!sol.ok) {
+      report.iterations = it;
+      return failed(report, TerminationType::SINGULAR, sol.message);
+    }
+    if (sol.redundancy <= 0) {
+      report.iterations = it;
+      return failed(report, TerminationType::TOO_FEW_OBSERVATIONS, "no redundancy (r = n - u <= 0)");
+    }
+
+    // 5. Update and log.
+    X += sol.dx;
+    if (!X.allFinite() || !(X[SCALE] > 0.0)) {
+      report.iterations = it;
+      return failed(report, TerminationType::DIVERGED, "the estimate became non-finite or m <= 0");
+    }
+    IterationRecord rec;
+    rec.iteration = it;
+    rec.observations_used = ne.n;
+    rec.observations_rejected = m - ne.n;
+    rec.sigma0 = sol.sigma0;
+    rec.max_angle_change = sol.dx.segment<3>(PHI).cwiseAbs().maxCoeff();
+    rec.translation_change = sol.dx.head<3>().norm();
+    rec.scale_change = std::abs(sol.dx[SCALE]);
+    rec.parameters = X;
+    report.log.push_back(rec);
+    report.iterations = it;
+    report.observations_used = ne.n;
+    report.observations_rejected = m - ne.n;
+    sigma0_prev = sol.sigma0;
+
+    // 6. Convergence (Zuo §4: angle change below 1e-6 rad).
+    if (converged(sol.dx, settings)) {
+      report.termination = TerminationType::CONVERGED;
+      break;
+    }
+    report.termination = TerminationType::MAX_ITERATIONS;
+  }
+
+  // Precision (eq. 14), correlation, determinability.
+  report.parameters = X;
+  report.transformation = localToGlobal(SimilarityTransform(X).matrix(), o_s, o_t);
+  report.sigma0 = sol.sigma0;
+  report.qxx = sol.qxx;
+  report.fixed = sol.fixed;
+  report.determinable = sol.determinable;
+  report.redundancy = sol.redundancy;
+  std::string undetermined;
+  for (int i = 0; i < 7; ++i) {
+    const std::size_t s = static_cast<std::size_t>(i);
+    if (sol.fixed[s])
+      report.sigmas[i] = 0.0;
+    else if (!sol.determinable[s]) {
+      report.sigmas[i] = std::numeric_limits<double>::infinity();
+      undetermined += (undetermined.empty() ? "" : ", ") + similarityParameterNames()[s];
+    }
+    else
+      report.sigmas[i] = sol.sigma0 * std::sqrt(sol.qxx(i, i));
+    for (int j = 0; j < 7; ++j) {
+      const double d = std::sqrt(sol.qxx(i, i) * sol.qxx(j, j));
+      report.correlation(i, j) = d > 0.0 ? sol.qxx(i, j) / d : 0.0;
+    }
+  }
+  if (!undetermined.empty())
+    report.message = "undeterminable from this geometry (held at their initial values): " + undetermined;
+  if (report.termination == TerminationType::MAX_ITERATIONS)
+    report.message += std::string(report.message.empty() ? "" : "; ") +
+                      "iteration limit reached before the changes fell below the epsilons";
+
+  // Reliability: residuals (eq. 12) and redundancy numbers r_i = 1 − p_i a_iᵀ Qxx a_i.
+  if (settings.store_observations) {
+    report.observation_source_index.resize(m);
+    report.residuals.resize(m);
+    report.weights.resize(m);
+    report.redundancy_numbers.resize(m);
+#pragma omp parallel for schedule(static)
+    for (Index j = 0; j < static_cast<Index>(m); ++j) {
+      const std::size_t s = static_cast<std::size_t>(j);
+      const RowVector7d a = lin.designRow(obs_u_[s], reduced_[static_cast<std::size_t>(obs_point_[s])]);
+      const double w = std::min(1.0, std::max(0.0, weights_[j]));
+      report.observation_source_index[s] = source_indices.empty() ? obs_point_[s] : source_indices[static_cast<std::size_t>(obs_point_[s])];
+      report.residuals[s] = obs_l_[s] + a.dot(sol.dx);
+      report.weights[s] = w;
+      report.redundancy_numbers[s] = 1.0 - w * (a * sol.qxx * a.transpose())(0, 0);
+    }
+  }
+  return report;
+}
+
+}  // namespace pcl_ls3d

@@ -1,0 +1,91 @@
+#include <pcl_ls3d/rules/local_tin.h>
+
+#include <Eigen/Eigenvalues>
+
+#include <limits>
+
+namespace pcl_ls3d {
+namespace tin {
+
+bool
+planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count,
+            Eigen::Vector3d& normal)
+{
+  if (count < 3)
+    return false;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int i = 0; i < count; ++i)
+    mean += target.point(indices[static_cast<std::size_t>(i)]);
+  mean /= count;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d d = target.point(indices[static_cast<std::size_t>(i)]) - mean;
+    cov.noalias() += d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  es.computeDirect(cov);
+  // Degenerate when the neighbourhood is (nearly) a line: second eigenvalue ~ 0.
+  if (!(es.eigenvalues()[1] > 1e-12 * es.eigenvalues()[2]))
+    return false;
+  normal = es.eigenvectors().col(0).normalized();
+  return normal.allFinite();
+}
+
+bool
+containsOrigin(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c)
+{
+  // Signs of the three edge functions at the origin must agree (either orientation).
+  const double d1 = a.x() * b.y() - a.y() * b.x();
+  const double d2 = b.x() * c.y() - b.y() * c.x();
+  const double d3 = c.x() * a.y() - c.y() * a.x();
+  const bool has_neg = d1 < 0.0 || d2 < 0.0 || d3 < 0.0;
+  const bool has_pos = d1 > 0.0 || d2 > 0.0 || d3 > 0.0;
+  const double area2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
+  return !(has_neg && has_pos) && std::abs(area2) > 1e-12 * (b - a).squaredNorm();
+}
+
+bool
+enclosingTriangle(const std::vector<Eigen::Vector2d>& points, std::array<int, 3>& triangle)
+{
+  const int n = static_cast<int>(points.size());
+  if (n < 3)
+    return false;
+  double best = std::numeric_limits<double>::max();
+  // First pass: triangles through the nearest point; second pass: all triangles.
+  for (int pass = 0; pass < 2 && best == std::numeric_limits<double>::max(); ++pass) {
+    const int i_end = pass == 0 ? 1 : n - 2;
+    for (int i = pass == 0 ? 0 : 1; i < i_end; ++i)
+      for (int j = i + 1; j < n - 1; ++j)
+        for (int k = j + 1; k < n; ++k) {
+          const auto& a = points[static_cast<std::size_t>(i)];
+          const auto& b = points[static_cast<std::size_t>(j)];
+          const auto& c = points[static_cast<std::size_t>(k)];
+          const double size = a.norm() + b.norm() + c.norm();
+          if (size < best && containsOrigin(a, b, c)) {
+            best = size;
+            triangle = {i, j, k};
+          }
+        }
+  }
+  return best < std::numeric_limits<double>::max();
+}
+
+void
+projectToPlane(const TargetSurface& target, const std::vector<int>& indices, int count,
+               const Eigen::Vector3d& query, const Eigen::Vector3d& normal,
+               std::vector<Eigen::Vector2d>& projected)
+{
+  // Any orthonormal basis (e1, e2) of the plane.
+  const Eigen::Vector3d helper =
+      std::abs(normal.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = normal.cross(helper).normalized();
+  const Eigen::Vector3d e2 = normal.cross(e1);
+  projected.resize(static_cast<std::size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d d = target.point(indices[static_cast<std::size_t>(i)]) - query;
+    projected[static_cast<std::size_t>(i)] = Eigen::Vector2d(d.dot(e1), d.dot(e2));
+  }
+}
+
+}  // namespace tin
+}  // namespace pcl_ls3d

@@ -1,0 +1,139 @@
+// LND and LZD rules: both find a local TIN triangle of the target, then intersect it along the
+// triangle normal (LND) or the vertical (LZD).
+#include <pcl_ls3d/rules/local_tin.h>
+#include <pcl_ls3d/rules/lnd_rule.h>
+#include <pcl_ls3d/rules/lzd_rule.h>
+
+#include <cmath>
+
+namespace pcl_ls3d {
+
+namespace {
+
+struct Scratch
+{
+  std::vector<int> indices;
+  std::vector<float> sq_dists;
+  std::vector<Eigen::Vector2d> projected;
+};
+
+Scratch&
+scratch()
+{
+  thread_local Scratch s;
+  return s;
+}
+
+// Barycentric test of p's projection along `dir` onto triangle (a, b, c).
+bool
+projectsInto(const Eigen::Vector3d& p, const Eigen::Vector3d& dir, const Eigen::Vector3d& a,
+             const Eigen::Vector3d& b, const Eigen::Vector3d& c)
+{
+  // Project along dir: work in the plane orthogonal to dir.
+  const Eigen::Vector3d helper =
+      std::abs(dir.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = dir.cross(helper).normalized();
+  const Eigen::Vector3d e2 = dir.cross(e1);
+  auto to2d = [&](const Eigen::Vector3d& q) {
+    const Eigen::Vector3d d = q - p;
+    return Eigen::Vector2d(d.dot(e1), d.dot(e2));
+  };
+  return tin::containsOrigin(to2d(a), to2d(b), to2d(c));
+}
+
+bool
+cachedTriangle(const TargetSurface& target, const CorrespondenceCache& cache,
+               std::array<Eigen::Vector3d, 3>& v)
+{
+  const int n = static_cast<int>(target.size());
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (cache.vertices[i] < 0 || cache.vertices[i] >= n)
+      return false;
+    v[i] = target.point(cache.vertices[i]);
+  }
+  return true;
+}
+
+// Finds the enclosing triangle among the k nearest neighbours, projected along `dir`
+// (nullptr: along the neighbourhood's PCA normal).
+bool
+searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
+               const Eigen::Vector3d* dir, double max_distance, CorrespondenceCache& cache,
+               std::array<Eigen::Vector3d, 3>& v)
+{
+  Scratch& s = scratch();
+  const int found = target.nearestKSearch(query, k, s.indices, s.sq_dists);
+  if (found < 3 || !(static_cast<double>(s.sq_dists[0]) <= max_distance * max_distance))
+    return false;
+  Eigen::Vector3d normal;
+  if (dir)
+    normal = *dir;
+  else if (!tin::planeNormal(target, s.indices, found, normal))
+    return false;
+  tin::projectToPlane(target, s.indices, found, query, normal, s.projected);
+  std::array<int, 3> tri;
+  if (!tin::enclosingTriangle(s.projected, tri))
+    return false;
+  for (std::size_t i = 0; i < 3; ++i) {
+    cache.vertices[i] = s.indices[static_cast<std::size_t>(tri[i])];
+    v[i] = target.point(cache.vertices[i]);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool
+LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target,
+                       double max_distance, CorrespondenceCache& cache,
+                       ConjugateObservations& out) const
+{
+  std::array<Eigen::Vector3d, 3> v;
+  bool have = false;
+  if (cachedTriangle(target, cache, v)) {
+    const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
+    have = n.squaredNorm() > 0.0 && projectsInto(query, n.normalized(), v[0], v[1], v[2]);
+  }
+  if (!have &&
+      !searchTriangle(query, target, neighbours_, nullptr, max_distance, cache, v)) {
+    cache.vertices = {{-1, -1, -1}};
+    return false;
+  }
+  Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
+  if (!(n.norm() > 0.0))
+    return false;
+  n.normalize();
+  if (n.z() < 0.0)  // a stable orientation; the sign of (u, l) does not change the adjustment
+    n = -n;
+  const double d = n.dot(query - v[0]);
+  if (!std::isfinite(d) || std::abs(d) > max_distance)
+    return false;
+  out.add(n, d, query - d * n);
+  return true;
+}
+
+bool
+LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target,
+                       double max_distance, CorrespondenceCache& cache,
+                       ConjugateObservations& out) const
+{
+  static const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  std::array<Eigen::Vector3d, 3> v;
+  const bool have = cachedTriangle(target, cache, v) && projectsInto(query, up, v[0], v[1], v[2]);
+  if (!have && !searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
+    cache.vertices = {{-1, -1, -1}};
+    return false;
+  }
+  const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
+  if (!(std::abs(n.z()) > 1e-6 * n.norm()))  // vertical triangle: no height there
+    return false;
+  // Plane n·(x − v0) = 0 at (query.x, query.y): z = v0.z − (n.x dx + n.y dy) / n.z.
+  const double z = v[0].z() - (n.x() * (query.x() - v[0].x()) + n.y() * (query.y() - v[0].y())) / n.z();
+  const double d = query.z() - z;
+  if (!std::isfinite(d) || std::abs(d) > max_distance)
+    return false;
+  out.add(up, d, Eigen::Vector3d(query.x(), query.y(), z));
+  return true;
+}
+
+}  // namespace pcl_ls3d
