@@ -72,8 +72,9 @@ public:
     MRG
   };
 
-  MultiRuleRegionGrowing() = default;
-  ~MultiRuleRegionGrowing() override = default;
+  /// \brief Defaults: k = 10..100 step 10, 16 graph neighbours, M_t = 15°, N_t = 10°, IMRG mode.
+  MultiRuleRegionGrowing();
+  ~MultiRuleRegionGrowing() override;
 
   /// \brief Class name for messages.
   std::string getClassName() const { return "MultiRuleRegionGrowing"; }

@@ -19,6 +19,13 @@
 
 namespace pcl_ls3d {
 
+// Out of line so that PCLBase<T>'s members are instantiated here, in src/, for custom T.
+template <typename PointT, typename NormalT>
+MultiRuleRegionGrowing<PointT, NormalT>::MultiRuleRegionGrowing() = default;
+
+template <typename PointT, typename NormalT>
+MultiRuleRegionGrowing<PointT, NormalT>::~MultiRuleRegionGrowing() = default;
+
 template <typename PointT, typename NormalT>
 void
 MultiRuleRegionGrowing<PointT, NormalT>::setNeighbourhoodRange(int k_min, int k_max, int k_step)
@@ -67,7 +74,8 @@ template <typename PointT, typename NormalT>
 bool
 MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
 {
-  const char* name = getClassName().c_str();
+  const std::string cls = getClassName();
+  const char* name = cls.c_str();
   if (!input_ || input_->empty()) {
     PCL_ERROR("[pcl_ls3d::%s::extract] Input cloud is empty.\n", name);
     return false;
