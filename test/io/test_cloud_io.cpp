@@ -1,0 +1,226 @@
+/// \file test_cloud_io.cpp
+/// \brief loadCloud()/saveCloud(): UTM round trip to 1 mm through every writer, origin rules,
+///        NaN handling, overwrite protection, isSameFile, format detection, strip tools.
+
+#include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/strip_tools.h>
+
+#include "io/io_test_utils.h"
+
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <limits>
+
+using namespace pcl_ls3d;
+using pcl_ls3d_test::TempDir;
+
+namespace {
+
+const Eigen::Vector3d kBase(512345.0, 5412345.0, 321.0);
+const Eigen::Vector3d kOrigin(512000.0, 5412000.0, 0.0);
+
+std::string
+readText(const std::string& path, std::size_t n = 4096)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string s(n, '\0');
+  in.read(&s[0], static_cast<std::streamsize>(n));
+  s.resize(static_cast<std::size_t>(in.gcount()));
+  return s;
+}
+
+}  // namespace
+
+class UtmRoundTrip : public ::testing::TestWithParam<std::tuple<std::string, bool>>
+{};
+
+// Whole-millimetre UTM coordinates written with a non-zero origin and read back with the auto
+// origin must agree within 1 mm (the requirement); float rounding of local values < 400 m is 3e-5 m.
+TEST_P(UtmRoundTrip, EveryWriterKeepsOneMillimetre)
+{
+  const std::string ext = std::get<0>(GetParam());
+  const bool binary = std::get<1>(GetParam());
+  pcl::PointCloud<PointLiDAR> cloud, back;
+  std::vector<Eigen::Vector3d> truth;
+  pcl_ls3d_test::makeUtmCloud(3000, 3, kBase, kOrigin, cloud, truth);
+  TempDir dir("ls3d_utm");
+  const std::string path = dir.file("cloud." + ext);
+  io::SaveOptions so;
+  so.binary = binary;
+  std::string error;
+  ASSERT_TRUE(io::saveCloud(path, cloud, kOrigin, error, so)) << error;
+  if (ext == "pcd" || ext == "ply")  // x stored in double, as required for a non-zero origin
+    EXPECT_NE(readText(path).find(ext == "pcd" ? "SIZE 8 8 8" : "property double x"),
+              std::string::npos);
+  io::CloudInfo info;
+  ASSERT_TRUE(io::loadCloud(path, back, info, error)) << error;
+  EXPECT_EQ(info.format, ext == "txt" ? "xyz" : ext);
+  ASSERT_EQ(back.size(), cloud.size());
+  EXPECT_GT(info.origin[0], 5e5);  // auto origin: rounded bbox centre
+  double worst = 0.0;
+  for (std::size_t i = 0; i < back.size(); ++i) {
+    const Eigen::Vector3d xb = back[i].getVector3fMap().cast<double>() + info.origin;
+    worst = std::max(worst, (xb - truth[i]).cwiseAbs().maxCoeff());
+    EXPECT_EQ(back[i].classification, cloud[i].classification);
+    EXPECT_EQ(back[i].point_source_id, cloud[i].point_source_id);
+    EXPECT_EQ(back[i].return_number, cloud[i].return_number);
+    EXPECT_EQ(back[i].number_of_returns, cloud[i].number_of_returns);
+    EXPECT_EQ(back[i].intensity, cloud[i].intensity);
+    EXPECT_NEAR(back[i].gps_time, cloud[i].gps_time, 1e-6);  // XYZ prints 6 decimals
+  }
+  EXPECT_LT(worst, 1e-3) << ext;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllWriters, UtmRoundTrip,
+                         ::testing::Values(std::make_tuple("las", true), std::make_tuple("pcd", true),
+                                           std::make_tuple("pcd", false), std::make_tuple("ply", true),
+                                           std::make_tuple("ply", false), std::make_tuple("xyz", false),
+                                           std::make_tuple("txt", false)),
+                         [](const auto& info) {
+                           return std::get<0>(info.param) + (std::get<1>(info.param) ? "_binary" : "_ascii");
+                         });
+
+// A forced origin (second cloud of a pair) is used as given.
+TEST(CloudIO, ForcedOriginIsUsed)
+{
+  pcl::PointCloud<PointLiDAR> cloud, back;
+  std::vector<Eigen::Vector3d> truth;
+  pcl_ls3d_test::makeUtmCloud(100, 1, kBase, kOrigin, cloud, truth);
+  TempDir dir("ls3d_forced");
+  std::string error;
+  ASSERT_TRUE(io::saveCloud(dir.file("a.las"), cloud, kOrigin, error)) << error;
+  io::LoadOptions lo;
+  lo.use_origin = true;
+  lo.origin = Eigen::Vector3d(512300.5, 5412300.25, 100.0);
+  io::CloudInfo info;
+  ASSERT_TRUE(io::loadCloud(dir.file("a.las"), back, info, error, lo)) << error;
+  EXPECT_EQ(info.origin, lo.origin);
+  EXPECT_NEAR(back[0].x + lo.origin[0], truth[0][0], 1e-4);
+  EXPECT_NEAR(back[0].z + lo.origin[2], truth[0][2], 1e-4);
+}
+
+TEST(CloudIO, AutoOriginRule)
+{
+  EXPECT_EQ(io::chooseOrigin({-5, -5, 0}, {9999, 10, 3}), Eigen::Vector3d::Zero());
+  EXPECT_EQ(io::chooseOrigin({5e5, 5e6, 10}, {5e5 + 101, 5e6 + 50, 20}),
+            Eigen::Vector3d(500051.0, 5000025.0, 0.0));  // 50.5 rounds away from zero
+  EXPECT_EQ(io::chooseOrigin({-20000, 0, 0}, {-10000, 1, 1})[0], -15000.0);
+}
+
+// NaN points of an organized PCD are dropped and counted; an all-NaN file is a clear error.
+TEST(CloudIO, NonFinitePointsDroppedAndAllNanIsAnError)
+{
+  TempDir dir("ls3d_nan");
+  pcl::PointCloud<pcl::PointXYZ> organized(3, 2);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (std::size_t i = 0; i < organized.size(); ++i)
+    organized[i] = i % 2 ? pcl::PointXYZ(nan, nan, nan) : pcl::PointXYZ(float(i), 1.f, 2.f);
+  organized.is_dense = false;
+  pcl::io::savePCDFileBinary(dir.file("org.pcd"), organized);
+  pcl::PointCloud<PointLiDAR> cloud;
+  io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(io::loadCloud(dir.file("org.pcd"), cloud, info, error)) << error;
+  EXPECT_EQ(info.points_in_file, 6u);
+  EXPECT_EQ(info.points_dropped_nonfinite, 3u);
+  EXPECT_EQ(cloud.size(), 3u);
+  EXPECT_EQ(cloud.height, 1u);
+  EXPECT_FLOAT_EQ(cloud[2].x, 4.f);
+
+  for (auto& p : organized)
+    p = pcl::PointXYZ(nan, nan, nan);
+  pcl::io::savePCDFileBinary(dir.file("allnan.pcd"), organized);
+  EXPECT_FALSE(io::loadCloud(dir.file("allnan.pcd"), cloud, info, error));
+  EXPECT_NE(error.find("no finite points (all 6 points are NaN/inf)"), std::string::npos) << error;
+  io::LoadOptions lo;
+  lo.allow_empty = true;
+  EXPECT_TRUE(io::loadCloud(dir.file("allnan.pcd"), cloud, info, error, lo));
+  EXPECT_EQ(info.points_loaded, 0u);
+}
+
+// A PCL PCD with "label" (pcl::PointXYZL, as shared/data/tools/las2pcd_stats.py writes) fills
+// classification; intensity comes from PointXYZI.
+TEST(CloudIO, PclPointTypesMapLabelAndIntensity)
+{
+  TempDir dir("ls3d_pcl");
+  pcl::PointCloud<pcl::PointXYZL> labelled;
+  pcl::PointXYZL p;
+  p.x = 1.f; p.y = 2.f; p.z = 3.f; p.label = 6;
+  labelled.push_back(p);
+  pcl::io::savePCDFileASCII(dir.file("l.pcd"), labelled);
+  pcl::PointCloud<PointLiDAR> cloud;
+  io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(io::loadCloud(dir.file("l.pcd"), cloud, info, error)) << error;
+  EXPECT_EQ(cloud[0].classification, 6);
+  EXPECT_FLOAT_EQ(cloud[0].z, 3.f);
+}
+
+TEST(CloudIO, OverwriteProtectionAndSameFile)
+{
+  TempDir dir("ls3d_overwrite");
+  pcl::PointCloud<PointLiDAR> cloud;
+  cloud.push_back(PointLiDAR(1.f, 2.f, 3.f));
+  std::string error;
+  ASSERT_TRUE(io::saveCloud(dir.file("a.pcd"), cloud, Eigen::Vector3d::Zero(), error)) << error;
+  EXPECT_FALSE(io::saveCloud(dir.file("a.pcd"), cloud, Eigen::Vector3d::Zero(), error));
+  EXPECT_NE(error.find("exists already"), std::string::npos) << error;
+  io::SaveOptions so;
+  so.overwrite = true;
+  EXPECT_TRUE(io::saveCloud(dir.file("a.pcd"), cloud, Eigen::Vector3d::Zero(), error, so)) << error;
+
+  std::filesystem::create_symlink(dir.file("a.pcd"), dir.file("link.pcd"));
+  EXPECT_TRUE(io::isSameFile(dir.file("a.pcd"), dir.file("link.pcd")));
+  EXPECT_TRUE(io::isSameFile(dir.file("a.pcd"), dir.path.string() + "/./sub/../a.pcd"));
+  EXPECT_TRUE(io::isSameFile(dir.file("new.las"), dir.path.string() + "/./new.las"));
+  EXPECT_FALSE(io::isSameFile(dir.file("a.pcd"), dir.file("b.pcd")));
+}
+
+TEST(CloudIO, FormatDetectionAndWriterRefusals)
+{
+  TempDir dir("ls3d_detect");
+  pcl::PointCloud<PointLiDAR> cloud, back;
+  cloud.push_back(PointLiDAR(1.f, 2.f, 3.f));
+  std::string error;
+  io::CloudInfo info;
+  // A LAS file with a misleading extension is recognised by its signature.
+  ASSERT_TRUE(io::saveCloud(dir.file("a.las"), cloud, Eigen::Vector3d::Zero(), error)) << error;
+  std::filesystem::copy_file(dir.file("a.las"), dir.file("a.dat"));
+  ASSERT_TRUE(io::loadCloud(dir.file("a.dat"), back, info, error)) << error;
+  EXPECT_EQ(info.format, "las");
+  std::ofstream(dir.file("b.foo")) << "1 2 3\n";
+  EXPECT_FALSE(io::loadCloud(dir.file("b.foo"), back, info, error));
+  EXPECT_NE(error.find("unknown file type"), std::string::npos) << error;
+  EXPECT_FALSE(io::loadCloud(dir.path.string(), back, info, error));
+  EXPECT_NE(error.find("directory"), std::string::npos) << error;
+  EXPECT_FALSE(io::saveCloud(dir.file("c.laz"), cloud, Eigen::Vector3d::Zero(), error));
+  EXPECT_FALSE(io::saveCloud(dir.file("c.pcd"), pcl::PointCloud<PointLiDAR>(),
+                             Eigen::Vector3d::Zero(), error));
+  EXPECT_NE(error.find("empty cloud"), std::string::npos) << error;
+}
+
+TEST(StripTools, SplitByPointSourceAndFilterByClassification)
+{
+  pcl::PointCloud<PointLiDAR> cloud;
+  const std::uint16_t ids[] = {706, 707, 706, 3, 707, 706};
+  const std::uint8_t classes[] = {2, 6, 5, 2, 64, 6};
+  for (int i = 0; i < 6; ++i) {
+    PointLiDAR p(float(i), 0.f, 0.f);
+    p.point_source_id = ids[i];
+    p.classification = classes[i];
+    cloud.push_back(p);
+  }
+  const auto strips = io::splitByPointSource(cloud);
+  ASSERT_EQ(strips.size(), 3u);
+  EXPECT_EQ(strips.at(3), (pcl::Indices{3}));
+  EXPECT_EQ(strips.at(706), (pcl::Indices{0, 2, 5}));
+  EXPECT_EQ(strips.at(707), (pcl::Indices{1, 4}));
+  EXPECT_EQ(io::filterByClassification(cloud, {2, 6}), (pcl::Indices{0, 1, 3, 5}));
+  EXPECT_EQ(io::filterByClassification(cloud, {2, 6}, false), (pcl::Indices{2, 4}));
+  EXPECT_TRUE(io::filterByClassification(cloud, {9}).empty());
+}
