@@ -1,0 +1,142 @@
+/// \file test_convert_tool.cpp
+/// \brief pcl_ls3d_convert end to end: conversion, -split_strips, -classes, -origin, refusal to
+///        overwrite the input or an existing output, one-line errors with a non-zero exit.
+
+#include <pcl_ls3d/io/cloud_io.h>
+
+#include "io/io_test_utils.h"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace pcl_ls3d;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_convert";
+
+/// Runs the tool with `args`; returns the exit code and fills `output` (stdout + stderr).
+int
+run(const std::string& args, std::string& output, const pcl_ls3d_test::TempDir& dir)
+{
+  const std::string log = dir.file("log.txt");
+  const int status = std::system((kTool + " " + args + " > " + log + " 2>&1").c_str());
+  std::ifstream in(log);
+  std::stringstream s;
+  s << in.rdbuf();
+  output = s.str();
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+class ConvertTool : public ::testing::Test
+{
+protected:
+  void
+  SetUp() override
+  {
+    if (!fs::exists(kTool))
+      GTEST_SKIP() << kTool << " is not built";
+    // 3 strips (psid 10, 11, 12), classes 2 / 6 / 5 in turn, UTM coordinates.
+    std::vector<Eigen::Vector3d> truth;
+    pcl_ls3d_test::makeUtmCloud(300, 3, {600000.0, 5000000.0, 100.0}, origin_, cloud_, truth);
+    for (std::size_t i = 0; i < cloud_.size(); ++i) {
+      cloud_[i].point_source_id = static_cast<std::uint16_t>(10 + i % 3);
+      cloud_[i].classification = i % 3 == 0 ? 2 : (i % 3 == 1 ? 6 : 5);
+    }
+    std::string error;
+    ASSERT_TRUE(io::saveCloud(dir_.file("in.las"), cloud_, origin_, error)) << error;
+  }
+
+  pcl_ls3d_test::TempDir dir_{"ls3d_convert"};
+  Eigen::Vector3d origin_{600000.0, 5000000.0, 0.0};
+  pcl::PointCloud<PointLiDAR> cloud_;
+};
+
+}  // namespace
+
+TEST_F(ConvertTool, ConvertsAndRefusesToOverwrite)
+{
+  std::string out;
+  ASSERT_EQ(run(dir_.file("in.las") + " " + dir_.file("out.pcd"), out, dir_), 0) << out;
+  EXPECT_NE(out.find("Local origin (auto)"), std::string::npos) << out;
+  pcl::PointCloud<PointLiDAR> back;
+  io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(io::loadCloud(dir_.file("out.pcd"), back, info, error)) << error;
+  ASSERT_EQ(back.size(), cloud_.size());
+  const Eigen::Vector3d x0 = back[0].getVector3fMap().cast<double>() + info.origin;
+  const Eigen::Vector3d t0 = cloud_[0].getVector3fMap().cast<double>() + origin_;
+  EXPECT_LT((x0 - t0).cwiseAbs().maxCoeff(), 1e-3);
+
+  EXPECT_NE(run(dir_.file("in.las") + " " + dir_.file("out.pcd"), out, dir_), 0);
+  EXPECT_NE(out.find("exists already"), std::string::npos) << out;
+  EXPECT_EQ(run(dir_.file("in.las") + " " + dir_.file("out.pcd") + " -overwrite", out, dir_), 0)
+      << out;
+
+  const auto size_before = fs::file_size(dir_.file("in.las"));
+  EXPECT_NE(run(dir_.file("in.las") + " " + dir_.path.string() + "/./in.las -overwrite", out, dir_), 0);
+  EXPECT_NE(out.find("is the input file"), std::string::npos) << out;
+  EXPECT_EQ(fs::file_size(dir_.file("in.las")), size_before);
+}
+
+TEST_F(ConvertTool, SplitStripsAndFilterClasses)
+{
+  std::string out;
+  const std::string strips = dir_.file("strips");
+  ASSERT_EQ(run(dir_.file("in.las") + " -split_strips " + strips + " -classes 2,6", out, dir_), 0)
+      << out;
+  // psid = 10 + i%3 and the class follows i%3 too: strips 10 (class 2) and 11 (class 6) keep all
+  // 100 points; strip 12 (class 5) is filtered out before splitting and gets no file.
+  for (int id : {10, 11}) {
+    const std::string path = strips + "/in_psid" + std::to_string(id) + ".las";
+    pcl::PointCloud<PointLiDAR> strip;
+    io::CloudInfo info;
+    std::string error;
+    ASSERT_TRUE(io::loadCloud(path, strip, info, error)) << error;
+    EXPECT_EQ(strip.size(), 100u) << path;
+    for (const auto& p : strip)
+      EXPECT_EQ(p.point_source_id, id);
+  }
+  EXPECT_FALSE(fs::exists(strips + "/in_psid12.las"));
+}
+
+TEST_F(ConvertTool, ForcedOriginAndFormats)
+{
+  std::string out;
+  ASSERT_EQ(run(dir_.file("in.las") + " " + dir_.file("out.xyz") + " -origin 600100,5000100,0",
+                out, dir_), 0) << out;
+  EXPECT_NE(out.find("Local origin (forced): 600100.000 5000100.000 0.000"), std::string::npos) << out;
+  ASSERT_EQ(run(dir_.file("out.xyz") + " " + dir_.file("back.las") + " -las_format 6", out, dir_), 0)
+      << out;
+  pcl::PointCloud<PointLiDAR> back;
+  io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(io::loadCloud(dir_.file("back.las"), back, info, error)) << error;
+  EXPECT_EQ(info.las.point_format, 6);
+  EXPECT_EQ(info.las.version_minor, 4);
+  EXPECT_EQ(back.size(), cloud_.size());
+}
+
+TEST_F(ConvertTool, BadInputGivesOneErrorLineAndNonZeroExit)
+{
+  std::string out;
+  EXPECT_NE(run(dir_.file("in.las") + " " + dir_.file("o.pcd") + " -bogus", out, dir_), 0);
+  EXPECT_NE(out.find("Unknown option -bogus"), std::string::npos) << out;
+  EXPECT_NE(run(dir_.file("missing.las") + " " + dir_.file("o.pcd"), out, dir_), 0);
+  EXPECT_NE(out.find("does not exist"), std::string::npos) << out;
+  fs::copy_file(dir_.file("in.las"), dir_.file("in.laz"));
+  EXPECT_NE(run(dir_.file("in.laz") + " " + dir_.file("o.pcd"), out, dir_), 0);
+  EXPECT_NE(out.find("compressed LAZ is not supported"), std::string::npos) << out;
+  EXPECT_NE(run(dir_.file("in.las") + " " + dir_.file("o.pcd") + " -origin 1,2", out, dir_), 0);
+  EXPECT_NE(run(dir_.file("in.las") + " " + dir_.file("o.pcd") + " -classes 9", out, dir_), 0);
+  EXPECT_NE(out.find("No point"), std::string::npos) << out;
+  EXPECT_NE(run(dir_.file("in.las"), out, dir_), 0);  // no output named
+  EXPECT_EQ(run("-h", out, dir_), 0);
+}
