@@ -204,6 +204,18 @@ setTransform(int argc, char** argv, pcl_ls3d::SimilarityTransform& T, bool allow
   T = pcl_ls3d::SimilarityTransform(p);
 }
 
+/// Refuses existing outputs without -overwrite, before anything is generated.
+bool
+refuseExisting(const std::vector<std::string>& paths, bool overwrite)
+{
+  for (const auto& p : paths)
+    if (!overwrite && fs::exists(p)) {
+      print_error("%s exists; use -overwrite to replace it.\n", p.c_str());
+      return false;
+    }
+  return true;
+}
+
 struct Output
 {
   std::string path;
@@ -219,11 +231,8 @@ writeAll(const std::vector<Output>& clouds, const std::string& json_path, const 
   std::vector<std::string> paths{json_path};
   for (const auto& o : clouds)
     paths.push_back(o.path);
-  for (const auto& p : paths)
-    if (!overwrite && fs::exists(p)) {
-      print_error("%s exists; use -overwrite to replace it.\n", p.c_str());
-      return false;
-    }
+  if (!refuseExisting(paths, overwrite))
+    return false;
   pcl_ls3d::io::SaveOptions opt;
   opt.overwrite = true;  // checked above for all files at once
   for (const auto& o : clouds) {
@@ -315,6 +324,8 @@ main(int argc, char** argv)
       print_error("Invalid pair settings: %s.\n", why.c_str());
       return -1;
     }
+    if (!refuseExisting({json_path, file("source"), file("target")}, overwrite))
+      return -1;
     tt.tic();
     const auto pair = synth::makeRegistrationPair(s);
     print_info("Generated pair: ");
@@ -352,6 +363,8 @@ main(int argc, char** argv)
       print_error("Invalid scene settings: %s.\n", why.c_str());
       return -1;
     }
+    if (!refuseExisting({json_path, file("scene")}, overwrite))
+      return -1;
     tt.tic();
     const auto scene = synth::makeScene(s);
     print_info("Generated scene: ");
@@ -398,6 +411,12 @@ main(int argc, char** argv)
       print_error("Invalid strip settings: %s.\n", why.c_str());
       return -1;
     }
+    const bool split = find_switch(argc, argv, "-split");
+    std::vector<std::string> planned{json_path, file("strips")};
+    for (int k = 0; split && k < s.num_strips; ++k)
+      planned.push_back(file("strip_" + std::to_string(s.first_source_id + k)));
+    if (!refuseExisting(planned, overwrite))
+      return -1;
     tt.tic();
     const auto block = synth::makeStripBlock(s);
     print_info("Generated ");
@@ -409,7 +428,7 @@ main(int argc, char** argv)
     print_info(" ms\n");
     std::vector<Cloud::Ptr> parts;
     std::vector<Output> outputs{{file("strips"), block.cloud.get(), block.origin}};
-    if (find_switch(argc, argv, "-split"))
+    if (split)
       for (std::size_t k = 0; k < block.strips.size(); ++k) {
         parts.push_back(block.stripCloud(k));
         outputs.push_back({file("strip_" + std::to_string(block.strips[k].point_source_id)),
@@ -441,6 +460,8 @@ main(int argc, char** argv)
     print_error("Invalid li settings: %s.\n", why.c_str());
     return -1;
   }
+  if (!refuseExisting({json_path, file("reference"), file("mate")}, overwrite))
+    return -1;
   tt.tic();
   const auto li = synth::makeLiSurface(s);
   print_info("Generated Li surface: ");

@@ -58,7 +58,9 @@ transformJson(const SimilarityTransform& local, const Eigen::Vector3d& origin)
   j["transformation_local"] = rows(local.matrix());
   j["parameters"] = params(local);
   j["parameters_frame_origin"] = vec(origin);
-  j["parameters_global"] = params(SimilarityTransform::fromMatrix(G));
+  SimilarityTransform global = local;  // same angles and scale; only t moves with the origin
+  global.t = G.topRightCorner<3, 1>();
+  j["parameters_global"] = params(global);
   return j;
 }
 
