@@ -103,6 +103,13 @@ TEST(Synth, PairDensityAndOverlap)
   EXPECT_EQ(pair.source->size(), static_cast<std::size_t>(std::lround(s.size_x * s.size_y)));
   EXPECT_EQ(pair.target->size(),
             static_cast<std::size_t>(std::lround(2.0 * s.size_x * s.size_y)));
+  // Density measured in a 40 m × 40 m window inside the target footprint: expected 3200 points,
+  // Poisson-like sd ≈ 57; tolerance 5 %.
+  const Eigen::Vector2d c = pair.target_footprint.center();
+  std::size_t inside = 0;
+  for (const auto& q : *pair.target)
+    inside += std::abs(q.x - c.x()) < 20.0 && std::abs(q.y - c.y()) < 20.0;
+  EXPECT_NEAR(inside / 1600.0, s.target_density, 0.05 * s.target_density);
   std::size_t covered = 0;
   for (const auto& q : *pair.source) {
     const Eigen::Vector3d p = pair.truth.apply(q.getVector3fMap().cast<double>());

@@ -68,6 +68,16 @@ TEST(Synth, StripIdsCountsAndTime)
       ASSERT_GT((*block.cloud)[i].gps_time, (*block.cloud)[i - 1].gps_time);
   }
   EXPECT_GT(block.strips[1].start_time, block.strips[0].end_time);
+  // Density from the data: strip 1 (identity truth) points within 30 m × 30 m of its centre.
+  const StripTruth& st = block.strips[0];
+  std::size_t inside = 0;
+  for (std::size_t i = st.first_index; i < st.first_index + st.point_count; ++i) {
+    const Eigen::Vector2d v = (*block.cloud)[i].getVector2fMap().cast<double>() - st.centre.head<2>();
+    const Eigen::Vector2d a(-block.direction.y(), block.direction.x());
+    inside += std::abs(v.dot(block.direction)) < 15.0 && std::abs(v.dot(a)) < 15.0;
+  }
+  // A regular pattern: the count in the window is within one scan line (~30 points) of 1800.
+  EXPECT_NEAR(inside / 900.0, s.density, 0.05 * s.density);
 }
 
 // Side overlap measured from the data (across-track extents of the true points) ≈ requested.
