@@ -8,6 +8,8 @@
 #include <pcl_ls3d/stats/data_snooping.h>
 #include <pcl_ls3d/stats/kmeans_1d.h>
 
+#include <pcl/common/time.h>
+#include <pcl/console/print.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 
@@ -91,6 +93,35 @@ nearestSegment(MergeState& st, int s, double radius, const std::vector<char>& fi
   return best;
 }
 
+/// Nearest other segment before any merge (owners are the initial labels): 8 contour
+/// neighbours first, 64 if none of those belongs to another segment. Read-only, thread-safe.
+std::pair<int, double>
+initialNearestSegment(const MergeState& st, int s)
+{
+  std::pair<int, double> best{-1, std::numeric_limits<double>::infinity()};
+  std::vector<int> idx;
+  std::vector<float> d2;
+  const int n_contour = static_cast<int>(st.contour_xyz.size());
+  for (const int k : {8, kNearestContourCandidates}) {
+    for (const int c : st.contour[s]) {
+      pcl::PointXYZ q;
+      q.getVector3fMap() = st.contour_xyz[c];
+      st.tree.nearestKSearch(q, std::min(k, n_contour), idx, d2);
+      for (std::size_t t = 0; t < idx.size(); ++t) {
+        if (st.contour_owner[idx[t]] == s)
+          continue;
+        const double d = std::sqrt(static_cast<double>(d2[t]));
+        if (d < best.second)
+          best = {st.contour_owner[idx[t]], d};
+        break;
+      }
+    }
+    if (best.first >= 0 || k >= n_contour)
+      break;
+  }
+  return best;
+}
+
 /// ΔV = (V_j'' − V_j') / max(V_i, floor)  (eq. 2); also returns the merged hull.
 double
 volumeChange(const MergeState& st, int i, int j, double floor, SegmentHull* merged)
@@ -151,16 +182,20 @@ buildState(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& l
   st.volume.assign(n_segments, 0.0);
   st.parent.resize(n_segments);
   std::iota(st.parent.begin(), st.parent.end(), 0);
-  std::vector<Eigen::Vector3f> xyz;
+  std::vector<SegmentHull> hulls(n_segments);
+#pragma omp parallel for schedule(dynamic, 16)
   for (int s = 0; s < n_segments; ++s) {
-    xyz.clear();
+    std::vector<Eigen::Vector3f> xyz;
+    xyz.reserve(st.members[s].size());
     for (const int p : st.members[s])
       xyz.push_back(points[p]);
-    const SegmentHull h = computeSegmentHull(xyz);
-    st.volume[s] = h.volume;
-    for (const int c : h.contour) {
+    hulls[s] = computeSegmentHull(xyz);
+  }
+  for (int s = 0; s < n_segments; ++s) {
+    st.volume[s] = hulls[s].volume;
+    for (const int c : hulls[s].contour) {
       st.contour[s].push_back(static_cast<int>(st.contour_xyz.size()));
-      st.contour_xyz.push_back(xyz[c]);
+      st.contour_xyz.push_back(points[st.members[s][c]]);
       st.contour_owner.push_back(s);
     }
   }
@@ -191,18 +226,21 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
                                                    : std::max(volume_floor_default, 1e-12);
 
   MergeState st;
+  pcl::StopWatch watch;
   buildState(points, labels, residuals, n_segments, st);
-  std::vector<char> none_finished(n_segments, 0);
+  const double t_hulls = watch.getTimeSeconds();
 
   // Nearest neighbour segment of every segment: the sample D (§3.2.2, 1).
   std::vector<std::pair<int, double>> nearest(n_segments);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int s = 0; s < n_segments; ++s)
+    nearest[s] = initialNearestSegment(st, s);
   std::vector<double> D;
-  for (int s = 0; s < n_segments; ++s) {
-    nearest[s] = nearestSegment(st, s, -1.0, none_finished);
+  for (int s = 0; s < n_segments; ++s)
     if (nearest[s].first >= 0)
       D.push_back(nearest[s].second);
-  }
   rep.distance_samples = D.size();
+  const double t_nearest = watch.getTimeSeconds();
   rep.distance_threshold = settings.distance_threshold >= 0.0
                                ? settings.distance_threshold
                                : snoopedMaximum(D, settings.alpha);
@@ -223,27 +261,37 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
     }
   }
 
+  // ΔV of segment s into its initial nearest segment (−1: not a candidate); reused by the loop
+  // while neither segment has changed.
+  std::vector<double> candidate_dv(n_segments, -1.0);
   // V_t: ΔV over the nearest pairs that pass d_t and s_t, smaller segment into larger.
   rep.volume_threshold = std::numeric_limits<double>::infinity();
   if (full) {
     if (settings.volume_threshold >= 0.0) {
       rep.volume_threshold = settings.volume_threshold;
     } else {
-      std::vector<double> dV;
+#pragma omp parallel for schedule(dynamic, 16)
       for (int s = 0; s < n_segments; ++s) {
         const int j = nearest[s].first;
         if (j < 0 || nearest[s].second > rep.distance_threshold ||
             std::abs(st.meanResidual(s) - st.meanResidual(j)) > rep.similarity_threshold)
           continue;
-        const bool s_small = st.members[s].size() <= st.members[j].size();
-        dV.push_back(s_small ? volumeChange(st, s, j, floor, nullptr)
-                             : volumeChange(st, j, s, floor, nullptr));
+        // Smaller into larger, in the order the merge loop will visit the pair.
+        const bool s_first = st.members[s].size() < st.members[j].size() ||
+                             (st.members[s].size() == st.members[j].size() && s < j);
+        candidate_dv[s] = s_first ? volumeChange(st, s, j, floor, nullptr)
+                                  : volumeChange(st, j, s, floor, nullptr);
       }
+      std::vector<double> dV;
+      for (int s = 0; s < n_segments; ++s)
+        if (candidate_dv[s] >= 0.0)
+          dV.push_back(candidate_dv[s]);
       rep.volume_samples = dV.size();
       rep.volume_threshold = snoopedVolumeThreshold(dV, settings.alpha);
     }
   }
 
+  const double t_thresholds = watch.getTimeSeconds();
   // Fig. 8: smallest segment first; merge into its nearest unfinished segment or finish it.
   std::vector<int> order(n_segments);
   std::iota(order.begin(), order.end(), 0);
@@ -251,6 +299,7 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
     return st.members[a].size() < st.members[b].size();
   });
   std::vector<char> finished(n_segments, 0);
+  std::vector<char> changed(n_segments, 0);  // hull differs from the initial one
   for (const int s : order) {
     finished[s] = 1;  // S_1 leaves S_u whatever happens
     const auto [j, d] = nearestSegment(st, s, rep.distance_threshold, finished);
@@ -260,6 +309,9 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
     if (full) {
       if (std::abs(st.meanResidual(s) - st.meanResidual(j)) > rep.similarity_threshold)
         continue;
+      const bool unchanged = !changed[s] && !changed[j] && nearest[s].first == j;
+      if (unchanged && candidate_dv[s] > rep.volume_threshold)
+        continue;  // same pair, same hulls as in the threshold stage: ΔV already known
       if (volumeChange(st, s, j, floor, &merged) > rep.volume_threshold)
         continue;
     } else {
@@ -281,9 +333,14 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
     st.contour[j] = merged.contour;
     st.contour[s].clear();
     st.volume[j] = merged.volume;
+    changed[j] = 1;
     ++rep.merges;
   }
 
+  PCL_DEBUG("[pcl_ls3d::segmentation::mergeSegments] hulls %.2f s, nearest %.2f s, "
+            "thresholds %.2f s, loop %.2f s; %zu contour points.\n", t_hulls,
+            t_nearest - t_hulls, t_thresholds - t_nearest, watch.getTimeSeconds() - t_thresholds,
+            st.contour_xyz.size());
   // Dense relabelling of the roots.
   std::vector<int> dense(n_segments, -1);
   int next = 0;

@@ -6,6 +6,7 @@
 #include <pcl_ls3d/stats/descriptive.h>
 
 #include <pcl/common/point_tests.h>
+#include <pcl/common/time.h>
 #include <pcl/console/print.h>
 #include <pcl/search/kdtree.h>
 
@@ -57,16 +58,23 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   grow_.residual_threshold = std::numeric_limits<double>::quiet_NaN();
   initial_segments_ = 0;
 
+  pcl::StopWatch watch;
   if (!initCompute())
     return;
   if (!prepareForSegmentation() || !computeFeatures()) {
     deinitCompute();
     return;
   }
+  const double t_features = watch.getTimeSeconds();
   growSegments();
+  const double t_grow = watch.getTimeSeconds();
   mergeSegments();
+  const double t_merge = watch.getTimeSeconds();
   assembleRegions();
   clusters = clusters_;
+  PCL_DEBUG("[pcl_ls3d::%s::extract] %zu points: features %.2f s, growing %.2f s, merging %.2f s, "
+            "%zu -> %zu segments.\n", getClassName().c_str(), points_.size(), t_features,
+            t_grow - t_features, t_merge - t_grow, initial_segments_, clusters_.size());
   deinitCompute();
 }
 
