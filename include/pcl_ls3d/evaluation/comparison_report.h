@@ -1,0 +1,41 @@
+#pragma once
+/// \file comparison_report.h
+/// \brief The one table and the JSON document that pcl_ls3d_compare and benchmark_registration
+///        print for a set of RegistrationRun rows (same columns, same units everywhere).
+
+#include <pcl_ls3d/evaluation/registration_run.h>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+/// \brief What was compared (written into the JSON next to the rows).
+struct ComparisonContext
+{
+  std::string source, target;                         ///< file names or a generator description
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   ///< common local origin (file = local + origin)
+  std::size_t source_points = 0, target_points = 0;
+  bool has_truth = false;
+  double rms_max_distance = 0.0;                      ///< [m] neighbour cut-off of the RMS column
+  std::string pcl_settings, ls3d_settings;            ///< describe() of the settings used
+};
+
+/// \brief Fixed-width text table, one row per run. Columns: method, iterations, wall time [s],
+///        converged, RMS of NN distances [m], σ0 [m]; with truth also mean / max displacement
+///        error over the source points [mm], max over the source bbox corners [mm], and the
+///        parameter errors (tx, ty, tz [mm], φ, ω, κ [µrad], m [ppm]).
+std::string
+formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth);
+
+/// \brief JSON document {"context": {...}, "methods": [...]} with SI units (m, s, rad); each method
+///        has its transformation in local and in file coordinates (4×4 row-major). NaN → null.
+std::string
+comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext& context);
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d

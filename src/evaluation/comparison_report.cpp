@@ -1,0 +1,135 @@
+#include <pcl_ls3d/evaluation/comparison_report.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+namespace {
+
+using nlohmann::json;
+
+/// A number, or null when not finite (JSON has no NaN).
+json
+num(double v)
+{
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+json
+rows(const Eigen::Matrix4d& T)
+{
+  json out = json::array();
+  for (int r = 0; r < 4; ++r)
+    out.push_back({num(T(r, 0)), num(T(r, 1)), num(T(r, 2)), num(T(r, 3))});
+  return out;
+}
+
+/// "%*.*f" or "-" for NaN, right aligned in `width`.
+std::string
+cell(double v, int width, int decimals)
+{
+  char buf[64];
+  if (std::isfinite(v))
+    std::snprintf(buf, sizeof(buf), "%*.*f", width, decimals, v);
+  else
+    std::snprintf(buf, sizeof(buf), "%*s", width, "-");
+  return buf;
+}
+
+}  // namespace
+
+std::string
+formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth)
+{
+  std::string out;
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), "%-10s %5s %8s %5s %8s %8s", "method", "iter", "time[s]",
+                "conv", "RMS[m]", "s0[m]");
+  out += buf;
+  if (with_truth) {
+    std::snprintf(buf, sizeof(buf), " %9s %9s %9s | %8s %8s %8s %8s %8s %8s %8s", "mean[mm]",
+                  "max[mm]", "bbox[mm]", "tx[mm]", "ty[mm]", "tz[mm]", "phi[ur]", "om[ur]",
+                  "ka[ur]", "m[ppm]");
+    out += buf;
+  }
+  out += "\n";
+  for (const auto& r : runs) {
+    std::snprintf(buf, sizeof(buf), "%-10s %5d %8.3f %5s", r.name.c_str(), r.iterations, r.time_s,
+                  !r.ran ? "FAIL" : (r.converged ? "yes" : "no"));
+    out += buf;
+    out += " " + cell(r.rms, 8, 4) + " " + cell(r.sigma0, 8, 4);
+    if (with_truth) {
+      const bool ok = r.ran && r.error.valid;
+      const double nan = std::nan("");
+      out += " " + cell(ok ? r.error.mean * 1e3 : nan, 9, 2) + " " +
+             cell(ok ? r.error.max * 1e3 : nan, 9, 2) + " " +
+             cell(ok ? r.error.max_bbox * 1e3 : nan, 9, 2) + " |";
+      const double scale[7] = {1e3, 1e3, 1e3, 1e6, 1e6, 1e6, 1e6};
+      for (int i = 0; i < 7; ++i)
+        out += " " + cell(ok ? r.error.parameters[i] * scale[i] : nan, 8, 2);
+    }
+    if (!r.ran)
+      out += "  (" + r.message + ")";
+    out += "\n";
+  }
+  return out;
+}
+
+std::string
+comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext& c)
+{
+  json j;
+  j["context"] = {{"source", c.source},
+                  {"target", c.target},
+                  {"origin", {c.origin.x(), c.origin.y(), c.origin.z()}},
+                  {"source_points", c.source_points},
+                  {"target_points", c.target_points},
+                  {"has_truth", c.has_truth},
+                  {"rms_max_distance", c.rms_max_distance},
+                  {"pcl_settings", c.pcl_settings},
+                  {"ls3d_settings", c.ls3d_settings},
+                  {"units", "m, s, rad; transformation maps source to target"}};
+  json methods = json::array();
+  for (const auto& r : runs) {
+    Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
+    shift.topRightCorner<3, 1>() = c.origin;
+    // File coordinates: x_file = x_local + origin for both clouds.
+    const Eigen::Matrix4d global = shift * r.transformation * shift.inverse();
+    json m = {{"name", r.name},
+              {"ran", r.ran},
+              {"message", r.message},
+              {"iterations", r.iterations},
+              {"time_s", num(r.time_s)},
+              {"normals_time_s", num(r.normals_time_s)},
+              {"converged", r.converged},
+              {"pcl_has_converged", r.pcl_converged},
+              {"rms", num(r.rms)},
+              {"rms_points", r.rms_points},
+              {"sigma0", num(r.sigma0)},
+              {"transformation_local", rows(r.transformation)},
+              {"transformation", rows(global)}};
+    if (c.has_truth && r.error.valid) {
+      const auto& names = similarityParameterNames();
+      json p;
+      for (int i = 0; i < 7; ++i)
+        p[names[static_cast<std::size_t>(i)]] = num(r.error.parameters[i]);
+      m["error"] = {{"points", r.error.points},
+                    {"mean", num(r.error.mean)},
+                    {"rms", num(r.error.rms)},
+                    {"max", num(r.error.max)},
+                    {"max_bbox", num(r.error.max_bbox)},
+                    {"parameters", p},
+                    {"parameters_frame", "common local frame (rotation about origin)"}};
+    }
+    methods.push_back(m);
+  }
+  j["methods"] = methods;
+  return j.dump(2);
+}
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d

@@ -1,0 +1,79 @@
+#include <pcl_ls3d/evaluation/ls3d_method.h>
+#include <pcl_ls3d/registration/least_squares_surface_matching.h>
+
+#include <pcl/common/time.h>
+
+#include <cstdio>
+#include <exception>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+std::string
+ls3dMethodName(ConjugateRuleType rule)
+{
+  switch (rule) {
+  case ConjugateRuleType::LND: return "LS3D-LND";
+  case ConjugateRuleType::LZD: return "LS3D-LZD";
+  case ConjugateRuleType::ICP: return "LS3D-ICP";
+  }
+  return "LS3D-?";
+}
+
+std::string
+Ls3dMethodSettings::describe() const
+{
+  char buf[256];
+  std::snprintf(buf, sizeof(buf),
+                "max_corr=%g m, max_iter=%d, thinning=%g m, angle_eps=1e-6 rad, trans_eps=1e-5 m, "
+                "7 parameters, Zuo 0/1 weight at 6 sigma0",
+                max_correspondence_distance, max_iterations, source_thinning);
+  return buf;
+}
+
+RegistrationRun
+runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
+        const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
+        const Ls3dMethodSettings& settings)
+{
+  RegistrationRun run;
+  run.name = ls3dMethodName(rule);
+  if (!source || !target || source->empty() || target->empty()) {
+    run.message = "empty source or target";
+    return run;
+  }
+  try {
+    pcl::StopWatch watch;
+    LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ> ls3d;
+    ls3d.setConjugateRule(rule);
+    ls3d.setMaxCorrespondenceDistance(settings.max_correspondence_distance);
+    ls3d.setMaximumIterations(settings.max_iterations);
+    ls3d.setSourceThinning(settings.source_thinning);
+    ls3d.setInputSource(source);
+    ls3d.setInputTarget(target);
+    pcl::PointCloud<pcl::PointXYZ> output;
+    ls3d.align(output);
+    run.time_s = watch.getTimeSeconds();
+
+    const AdjustmentReport& report = ls3d.getReport();
+    run.ran = true;
+    run.iterations = report.iterations;
+    run.pcl_converged = ls3d.hasConverged();
+    run.converged = report.termination == TerminationType::CONVERGED;
+    run.sigma0 = report.sigma0;
+    run.transformation = report.isSolutionUsable()
+                             ? report.transformation
+                             : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
+    run.message = terminationTypeToString(report.termination);
+    if (!report.message.empty())
+      run.message += ": " + report.message;
+  }
+  catch (const std::exception& e) {
+    run.ran = false;
+    run.message = std::string("exception: ") + e.what();
+  }
+  return run;
+}
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d

@@ -1,0 +1,161 @@
+// Runs pcl_ls3d_compare on a tiny generated, georeferenced pair: every method reports finite
+// numbers, LS3D-LND recovers the known truth, and bad input exits non-zero without writing.
+#include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/synth/registration_pair.h>
+#include <pcl_ls3d/synth/truth_json.h>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace fs = std::filesystem;
+using namespace pcl_ls3d;
+
+namespace {
+
+const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_compare";
+
+int
+run(const std::string& args)
+{
+  const std::string cmd = kTool + " " + args + " > /dev/null 2>&1";
+  return std::system(cmd.c_str());
+}
+
+/// A 80 m × 80 m pair (≈6.4k source / 26k target points, 1 vs 4 pts/m², 70 % overlap, σ = 5 cm)
+/// at UTM-like coordinates, so the tool's common local origin is exercised.
+class CompareTool : public ::testing::Test
+{
+protected:
+  static void
+  SetUpTestSuite()
+  {
+    dir_ = fs::temp_directory_path() / "pcl_ls3d_compare_test";
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    synth::RegistrationPairSettings s;
+    s.seed = 3;
+    s.size_x = s.size_y = 80.0;
+    s.origin = Eigen::Vector3d(512000.0, 5402000.0, 250.0);
+    const auto pair = synth::makeRegistrationPair(s);
+    std::string error;
+    ASSERT_TRUE(io::saveCloud((dir_ / "source.pcd").string(), *pair.source, pair.origin, error))
+        << error;
+    ASSERT_TRUE(io::saveCloud((dir_ / "target.pcd").string(), *pair.target, pair.origin, error))
+        << error;
+    ASSERT_TRUE(synth::writeTextFile((dir_ / "truth.json").string(), synth::truthJson(pair, s),
+                                     true, error))
+        << error;
+  }
+  static void
+  TearDownTestSuite()
+  {
+    fs::remove_all(dir_);
+  }
+  std::string
+  inputs() const
+  {
+    return (dir_ / "source.pcd").string() + " " + (dir_ / "target.pcd").string();
+  }
+  static fs::path dir_;
+};
+fs::path CompareTool::dir_;
+
+}  // namespace
+
+// All 7 methods run with finite figures; LS3D-LND's mean displacement error is below 1 cm.
+// Bound: ~6k observations with σ = 5 cm determine the similarity to about a millimetre
+// (σ/√n ≈ 0.6 mm times a geometry factor of a few); 1 cm leaves room for seed effects while still
+// failing on any real registration error (the initial misalignment is ~0.6 m).
+TEST_F(CompareTool, AllMethodsWithTruth)
+{
+  if (!fs::exists(kTool))
+    GTEST_SKIP() << kTool << " not built";
+  const fs::path out = dir_ / "result.json";
+  fs::remove(out);
+  ASSERT_EQ(run(inputs() + " -truth " + (dir_ / "truth.json").string() + " -json " +
+                out.string()),
+            0);
+  std::ifstream in(out);
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["methods"].size(), 7u);
+  EXPECT_TRUE(j["context"]["has_truth"].get<bool>());
+  for (const auto& m : j["methods"]) {
+    const std::string name = m["name"];
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(m["ran"].get<bool>());
+    EXPECT_TRUE(std::isfinite(m["time_s"].get<double>()));
+    EXPECT_GT(m["iterations"].get<int>(), 0);
+    ASSERT_FALSE(m["rms"].is_null());
+    EXPECT_TRUE(std::isfinite(m["rms"].get<double>()));
+    ASSERT_TRUE(m.contains("error"));
+    for (const char* k : {"mean", "max", "max_bbox"}) {
+      ASSERT_FALSE(m["error"][k].is_null()) << k;
+      EXPECT_TRUE(std::isfinite(m["error"][k].get<double>())) << k;
+    }
+    EXPECT_EQ(m["error"]["parameters"].size(), 7u);
+    for (const auto& row : m["transformation"])
+      for (const auto& v : row)
+        EXPECT_FALSE(v.is_null());
+    if (name.rfind("LS3D", 0) == 0)
+      EXPECT_FALSE(m["sigma0"].is_null());
+    if (name == "LS3D-LND") {
+      EXPECT_TRUE(m["converged"].get<bool>());
+      EXPECT_LT(m["error"]["mean"].get<double>(), 0.01);
+      EXPECT_LT(m["error"]["max"].get<double>(), 0.03);  // 3× the mean bound (lever arm)
+    }
+  }
+}
+
+// -methods selects a subset in table order; without -truth there is no "error" block.
+TEST_F(CompareTool, MethodSubsetWithoutTruth)
+{
+  if (!fs::exists(kTool))
+    GTEST_SKIP() << kTool << " not built";
+  const fs::path out = dir_ / "subset.json";
+  fs::remove(out);
+  ASSERT_EQ(run(inputs() + " -methods icp,ls3d-lnd -json " + out.string()), 0);
+  std::ifstream in(out);
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["methods"].size(), 2u);
+  EXPECT_EQ(j["methods"][0]["name"], "LS3D-LND");
+  EXPECT_EQ(j["methods"][1]["name"], "PCL-ICP");
+  EXPECT_FALSE(j["methods"][0].contains("error"));
+}
+
+// Bad input exits non-zero: missing file, unknown option, unknown method, bad truth, bad value,
+// an output that is an input, an existing output without -overwrite.
+TEST_F(CompareTool, BadInputFails)
+{
+  if (!fs::exists(kTool))
+    GTEST_SKIP() << kTool << " not built";
+  const std::string src = (dir_ / "source.pcd").string();
+  EXPECT_NE(run(src + " " + (dir_ / "missing.pcd").string()), 0);
+  EXPECT_NE(run(inputs() + " -bogus"), 0);
+  EXPECT_NE(run(inputs() + " -methods icp,foo"), 0);
+  EXPECT_NE(run(inputs() + " -max_corr -1"), 0);
+  EXPECT_NE(run(src), 0);  // one file only
+  EXPECT_NE(run(inputs() + " -truth " + src), 0);  // not JSON
+  {
+    std::ofstream bad(dir_ / "bad_truth.json");
+    bad << R"({"transformation": [[1,0,0],[0,1,0]]})";
+  }
+  EXPECT_NE(run(inputs() + " -truth " + (dir_ / "bad_truth.json").string()), 0);
+
+  const auto size_before = fs::file_size(src);
+  EXPECT_NE(run(inputs() + " -methods icp -json " + src + " -overwrite"), 0);
+  EXPECT_EQ(fs::file_size(src), size_before);
+
+  const fs::path existing = dir_ / "existing.json";
+  { std::ofstream(existing) << "keep"; }
+  EXPECT_NE(run(inputs() + " -methods icp -json " + existing.string()), 0);
+  std::ifstream in(existing);
+  std::string content;
+  in >> content;
+  EXPECT_EQ(content, "keep");
+}

@@ -1,0 +1,289 @@
+/// \file pcl_ls3d_compare.cpp
+/// \brief Registers SOURCE to TARGET with LS3D (LND, LZD, ICP rules) and PCL's ICP, point-to-plane
+///        ICP, GICP and NDT on the same input, and prints one table (iterations, wall time, RMS /
+///        σ0, converged; with -truth the displacement and parameter errors). -json writes the same.
+
+#include <pcl_ls3d/evaluation/comparison_report.h>
+#include <pcl_ls3d/evaluation/ls3d_method.h>
+#include <pcl_ls3d/evaluation/pcl_methods.h>
+#include <pcl_ls3d/io/cloud_io.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+using namespace pcl_ls3d::evaluation;
+
+namespace {
+
+const std::set<std::string> kValueOptions = {"-truth", "-json",    "-methods", "-max_corr",
+                                             "-iter",  "-ndt_res", "-rms_dist", "-thinning"};
+const std::set<std::string> kSwitches = {"-overwrite", "-h", "--help"};
+const std::vector<std::string> kAllMethods = {"ls3d-lnd", "ls3d-lzd", "ls3d-icp", "icp",
+                                              "icpn",     "gicp",     "ndt"};
+
+void
+printHelp(const char* name)
+{
+  print_error("Syntax is: %s SOURCE TARGET [options]\n", name);
+  print_info(
+      "  Registers SOURCE to TARGET (PCD, PLY, LAS, XYZ; both shifted to TARGET's local origin)\n"
+      "  from the identity with every method and prints one comparison table.\n"
+      "  -truth FILE   : truth JSON with \"transformation\": 4x4 row-major source->target in file\n"
+      "                  coordinates (as written by pcl_ls3d_synth); adds displacement errors\n"
+      "                  (mean/max over the source points, max over its bbox corners) and the\n"
+      "                  7 parameter errors (in the common local frame)\n"
+      "  -json FILE    : also write the results as JSON\n"
+      "  -methods LIST : comma-separated subset of ls3d-lnd,ls3d-lzd,ls3d-icp,icp,icpn,gicp,ndt\n"
+      "                  (also: all, ls3d, pcl; default all)\n"
+      "  -max_corr D   : max correspondence distance [m] for every method (default 2)\n"
+      "  -iter N       : max iterations: LS3D (default 30) and PCL (default 50) both set to N\n"
+      "  -ndt_res R    : NDT voxel edge [m] (default 2)\n"
+      "  -thinning S   : LS3D source thinning voxel [m] (default 0 = all points)\n"
+      "  -rms_dist D   : NN distance cut-off of the RMS column [m] (default 1)\n"
+      "  -overwrite    : replace an existing -json file (never an input)\n"
+      "  -h            : this help\n");
+}
+
+/// Positional arguments; false (with a message) on an unknown option or a missing value.
+bool
+checkArguments(int argc, char** argv, std::vector<std::string>& positional, std::string& why)
+{
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (kValueOptions.count(a)) {
+      if (i + 1 >= argc) {
+        why = "option " + a + " needs a value";
+        return false;
+      }
+      ++i;
+    }
+    else if (kSwitches.count(a))
+      continue;
+    else if (a.size() > 1 && a[0] == '-') {
+      why = "unknown option " + a;
+      return false;
+    }
+    else
+      positional.push_back(a);
+  }
+  return true;
+}
+
+/// Expands the -methods list; false on an unknown name.
+bool
+parseMethods(const std::string& text, std::vector<std::string>& out, std::string& why)
+{
+  std::stringstream ss(text);
+  std::string item;
+  std::set<std::string> chosen;
+  while (std::getline(ss, item, ',')) {
+    if (item == "all")
+      chosen.insert(kAllMethods.begin(), kAllMethods.end());
+    else if (item == "ls3d")
+      chosen.insert({"ls3d-lnd", "ls3d-lzd", "ls3d-icp"});
+    else if (item == "pcl")
+      chosen.insert({"icp", "icpn", "gicp", "ndt"});
+    else if (std::find(kAllMethods.begin(), kAllMethods.end(), item) != kAllMethods.end())
+      chosen.insert(item);
+    else {
+      why = "unknown method '" + item + "' in -methods";
+      return false;
+    }
+  }
+  for (const auto& m : kAllMethods)  // table order
+    if (chosen.count(m))
+      out.push_back(m);
+  if (out.empty())
+    why = "-methods selects nothing";
+  return !out.empty();
+}
+
+/// Reads "transformation" (4×4 row-major, file coordinates) from a truth JSON.
+bool
+loadTruth(const std::string& path, Eigen::Matrix4d& T, std::string& why)
+{
+  std::ifstream in(path);
+  if (!in) {
+    why = "cannot open truth file " + path;
+    return false;
+  }
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const auto& rows = j.at("transformation");
+    if (!rows.is_array() || rows.size() != 4)
+      throw std::runtime_error("\"transformation\" is not 4 rows");
+    for (int r = 0; r < 4; ++r) {
+      const auto& row = rows.at(static_cast<std::size_t>(r));
+      if (!row.is_array() || row.size() != 4)
+        throw std::runtime_error("\"transformation\" row is not 4 numbers");
+      for (int c = 0; c < 4; ++c)
+        T(r, c) = row.at(static_cast<std::size_t>(c)).get<double>();
+    }
+  }
+  catch (const std::exception& e) {
+    why = "bad truth file " + path + ": " + e.what();
+    return false;
+  }
+  if (!T.allFinite() || !T.row(3).isApprox(Eigen::RowVector4d(0, 0, 0, 1))) {
+    why = "truth transformation in " + path + " is not a finite 4x4 similarity";
+    return false;
+  }
+  return true;
+}
+
+RegistrationRun
+runMethod(const std::string& m, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
+          const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
+          const PclMethodSettings& ps, const Ls3dMethodSettings& ls)
+{
+  using pcl_ls3d::ConjugateRuleType;
+  if (m == "ls3d-lnd")
+    return runLs3d(ConjugateRuleType::LND, source, target, ls);
+  if (m == "ls3d-lzd")
+    return runLs3d(ConjugateRuleType::LZD, source, target, ls);
+  if (m == "ls3d-icp")
+    return runLs3d(ConjugateRuleType::ICP, source, target, ls);
+  if (m == "icp")
+    return runPclMethod(PclMethod::ICP, source, target, ps);
+  if (m == "icpn")
+    return runPclMethod(PclMethod::ICP_NORMALS, source, target, ps);
+  if (m == "gicp")
+    return runPclMethod(PclMethod::GICP, source, target, ps);
+  return runPclMethod(PclMethod::NDT, source, target, ps);
+}
+
+int
+fail(const std::string& why)
+{
+  print_error("%s\n", why.c_str());
+  return 1;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help") || argc < 2) {
+    printHelp(argv[0]);
+    return argc < 2 ? 1 : 0;
+  }
+  std::vector<std::string> files;
+  std::string why;
+  if (!checkArguments(argc, argv, files, why))
+    return fail(why);
+  if (files.size() != 2)
+    return fail("expected exactly two input files (SOURCE TARGET), got " +
+                std::to_string(files.size()));
+  const std::string& source_path = files[0];
+  const std::string& target_path = files[1];
+
+  std::string truth_path, json_path, methods_text = "all";
+  parse_argument(argc, argv, "-truth", truth_path);
+  parse_argument(argc, argv, "-json", json_path);
+  parse_argument(argc, argv, "-methods", methods_text);
+  const bool overwrite = find_switch(argc, argv, "-overwrite");
+  PclMethodSettings ps;
+  Ls3dMethodSettings ls;
+  double max_corr = ps.max_correspondence_distance, ndt_res = ps.ndt_resolution, rms_dist = 1.0;
+  double thinning = 0.0;
+  int iterations = 0;
+  parse_argument(argc, argv, "-max_corr", max_corr);
+  parse_argument(argc, argv, "-ndt_res", ndt_res);
+  parse_argument(argc, argv, "-rms_dist", rms_dist);
+  parse_argument(argc, argv, "-thinning", thinning);
+  parse_argument(argc, argv, "-iter", iterations);
+  if (!(max_corr > 0) || !(ndt_res > 0) || !(rms_dist > 0) || !(thinning >= 0) || iterations < 0)
+    return fail("-max_corr, -ndt_res, -rms_dist must be > 0, -thinning >= 0, -iter >= 1");
+  ps.max_correspondence_distance = ls.max_correspondence_distance = max_corr;
+  ps.ndt_resolution = ndt_res;
+  ls.source_thinning = thinning;
+  if (iterations > 0)
+    ps.max_iterations = ls.max_iterations = iterations;
+  std::vector<std::string> methods;
+  if (!parseMethods(methods_text, methods, why))
+    return fail(why);
+
+  if (!json_path.empty()) {
+    for (const auto& in : {source_path, target_path, truth_path})
+      if (!in.empty() && pcl_ls3d::io::isSameFile(json_path, in))
+        return fail("-json " + json_path + " is an input file; refusing to overwrite it");
+    if (std::ifstream(json_path).good() && !overwrite)
+      return fail(json_path + " exists; use -overwrite to replace it");
+  }
+
+  // Target first; the source shares its origin so both live in one local frame.
+  TicToc tt;
+  tt.tic();
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> target_lidar, source_lidar;
+  pcl_ls3d::io::CloudInfo target_info, source_info;
+  if (!pcl_ls3d::io::loadCloud(target_path, target_lidar, target_info, why))
+    return fail(why);
+  pcl_ls3d::io::LoadOptions with_origin;
+  with_origin.use_origin = true;
+  with_origin.origin = target_info.origin;
+  if (!pcl_ls3d::io::loadCloud(source_path, source_lidar, source_info, why, with_origin))
+    return fail(why);
+  const auto source = toXYZ(source_lidar);
+  const auto target = toXYZ(target_lidar);
+  print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "
+             "(%.3f, %.3f, %.3f), in %.0f ms\n",
+             source_path.c_str(), source->size(), target_path.c_str(), target->size(),
+             target_info.origin.x(), target_info.origin.y(), target_info.origin.z(), tt.toc());
+
+  Eigen::Matrix4d truth_local = Eigen::Matrix4d::Identity();
+  const bool has_truth = !truth_path.empty();
+  if (has_truth) {
+    Eigen::Matrix4d truth_file;
+    if (!loadTruth(truth_path, truth_file, why))
+      return fail(why);
+    truth_local = pcl_ls3d::globalToLocal(truth_file, target_info.origin, target_info.origin);
+  }
+
+  print_info("PCL settings : %s\nLS3D settings: %s\n", ps.describe().c_str(),
+             ls.describe().c_str());
+  RunEvaluation evaluation(source, target, rms_dist);
+  std::vector<RegistrationRun> runs;
+  for (const auto& m : methods) {
+    print_info("Running %s ... ", m.c_str());
+    runs.push_back(runMethod(m, source, target, ps, ls));
+    evaluation.evaluate(runs.back(), has_truth ? &truth_local : nullptr);
+    print_info("%.3f s\n", runs.back().time_s);
+  }
+  std::printf("\n%s", formatComparisonTable(runs, has_truth).c_str());
+  std::printf("RMS: nearest-neighbour distances within %g m. %s\n", rms_dist,
+              has_truth ? "Errors vs truth; parameter errors in the local frame "
+                          "(rotation about the local origin)."
+                        : "");
+
+  if (!json_path.empty()) {
+    ComparisonContext c;
+    c.source = source_path;
+    c.target = target_path;
+    c.origin = target_info.origin;
+    c.source_points = source->size();
+    c.target_points = target->size();
+    c.has_truth = has_truth;
+    c.rms_max_distance = rms_dist;
+    c.pcl_settings = ps.describe();
+    c.ls3d_settings = ls.describe();
+    std::ofstream out(json_path);
+    out << comparisonJson(runs, c) << "\n";
+    if (!out)
+      return fail("cannot write " + json_path);
+    print_info("Wrote %s\n", json_path.c_str());
+  }
+  return 0;
+}
