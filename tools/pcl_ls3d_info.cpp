@@ -1,0 +1,169 @@
+/// \file pcl_ls3d_info.cpp
+/// \brief Prints what pcl_ls3d's readers see in a point-cloud file: format, counts, local origin,
+///        bounds, the LAS header, the classification histogram and the flight strips.
+
+#include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/strip_tools.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <nlohmann/json.hpp>
+
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+
+namespace {
+
+void
+printHelp(const char* name)
+{
+  print_error("Syntax is: %s file.{las,pcd,ply,xyz,txt,csv} [more files] <options>\n", name);
+  print_info("  where options are:\n");
+  print_info("    -columns x,y,z,... : column names of ASCII XYZ inputs (see pcl_ls3d_convert -h)\n");
+  print_info("    -json              : print one JSON object per file instead of text\n");
+  print_info("    -h                 : this help\n");
+}
+
+nlohmann::json
+describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& cloud,
+         const pcl_ls3d::io::CloudInfo& info, double ms)
+{
+  auto vec = [](const Eigen::Vector3d& v) { return std::vector<double>{v[0], v[1], v[2]}; };
+  nlohmann::json j;
+  j["file"] = path;
+  j["format"] = info.format;
+  j["points_in_file"] = info.points_in_file;
+  j["points_loaded"] = info.points_loaded;
+  j["points_dropped_nonfinite"] = info.points_dropped_nonfinite;
+  j["local_origin"] = vec(info.origin);
+  j["min"] = vec(info.min_file);
+  j["max"] = vec(info.max_file);
+  j["fields"] = info.fields;
+  j["load_ms"] = ms;
+  if (info.format == "las") {
+    const auto& h = info.las;
+    nlohmann::json l;
+    l["version"] = std::to_string(h.version_major) + "." + std::to_string(h.version_minor);
+    l["point_format"] = h.point_format;
+    l["record_length"] = h.record_length;
+    l["extra_bytes_per_record"] = h.extra_bytes_per_record;
+    l["header_size"] = h.header_size;
+    l["offset_to_points"] = h.offset_to_points;
+    l["global_encoding"] = h.global_encoding;
+    l["system_identifier"] = h.system_identifier;
+    l["generating_software"] = h.generating_software;
+    l["scale"] = vec(h.scale);
+    l["offset"] = vec(h.offset);
+    l["header_min"] = vec(h.min);
+    l["header_max"] = vec(h.max);
+    std::vector<std::string> vlrs;
+    for (const auto& v : h.vlrs)
+      vlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" +
+                     std::to_string(v.data.size()) + " B)");
+    l["vlrs"] = vlrs;
+    j["las"] = l;
+  }
+  std::map<int, std::size_t> classes;
+  for (const auto& p : cloud)
+    ++classes[p.classification];
+  for (const auto& [c, n] : classes)
+    j["classes"][std::to_string(c)] = n;
+  for (const auto& [id, idx] : pcl_ls3d::io::splitByPointSource(cloud))
+    j["point_source_ids"][std::to_string(id)] = idx.size();
+  return j;
+}
+
+void
+printText(const nlohmann::json& j)
+{
+  print_info("%s\n", j["file"].get<std::string>().c_str());
+  print_info("  format %s, points in file %zu, loaded %zu, NaN/inf dropped %zu (%.1f ms)\n",
+             j["format"].get<std::string>().c_str(), j["points_in_file"].get<std::size_t>(),
+             j["points_loaded"].get<std::size_t>(), j["points_dropped_nonfinite"].get<std::size_t>(),
+             j["load_ms"].get<double>());
+  const auto o = j["local_origin"].get<std::vector<double>>();
+  const auto lo = j["min"].get<std::vector<double>>(), hi = j["max"].get<std::vector<double>>();
+  print_info("  local origin %.3f %.3f %.3f\n", o[0], o[1], o[2]);
+  print_info("  bounds min %.3f %.3f %.3f  max %.3f %.3f %.3f\n", lo[0], lo[1], lo[2], hi[0], hi[1],
+             hi[2]);
+  std::string fields;
+  for (const auto& f : j["fields"])
+    fields += " " + f.get<std::string>();
+  print_info("  fields:%s\n", fields.c_str());
+  if (j.contains("las")) {
+    const auto& l = j["las"];
+    const auto s = l["scale"].get<std::vector<double>>(), off = l["offset"].get<std::vector<double>>();
+    print_info("  LAS %s, point format %d, record %d B (%d extra), header %d B, points at %u, "
+               "global encoding %d\n", l["version"].get<std::string>().c_str(),
+               l["point_format"].get<int>(), l["record_length"].get<int>(),
+               l["extra_bytes_per_record"].get<int>(), l["header_size"].get<int>(),
+               l["offset_to_points"].get<unsigned>(), l["global_encoding"].get<int>());
+    print_info("  scale %g %g %g, offset %.3f %.3f %.3f, software \"%s\"\n", s[0], s[1], s[2], off[0],
+               off[1], off[2], l["generating_software"].get<std::string>().c_str());
+    for (const auto& v : l["vlrs"])
+      print_info("  VLR %s\n", v.get<std::string>().c_str());
+  }
+  std::string classes;
+  for (const auto& [c, n] : j["classes"].items())
+    classes += " " + c + ":" + std::to_string(n.get<std::size_t>());
+  print_info("  classes:%s\n", classes.c_str());
+  std::string strips;
+  for (const auto& [id, n] : j["point_source_ids"].items())
+    strips += " " + id + ":" + std::to_string(n.get<std::size_t>());
+  print_info("  point source ids:%s\n", strips.c_str());
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
+    printHelp(argv[0]);
+    return argc < 2 ? -1 : 0;
+  }
+  pcl_ls3d::io::LoadOptions options;
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-columns" && i + 1 < argc)
+      options.xyz_columns = argv[++i];
+    else if (a == "-json")
+      continue;
+    else if (a.size() > 1 && a[0] == '-') {
+      print_error("Unknown option %s (see -h).\n", a.c_str());
+      return -1;
+    }
+    else
+      files.push_back(a);
+  }
+  const bool json = find_switch(argc, argv, "-json");
+  if (files.empty()) {
+    print_error("No input file given (see -h).\n");
+    return -1;
+  }
+  for (const auto& path : files) {
+    pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud;
+    pcl_ls3d::io::CloudInfo info;
+    std::string error;
+    TicToc tt;
+    tt.tic();
+    if (!pcl_ls3d::io::loadCloud(path, cloud, info, error, options)) {
+      print_error("Cannot load %s\n", error.c_str());
+      return -1;
+    }
+    const nlohmann::json j = describe(path, cloud, info, tt.toc());
+    if (json)
+      std::cout << j.dump() << std::endl;
+    else
+      printText(j);
+  }
+  return 0;
+}
