@@ -1,0 +1,191 @@
+// benchmark_scaling: LS3D-LND on two generated flight strips with 20 % side overlap, at several
+// strip sizes (default 0.5, 1, 2, 5 M points per strip). Each size runs in a FRESH child process
+// (this executable re-executed with -child N), so every peak-memory figure belongs to one size:
+//   - process peak: the child's ru_maxrss from wait4() (generation + registration),
+//   - align peak:   VmHWM after align() with the high-water mark reset (clear_refs = 5) just
+//                   before it, i.e. input clouds held + everything LS3D allocates.
+// Target (issue): 5 M-point strips registered in <= 30 s on 2 cores with <= 4 GB peak.
+#include <pcl_ls3d/evaluation/ls3d_method.h>
+#include <pcl_ls3d/evaluation/transform_error.h>
+#include <pcl_ls3d/synth/strip_block.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace pcl_ls3d;
+
+namespace {
+
+/// A "Vm...:" line of /proc/self/status in kB (-1 when unavailable).
+long
+procStatusKb(const std::string& key)
+{
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key + ":", 0) == 0)
+      return std::stol(line.substr(key.size() + 1));
+  return -1;
+}
+
+/// Resets VmHWM to the current RSS (Linux >= 4.0); false when not permitted.
+bool
+resetPeak()
+{
+  std::ofstream out("/proc/self/clear_refs");
+  out << "5";
+  return static_cast<bool>(out);
+}
+
+/// Child: generate, register strip 2 onto strip 1, print one RESULT line.
+int
+runChild(long points_per_strip, unsigned int seed)
+{
+  synth::StripSettings s;
+  s.seed = seed;
+  s.num_strips = 2;
+  s.side_overlap = 0.2;
+  s.swath_width = 300.0;
+  s.density = 4.0;  // 600 points per scan line, 1200 points per metre of strip
+  s.strip_length = static_cast<double>(points_per_strip) / (s.density * s.swath_width);
+  pcl::console::TicToc tt;
+  tt.tic();
+  pcl::PointCloud<pcl::PointXYZ>::Ptr target, source;
+  Eigen::Matrix4d truth;
+  {
+    const synth::StripBlock block = synth::makeStripBlock(s);
+    if (block.strips.size() != 2)
+      return 1;
+    target = evaluation::toXYZ(*block.stripCloud(0));
+    source = evaluation::toXYZ(*block.stripCloud(1));
+    // observed strip 2 -> true frame -> observed strip 1 (identity when strip 1 is fixed)
+    truth = block.strips[0].transform.inverse().matrix() * block.strips[1].transform.matrix();
+  }  // the block and its copies are freed here
+  const double gen_s = tt.toc() / 1000.0;
+
+  const bool reset = resetPeak();
+  const long rss_before = procStatusKb("VmRSS");
+  evaluation::Ls3dMethodSettings ls;
+  const auto run = evaluation::runLs3d(ConjugateRuleType::LND, source, target, ls);
+  const long hwm = procStatusKb("VmHWM");
+  const auto err =
+      evaluation::computeTransformError(run.transformation, truth, evaluation::cloudToMatrix(*source));
+  std::printf("RESULT %zu %zu %.3f %.3f %d %d %.6f %.6f %.5f %ld %ld %d %s\n", source->size(),
+              target->size(), gen_s, run.time_s, run.iterations, run.converged ? 1 : 0,
+              err.mean, err.max, run.sigma0, rss_before, hwm, reset ? 1 : 0,
+              run.message.substr(0, 60).c_str());
+  return run.ran ? 0 : 1;
+}
+
+struct ChildResult
+{
+  bool ok = false;
+  std::string line;
+  long maxrss_kb = 0;
+};
+
+/// Re-executes this program with -child N and collects its RESULT line and rusage.
+ChildResult
+spawnChild(long n, unsigned int seed)
+{
+  ChildResult r;
+  int fd[2];
+  if (pipe(fd) != 0)
+    return r;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fd[1], STDOUT_FILENO);
+    close(fd[0]);
+    close(fd[1]);
+    const std::string ns = std::to_string(n), ss = std::to_string(seed);
+    execl("/proc/self/exe", "benchmark_scaling", "-child", ns.c_str(), "-seed", ss.c_str(),
+          static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fd[1]);
+  std::string out;
+  char buf[4096];
+  ssize_t k;
+  while ((k = read(fd[0], buf, sizeof(buf))) > 0)
+    out.append(buf, static_cast<std::size_t>(k));
+  close(fd[0]);
+  int status = 0;
+  struct rusage ru {};
+  wait4(pid, &status, 0, &ru);
+  r.maxrss_kb = ru.ru_maxrss;
+  const auto pos = out.find("RESULT ");
+  if (pos != std::string::npos) {
+    r.line = out.substr(pos + 7, out.find('\n', pos) - pos - 7);
+    r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  }
+  return r;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  if (pcl::console::find_switch(argc, argv, "-h")) {
+    pcl::console::print_info("Usage: %s [-sizes 0.5,1,2,5] [-seed S]\n"
+                             "  -sizes  points per strip in millions (default 0.5,1,2,5)\n",
+                             argv[0]);
+    return 0;
+  }
+  int seed = 1;
+  pcl::console::parse_argument(argc, argv, "-seed", seed);
+  long child = 0;
+  if (pcl::console::parse_argument(argc, argv, "-child", child) >= 0)
+    return runChild(child, static_cast<unsigned int>(seed));
+
+  std::vector<double> sizes{0.5, 1.0, 2.0, 5.0};
+  pcl::console::parse_x_arguments(argc, argv, "-sizes", sizes);
+  std::printf("LS3D-LND, 2 strips, 300 m swath, 20 %% side overlap, 4 pts/m2, sigma 5 cm, "
+              "seed %d; %ld threads; one fresh process per size\n\n",
+              seed, sysconf(_SC_NPROCESSORS_ONLN));
+  std::printf("%10s %10s %7s %8s %5s %5s %9s %9s %8s %10s %10s  %s\n", "src_pts", "tgt_pts",
+              "gen[s]", "reg[s]", "iter", "conv", "mean[mm]", "max[mm]", "s0[m]", "align_MB",
+              "proc_MB", "status");
+  bool pass = true, ran_target_size = false;
+  for (double m : sizes) {
+    const long n = static_cast<long>(m * 1e6);
+    const ChildResult r = spawnChild(n, static_cast<unsigned int>(seed));
+    if (r.line.empty()) {
+      std::printf("%10ld  child failed\n", n);
+      pass = false;
+      continue;
+    }
+    std::istringstream in(r.line);
+    std::size_t ns, nt;
+    double gen, reg, mean, max, s0;
+    int iter, conv, reset;
+    long rss_before, hwm;
+    std::string status;
+    in >> ns >> nt >> gen >> reg >> iter >> conv >> mean >> max >> s0 >> rss_before >> hwm >> reset;
+    std::getline(in, status);
+    std::printf("%10zu %10zu %7.1f %8.2f %5d %5s %9.2f %9.2f %8.4f %10.0f %10.0f %s%s\n", ns, nt,
+                gen, reg, iter, conv ? "yes" : "no", mean * 1e3, max * 1e3, s0, hwm / 1024.0,
+                r.maxrss_kb / 1024.0, reset ? "" : "(HWM not reset) ", status.c_str());
+    std::fflush(stdout);
+    ran_target_size |= m >= 5.0;
+    if (m >= 5.0 && (reg > 30.0 || r.maxrss_kb > 4L * 1024 * 1024 || !r.ok))
+      pass = false;
+  }
+  std::printf("\nalign_MB: peak RSS from just before align() (input clouds held) to its end; "
+              "proc_MB: whole child process peak (generation included).\n");
+  pass &= ran_target_size;
+  std::printf("target 5 M points/strip: reg <= 30 s and peak <= 4096 MB: %s\n",
+              !ran_target_size ? "NOT RUN (no size >= 5 M)" : (pass ? "PASS" : "FAIL"));
+  return pass ? 0 : 2;
+}
