@@ -26,6 +26,7 @@
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -70,6 +71,37 @@ verdict(bool ok, const std::string& what)
   failures += !ok;
 }
 
+/// Reference class × dimensionality class (linear / planar / volumetric), in % of the class:
+/// shows which reference class the feature step sends to which growing rule.
+void
+printDimensionalityByClass(const std::vector<int>& labels, const std::vector<std::uint8_t>& dims,
+                           const ev::SegmentationEvaluationSettings& classes)
+{
+  if (dims.size() != labels.size())
+    return;
+  const ev::ClassLookup lookup(classes.groups, classes.excluded_codes);
+  const std::size_t G = classes.groups.size();
+  std::vector<std::array<std::size_t, 4>> count(G + 1, {0, 0, 0, 0});
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    const int g = lookup.groupOf(labels[i]);
+    if (g == ev::ClassLookup::kExcluded)
+      continue;
+    const std::size_t row = g < 0 ? G : static_cast<std::size_t>(g);
+    ++count[row][dims[i] <= 2 ? dims[i] : 3];
+  }
+  std::printf("  imrg dimensionality by reference class (linear / planar / volumetric %%):\n");
+  for (std::size_t r = 0; r <= G; ++r) {
+    const std::size_t n = count[r][0] + count[r][1] + count[r][2] + count[r][3];
+    if (n == 0)
+      continue;
+    std::printf("    %-10s %7zu pts: %5.1f / %5.1f / %5.1f\n",
+                r < G ? classes.groups[r].name.c_str() : "other", n,
+                100.0 * static_cast<double>(count[r][0]) / static_cast<double>(n),
+                100.0 * static_cast<double>(count[r][1]) / static_cast<double>(n),
+                100.0 * static_cast<double>(count[r][2]) / static_cast<double>(n));
+  }
+}
+
 /// Runs IMRG, MRG, pcl_rg on one cloud; prints the table, the IMRG thresholds and confusions.
 std::vector<ev::SegmentationEvaluation>
 evaluateAll(const std::string& title, const Labelled& data,
@@ -109,6 +141,8 @@ evaluateAll(const std::string& title, const Labelled& data,
                   run.distance_samples, run.similarity_threshold, run.volume_threshold,
                   run.volume_samples, run.linear, run.planar, run.volumetric,
                   run.segments_before_merge, run.segments.size(), run.spacing);
+    if (m == ev::SegmentationMethod::IMRG)
+      printDimensionalityByClass(data.labels, run.dimensionality, classes);
     evals.push_back(e);
   }
   std::vector<ev::SegmentationEvaluation> table = evals;

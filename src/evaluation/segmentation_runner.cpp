@@ -53,7 +53,10 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   run.growth_radius = seg.getGrowthRadius();
   run.volumetric_radius = seg.getVolumetricRadius();
   using D = segmentation::Dimensionality;
-  for (D d : seg.getDimensionality()) {
+  const std::vector<D> dims = seg.getDimensionality();
+  run.dimensionality.reserve(dims.size());
+  for (D d : dims) {
+    run.dimensionality.push_back(static_cast<std::uint8_t>(d));
     switch (d) {
       case D::Linear: ++run.linear; break;
       case D::Planar: ++run.planar; break;

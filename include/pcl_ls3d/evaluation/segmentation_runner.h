@@ -9,6 +9,7 @@
 #include <pcl/point_types.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,8 @@ struct SegmentationRun
   double volume_threshold = 0.0;      ///< V_t used [-]
   double spacing = 0.0, growth_radius = 0.0, volumetric_radius = 0.0;  ///< [m]
   std::size_t linear = 0, planar = 0, volumetric = 0, invalid = 0;      ///< points per class
+  /// Per input point: 0 linear, 1 planar, 2 volumetric, 255 not processed (empty for pcl_rg).
+  std::vector<std::uint8_t> dimensionality;
   std::size_t segments_before_merge = 0, segments_after_merge = 0, merges = 0;
   std::size_t distance_samples = 0, volume_samples = 0;  ///< |D| and |ΔV| fed to the snooping
 };
