@@ -39,6 +39,33 @@ hullVolume(const pcl::PointCloud<pcl::PointXYZ>& hull,
   return v;
 }
 
+/// Outward facet planes of a closed convex triangulated hull.
+std::vector<Eigen::Vector4d>
+hullPlanes(const pcl::PointCloud<pcl::PointXYZ>& hull, const std::vector<pcl::Vertices>& polygons)
+{
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (const auto& p : hull.points)
+    c += p.getVector3fMap().cast<double>();
+  c /= static_cast<double>(std::max<std::size_t>(1, hull.size()));
+  std::vector<Eigen::Vector4d> planes;
+  planes.reserve(polygons.size());
+  for (const auto& poly : polygons) {
+    if (poly.vertices.size() < 3)
+      continue;
+    const Eigen::Vector3d a = hull[poly.vertices[0]].getVector3fMap().cast<double>();
+    const Eigen::Vector3d b = hull[poly.vertices[1]].getVector3fMap().cast<double>();
+    const Eigen::Vector3d d = hull[poly.vertices[2]].getVector3fMap().cast<double>();
+    Eigen::Vector3d n = (b - a).cross(d - a);
+    if (!(n.norm() > 0.0))
+      continue;
+    n.normalize();
+    if (n.dot(c - a) > 0.0)
+      n = -n;  // outward: the centroid is on the inner side
+    planes.emplace_back(n.x(), n.y(), n.z(), -n.dot(a));
+  }
+  return planes;
+}
+
 /// Run pcl::ConvexHull in \a dim dimensions; false if qhull produced nothing.
 bool
 runQhull(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int dim, SegmentHull& out)
@@ -55,6 +82,8 @@ runQhull(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int dim, SegmentHull&
     return false;
   out.contour.assign(idx.indices.begin(), idx.indices.end());
   out.volume = (dim == 3) ? hullVolume(vertices, polygons) : 0.0;
+  if (dim == 3)
+    out.planes = hullPlanes(vertices, polygons);
   return true;
 }
 
@@ -110,14 +139,30 @@ computeSegmentHull(const std::vector<Eigen::Vector3f>& points)
     return out;
   }
   if (runQhull(cloud, 2, out)) {
+    out.planes.clear();
     out.kind = HullKind::Flat;
     out.volume = 0.0;
     return out;
   }
+  out.planes.clear();
   out.kind = HullKind::Tiny;  // qhull refused both: keep every point as contour
   out.volume = 0.0;
   all_points();
   return out;
+}
+
+bool
+insideHull(const SegmentHull& hull, const std::vector<Eigen::Vector3f>& points, double tol)
+{
+  if (hull.kind != HullKind::Solid || hull.planes.empty())
+    return false;
+  for (const auto& p : points) {
+    const Eigen::Vector4d x(p.x(), p.y(), p.z(), 1.0);
+    for (const auto& plane : hull.planes)
+      if (plane.dot(x) > tol)
+        return false;
+  }
+  return true;
 }
 
 }  // namespace segmentation

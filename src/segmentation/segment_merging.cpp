@@ -23,6 +23,7 @@ namespace segmentation {
 namespace {
 
 constexpr int kNearestContourCandidates = 64;
+constexpr double kInsideTolerance = 1e-6;  ///< [m] point-in-hull slack (float coordinates)
 
 /// Working state of the merge loop (Fig. 8); segment ids are the initial labels.
 struct MergeState
@@ -31,6 +32,7 @@ struct MergeState
   std::vector<double> residual_sum;       ///< Σ r_j over the (merged) segment
   std::vector<std::vector<int>> contour;  ///< global contour-point ids per root segment
   std::vector<double> volume;             ///< hull volume per root segment
+  std::vector<std::vector<Eigen::Vector4d>> planes;  ///< solid-hull facets per root segment
   std::vector<int> parent;                ///< union-find
   std::vector<Eigen::Vector3f> contour_xyz;  ///< all initial contour points
   std::vector<int> contour_owner;         ///< initial segment of each contour point
@@ -122,10 +124,28 @@ initialNearestSegment(const MergeState& st, int s)
   return best;
 }
 
-/// ΔV = (V_j'' − V_j') / max(V_i, floor)  (eq. 2); also returns the merged hull.
+/// ΔV = (V_j'' − V_j') / max(V_i, floor)  (eq. 2); also returns the merged hull. If S_i lies
+/// inside the solid hull of S_j, the hull is unchanged and ΔV = 0 without calling qhull.
 double
 volumeChange(const MergeState& st, int i, int j, double floor, SegmentHull* merged)
 {
+  if (!st.planes[j].empty()) {
+    SegmentHull hj;
+    hj.kind = HullKind::Solid;
+    hj.planes = st.planes[j];
+    std::vector<Eigen::Vector3f> xi;
+    for (const int c : st.contour[i])
+      xi.push_back(st.contour_xyz[c]);
+    if (insideHull(hj, xi, kInsideTolerance)) {
+      if (merged) {
+        merged->kind = HullKind::Solid;
+        merged->contour = st.contour[j];
+        merged->volume = st.volume[j];
+        merged->planes = std::move(hj.planes);
+      }
+      return 0.0;
+    }
+  }
   std::vector<int> ids = st.contour[j];
   ids.insert(ids.end(), st.contour[i].begin(), st.contour[i].end());
   SegmentHull h = hullOfContour(st, ids);
@@ -191,8 +211,10 @@ buildState(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& l
       xyz.push_back(points[p]);
     hulls[s] = computeSegmentHull(xyz);
   }
+  st.planes.assign(n_segments, {});
   for (int s = 0; s < n_segments; ++s) {
     st.volume[s] = hulls[s].volume;
+    st.planes[s] = std::move(hulls[s].planes);
     for (const int c : hulls[s].contour) {
       st.contour[s].push_back(static_cast<int>(st.contour_xyz.size()));
       st.contour_xyz.push_back(points[st.members[s][c]]);
@@ -333,6 +355,8 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
     st.contour[j] = merged.contour;
     st.contour[s].clear();
     st.volume[j] = merged.volume;
+    st.planes[j] = std::move(merged.planes);
+    st.planes[s].clear();
     changed[j] = 1;
     ++rep.merges;
   }

@@ -26,7 +26,14 @@ struct SegmentHull
   HullKind kind = HullKind::Empty;
   std::vector<int> contour;  ///< indices into the points given to computeSegmentHull()
   double volume = 0.0;       ///< 0 unless kind == Solid
+  /// Solid only: facet planes (n, d), outward unit n, n·x + d ≤ 0 inside.
+  std::vector<Eigen::Vector4d> planes;
 };
+
+/// \brief True if every point lies inside the solid hull (within \a tol metres); false for
+///        non-solid hulls. Adding such points leaves the hull, and its volume, unchanged.
+bool
+insideHull(const SegmentHull& hull, const std::vector<Eigen::Vector3f>& points, double tol);
 
 /// \brief Relative eigenvalue tolerance below which a set counts as collinear / flat.
 constexpr double kHullDegeneracyTolerance = 1e-9;
