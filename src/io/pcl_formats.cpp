@@ -6,6 +6,7 @@
 #include "local_origin.h"
 
 #include <pcl/PCLPointCloud2.h>
+#include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 
@@ -141,15 +142,24 @@ readPclFile(const std::string& path, const std::string& format,
   info.format = format;
   pcl::PCLPointCloud2 c;
   int status = -1;
+  bool threw = false;
+  // PCL's readers print several lines on a bad file; tools promise one. Their detail stays
+  // visible at debug verbosity (pcl::console::setVerbosityLevel(L_DEBUG)).
+  const auto verbosity = pcl::console::getVerbosityLevel();
+  if (verbosity < pcl::console::L_DEBUG)
+    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   try {
     status = format == "pcd" ? pcl::io::loadPCDFile(path, c) : pcl::io::loadPLYFile(path, c);
   }
   catch (const std::exception& e) {
-    error = std::string("PCL ") + format + " reader failed: " + e.what();
-    return false;
+    error = std::string("PCL's ") + format + " reader failed: " + e.what();
+    threw = true;
   }
+  pcl::console::setVerbosityLevel(verbosity);
+  if (threw)
+    return false;
   if (status < 0) {
-    error = "PCL could not parse the " + format + " file (see the message above)";
+    error = "PCL's " + format + " reader rejected the file (malformed header or truncated data)";
     return false;
   }
   const std::size_t n = static_cast<std::size_t>(c.width) * c.height;

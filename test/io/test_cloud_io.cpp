@@ -198,6 +198,16 @@ TEST(CloudIO, FormatDetectionAndWriterRefusals)
   EXPECT_NE(error.find("unknown file type"), std::string::npos) << error;
   EXPECT_FALSE(io::loadCloud(dir.path.string(), back, info, error));
   EXPECT_NE(error.find("directory"), std::string::npos) << error;
+  // Truncated PCD / PLY: PCL's reader refuses, the caller gets one line.
+  std::ofstream(dir.file("t.pcd")) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                      "COUNT 1 1 1\nWIDTH 10\nHEIGHT 1\nPOINTS 10\nDATA binary\nab";
+  EXPECT_FALSE(io::loadCloud(dir.file("t.pcd"), back, info, error));
+  EXPECT_NE(error.find("pcd reader rejected the file"), std::string::npos) << error;
+  std::ofstream(dir.file("t.ply")) << "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\n"
+                                      "end_header\n1\n";
+  EXPECT_FALSE(io::loadCloud(dir.file("t.ply"), back, info, error));
+  EXPECT_NE(error.find("ply reader rejected the file"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos);
   EXPECT_FALSE(io::saveCloud(dir.file("c.laz"), cloud, Eigen::Vector3d::Zero(), error));
   EXPECT_FALSE(io::saveCloud(dir.file("c.pcd"), pcl::PointCloud<PointLiDAR>(),
                              Eigen::Vector3d::Zero(), error));
