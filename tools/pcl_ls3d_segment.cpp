@@ -37,7 +37,8 @@ namespace ev = pcl_ls3d::evaluation;
 namespace {
 
 const std::set<std::string> kValueOptions{"-o", "-mode", "-json", "-k", "-Nt", "-Mt", "-vt",
-                                          "-dt", "-st", "-Vt", "-classes", "-threads"};
+                                          "-dt", "-st", "-Vt", "-classes", "-threads",
+                                          "-eval_min_size"};
 const std::set<std::string> kFlagOptions{"-evaluate", "-overwrite", "-h", "--help", "-help"};
 
 void
@@ -58,6 +59,8 @@ printHelp(const char* prog)
              "                     and print per-class P/R/F1 against the reference labels\n"
              "  -classes SPEC      class groups, default ground=2,building=6,vegetation=3-5,wire=14\n"
              "                     (codes 0 and 1 are excluded from the evaluation)\n"
+             "  -eval_min_size n   evaluate segments under n points as no segment (default 0);\n"
+             "                     majority mapping rewards fragments, n = 30 matches pcl_rg's minimum\n"
              "  -threads n         OpenMP threads (default: all)\n"
              "  -overwrite         allow replacing existing output files\n"
              "pcl::RegionGrowing uses NormalEstimationOMP k 20, k 20, 10 deg, curvature 0.1, min 30.\n",
@@ -208,6 +211,7 @@ evaluationToJson(const ev::SegmentationEvaluation& e)
   j["segments"] = e.segments;
   j["points_evaluated"] = e.points_evaluated;
   j["points_unsegmented"] = e.points_unsegmented;
+  j["segments_under_min_size"] = e.segments_too_small;
   for (const auto& c : e.classes)
     j["classes"][c.name] = {{"precision", num(c.precision)}, {"recall", num(c.recall)},
                             {"f1", num(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn},
@@ -265,6 +269,12 @@ main(int argc, char** argv)
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   const bool evaluate = find_switch(argc, argv, "-evaluate");
   ev::SegmentationEvaluationSettings eval_settings;
+  double min_size = 0;
+  if (!parseNumber(argc, argv, "-eval_min_size", min_size, error))
+    return fail(error);
+  if (min_size < 0 || min_size != std::floor(min_size))
+    return fail("-eval_min_size must be a non-negative integer");
+  eval_settings.min_segment_size = static_cast<std::size_t>(min_size);
   if (parse_argument(argc, argv, "-classes", class_spec) >= 0 &&
       !ev::parseClassGroups(class_spec, eval_settings.groups, error))
     return fail("-classes: " + error);
@@ -354,7 +364,11 @@ main(int argc, char** argv)
   }
   if (evaluate) {
     print_info("\nPer-class precision / recall / F1 (%%); segments mapped to their majority class;\n"
-               "points in no segment count as false negatives; codes 0/1 excluded.\n%s",
+               "points in no segment%s count as false negatives; codes 0/1 excluded.\n%s",
+               eval_settings.min_segment_size > 0
+                   ? (" (or in one under " + std::to_string(eval_settings.min_segment_size) +
+                      " points)").c_str()
+                   : "",
                ev::formatSegmentationTable(evaluations).c_str());
     for (const auto& e : evaluations)
       print_info("%s confusion:\n%s", e.method.c_str(), ev::describeConfusion(e).c_str());
