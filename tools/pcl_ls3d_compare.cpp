@@ -28,7 +28,8 @@ using namespace pcl_ls3d::evaluation;
 namespace {
 
 const std::set<std::string> kValueOptions = {"-truth", "-json",    "-methods", "-max_corr",
-                                             "-iter",  "-ndt_res", "-rms_dist", "-thinning"};
+                                             "-iter",  "-ndt_res", "-rms_dist", "-thinning",
+                                             "-gicp_grad"};
 const std::set<std::string> kSwitches = {"-overwrite", "-h", "--help"};
 const std::vector<std::string> kAllMethods = {"ls3d-lnd", "ls3d-lzd", "ls3d-icp", "icp",
                                               "icpn",     "gicp",     "ndt"};
@@ -51,6 +52,7 @@ printHelp(const char* name)
       "  -iter N       : max iterations: LS3D (default 30) and PCL (default 50) both set to N\n"
       "  -ndt_res R    : NDT voxel edge [m] (default 2)\n"
       "  -thinning S   : LS3D source thinning voxel [m] (default 0 = all points)\n"
+      "  -gicp_grad G  : GICP inner BFGS gradient tolerance (see pcl_methods.h)\n"
       "  -rms_dist D   : NN distance cut-off of the RMS column [m] (default 1)\n"
       "  -overwrite    : replace an existing -json file (never an input)\n"
       "  -h            : this help\n");
@@ -205,8 +207,11 @@ main(int argc, char** argv)
   parse_argument(argc, argv, "-rms_dist", rms_dist);
   parse_argument(argc, argv, "-thinning", thinning);
   parse_argument(argc, argv, "-iter", iterations);
-  if (!(max_corr > 0) || !(ndt_res > 0) || !(rms_dist > 0) || !(thinning >= 0) || iterations < 0)
-    return fail("-max_corr, -ndt_res, -rms_dist must be > 0, -thinning >= 0, -iter >= 1");
+  parse_argument(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance);
+  if (!(max_corr > 0) || !(ndt_res > 0) || !(rms_dist > 0) || !(thinning >= 0) ||
+      iterations < 0 || !(ps.gicp_gradient_tolerance > 0))
+    return fail("-max_corr, -ndt_res, -rms_dist, -gicp_grad must be > 0, -thinning >= 0, "
+                "-iter >= 1");
   ps.max_correspondence_distance = ls.max_correspondence_distance = max_corr;
   ps.ndt_resolution = ndt_res;
   ls.source_thinning = thinning;

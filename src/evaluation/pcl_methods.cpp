@@ -104,6 +104,8 @@ runGicp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
   gicp.setTransformationEpsilon(s.gicp_translation_epsilon);
   gicp.setRotationEpsilon(s.gicp_rotation_epsilon);
   gicp.setCorrespondenceRandomness(s.gicp_k_correspondences);
+  gicp.setTranslationGradientTolerance(s.gicp_gradient_tolerance);
+  gicp.setRotationGradientTolerance(s.gicp_gradient_tolerance);
   gicp.setInputSource(source);
   gicp.setInputTarget(target);
   CloudXYZ output;
@@ -157,12 +159,12 @@ PclMethodSettings::describe() const
   char buf[512];
   std::snprintf(buf, sizeof(buf),
                 "max_corr=%g m, max_iter=%d, ICP/ICP-N/NDT trans_eps=%g m^2 (squared step), "
-                "ICP/ICP-N rot_eps(cos)=1-%.0e, GICP eps=%g m / %g rad, GICP k=%d, "
+                "ICP/ICP-N rot_eps(cos)=1-%.0e, GICP eps=%g m / %g rad, GICP k=%d grad_tol=%g, "
                 "ICP-N normals k=%d (target only, NormalEstimationOMP), NDT res=%g m step=%g m "
                 "outlier=%g",
                 max_correspondence_distance, max_iterations, transformation_epsilon,
                 1.0 - rotation_epsilon, gicp_translation_epsilon, gicp_rotation_epsilon,
-                gicp_k_correspondences, normal_k, ndt_resolution, ndt_step_size,
+                gicp_k_correspondences, gicp_gradient_tolerance, normal_k, ndt_resolution, ndt_step_size,
                 ndt_outlier_ratio);
   return buf;
 }
