@@ -140,11 +140,14 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
     if (tokens.empty())
       continue;
     double v = 0.0;
-    if (map.empty() && (comment || !parseNumber(tokens[0], v))) {
-      // A header names the columns; any other text before the data is an error unless commented.
+    if (needed == 0 && (comment || !parseNumber(tokens[0], v))) {
+      // Before the data: a header names the columns (LoadOptions::xyz_columns, when given, wins
+      // and the header is skipped); any other uncommented text is an error.
       std::vector<Column> candidate;
-      if (mappingFromNames(tokens, candidate))
-        map = candidate;
+      if (mappingFromNames(tokens, candidate)) {
+        if (options.xyz_columns.empty())
+          map = candidate;
+      }
       else if (!comment) {
         error = "line " + std::to_string(line_number) + ": cannot parse '" +
                 std::string(tokens[0]) + "' as a number";

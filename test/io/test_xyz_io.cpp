@@ -96,6 +96,12 @@ TEST(XyzIO, ExtraColumnsIgnoredByDefaultMappedByOption)
   EXPECT_EQ(cloud[0].classification, 9);
   EXPECT_EQ(cloud[1].classification, 2);
 
+  // The option wins over a header line, which is then skipped.
+  options.xyz_columns = "x,y,z,classification";
+  ASSERT_TRUE(parse("x y z i\n1 2 3 4\n", cloud, info, error, options)) << error;
+  ASSERT_EQ(cloud.size(), 1u);
+  EXPECT_EQ(cloud[0].classification, 4);
+
   options.xyz_columns = "z,y,x";  // reordered columns
   ASSERT_TRUE(parse(text, cloud, info, error, options)) << error;
   EXPECT_FLOAT_EQ(cloud[0].x, 3.f);
