@@ -18,6 +18,10 @@
 #include <limits>
 #include <numeric>
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
 namespace pcl_ls3d {
 namespace segmentation {
 namespace {
@@ -188,7 +192,7 @@ snoopedVolumeThreshold(const std::vector<double>& dv, double alpha)
 
 void
 buildState(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
-           const std::vector<float>& residuals, int n_segments, MergeState& st)
+           const std::vector<float>& residuals, int n_segments, int threads, MergeState& st)
 {
   st.members.assign(n_segments, {});
   st.residual_sum.assign(n_segments, 0.0);
@@ -203,7 +207,7 @@ buildState(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& l
   st.parent.resize(n_segments);
   std::iota(st.parent.begin(), st.parent.end(), 0);
   std::vector<SegmentHull> hulls(n_segments);
-#pragma omp parallel for schedule(dynamic, 16)
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
   for (int s = 0; s < n_segments; ++s) {
     std::vector<Eigen::Vector3f> xyz;
     xyz.reserve(st.members[s].size());
@@ -244,17 +248,22 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
       residuals.size() != labels.size())
     return rep;
   const bool full = settings.rule == MergeRule::DistanceSimilarityVolume;
+#ifdef _OPENMP
+  const int threads = settings.threads > 0 ? settings.threads : omp_get_max_threads();
+#else
+  const int threads = 1;
+#endif
   const double floor = settings.volume_floor > 0.0 ? settings.volume_floor
                                                    : std::max(volume_floor_default, 1e-12);
 
   MergeState st;
   pcl::StopWatch watch;
-  buildState(points, labels, residuals, n_segments, st);
+  buildState(points, labels, residuals, n_segments, threads, st);
   const double t_hulls = watch.getTimeSeconds();
 
   // Nearest neighbour segment of every segment: the sample D (§3.2.2, 1).
   std::vector<std::pair<int, double>> nearest(n_segments);
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
   for (int s = 0; s < n_segments; ++s)
     nearest[s] = initialNearestSegment(st, s);
   std::vector<double> D;
@@ -292,7 +301,7 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
     if (settings.volume_threshold >= 0.0) {
       rep.volume_threshold = settings.volume_threshold;
     } else {
-#pragma omp parallel for schedule(dynamic, 16)
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
       for (int s = 0; s < n_segments; ++s) {
         const int j = nearest[s].first;
         if (j < 0 || nearest[s].second > rep.distance_threshold ||

@@ -329,6 +329,12 @@ TEST(MultiRuleRegionGrowing, BadInput)
 
   // Impossible settings: refused.
   s.setInputCloud(flat);
+  s.setDistanceThreshold(nan);
+  s.extract(clusters);
+  EXPECT_TRUE(clusters.empty());
+  s.setDistanceThreshold(-1.0);  // back to adaptive
+  s.extract(clusters);
+  EXPECT_FALSE(clusters.empty());
   s.setNeighbourhoodRange(20, 10);
   s.extract(clusters);
   EXPECT_TRUE(clusters.empty());

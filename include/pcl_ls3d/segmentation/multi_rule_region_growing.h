@@ -38,9 +38,11 @@ namespace pcl_ls3d {
 ///  3. IMRG seed condition (§3.1): a planar point propagates growth only if its residual is
 ///     below v_t; v_t defaults to the median residual of the linear set.
 ///  4. merging (§3.2, Fig. 8), smallest segment first, into its nearest segment by convex-hull
-///     contour distance, when distance < d_t, |R_i − R_j| < s_t and ΔV = (V_j'' − V_j')/V_i < V_t.
-///     d_t, V_t: Baarda data snooping (backward elimination) then max of the rest; s_t: smallest
-///     gap of 3 k-means centres of segment residuals. See segment_merging.h for hull rules.
+///     contour distance, when distance ≤ d_t, |R_i − R_j| ≤ s_t and ΔV = (V_j'' − V_j')/V_i ≤ V_t
+///     (R = mean point residual of a segment, eq. 1; ΔV eq. 2). d_t, V_t: Baarda data snooping
+///     (backward elimination, α = 0.001) then max of the rest (V_t on ∛ΔV); s_t: smallest gap
+///     of 3 k-means centres of segment residuals. Flat or collinear segments have volume 0 and
+///     ΔV's denominator is floored at spacing³. See segment_merging.h and segment_hull.h.
 ///
 /// Plain MRG (the paper's comparison) = setMode(Mode::MRG): no seed condition, distance-only
 /// merging. Every adaptive threshold can be overridden by its setter (a negative value restores

@@ -30,6 +30,7 @@ struct MergeSettings
   /// Volume floor [m³] for ΔV's denominator and for flat hulls (see mergeSegments()); ≤ 0:
   /// spacing³ from the caller.
   double volume_floor = 0.0;
+  int threads = 0;                     ///< OpenMP threads for hulls and candidates (0: default)
 };
 
 /// \brief What mergeSegments() used and did.
@@ -46,6 +47,15 @@ struct MergeReport
 };
 
 /// \brief Merge segments following Fig. 8.
+///
+/// S_i merges into its nearest unfinished segment S_j iff d ≤ d_t, |R_i − R_j| ≤ s_t and
+/// ΔV ≤ V_t (Fig. 8 rejects on d > d_t or ΔR > s_t or ΔV > V_t); DistanceOnly tests d alone.
+/// Adaptive thresholds (§3.2.2): d_t = max of D = {nearest contour distance per segment} kept by
+/// Baarda backward elimination (one-sided, significance alpha, stats::dataSnooping); s_t =
+/// smallest gap of 3 k-means centres of R_i (stats::kMeans1D; +inf if all R_i are alike);
+/// V_t over the ΔV of nearest pairs passing d_t and s_t: the snooping runs on ∛ΔV
+/// (Wilson–Hilferty; on raw ΔV, which has a long tail and many exact zeros, the backward
+/// elimination eats the tail down to 0) and V_t = (max kept)³.
 ///
 /// Contour points are convex-hull vertices (pcl::ConvexHull / qhull). Each segment is first
 /// tested by PCA (λ of its covariance, relative to the largest): fewer than 4 points or a

@@ -100,6 +100,14 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
               "> 0, radii finite).\n", name, grow_.graph_k);
     return false;
   }
+  const auto bad = [](double v) { return std::isnan(v) || std::isinf(v); };
+  if (bad(user_residual_threshold_) || bad(merge_.distance_threshold) ||
+      bad(merge_.similarity_threshold) || bad(merge_.volume_threshold) ||
+      !(merge_.alpha > 0.0 && merge_.alpha < 1.0)) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] Thresholds must be finite (negative = adaptive) and the "
+              "snooping significance in (0, 1).\n", name);
+    return false;
+  }
   if (normals_ && normals_->size() != input_->size()) {
     PCL_ERROR("[pcl_ls3d::%s::extract] %zu normals for %zu points.\n", name,
               static_cast<std::size_t>(normals_->size()), static_cast<std::size_t>(input_->size()));
@@ -159,7 +167,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::computeFeatures()
     for (int p = 0; p < n; ++p) {
       const PointT& q = (*input_)[valid_indices_[p]];
       if (search_->nearestKSearch(q, k_query, nn, d2) <= 0)
-        continue;
+        continue;  // stays Invalid: never labelled
       sorted.clear();
       for (std::size_t t = 0; t < nn.size(); ++t) {
         const int pos = (nn[t] >= 0 && static_cast<std::size_t>(nn[t]) < position_of_.size())
@@ -167,6 +175,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::computeFeatures()
         if (pos >= 0)
           sorted.emplace_back(d2[t], pos);
       }
+      if (sorted.empty())
+        continue;
       if (!std::is_sorted(sorted.begin(), sorted.end()))
         std::sort(sorted.begin(), sorted.end());
       xyz.clear();
@@ -237,6 +247,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::mergeSegments()
   std::vector<float> residuals(features_.size());
   for (std::size_t p = 0; p < features_.size(); ++p)
     residuals[p] = features_[p].residual;
+  merge_.threads = threads_;
   merge_report_ = segmentation::mergeSegments(points_, segment_of_, residuals, merge_,
                                               spacing_ * spacing_ * spacing_);
 }
