@@ -9,6 +9,18 @@
 /// length are skipped. Everything else in a record (scan angle, flags, RGB, NIR, waveform packets)
 /// is not kept and is written as zero. LAZ is detected (point-format bits 0x80/0x40 or the LASzip
 /// VLR) and refused with a hint.
+///
+/// The reader is lenient about version/format pairs (any of formats 0–10 in any 1.0–1.4 file) but
+/// strict about sizes: every offset and count is checked against the buffer before use, so a bad
+/// file costs at most one allocation proportional to its real size. EVLRs (LAS 1.4) and waveform
+/// packets are ignored. The writer is strict: formats 2–3 need 1.2+, 4–5 need 1.3+, 6–10 need 1.4;
+/// classes > 31 or returns > 7 need formats 6–10 (refused, never truncated); intensity is rounded
+/// and clamped to 0–65535. It writes header sizes 227/235/375, offset to points = header + VLRs,
+/// bounds from the quantised values, legacy and (1.4) 64-bit counts and per-return counts (legacy
+/// fields zero for formats 6–10, as 1.4 requires), the WKT bit for formats 6–10, and bit 0 only on
+/// request (SaveOptions::las_adjusted_standard_gps_time). The VLRs in SaveOptions are written as
+/// given (except an extra-bytes or LASzip VLR, which would misdescribe the records): a GeoTIFF CRS
+/// copied from a 1.2 file into a 1.4 format-6 file stays GeoTIFF.
 
 #include <pcl_ls3d/io/cloud_io.h>
 
