@@ -26,10 +26,12 @@
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -102,6 +104,30 @@ printDimensionalityByClass(const std::vector<int>& labels, const std::vector<std
   }
 }
 
+/// Where the fragments come from: dimensionality of the points in segments under 30 points.
+void
+printFragmentDimensionality(const ev::SegmentationRun& run)
+{
+  if (run.dimensionality.empty())
+    return;
+  std::array<std::size_t, 4> count{0, 0, 0, 0};
+  std::size_t n = 0;
+  for (const auto& seg : run.segments) {
+    if (seg.indices.size() >= 30)
+      continue;
+    for (int i : seg.indices) {
+      const std::uint8_t d = run.dimensionality[static_cast<std::size_t>(i)];
+      ++count[d <= 2 ? d : 3];
+      ++n;
+    }
+  }
+  const double N = static_cast<double>(std::max<std::size_t>(n, 1));
+  std::printf("  imrg points in segments under 30 points: %zu; linear / planar / volumetric "
+              "%.1f / %.1f / %.1f %%\n",
+              n, 100.0 * static_cast<double>(count[0]) / N, 100.0 * static_cast<double>(count[1]) / N,
+              100.0 * static_cast<double>(count[2]) / N);
+}
+
 /// Runs IMRG, MRG, pcl_rg on one cloud; prints the table, the IMRG thresholds and confusions.
 std::vector<ev::SegmentationEvaluation>
 evaluateAll(const std::string& title, const Labelled& data,
@@ -141,8 +167,10 @@ evaluateAll(const std::string& title, const Labelled& data,
                   run.distance_samples, run.similarity_threshold, run.volume_threshold,
                   run.volume_samples, run.linear, run.planar, run.volumetric,
                   run.segments_before_merge, run.segments.size(), run.spacing);
-    if (m == ev::SegmentationMethod::IMRG)
+    if (m == ev::SegmentationMethod::IMRG) {
       printDimensionalityByClass(data.labels, run.dimensionality, classes);
+      printFragmentDimensionality(run);
+    }
     evals.push_back(e);
   }
   std::vector<ev::SegmentationEvaluation> table = evals;
@@ -271,8 +299,11 @@ benchmarkSpeed(std::size_t max_points, int threads)
   const double per_m2 = static_cast<double>(probe.cloud->size()) / 1e4;
   std::printf("\n=== Speed (generated scenes, %.2f points/m2; threads %d, 0 = all) ===\n", per_m2,
               threads);
-  std::printf("  %9s | %8s | %9s | %9s | %9s | %8s | %9s | %8s | %6s\n", "points", "IMRG s",
-              "feat+grow", "merging", "normals", "RG s", "norm+RG", "ratio", "segs");
+  std::printf("  %9s | %8s | %9s | %9s | %9s | %8s | %9s | %8s | %6s | %8s | %8s | %6s\n",
+              "points", "IMRG s", "feat+grow", "merging", "normals", "RG s", "norm+RG", "ratio",
+              "segs", "IMRG cpu", "n+RG cpu", "cpu r.");
+  std::printf("  (wall seconds; feat+grow = a second IMRG run with merging off, merging = the "
+              "difference; cpu = process CPU seconds over all threads)\n");
   double t_1m = 0.0, ratio_1m = 0.0;
   std::size_t n_last = 0;
   for (double target : {0.25e6, 0.5e6, 1.0e6}) {
@@ -285,9 +316,15 @@ benchmarkSpeed(std::size_t max_points, int threads)
     s.threads = threads;
     ev::SegmentationRun imrg, rg;
     std::string error;
+    // CPU time of the process (all threads) next to wall time: the machine is shared, and
+    // CPU seconds show the work done independent of how busy the other cores were.
+    std::clock_t c0 = std::clock();
     const bool ok = ev::runSegmentation(data.cloud, s, imrg, error);
+    const double cpu_imrg = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     s.method = ev::SegmentationMethod::PclRegionGrowing;
+    c0 = std::clock();
     const bool ok_rg = ev::runSegmentation(data.cloud, s, rg, error);
+    const double cpu_rg = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
     if (!ok || !ok_rg) {
       std::printf("  run failed: %s\n", error.c_str());
       ++failures;
@@ -295,10 +332,12 @@ benchmarkSpeed(std::size_t max_points, int threads)
     }
     const double fg = imrgWithoutMerging(data.cloud, threads);
     const double ratio = imrg.seconds_total / rg.seconds_total;
-    std::printf("  %9zu | %8.2f | %9.2f | %9.2f | %9.2f | %8.2f | %9.2f | %8.2f | %6zu\n",
+    std::printf("  %9zu | %8.2f | %9.2f | %9.2f | %9.2f | %8.2f | %9.2f | %8.2f | %6zu | %8.1f | "
+                "%8.1f | %6.2f\n",
                 data.cloud->size(), imrg.seconds_total, fg, imrg.seconds_total - fg,
                 rg.seconds_normals, rg.seconds_segmentation, rg.seconds_total, ratio,
-                imrg.segments.size());
+                imrg.segments.size(), cpu_imrg, cpu_rg, cpu_imrg / cpu_rg);
+    std::fflush(stdout);
     t_1m = imrg.seconds_total;
     ratio_1m = ratio;
     n_last = data.cloud->size();
