@@ -93,6 +93,8 @@ AdjustmentSettings::isValid(std::string* why) const
     return fail("max_correspondence_distance must be > 0");
   if (!(source_thinning >= 0.0) || std::isinf(source_thinning))
     return fail("source_thinning must be >= 0 and finite");
+  if (!(freeze_sigma_fraction >= 0.0) || std::isinf(freeze_sigma_fraction))
+    return fail("freeze_sigma_fraction must be >= 0 and finite");
   if (min_observations < 1)
     return fail("min_observations must be >= 1");
   if (!(determinability_threshold > 0.0) || determinability_threshold >= 1.0)

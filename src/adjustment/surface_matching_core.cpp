@@ -146,14 +146,19 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
   problem.apriori_values = apriori;
   problem.apriori_weights = settings.apriori_weights;
   problem.determinability_threshold = settings.determinability_threshold;
-  problem.scaling << 1, 1, 1, radius, radius, radius, radius;
+  // Unit change of each scaled parameter displaces the edge of the data by about one unit.
+  const double inv_r = radius > 0.0 ? 1.0 / radius : 1.0;
+  problem.scaling << 1, 1, 1, inv_r, inv_r, inv_r, inv_r;
 
   GaussMarkovSolution sol;
   SimilarityLinearization lin{SimilarityTransform(X)};
   double sigma0_prev = 0.0;
   std::size_t m = 0;
+  bool frozen = false;
   for (int it = 1; it <= settings.max_iterations; ++it) {
     lin = SimilarityLinearization(SimilarityTransform(X));
+    if (!frozen)  // fresh conjugate points around the current positions
+      std::fill(caches_.begin(), caches_.end(), CorrespondenceCache());
 
     // 1. Conjugate points of every transformed source point (rule strategy, §2.2).
 #pragma omp parallel for schedule(dynamic, 512)
@@ -261,12 +266,20 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     report.observations_rejected = m - ne.n;
     sigma0_prev = sol.sigma0;
 
-    // 6. Convergence (Zuo §4: angle change below 1e-6 rad).
+    // 6. Convergence (Zuo §4: angle change below 1e-6 rad); freeze once changes are tiny.
     if (converged(sol.dx, settings)) {
       report.termination = TerminationType::CONVERGED;
       break;
     }
     report.termination = TerminationType::MAX_ITERATIONS;
+    bool negligible = it >= settings.max_iterations / 2;
+    for (int i = 0; i < 7 && !negligible; ++i)
+      if (sol.determinable[static_cast<std::size_t>(i)] &&
+          std::abs(sol.dx[i]) > settings.freeze_sigma_fraction * sol.sigma0 * std::sqrt(sol.qxx(i, i)))
+        break;
+      else if (i == 6)
+        negligible = true;
+    frozen = frozen || negligible;
   }
 
   // Precision (eq. 14), correlation, determinability.

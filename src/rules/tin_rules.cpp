@@ -38,7 +38,17 @@ projectsInto(const Eigen::Vector3d& p, const Eigen::Vector3d& dir, const Eigen::
     const Eigen::Vector3d d = q - p;
     return Eigen::Vector2d(d.dot(e1), d.dot(e2));
   };
-  return tin::containsOrigin(to2d(a), to2d(b), to2d(c));
+  // Barycentric coordinates of the origin; a small negative tolerance gives the cached
+  // triangle hysteresis, so points near an edge do not flip triangles every iteration (which
+  // would make the estimate cycle instead of converging).
+  const Eigen::Vector2d A = to2d(a), B = to2d(b), C = to2d(c);
+  const double det = (B - A).x() * (C - A).y() - (B - A).y() * (C - A).x();
+  if (!(std::abs(det) > 0.0))
+    return false;
+  const double l1 = ((-A).x() * (C - A).y() - (-A).y() * (C - A).x()) / det;
+  const double l2 = ((B - A).x() * (-A).y() - (B - A).y() * (-A).x()) / det;
+  const double tol = -0.05;
+  return l1 >= tol && l2 >= tol && 1.0 - l1 - l2 >= tol;
 }
 
 bool
@@ -132,7 +142,10 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   const double d = query.z() - z;
   if (!std::isfinite(d) || std::abs(d) > max_distance)
     return false;
-  out.add(up, d, Eigen::Vector3d(query.x(), query.y(), z));
+  // l = z' − z_tri(x', y'): its gradient w.r.t. x' is (−∂z/∂x, −∂z/∂y, 1), so a horizontal move
+  // over a slope changes the height difference (Rosenholm's rigorous LZD linearisation).
+  const Eigen::Vector3d gradient(n.x() / n.z(), n.y() / n.z(), 1.0);
+  out.add(gradient, d, Eigen::Vector3d(query.x(), query.y(), z));
   return true;
 }
 

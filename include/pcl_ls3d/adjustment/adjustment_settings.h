@@ -45,6 +45,13 @@ struct AdjustmentSettings
   double translation_epsilon = 1e-5;       ///< [length] ... and |dt| below
   double scale_epsilon = 1e-8;             ///< [-] ... and |dm| below
 
+  /// Conjugate points are searched afresh every iteration until every parameter change is
+  /// below this fraction of its σ_i; from then on they are frozen (the rules' per-point caches
+  /// are kept), so the final iterations converge to the epsilons instead of cycling between
+  /// neighbouring triangles. Freezing earlier would bias the estimate towards the initial guess
+  /// (triangles chosen around the wrong positions).
+  double freeze_sigma_fraction = 0.1;
+
   // --- observations --------------------------------------------------------------------------
   /// Conjugate points farther than this (|signed distance| and nearest target point) are no
   /// correspondence. Default: unlimited, as in pcl::Registration.

@@ -19,10 +19,12 @@
 
 namespace pcl_ls3d {
 
-/// \brief One observation: residual l = uᵀ(x' − q) along unit direction u.
+/// \brief One observation l with its gradient u = ∂l/∂x' (the engine forms a = uᵀ ∂x'/∂X).
+///        Distance rules: u is the unit direction and l = uᵀ(x' − q). LZD measures along z but
+///        its gradient is (−∂z/∂x, −∂z/∂y, 1), because moving x' over a slope changes l.
 struct ConjugateObservation
 {
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< unit u (target coordinates)
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< u = ∂l/∂x' (target coordinates)
   double distance = 0.0;                                ///< signed l = uᵀ(x' − q)
   Eigen::Vector3d foot = Eigen::Vector3d::Zero();       ///< conjugate point q on the target
 };

@@ -2,7 +2,9 @@
 /// \file lzd_rule.h
 /// \brief LZD rule (least z-difference, Rosenholm 1988; Zuo et al. 2012, Fig. 1b): the
 ///        conjugate point is the vertical intersection with the target triangle that contains
-///        the query in XY; the observation is the height difference along z.
+///        the query in XY; the observation is the height difference along z, linearised
+///        rigorously (gradient (−∂z/∂x, −∂z/∂y, 1) of the triangle), so tx, ty are observable
+///        on sloped terrain.
 
 #include <pcl_ls3d/rules/conjugate_rule.h>
 

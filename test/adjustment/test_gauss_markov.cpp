@@ -1,0 +1,152 @@
+// The Gauss–Markoff solve (Zuo et al. 2012, eqs. 9–14) against an independent dense least-squares
+// computation, plus fixed/soft a-priori observations, the rank test and the Jacobian.
+#include <pcl_ls3d/adjustment/gauss_markov.h>
+#include <pcl_ls3d/adjustment/similarity_jacobian.h>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <limits>
+#include <random>
+
+using namespace pcl_ls3d;
+
+namespace {
+struct LinearProblem
+{
+  Eigen::MatrixXd A;
+  Eigen::VectorXd l;
+  NormalEquations ne;
+};
+
+LinearProblem
+randomProblem(int n, unsigned seed)
+{
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> g(0.0, 1.0);
+  LinearProblem p;
+  p.A.resize(n, 7);
+  p.l.resize(n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < 7; ++j)
+      p.A(i, j) = g(rng);
+    p.l[i] = g(rng);
+    p.ne.add(p.A.row(i), p.l[i], 1.0);
+  }
+  p.ne.symmetrize();
+  return p;
+}
+}  // namespace
+
+TEST(GaussMarkov, MatchesDenseLeastSquares)
+{
+  const LinearProblem p = randomProblem(200, 1);
+  const GaussMarkovSolution s = solveGaussMarkov(p.ne, GaussMarkovProblem());
+  ASSERT_TRUE(s.ok) << s.message;
+  // Independent: minimise |A dx + l|² by QR.
+  const Eigen::VectorXd dx = p.A.colPivHouseholderQr().solve(-p.l);
+  const Eigen::VectorXd v = p.A * dx + p.l;
+  const Eigen::MatrixXd Q = (p.A.transpose() * p.A).inverse();
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_NEAR(s.dx[i], dx[i], 1e-10);
+    for (int j = 0; j < 7; ++j)
+      EXPECT_NEAR(s.qxx(i, j), Q(i, j), 1e-12);
+  }
+  EXPECT_EQ(s.redundancy, 200 - 7);
+  EXPECT_NEAR(s.sigma0, std::sqrt(v.squaredNorm() / 193.0), 1e-10);  // eq. 11
+}
+
+TEST(GaussMarkov, FixedParameterIsEliminatedExactly)
+{
+  const LinearProblem p = randomProblem(100, 2);
+  GaussMarkovProblem gp;
+  gp.apriori_weights[OMEGA] = std::numeric_limits<double>::infinity();
+  const GaussMarkovSolution s = solveGaussMarkov(p.ne, gp);
+  ASSERT_TRUE(s.ok);
+  EXPECT_EQ(s.dx[OMEGA], 0.0);
+  EXPECT_TRUE(s.fixed[OMEGA]);
+  EXPECT_FALSE(s.determinable[OMEGA]);
+  EXPECT_EQ(s.qxx.row(OMEGA).norm(), 0.0);
+  // Independent: drop the column.
+  Eigen::MatrixXd A6(p.A.rows(), 6);
+  A6 << p.A.leftCols(OMEGA), p.A.rightCols(6 - OMEGA);
+  const Eigen::VectorXd dx6 = A6.colPivHouseholderQr().solve(-p.l);
+  EXPECT_NEAR(s.dx[TX], dx6[0], 1e-10);
+  EXPECT_NEAR(s.dx[SCALE], dx6[5], 1e-10);
+  EXPECT_EQ(s.redundancy, 100 - 6);
+}
+
+TEST(GaussMarkov, SoftConstraintEqualsAugmentedSystem)
+{
+  const LinearProblem p = randomProblem(50, 3);
+  GaussMarkovProblem gp;
+  gp.current[TZ] = 0.2;
+  gp.apriori_values[TZ] = 0.5;
+  gp.apriori_weights[TZ] = 4.0;  // σ_e = σ0 / 2
+  const GaussMarkovSolution s = solveGaussMarkov(p.ne, gp);
+  ASSERT_TRUE(s.ok);
+  // Independent: one extra row 2·(dx_tz + (0.2 − 0.5)) (weight 4 = 2²).
+  Eigen::MatrixXd A(51, 7);
+  Eigen::VectorXd l(51);
+  A.topRows(50) = p.A;
+  l.head(50) = p.l;
+  A.row(50).setZero();
+  A(50, TZ) = 2.0;
+  l[50] = 2.0 * (0.2 - 0.5);
+  const Eigen::VectorXd dx = A.colPivHouseholderQr().solve(-l);
+  for (int i = 0; i < 7; ++i)
+    EXPECT_NEAR(s.dx[i], dx[i], 1e-10);
+  EXPECT_EQ(s.redundancy, 51 - 7);
+  EXPECT_NEAR(s.sigma0, std::sqrt((A * dx + l).squaredNorm() / 44.0), 1e-10);
+}
+
+TEST(GaussMarkov, RankTestFlagsUndeterminableParameters)
+{
+  LinearProblem p = randomProblem(100, 4);
+  // Columns tx and ty carry no information (a flat plane seen along z).
+  NormalEquations ne;
+  for (int i = 0; i < 100; ++i) {
+    RowVector7d a = p.A.row(i);
+    a[TX] = 0.0;
+    a[TY] = 0.0;
+    ne.add(a, p.l[i], 1.0);
+  }
+  ne.symmetrize();
+  const GaussMarkovSolution s = solveGaussMarkov(ne, GaussMarkovProblem());
+  ASSERT_TRUE(s.ok) << s.message;
+  EXPECT_FALSE(s.determinable[TX]);
+  EXPECT_FALSE(s.determinable[TY]);
+  EXPECT_TRUE(s.determinable[TZ]);
+  EXPECT_EQ(s.dx[TX], 0.0);
+  EXPECT_EQ(s.unknowns, 5);
+  // Nothing determinable at all: refused.
+  const GaussMarkovSolution none = solveGaussMarkov(NormalEquations(), GaussMarkovProblem());
+  EXPECT_FALSE(none.ok);
+}
+
+TEST(SimilarityJacobian, MatchesFiniteDifferences)
+{
+  SimilarityTransform X;
+  X.t = Eigen::Vector3d(1, -2, 0.5);
+  X.phi = 0.1;
+  X.omega = -0.2;
+  X.kappa = 0.3;
+  X.m = 1.01;
+  const Eigen::Vector3d x(3.0, -4.0, 2.0);
+  const SimilarityLinearization lin(X);
+  const Matrix37d J = lin.jacobian(x);
+  const double h = 1e-6;
+  for (int j = 0; j < 7; ++j) {
+    Vector7d p = X.vector(), q = X.vector();
+    p[j] += h;
+    q[j] -= h;
+    const Eigen::Vector3d fd =
+        (SimilarityTransform(p).apply(x) - SimilarityTransform(q).apply(x)) / (2 * h);
+    EXPECT_LT((J.col(j) - fd).norm(), 1e-7) << "column " << j;  // central differences, O(h²)
+  }
+  EXPECT_LT((lin.apply(x) - X.apply(x)).norm(), 1e-12);
+  const Eigen::Vector3d u = Eigen::Vector3d(1, 2, 2) / 3.0;
+  EXPECT_LT((lin.designRow(u, x) - u.transpose() * J).norm(), 1e-12);
+}

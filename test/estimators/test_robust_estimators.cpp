@@ -1,0 +1,56 @@
+// Property check run on every weight-function estimator (w in [0, 1], w(0) = 1, symmetric,
+// non-increasing in |v|), plus the exact behaviour of Zuo's 0/1 weight (eq. 15).
+#include <pcl_ls3d/estimators/robust_estimator.h>
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+using namespace pcl_ls3d;
+
+namespace {
+std::vector<RobustEstimator::Ptr>
+allEstimators()
+{
+  return {std::make_shared<LeastSquaresEstimator>(), std::make_shared<ZuoEstimator>(6.0),
+          std::make_shared<ZuoEstimator>(3.0), std::make_shared<HuberEstimator>(),
+          std::make_shared<TukeyEstimator>()};
+}
+}  // namespace
+
+TEST(RobustEstimators, WeightProperties)
+{
+  // Residuals symmetric about 0, spanning 0..10σ, including 0 itself.
+  const int n = 201;
+  Eigen::VectorXd v(n);
+  for (int i = 0; i < n; ++i)
+    v[i] = 0.1 * (i - 100);  // σ0 = 1 below
+  for (const auto& e : allEstimators()) {
+    Eigen::VectorXd w(n);
+    e->computeWeights(v, Eigen::VectorXd(), 1.0, w);
+    for (int i = 0; i < n; ++i) {
+      EXPECT_GE(w[i], 0.0) << e->name();
+      EXPECT_LE(w[i], 1.0) << e->name();
+      EXPECT_DOUBLE_EQ(w[i], w[n - 1 - i]) << e->name() << " not symmetric at " << v[i];
+      if (i > 100)
+        EXPECT_LE(w[i], w[i - 1] + 1e-15) << e->name() << " increases at " << v[i];
+    }
+    EXPECT_DOUBLE_EQ(w[100], 1.0) << e->name();
+  }
+}
+
+TEST(RobustEstimators, ZuoCutsAtKSigma0)
+{
+  ZuoEstimator zuo(6.0);
+  Eigen::VectorXd v(4), w(4);
+  v << 0.59, -0.59, 0.61, -0.61;
+  zuo.computeWeights(v, Eigen::VectorXd(), 0.1, w);
+  EXPECT_EQ(w[0], 1.0);
+  EXPECT_EQ(w[1], 1.0);
+  EXPECT_EQ(w[2], 0.0);
+  EXPECT_EQ(w[3], 0.0);
+  // σ0 unknown (first iteration): everything kept.
+  zuo.computeWeights(v, Eigen::VectorXd(), 0.0, w);
+  EXPECT_EQ(w.sum(), 4.0);
+}

@@ -1,0 +1,86 @@
+// The shipped conjugate-point rules on an exactly known surface: a tilted plane sampled on a
+// grid, z = 0.2 x − 0.1 y + 3, queried from the PCL-free PointVectorTargetSurface.
+#include <pcl_ls3d/rules/icp_rule.h>
+#include <pcl_ls3d/rules/lnd_rule.h>
+#include <pcl_ls3d/rules/lzd_rule.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace pcl_ls3d;
+
+namespace {
+double
+planeZ(double x, double y)
+{
+  return 0.2 * x - 0.1 * y + 3.0;
+}
+
+PointVectorTargetSurface
+tiltedPlane()
+{
+  std::vector<Eigen::Vector3d> pts;
+  for (int i = -10; i <= 10; ++i)
+    for (int j = -10; j <= 10; ++j)
+      pts.emplace_back(i, j, planeZ(i, j));
+  return PointVectorTargetSurface(pts);
+}
+}  // namespace
+
+TEST(ConjugateRules, LndGivesSignedNormalDistance)
+{
+  const auto target = tiltedPlane();
+  const Eigen::Vector3d n = Eigen::Vector3d(-0.2, 0.1, 1.0).normalized();
+  const Eigen::Vector3d q = Eigen::Vector3d(0.3, 0.4, planeZ(0.3, 0.4)) + 0.25 * n;
+  LndRule rule;
+  CorrespondenceCache cache;
+  ConjugateObservations out;
+  ASSERT_TRUE(rule.findConjugate(q, target, 10.0, cache, out));
+  ASSERT_EQ(out.count, 1);
+  EXPECT_NEAR(out.items[0].distance, 0.25, 1e-9);
+  EXPECT_NEAR(out.items[0].direction.dot(n), 1.0, 1e-9);
+  EXPECT_NEAR(out.items[0].foot.z(), planeZ(out.items[0].foot.x(), out.items[0].foot.y()), 1e-9);
+  // Max distance enforced; outside the target's extent: no correspondence.
+  ConjugateObservations none;
+  CorrespondenceCache fresh;
+  EXPECT_FALSE(rule.findConjugate(q, target, 0.1, fresh, none));
+  EXPECT_FALSE(rule.findConjugate(Eigen::Vector3d(14, 0, planeZ(14, 0)), target, 10.0, fresh, none));
+}
+
+TEST(ConjugateRules, LzdGivesHeightDifferenceWithSlopeGradient)
+{
+  const auto target = tiltedPlane();
+  const Eigen::Vector3d q(1.3, -2.6, planeZ(1.3, -2.6) - 0.4);
+  LzdRule rule;
+  CorrespondenceCache cache;
+  ConjugateObservations out;
+  ASSERT_TRUE(rule.findConjugate(q, target, 10.0, cache, out));
+  EXPECT_NEAR(out.items[0].distance, -0.4, 1e-9);
+  // ∂l/∂x' = (−∂z/∂x, −∂z/∂y, 1)
+  EXPECT_LT((out.items[0].direction - Eigen::Vector3d(-0.2, 0.1, 1.0)).norm(), 1e-9);
+  EXPECT_NEAR(out.items[0].foot.x(), 1.3, 1e-12);
+}
+
+TEST(ConjugateRules, IcpGivesThreeAxisObservations)
+{
+  const auto target = tiltedPlane();
+  const Eigen::Vector3d q(2.1, 3.05, planeZ(2, 3) + 0.05);
+  IcpRule rule;
+  CorrespondenceCache cache;
+  ConjugateObservations out;
+  ASSERT_TRUE(rule.findConjugate(q, target, 10.0, cache, out));
+  ASSERT_EQ(out.count, 3);
+  EXPECT_NEAR(out.items[0].distance, 0.1, 1e-9);
+  EXPECT_NEAR(out.items[1].distance, 0.05, 1e-9);
+  EXPECT_NEAR(out.items[2].distance, 0.05, 1e-9);
+  EXPECT_FALSE(rule.findConjugate(Eigen::Vector3d(12, 0, planeZ(12, 0)), target, 10.0, cache, out));
+}
+
+TEST(ConjugateRules, FactoryAndParser)
+{
+  ConjugateRuleType t;
+  ASSERT_TRUE(parseConjugateRuleType("LZD", t));
+  EXPECT_EQ(makeConjugateRule(t)->name(), "LZD");
+  EXPECT_FALSE(parseConjugateRuleType("nearest", t));
+}
