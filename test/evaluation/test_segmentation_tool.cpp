@@ -3,6 +3,9 @@
 // one error line. Runs the built tool (PCL_LS3D_TOOL_DIR) on a small generated PCD.
 #include "evaluation/segmentation_test_scene.h"
 
+#include <pcl_ls3d/evaluation/segmentation_labels.h>
+#include <pcl_ls3d/evaluation/segmentation_runner.h>
+
 #include <pcl/io/pcd_io.h>
 
 #include <gtest/gtest.h>
@@ -125,6 +128,21 @@ TEST_F(SegmentTool, WritesEveryPointInOrderWithConsistentLabels)
                 d["volumetric"].get<std::size_t>() + d["invalid"].get<std::size_t>(),
             scene_.size());
   EXPECT_GE(run0["segments_before_merging"].get<std::size_t>(), segments);
+
+  // The labels are exactly the segments the library returns for the same points (the method is
+  // deterministic: same input, same segments, whatever the thread count).
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz(new pcl::PointCloud<pcl::PointXYZ>);
+  for (const auto& p : scene_.points)
+    xyz->push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  pcl_ls3d::evaluation::SegmentationRun in_process;
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::evaluation::runSegmentation(xyz, {}, in_process, error)) << error;
+  ASSERT_EQ(in_process.segments.size(), segments);
+  const auto expected = pcl_ls3d::evaluation::labelsFromSegments(in_process.segments, xyz->size());
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < seg.size(); ++i)
+    mismatches += seg[i].label != expected[i];
+  EXPECT_EQ(mismatches, 0u);
 
   // Existing output without -overwrite is refused (one error line), with it accepted.
   const ToolResult again = run(input_.string() + " -o " + out.string());
