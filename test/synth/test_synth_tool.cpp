@@ -102,6 +102,21 @@ TEST(SynthTool, StripsAndScene)
             0);
   for (const char* f : {"strips.las", "strip_1.las", "strip_2.las", "truth.json"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
+  // The LAS file keeps the strip ids, classes and times the generator set.
+  pcl::PointCloud<PointLiDAR> strips;
+  io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(io::loadCloud((dir / "strips.las").string(), strips, info, error)) << error;
+  std::size_t first = 0, second = 0, ground = 0;
+  for (const auto& p : strips) {
+    first += p.point_source_id == 1;
+    second += p.point_source_id == 2;
+    ground += p.classification == 2;
+  }
+  EXPECT_EQ(first + second, strips.size());
+  EXPECT_EQ(first, second);
+  EXPECT_GT(ground, strips.size() / 2);
+  EXPECT_GT(strips.back().gps_time, strips.front().gps_time);
   const fs::path scene_dir = freshDir("scene");
   ASSERT_EQ(run("scene -size 50,50 -density 2 -format ply -o " + scene_dir.string()), 0);
   EXPECT_TRUE(fs::exists(scene_dir / "scene.ply"));
