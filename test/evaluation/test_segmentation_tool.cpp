@@ -130,7 +130,7 @@ TEST_F(SegmentTool, WritesEveryPointInOrderWithConsistentLabels)
   EXPECT_GE(run0["segments_before_merging"].get<std::size_t>(), segments);
 
   // The labels are exactly the segments the library returns for the same points (the method is
-  // deterministic: same input, same segments, whatever the thread count).
+  // deterministic: same input, same segments).
   pcl::PointCloud<pcl::PointXYZ>::Ptr xyz(new pcl::PointCloud<pcl::PointXYZ>);
   for (const auto& p : scene_.points)
     xyz->push_back(pcl::PointXYZ(p.x, p.y, p.z));
