@@ -128,7 +128,7 @@ initialNearestSegment(const MergeState& st, int s)
   return best;
 }
 
-/// ΔV = (V_j'' − V_j') / max(V_i, floor)  (eq. 2); also returns the merged hull. If S_i lies
+/// ΔV = (V_j'' − V_j') / max(V_i, n_i·floor)  (eq. 2); also returns the merged hull. If S_i lies
 /// inside the solid hull of S_j, the hull is unchanged and ΔV = 0 without calling qhull.
 double
 volumeChange(const MergeState& st, int i, int j, double floor, SegmentHull* merged)
@@ -153,7 +153,9 @@ volumeChange(const MergeState& st, int i, int j, double floor, SegmentHull* merg
   std::vector<int> ids = st.contour[j];
   ids.insert(ids.end(), st.contour[i].begin(), st.contour[i].end());
   SegmentHull h = hullOfContour(st, ids);
-  const double dv = (h.volume - st.volume[j]) / std::max(st.volume[i], floor);
+  // A flat or tiny S_i has no hull volume; n_i points at spacing s still occupy ~n_i s³.
+  const double vi = std::max(st.volume[i], floor * static_cast<double>(st.members[i].size()));
+  const double dv = (h.volume - st.volume[j]) / vi;
   if (merged)
     *merged = std::move(h);
   return std::max(0.0, dv);

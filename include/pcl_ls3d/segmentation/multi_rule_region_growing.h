@@ -41,8 +41,8 @@ namespace pcl_ls3d {
 ///     contour distance, when distance ≤ d_t, |R_i − R_j| ≤ s_t and ΔV = (V_j'' − V_j')/V_i ≤ V_t
 ///     (R = mean point residual of a segment, eq. 1; ΔV eq. 2). d_t, V_t: Baarda data snooping
 ///     (backward elimination, α = 0.001) then max of the rest (V_t on ∛ΔV); s_t: smallest gap
-///     of 3 k-means centres of segment residuals. Flat or collinear segments have volume 0 and
-///     ΔV's denominator is floored at spacing³. See segment_merging.h and segment_hull.h.
+///     of 3 k-means centres of segment residuals. Flat or collinear segments have hull volume 0;
+///     ΔV's denominator is floored at n_i·spacing³. See segment_merging.h and segment_hull.h.
 ///
 /// Plain MRG (the paper's comparison) = setMode(Mode::MRG): no seed condition, distance-only
 /// merging. Every adaptive threshold can be overridden by its setter (a negative value restores

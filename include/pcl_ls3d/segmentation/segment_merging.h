@@ -27,8 +27,8 @@ struct MergeSettings
   double volume_threshold = -1.0;      ///< V_t [-]
   double alpha = 0.001;                ///< significance of Baarda's w-test
   int kmeans_centres = 3;              ///< centres for s_t
-  /// Volume floor [m³] for ΔV's denominator and for flat hulls (see mergeSegments()); ≤ 0:
-  /// spacing³ from the caller.
+  /// Volume per point [m³] for ΔV's denominator (see mergeSegments()); ≤ 0: spacing³ from the
+  /// caller.
   double volume_floor = 0.0;
   int threads = 0;                     ///< OpenMP threads for hulls and candidates (0: default)
 };
@@ -60,10 +60,11 @@ struct MergeReport
 /// Contour points are convex-hull vertices (pcl::ConvexHull / qhull). Each segment is first
 /// tested by PCA (λ of its covariance, relative to the largest): fewer than 4 points or a
 /// collinear segment keeps all (≤ 3) points or its two extreme points as contour and has volume
-/// 0; a flat segment (λ3 ≤ 1e-8 λ1 … numerically planar) gets a 2-D hull and volume 0;
-/// otherwise a 3-D hull and its volume. In ΔV = (V_j'' − V_j')/V_i the denominator is
-/// max(V_i, volume_floor), so merging two coplanar flat pieces gives ΔV ≈ 0 (accepted) while a
-/// flat piece that adds real height to its neighbour gives a large ΔV (rejected).
+/// 0; a numerically flat segment (λ3 ≤ 1e-9 λ1) gets a 2-D hull and volume 0; otherwise a 3-D
+/// hull and its volume. In ΔV = (V_j'' − V_j')/V_i the denominator is max(V_i, n_i·floor)
+/// (n_i points at spacing s occupy about n_i s³ even when their hull is flat), so merging two
+/// coplanar flat pieces gives ΔV ≈ 0 (accepted) while a flat piece that adds real height to its
+/// neighbour gives a large ΔV (rejected). A segment inside the other's solid hull has ΔV = 0.
 /// Distances are minimal contour-to-contour distances; since the hull vertices of a union are
 /// a subset of the union of hull vertices, one static kd-tree over the initial contour points
 /// serves the whole loop. A segment whose nearest contour point of another segment is farther
@@ -73,7 +74,7 @@ struct MergeReport
 /// \param[in,out] labels segment id per position (−1 ignored); merged ids are relabelled dense
 /// \param[in] residuals plane-fitting residual per position (R_i = mean over the segment, eq. 1)
 /// \param[in] settings thresholds (negative = adaptive)
-/// \param[in] volume_floor_default floor used when settings.volume_floor ≤ 0
+/// \param[in] volume_floor_default volume per point used when settings.volume_floor ≤ 0
 MergeReport
 mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labels,
               const std::vector<float>& residuals, const MergeSettings& settings,
