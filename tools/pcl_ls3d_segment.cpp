@@ -379,8 +379,10 @@ main(int argc, char** argv)
     tt.tic();
     if (!saveSegments(out_pcd, cloud, selected, error))
       return fail(error);
+    const double t_write = tt.toc() / 1000.0;
+    report["seconds_write"] = t_write;
     print_info("Wrote %s (%zu points, %zu segments, local coordinates: add the origin) in %.3f s\n",
-               out_pcd.c_str(), cloud.size(), selected.size(), tt.toc() / 1000.0);
+               out_pcd.c_str(), cloud.size(), selected.size(), t_write);
   }
   if (!out_json.empty()) {
     std::ofstream f(out_json);

@@ -33,6 +33,7 @@ struct DataSnoopingSettings
   double sigma_apriori = 0.0;
   std::size_t min_kept = 3;      ///< never reduce the sample below this many values
   /// Only test values above the mean (IMRG: gross distances / volume changes are large ones).
+  /// The critical value stays the two-sided k of alpha (so the one-sided test has level α/2).
   bool one_sided_upper = false;
 };
 
