@@ -166,3 +166,22 @@ TEST(Synth, PairInvalid)
   ASSERT_TRUE(pair.source && pair.target);
   EXPECT_TRUE(pair.source->empty());
 }
+
+#ifdef _OPENMP
+#include <omp.h>
+// Per-block random streams: the clouds do not depend on the number of threads.
+TEST(Synth, PairIndependentOfThreads)
+{
+  auto s = smallSettings();
+  s.target_density = 8.0;  // > one block (32768 points) so several blocks run in parallel
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const auto a = makeRegistrationPair(s);
+  omp_set_num_threads(3);
+  const auto b = makeRegistrationPair(s);
+  omp_set_num_threads(before);
+  ASSERT_EQ(a.target->size(), b.target->size());
+  for (std::size_t i = 0; i < a.target->size(); ++i)
+    ASSERT_EQ((*a.target)[i].z, (*b.target)[i].z);
+}
+#endif
