@@ -7,8 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
+#include <sstream>
 
 using namespace pcl_ls3d;
 
@@ -122,4 +128,64 @@ TEST(RealLas, Autzen12And14CopiesAgree)
     EXPECT_EQ(ca[i].point_source_id, cb[i].point_source_id);
     EXPECT_EQ(ca[i].gps_time, cb[i].gps_time);
   }
+}
+
+// Independent check of the writer: shared/data/tools/lasinfo.py (Python struct, written for the
+// data folder, not by us) must read our LAS 1.2 PF3 and 1.4 PF6 files with the right version,
+// format, count, and header bounds equal to the bounds of the records it decodes.
+TEST(RealLas, IndependentPythonReaderAcceptsOurFiles)
+{
+  const std::filesystem::path script =
+      std::filesystem::path(PCL_LS3D_SHARED_DATA_DIR) / "tools" / "lasinfo.py";
+  if (!std::filesystem::exists(script) || std::system("python3 -c 'pass' > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << script << " or python3 is absent; skipped";
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("ls3d_lasinfo_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  for (const auto& [minor, format] : {std::pair<int, int>{2, 3}, {4, 6}}) {
+    pcl::PointCloud<PointLiDAR> cloud;
+    for (int i = 0; i < 200; ++i) {
+      PointLiDAR p(0.37f * i, -0.11f * i, 0.05f * i);
+      p.classification = static_cast<std::uint8_t>(i % 7);
+      p.point_source_id = static_cast<std::uint16_t>(10 + i % 2);
+      cloud.push_back(p);
+    }
+    io::SaveOptions so;
+    so.las_minor_version = static_cast<std::uint8_t>(minor);
+    so.las_point_format = static_cast<std::uint8_t>(format);
+    const std::string las = (dir / ("f" + std::to_string(format) + ".las")).string();
+    const std::string log = las + ".txt";
+    std::string error;
+    ASSERT_TRUE(io::saveCloud(las, cloud, {650000.0, 6860000.0, 100.0}, error, so)) << error;
+    ASSERT_EQ(std::system(("python3 " + script.string() + " " + las + " > " + log).c_str()), 0);
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("LAS 1." + std::to_string(minor) + "  point format " +
+                        std::to_string(format)),
+              std::string::npos) << text;
+    EXPECT_NE(text.find("points 200  compressed=False"), std::string::npos) << text;
+    EXPECT_NE(text.find("records read 200"), std::string::npos) << text;
+    EXPECT_NE(text.find("point source IDs: 2 distinct"), std::string::npos) << text;
+    // "header bounds min (a, b, c) max (d, e, f)" vs "data bounds min (a b c) max (d e f)"
+    auto numbers = [&](const std::string& key) {
+      std::string line = text.substr(text.find(key));
+      line = line.substr(0, line.find('\n'));
+      std::vector<double> v;
+      for (char& c : line)
+        if (c == '(' || c == ')' || c == ',')
+          c = ' ';
+      std::istringstream s(line.substr(line.find("min") + 3));
+      std::string word;
+      while (s >> word)
+        if (word != "max")
+          v.push_back(std::stod(word));
+      return v;
+    };
+    const auto hdr = numbers("header bounds"), data = numbers("data bounds");
+    ASSERT_EQ(hdr.size(), 6u) << text;
+    ASSERT_EQ(data.size(), 6u) << text;
+    for (int k = 0; k < 6; ++k)
+      EXPECT_NEAR(hdr[k], data[k], 1e-3) << text;  // data bounds are printed with 3 decimals
+  }
+  std::filesystem::remove_all(dir);
 }
