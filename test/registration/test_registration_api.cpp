@@ -1,0 +1,289 @@
+// LeastSquaresSurfaceMatching as a pcl::Registration: drop-in swap with IterativeClosestPoint
+// through a base pointer, parameter presets / fixed parameters, undeterminable parameters on a
+// flat plane, a user-defined conjugate rule, other point types, and bad input.
+#include "ls3d_test_utils.h"
+
+#include <pcl_ls3d/rules/lnd_rule.h>
+
+#include <pcl/common/io.h>
+#include <pcl/registration/icp.h>
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <limits>
+
+using namespace ls3d_test;
+using pcl_ls3d::Vector7d;
+
+namespace {
+pcl::PointCloud<pcl::PointXYZ>::Ptr
+toXYZ(const Cloud& c)
+{
+  pcl::PointCloud<pcl::PointXYZ>::Ptr out(new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::copyPointCloud(c, *out);
+  return out;
+}
+
+// Flat plane z = 0 on a 0.5 m grid, optionally shifted.
+Cloud::Ptr
+flatPlane(double dx, double dz)
+{
+  Cloud::Ptr c(new Cloud);
+  for (int i = -40; i <= 40; ++i)
+    for (int j = -40; j <= 40; ++j)
+      c->push_back(PointT(static_cast<float>(0.5 * i + dx), static_cast<float>(0.5 * j + 0.1 * (i % 2)),
+                          static_cast<float>(dz)));
+  return c;
+}
+}  // namespace
+
+// The same code path drives ICP and LS3D through pcl::Registration::Ptr; LS3D with the
+// default LND rule must land within 3 cm (mean displacement) of the truth on a 2 cm-noise pair.
+TEST(Ls3dRegistration, SwapsWithIcpThroughBasePointer)
+{
+  const auto pair = smallPair(3, 100.0, 1.0, 1.0, 0.8, 0.02);
+  auto src = toXYZ(*pair.source), tgt = toXYZ(*pair.target);
+  using Reg = pcl::Registration<pcl::PointXYZ, pcl::PointXYZ>;
+  std::vector<Reg::Ptr> methods{
+      Reg::Ptr(new pcl_ls3d::LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ>),
+      Reg::Ptr(new pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>)};
+  for (const auto& reg : methods) {
+    reg->setInputSource(src);
+    reg->setInputTarget(tgt);
+    reg->setMaximumIterations(50);
+    reg->setMaxCorrespondenceDistance(5.0);
+    reg->setTransformationEpsilon(1e-10);
+    pcl::PointCloud<pcl::PointXYZ> out;
+    reg->align(out, Eigen::Matrix4f::Identity());
+    ASSERT_TRUE(reg->hasConverged()) << reg->getClassName();
+    EXPECT_EQ(out.size(), src->size());
+    EXPECT_TRUE(std::isfinite(reg->getFitnessScore()));
+    if (reg->getClassName() == "LeastSquaresSurfaceMatching") {
+      const auto e = displacementError(*pair.source, reg->getFinalTransformation().cast<double>(),
+                                       pair.truth.matrix());
+      EXPECT_LT(e.mean, 0.03);  // 2 cm noise + ~1 cm TIN interpolation bias on this relief
+      // output = source transformed by the final transformation, as in ICP
+      const Eigen::Vector4f p = reg->getFinalTransformation() * (*src)[0].getVector4fMap();
+      EXPECT_NEAR(out[0].x, p.x(), 1e-4);
+    }
+  }
+}
+
+// A guess close to the truth is honoured (align(out, guess)); the default max iterations is 30.
+TEST(Ls3dRegistration, AlignWithGuess)
+{
+  const auto pair = smallPair(4, 100.0, 1.0, 1.0, 0.8, 0.02);
+  LS3D ls3d;
+  EXPECT_EQ(ls3d.getMaximumIterations(), 30);
+  ls3d.setInputSource(pair.source);
+  ls3d.setInputTarget(pair.target);
+  Cloud out;
+  ls3d.align(out, pair.truth.matrix().cast<float>());
+  ASSERT_TRUE(ls3d.hasConverged());
+  EXPECT_LT(displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
+                              pair.truth.matrix()).mean, 0.02);
+  EXPECT_LE(ls3d.getReport().iterations, 10);
+}
+
+// Infinite a-priori weight: the parameter stays EXACTLY at its a-priori value.
+TEST(Ls3dRegistration, FixedParametersStayExactlyAtAprioriValues)
+{
+  const auto pair = smallPair(5, 100.0, 1.0, 1.0, 0.8, 0.02);
+  LS3D ls3d;
+  ls3d.setInputSource(pair.source);
+  ls3d.setInputTarget(pair.target);
+  ls3d.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6);
+  Vector7d values;
+  values << 0, 0, 0.3, 0, 0, 0, 1.0;
+  ls3d.setParameterValues(values);
+  ls3d.fixParameter(pcl_ls3d::TZ);
+  Cloud out;
+  ls3d.align(out);
+  ASSERT_TRUE(ls3d.hasConverged());
+  const auto& r = ls3d.getReport();
+  EXPECT_EQ(r.parameters[pcl_ls3d::TZ], 0.3);
+  EXPECT_EQ(r.parameters[pcl_ls3d::SCALE], 1.0);
+  EXPECT_TRUE(r.fixed[pcl_ls3d::TZ]);
+  EXPECT_EQ(r.sigmas[pcl_ls3d::TZ], 0.0);
+  EXPECT_EQ(r.qxx.row(pcl_ls3d::SCALE).norm(), 0.0);
+  EXPECT_TRUE(r.determinable[pcl_ls3d::TX]);
+  EXPECT_EQ(r.redundancy, static_cast<long>(r.observations_used) - 5);
+}
+
+// Presets are one setting away: height only recovers a pure z offset.
+TEST(Ls3dRegistration, HeightOnlyPreset)
+{
+  LS3D ls3d;
+  pcl_ls3d::AdjustmentSettings s = pcl_ls3d::AdjustmentSettings::heightOnly();
+  ASSERT_TRUE(ls3d.setAdjustmentSettings(s));
+  const auto pair = smallPair(6, 80.0, 1.0, 1.0, 1.0, 0.02);
+  // Source = target surface lifted by 0.25 m in its own frame: build from the target itself.
+  Cloud::Ptr src(new Cloud(*pair.target));
+  for (auto& p : *src)
+    p.z -= 0.25f;
+  ls3d.setInputSource(src);
+  ls3d.setInputTarget(pair.target);
+  Cloud out;
+  ls3d.align(out);
+  ASSERT_TRUE(ls3d.hasConverged());
+  EXPECT_NEAR(ls3d.getFinalTransformation()(2, 3), 0.25, 1e-4);  // float cloud coordinates
+  EXPECT_EQ(ls3d.getFinalTransformation()(0, 3), 0.0f);
+}
+
+// A flat plane determines tz, φ, ω but not tx, ty (and not κ, m): reported undeterminable,
+// held, with infinite σ — never a confident number.
+TEST(Ls3dRegistration, FlatPlaneFlagsHorizontalShiftUndeterminable)
+{
+  LS3D ls3d;
+  ls3d.setInputSource(flatPlane(0.3, -0.1));
+  ls3d.setInputTarget(flatPlane(0.0, 0.0));
+  Cloud out;
+  ls3d.align(out);
+  ASSERT_TRUE(ls3d.hasConverged()) << ls3d.getReport().fullReport();
+  const auto& r = ls3d.getReport();
+  EXPECT_FALSE(r.determinable[pcl_ls3d::TX]);
+  EXPECT_FALSE(r.determinable[pcl_ls3d::TY]);
+  EXPECT_TRUE(std::isinf(r.sigmas[pcl_ls3d::TX]));
+  EXPECT_TRUE(r.determinable[pcl_ls3d::TZ]);
+  EXPECT_NEAR(r.parameters[pcl_ls3d::TZ], 0.1, 1e-5);
+  EXPECT_EQ(r.parameters[pcl_ls3d::TX], 0.0);  // held at the a-priori (guess) value
+  EXPECT_NE(r.message.find("tx"), std::string::npos);
+}
+
+namespace {
+// A user rule written without touching the engine: LND, but counting its calls.
+class CountingRule : public pcl_ls3d::ConjugateRule
+{
+public:
+  std::string
+  name() const override
+  {
+    return "CountingLND";
+  }
+  bool
+  findConjugate(const Eigen::Vector3d& q, const pcl_ls3d::TargetSurface& t, double d,
+                pcl_ls3d::CorrespondenceCache& c, pcl_ls3d::ConjugateObservations& out) const override
+  {
+    ++calls;
+    return inner.findConjugate(q, t, d, c, out);
+  }
+  mutable std::atomic<long> calls{0};
+  pcl_ls3d::LndRule inner;
+};
+}  // namespace
+
+TEST(Ls3dRegistration, CustomRuleIsUsedByTheEngine)
+{
+  const auto pair = smallPair(7, 80.0, 1.0, 1.0, 0.8, 0.02);
+  auto rule = std::make_shared<CountingRule>();
+  LS3D ls3d;
+  ls3d.setConjugateRule(rule);
+  ls3d.setInputSource(pair.source);
+  ls3d.setInputTarget(pair.target);
+  Cloud out;
+  ls3d.align(out);
+  ASSERT_TRUE(ls3d.hasConverged());
+  EXPECT_EQ(ls3d.getReport().rule_name, "CountingLND");
+  EXPECT_GE(rule->calls.load(), static_cast<long>(pair.source->size()));
+  EXPECT_LT(displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
+                              pair.truth.matrix()).mean, 0.03);
+}
+
+// Another instantiated point type (PointNormal) and source thinning.
+TEST(Ls3dRegistration, OtherPointTypesAndThinning)
+{
+  const auto pair = smallPair(8, 80.0, 2.0, 2.0, 0.8, 0.02);
+  pcl::PointCloud<pcl::PointNormal>::Ptr tgt(new pcl::PointCloud<pcl::PointNormal>);
+  pcl::PointCloud<pcl::PointNormal>::Ptr src(new pcl::PointCloud<pcl::PointNormal>);
+  pcl::copyPointCloud(*pair.target, *tgt);
+  pcl::copyPointCloud(*pair.source, *src);
+  pcl_ls3d::LeastSquaresSurfaceMatching<pcl::PointNormal, pcl::PointNormal> ls3d;
+  ls3d.setInputSource(src);
+  ls3d.setInputTarget(tgt);
+  ls3d.setSourceThinning(1.0);
+  pcl::PointCloud<pcl::PointNormal> out;
+  ls3d.align(out);
+  ASSERT_TRUE(ls3d.hasConverged());
+  EXPECT_LT(ls3d.getReport().source_points, pair.source->size() * 3 / 4);
+  EXPECT_LT(displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
+                              pair.truth.matrix()).mean, 0.03);
+}
+
+// Bad input never crashes and leaves hasConverged() false.
+TEST(Ls3dRegistration, BadInputFailsCleanly)
+{
+  const auto pair = smallPair(9, 60.0, 1.0, 1.0, 0.8, 0.02);
+  Cloud out;
+  {  // no target at all
+    LS3D ls3d;
+    ls3d.setInputSource(pair.source);
+    ls3d.align(out);
+    EXPECT_FALSE(ls3d.hasConverged());
+  }
+  {  // NaN-only source
+    Cloud::Ptr nan(new Cloud);
+    nan->resize(100);
+    for (auto& p : *nan)
+      p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+    LS3D ls3d;
+    ls3d.setInputSource(nan);
+    ls3d.setInputTarget(pair.target);
+    ls3d.align(out);
+    EXPECT_FALSE(ls3d.hasConverged());
+    EXPECT_EQ(ls3d.getReport().termination, pcl_ls3d::TerminationType::INVALID_INPUT);
+  }
+  {  // NaN-only target
+    Cloud::Ptr nan(new Cloud);
+    nan->resize(100);
+    for (auto& p : *nan)
+      p.x = p.y = p.z = std::numeric_limits<float>::quiet_NaN();
+    LS3D ls3d;
+    ls3d.setInputSource(pair.source);
+    ls3d.setInputTarget(nan);
+    ls3d.align(out);
+    EXPECT_FALSE(ls3d.hasConverged());
+  }
+  {  // no overlap: target 10 km away
+    Cloud::Ptr far(new Cloud(*pair.target));
+    for (auto& p : *far)
+      p.x += 10000.f;
+    LS3D ls3d;
+    ls3d.setInputSource(pair.source);
+    ls3d.setInputTarget(far);
+    ls3d.align(out);
+    EXPECT_FALSE(ls3d.hasConverged());
+    EXPECT_EQ(ls3d.getReport().termination, pcl_ls3d::TerminationType::NO_OVERLAP);
+  }
+  {  // too few observations: a 6-point target patch
+    Cloud::Ptr tiny(new Cloud);
+    for (int i = 0; i < 6; ++i)
+      tiny->push_back((*pair.target)[static_cast<std::size_t>(i)]);
+    LS3D ls3d;
+    ls3d.setInputSource(pair.source);
+    ls3d.setInputTarget(tiny);
+    ls3d.align(out);
+    EXPECT_FALSE(ls3d.hasConverged());
+  }
+  {  // singular: everything on one straight line
+    Cloud::Ptr line(new Cloud);
+    for (int i = 0; i < 200; ++i)
+      line->push_back(PointT(0.1f * static_cast<float>(i), 0.f, 0.f));
+    LS3D ls3d;
+    ls3d.setInputSource(line);
+    ls3d.setInputTarget(line);
+    ls3d.align(out);
+    EXPECT_FALSE(ls3d.hasConverged());
+  }
+  {  // invalid settings are refused
+    LS3D ls3d;
+    pcl_ls3d::AdjustmentSettings s;
+    s.max_iterations = 0;
+    EXPECT_FALSE(ls3d.setAdjustmentSettings(s));
+    for (int i = 0; i < 7; ++i)
+      s.fixParameter(i);
+    std::string why;
+    EXPECT_FALSE(s.isValid(&why));
+    EXPECT_FALSE(why.empty());
+  }
+}

@@ -1,0 +1,314 @@
+// pcl_ls3d_register: least-squares 3-D surface matching of SOURCE onto TARGET (Zuo et al. 2012).
+#include <pcl_ls3d/evaluation/transform_error.h>
+#include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/registration/least_squares_surface_matching.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+using Cloud = pcl::PointCloud<pcl_ls3d::PointLiDAR>;
+using LS3D = pcl_ls3d::LeastSquaresSurfaceMatching<pcl_ls3d::PointLiDAR, pcl_ls3d::PointLiDAR>;
+
+namespace {
+
+void
+printHelp(const char* prog)
+{
+  print_info("Least-squares 3D surface matching (LS3D): estimates the similarity transform that maps\n"
+             "SOURCE onto TARGET.\n\n"
+             "Usage: %s SOURCE TARGET [options]\n"
+             "  SOURCE, TARGET       .las .pcd .ply .xyz/.txt (target loaded first; the source uses\n"
+             "                       the target's local origin)\n"
+             "  -o ALIGNED           write the transformed source (input coordinates)\n"
+             "  -rule lnd|lzd|icp    conjugate-point rule (default lnd)\n"
+             "  -params 7|6|3|1      similarity, rigid (m fixed), translation, height only (default 7)\n"
+             "  -fix tx,ty,...       also fix these parameters (tx ty tz phi omega kappa m)\n"
+             "  -max_iter N          iteration limit (default 30)\n"
+             "  -K k                 reject residuals beyond k*sigma0 (Zuo eq. 15; default 6)\n"
+             "  -thin step           use one source point per voxel of this edge (default 0 = all)\n"
+             "  -max_dist d          maximum correspondence distance (default unlimited)\n"
+             "  -json REPORT         write a JSON report\n"
+             "  -truth TRUTH.json    compare with a known transform (key \"transformation\": 4x4\n"
+             "                       row-major, SOURCE -> TARGET, input coordinates)\n"
+             "  -overwrite           allow replacing existing output files\n"
+             "  -h                   this help\n",
+             prog);
+}
+
+bool
+fail(const std::string& message)
+{
+  print_error("%s\n", message.c_str());
+  return false;
+}
+
+bool
+parseFixList(const std::string& text, std::vector<int>& indices)
+{
+  std::stringstream ss(text);
+  std::string item;
+  const auto& names = pcl_ls3d::similarityParameterNames();
+  while (std::getline(ss, item, ',')) {
+    int found = -1;
+    for (int i = 0; i < 7; ++i)
+      if (names[static_cast<std::size_t>(i)] == item)
+        found = i;
+    if (found < 0)
+      return false;
+    indices.push_back(found);
+  }
+  return !indices.empty();
+}
+
+bool
+readTruth(const std::string& path, Eigen::Matrix4d& T, std::string& error)
+{
+  std::ifstream in(path);
+  if (!in)
+    return (error = "cannot open truth file " + path).empty();
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    const auto& rows = j.at("transformation");
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c)
+        T(r, c) = rows.at(static_cast<std::size_t>(r)).at(static_cast<std::size_t>(c)).get<double>();
+  }
+  catch (const std::exception& e) {
+    error = "invalid truth file " + path + ": " + e.what();
+    return false;
+  }
+  if (!T.allFinite())
+    return (error = "truth transformation in " + path + " is not finite").empty();
+  return true;
+}
+
+nlohmann::json
+matrixJson(const Eigen::Matrix4d& T)
+{
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r)
+    rows.push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
+  return rows;
+}
+
+nlohmann::json
+finiteOrNull(double v)
+{
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json
+reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, bool converged,
+           const Eigen::Vector3d& origin)
+{
+  const auto& names = pcl_ls3d::similarityParameterNames();
+  nlohmann::json j;
+  j["transformation"] = matrixJson(T_input);
+  j["converged"] = converged;
+  j["termination"] = pcl_ls3d::terminationTypeToString(r.termination);
+  j["message"] = r.message;
+  j["iterations"] = r.iterations;
+  j["sigma0"] = r.sigma0;
+  j["rule"] = r.rule_name;
+  j["estimator"] = r.estimator_name;
+  nlohmann::json params, sigmas, determinable, fixed;
+  for (std::size_t i = 0; i < 7; ++i) {
+    params[names[i]] = r.parameters[static_cast<int>(i)];
+    sigmas[names[i]] = finiteOrNull(r.sigmas[static_cast<int>(i)]);
+    determinable[names[i]] = r.determinable[i];
+    fixed[names[i]] = r.fixed[i];
+  }
+  j["parameters"] = params;
+  j["parameters_note"] = "reduced frame: x_t - local_origin = t + m R (x_s - local_origin_source)";
+  j["sigmas"] = sigmas;
+  j["determinable"] = determinable;
+  j["fixed"] = fixed;
+  nlohmann::json corr = nlohmann::json::array();
+  for (int a = 0; a < 7; ++a) {
+    nlohmann::json row = nlohmann::json::array();
+    for (int b = 0; b < 7; ++b)
+      row.push_back(r.correlation(a, b));
+    corr.push_back(row);
+  }
+  j["correlation"] = corr;
+  j["observations_used"] = r.observations_used;
+  j["observations_rejected"] = r.observations_rejected;
+  j["correspondences"] = r.correspondences;
+  j["source_points_used"] = r.source_points;
+  j["redundancy"] = r.redundancy;
+  const Eigen::Vector3d o_t = r.local_origin_target + origin, o_s = r.local_origin_source + origin;
+  j["local_origin"] = {o_t.x(), o_t.y(), o_t.z()};
+  j["local_origin_source"] = {o_s.x(), o_s.y(), o_s.z()};
+  j["cloud_origin"] = {origin.x(), origin.y(), origin.z()};
+  return j;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  // Positional files and the known options (anything else starting with '-' is an error).
+  static const std::vector<std::string> valued = {"-o", "-rule", "-params", "-fix", "-max_iter",
+                                                  "-K", "-thin", "-max_dist", "-json", "-truth"};
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "-overwrite")
+      continue;
+    if (std::find(valued.begin(), valued.end(), a) != valued.end()) {
+      if (i + 1 >= argc)
+        return fail("option " + a + " needs a value"), 1;
+      ++i;
+      continue;
+    }
+    if (!a.empty() && a[0] == '-' && !(a.size() > 1 && (std::isdigit(a[1]) || a[1] == '.')))
+      return fail("unknown option " + a + " (see -h)"), 1;
+    files.push_back(a);
+  }
+  if (files.size() != 2)
+    return fail("expected exactly two input files, SOURCE and TARGET (see -h)"), 1;
+  const std::string source_path = files[0], target_path = files[1];
+
+  std::string out_path, rule_text = "lnd", fix_text, json_path, truth_path;
+  int params = 7, max_iter = 30;
+  double K = 6.0, thin = 0.0, max_dist = -1.0;
+  const bool overwrite = find_switch(argc, argv, "-overwrite");
+  parse_argument(argc, argv, "-o", out_path);
+  parse_argument(argc, argv, "-rule", rule_text);
+  parse_argument(argc, argv, "-params", params);
+  parse_argument(argc, argv, "-fix", fix_text);
+  parse_argument(argc, argv, "-max_iter", max_iter);
+  parse_argument(argc, argv, "-K", K);
+  parse_argument(argc, argv, "-thin", thin);
+  parse_argument(argc, argv, "-max_dist", max_dist);
+  parse_argument(argc, argv, "-json", json_path);
+  parse_argument(argc, argv, "-truth", truth_path);
+
+  // Settings, validated before any file is read.
+  pcl_ls3d::ConjugateRuleType rule;
+  if (!pcl_ls3d::parseConjugateRuleType(rule_text, rule))
+    return fail("unknown -rule " + rule_text + " (lnd, lzd or icp)"), 1;
+  pcl_ls3d::AdjustmentSettings settings;
+  switch (params) {
+  case 7: settings.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7); break;
+  case 6: settings.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6); break;
+  case 3: settings.setParameterModel(pcl_ls3d::ParameterModel::TRANSLATION_3); break;
+  case 1: settings.setParameterModel(pcl_ls3d::ParameterModel::HEIGHT_1); break;
+  default: return fail("-params must be 7, 6, 3 or 1"), 1;
+  }
+  std::vector<int> fixes;
+  if (!fix_text.empty() && !parseFixList(fix_text, fixes))
+    return fail("-fix expects a comma list of tx,ty,tz,phi,omega,kappa,m"), 1;
+  for (int i : fixes)
+    settings.fixParameter(i);
+  settings.max_iterations = max_iter;
+  settings.source_thinning = thin;
+  if (max_dist != -1.0)
+    settings.max_correspondence_distance = max_dist;
+  std::string why;
+  if (!settings.isValid(&why))
+    return fail("invalid settings: " + why), 1;
+  if (!(K > 0.0) || !std::isfinite(K))
+    return fail("-K must be > 0"), 1;
+
+  // Outputs must not clobber inputs or existing files.
+  for (const std::string& out : {out_path, json_path}) {
+    if (out.empty())
+      continue;
+    if (pcl_ls3d::io::isSameFile(out, source_path) || pcl_ls3d::io::isSameFile(out, target_path) ||
+        out == source_path || out == target_path)
+      return fail("output " + out + " would overwrite an input file"), 1;
+    if (!overwrite && std::ifstream(out).good())
+      return fail("output " + out + " exists (use -overwrite)"), 1;
+  }
+  if (!out_path.empty() && out_path == json_path)
+    return fail("-o and -json name the same file"), 1;
+  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
+  std::string error;
+  if (!truth_path.empty() && !readTruth(truth_path, truth, error))
+    return fail(error), 1;
+
+  // Load: target first, then the source in the target's local origin.
+  TicToc tt;
+  tt.tic();
+  Cloud::Ptr target(new Cloud), source(new Cloud);
+  pcl_ls3d::io::CloudInfo tinfo, sinfo;
+  if (!pcl_ls3d::io::loadCloud(target_path, *target, tinfo, error))
+    return fail(error), 1;
+  pcl_ls3d::io::LoadOptions sopt;
+  sopt.use_origin = true;
+  sopt.origin = tinfo.origin;
+  if (!pcl_ls3d::io::loadCloud(source_path, *source, sinfo, error, sopt))
+    return fail(error), 1;
+  const double t_load = tt.toc();
+  print_info("Loaded target %s (%zu points) and source %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
+             target_path.c_str(), target->size(), source_path.c_str(), source->size(),
+             tinfo.origin.x(), tinfo.origin.y(), tinfo.origin.z(), t_load);
+
+  // Adjust.
+  tt.tic();
+  LS3D ls3d;
+  ls3d.setAdjustmentSettings(settings);
+  ls3d.setConjugateRule(rule);
+  ls3d.setRobustEstimator(std::make_shared<pcl_ls3d::ZuoEstimator>(K));
+  ls3d.setInputSource(source);
+  ls3d.setInputTarget(target);
+  Cloud aligned;
+  ls3d.align(aligned);
+  const double t_align = tt.toc();
+  const pcl_ls3d::AdjustmentReport& r = ls3d.getReport();
+  if (!r.isSolutionUsable())
+    return fail(std::string("registration failed: ") + pcl_ls3d::terminationTypeToString(r.termination) +
+                ": " + r.message), 1;
+
+  // Report: the local transform re-expressed in input coordinates (both clouds share the origin).
+  const Eigen::Matrix4d T_input = pcl_ls3d::localToGlobal(r.transformation, tinfo.origin, tinfo.origin);
+  print_info("%s", r.fullReport().c_str());
+  print_info("Transformation (SOURCE -> TARGET, input coordinates):\n");
+  for (int i = 0; i < 4; ++i)
+    print_info("  %14.8f %14.8f %14.8f %16.6f\n", T_input(i, 0), T_input(i, 1), T_input(i, 2), T_input(i, 3));
+  print_info("Timings: load %.0f ms, adjustment %.0f ms\n", t_load, t_align);
+
+  nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), tinfo.origin);
+  j["timings_ms"] = {{"load", t_load}, {"adjust", t_align}};
+  if (!truth_path.empty()) {
+    Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(source->size()));
+    for (std::size_t i = 0; i < source->size(); ++i)
+      pts.col(static_cast<Eigen::Index>(i)) = (*source)[i].getVector3fMap().cast<double>() + tinfo.origin;
+    const auto e = pcl_ls3d::evaluation::computeTransformError(T_input, truth, pts);
+    print_info("Error vs truth: mean displacement %.4f, max %.4f, max over bbox %.4f\n", e.mean, e.max,
+               e.max_bbox);
+    j["truth_error"] = {{"mean_displacement", e.mean}, {"max_displacement", e.max},
+                        {"max_displacement_bbox", e.max_bbox}};
+  }
+
+  if (!out_path.empty()) {
+    tt.tic();
+    pcl_ls3d::io::SaveOptions so;
+    so.overwrite = overwrite;
+    if (!pcl_ls3d::io::saveCloud(out_path, aligned, tinfo.origin, error, so))
+      return fail(error), 1;
+    print_info("Wrote %s in %.0f ms\n", out_path.c_str(), tt.toc());
+  }
+  if (!json_path.empty()) {
+    std::ofstream out(json_path);
+    if (!(out << j.dump(2) << "\n"))
+      return fail("cannot write " + json_path), 1;
+  }
+  return 0;
+}
