@@ -186,6 +186,9 @@ main(int argc, char** argv)
   print_info(") in ");
   print_value("%g", tt.toc());
   print_info(" ms\n");
+  if (info.xyz_unmapped_columns)
+    print_info("Note: %zu column(s) of the XYZ input are not used (name them with -columns).\n",
+               info.xyz_unmapped_columns);
   print_info("Local origin (%s): ", load.use_origin ? "forced" : "auto");
   print_value("%.3f %.3f %.3f\n", info.origin[0], info.origin[1], info.origin[2]);
 

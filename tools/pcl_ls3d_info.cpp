@@ -46,6 +46,8 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   j["min"] = vec(info.min_file);
   j["max"] = vec(info.max_file);
   j["fields"] = info.fields;
+  if (info.format == "xyz")
+    j["xyz_unmapped_columns"] = info.xyz_unmapped_columns;
   j["load_ms"] = ms;
   if (info.format == "las") {
     const auto& h = info.las;
@@ -96,6 +98,9 @@ printText(const nlohmann::json& j)
   std::string fields;
   for (const auto& f : j["fields"])
     fields += " " + f.get<std::string>();
+  if (j.value("xyz_unmapped_columns", std::size_t(0)) > 0)
+    fields += " (+" + std::to_string(j["xyz_unmapped_columns"].get<std::size_t>()) +
+              " unmapped columns; name them with -columns)";
   print_info("  fields:%s\n", fields.c_str());
   if (j.contains("las")) {
     const auto& l = j["las"];

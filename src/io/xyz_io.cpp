@@ -160,6 +160,10 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
     if (map.empty())
       map = {Column::X, Column::Y, Column::Z};
     if (needed == 0) {
+      std::size_t mapped = 0;
+      for (std::size_t c = 0; c < map.size() && c < tokens.size(); ++c)
+        mapped += map[c] != Column::Skip;
+      info.xyz_unmapped_columns = tokens.size() - mapped;
       for (std::size_t c = 0; c < map.size(); ++c)
         if (map[c] != Column::Skip)
           needed = c + 1;

@@ -89,6 +89,7 @@ TEST(XyzIO, ExtraColumnsIgnoredByDefaultMappedByOption)
   ASSERT_EQ(cloud.size(), 2u);
   EXPECT_EQ(cloud[0].classification, 0);
   EXPECT_EQ(info.fields.size(), 3u);
+  EXPECT_EQ(info.xyz_unmapped_columns, 4u);
 
   io::LoadOptions options;
   options.xyz_columns = "x,y,z,_,_,skip,classification";
