@@ -261,6 +261,214 @@ writeAll(const std::vector<Output>& clouds, const std::string& json_path, const 
   return true;
 }
 
+/// What every subcommand needs: seed, output names, overwrite flag.
+struct Context
+{
+  std::uint32_t seed = 1;
+  std::string outdir, format, json_path;
+  bool overwrite = false;
+  std::string
+  file(const std::string& stem) const
+  {
+    return (fs::path(outdir) / (stem + "." + format)).string();
+  }
+};
+
+int
+runPair(int argc, char** argv, const Context& ctx)
+{
+  bool ok = true;
+  std::string why;
+  TicToc tt;
+  synth::RegistrationPairSettings s;
+  s.seed = ctx.seed;
+  setIf(argc, argv, "-noise", s.noise_sigma, ok);
+  setSize(argc, argv, s.size_x, s.size_y, ok);
+  setIf(argc, argv, "-source_density", s.source_density, ok);
+  setIf(argc, argv, "-target_density", s.target_density, ok);
+  setIf(argc, argv, "-overlap", s.overlap, ok);
+  setIf(argc, argv, "-relief", s.relief, ok);
+  setIf(argc, argv, "-wavelength", s.wavelength, ok);
+  setIf(argc, argv, "-buildings_per_ha", s.building_settings.per_hectare, ok);
+  setTransform(argc, argv, s.truth, true, ok);
+  setOrigin(argc, argv, s.origin, ok);
+  s.buildings = !find_switch(argc, argv, "-no_buildings");
+  if (!ok)
+    return -1;
+  if (!s.isValid(&why)) {
+    print_error("Invalid pair settings: %s.\n", why.c_str());
+    return -1;
+  }
+  if (!refuseExisting({ctx.json_path, ctx.file("source"), ctx.file("target")}, ctx.overwrite))
+    return -1;
+  tt.tic();
+  const auto pair = synth::makeRegistrationPair(s);
+  print_info("Generated pair: ");
+  print_value("%zu", pair.source->size());
+  print_info(" source, ");
+  print_value("%zu", pair.target->size());
+  print_info(" target points in ");
+  print_value("%g", tt.toc());
+  print_info(" ms\n");
+  return writeAll({{ctx.file("source"), pair.source.get(), pair.origin},
+                   {ctx.file("target"), pair.target.get(), pair.origin}},
+                  ctx.json_path, synth::truthJson(pair, s), ctx.overwrite, ctx.format) ? 0 : -1;
+}
+
+int
+runScene(int argc, char** argv, const Context& ctx)
+{
+  bool ok = true;
+  std::string why;
+  TicToc tt;
+  synth::SceneSettings s;
+  s.seed = ctx.seed;
+  setIf(argc, argv, "-noise", s.noise_sigma, ok);
+  setSize(argc, argv, s.size_x, s.size_y, ok);
+  setIf(argc, argv, "-density", s.density, ok);
+  setIf(argc, argv, "-relief", s.relief, ok);
+  setIf(argc, argv, "-wavelength", s.wavelength, ok);
+  setIf(argc, argv, "-buildings_per_ha", s.building_settings.per_hectare, ok);
+  setIf(argc, argv, "-trees", s.trees_per_hectare, ok);
+  setIf(argc, argv, "-shrubs", s.shrubs_per_hectare, ok);
+  setIf(argc, argv, "-cars", s.cars_per_hectare, ok);
+  setInt(argc, argv, "-car_class", s.car_class, 0, 255, ok);
+  setInt(argc, argv, "-towers", s.towers, 2, 100, ok);
+  setInt(argc, argv, "-wires", s.wires, 1, 20, ok);
+  setOrigin(argc, argv, s.origin, ok);
+  s.buildings = !find_switch(argc, argv, "-no_buildings");
+  s.power_line = !find_switch(argc, argv, "-no_power_line");
+  if (!ok)
+    return -1;
+  if (!s.isValid(&why)) {
+    print_error("Invalid scene settings: %s.\n", why.c_str());
+    return -1;
+  }
+  if (!refuseExisting({ctx.json_path, ctx.file("scene")}, ctx.overwrite))
+    return -1;
+  tt.tic();
+  const auto scene = synth::makeScene(s);
+  print_info("Generated scene: ");
+  print_value("%zu", scene.cloud->size());
+  print_info(" points, ");
+  print_value("%zu", scene.objects.size());
+  print_info(" objects in ");
+  print_value("%g", tt.toc());
+  print_info(" ms\n");
+  return writeAll({{ctx.file("scene"), scene.cloud.get(), scene.origin}}, ctx.json_path,
+                  synth::truthJson(scene, s), ctx.overwrite, ctx.format) ? 0 : -1;
+}
+
+int
+runStrips(int argc, char** argv, const Context& ctx)
+{
+  bool ok = true;
+  std::string why;
+  TicToc tt;
+  synth::StripSettings s;
+  s.seed = ctx.seed;
+  setIf(argc, argv, "-noise", s.noise_sigma, ok);
+  setInt(argc, argv, "-strips", s.num_strips, 1, 1000, ok);
+  setIf(argc, argv, "-heading", s.heading, ok);
+  setIf(argc, argv, "-length", s.strip_length, ok);
+  setIf(argc, argv, "-swath", s.swath_width, ok);
+  setIf(argc, argv, "-side_overlap", s.side_overlap, ok);
+  setIf(argc, argv, "-density", s.density, ok);
+  setIf(argc, argv, "-speed", s.speed, ok);
+  setIf(argc, argv, "-shift_sigma", s.shift_sigma, ok);
+  setIf(argc, argv, "-angle_sigma", s.angle_sigma, ok);
+  setIf(argc, argv, "-scale_sigma", s.scale_sigma, ok);
+  setIf(argc, argv, "-relief", s.relief, ok);
+  setIf(argc, argv, "-wavelength", s.wavelength, ok);
+  setIf(argc, argv, "-buildings_per_ha", s.building_settings.per_hectare, ok);
+  setOrigin(argc, argv, s.origin, ok);
+  std::string pattern;
+  if (parse_argument(argc, argv, "-pattern", pattern) >= 0) {
+    if (pattern != "zigzag" && pattern != "parallel") {
+      print_error("-pattern must be zigzag or parallel, got '%s'.\n", pattern.c_str());
+      return -1;
+    }
+    s.pattern = pattern == "zigzag" ? synth::ScanPattern::ZIGZAG : synth::ScanPattern::PARALLEL;
+  }
+  s.buildings = !find_switch(argc, argv, "-no_buildings");
+  s.fix_first = !find_switch(argc, argv, "-no_fix_first");
+  if (!ok)
+    return -1;
+  if (!s.isValid(&why)) {
+    print_error("Invalid strip settings: %s.\n", why.c_str());
+    return -1;
+  }
+  const bool split = find_switch(argc, argv, "-split");
+  std::vector<std::string> planned{ctx.json_path, ctx.file("strips")};
+  for (int k = 0; split && k < s.num_strips; ++k)
+    planned.push_back(ctx.file("strip_" + std::to_string(s.first_source_id + k)));
+  if (!refuseExisting(planned, ctx.overwrite))
+    return -1;
+  tt.tic();
+  const auto block = synth::makeStripBlock(s);
+  print_info("Generated ");
+  print_value("%zu", block.strips.size());
+  print_info(" strips, ");
+  print_value("%zu", block.cloud->size());
+  print_info(" points in ");
+  print_value("%g", tt.toc());
+  print_info(" ms\n");
+  std::vector<Cloud::Ptr> parts;
+  std::vector<Output> outputs{{ctx.file("strips"), block.cloud.get(), block.origin}};
+  if (split)
+    for (std::size_t k = 0; k < block.strips.size(); ++k) {
+      parts.push_back(block.stripCloud(k));
+      outputs.push_back({ctx.file("strip_" + std::to_string(block.strips[k].point_source_id)),
+                         parts.back().get(), block.origin});
+    }
+  return writeAll(outputs, ctx.json_path, synth::truthJson(block, s), ctx.overwrite, ctx.format) ? 0 : -1;
+}
+
+int
+runLi(int argc, char** argv, const Context& ctx)
+{
+  bool ok = true;
+  std::string why;
+  TicToc tt;
+  synth::LiSurfaceSettings s;
+  s.seed = ctx.seed;
+  setIf(argc, argv, "-noise", s.noise_sigma, ok);
+  setInt(argc, argv, "-grid", s.grid_size, 2, 20000, ok);
+  setIf(argc, argv, "-spacing", s.spacing, ok);
+  setIf(argc, argv, "-relief", s.relief, ok);
+  setIf(argc, argv, "-wavelength", s.wavelength, ok);
+  setIf(argc, argv, "-percent", s.deformation_percent, ok);
+  setIf(argc, argv, "-c", s.deformation_c, ok);
+  setTransform(argc, argv, s.truth, true, ok);
+  std::string position;
+  if (parse_argument(argc, argv, "-position", position) >= 0 &&
+      !synth::parseDeformationPosition(position, s.position)) {
+    print_error("Unknown -position '%s' (see -h).\n", position.c_str());
+    return -1;
+  }
+  s.noise_on_reference = find_switch(argc, argv, "-noise_on_reference");
+  if (!ok)
+    return -1;
+  if (!s.isValid(&why)) {
+    print_error("Invalid li settings: %s.\n", why.c_str());
+    return -1;
+  }
+  if (!refuseExisting({ctx.json_path, ctx.file("reference"), ctx.file("mate")}, ctx.overwrite))
+    return -1;
+  tt.tic();
+  const auto li = synth::makeLiSurface(s);
+  print_info("Generated Li surface: ");
+  print_value("%zu", li.reference->size());
+  print_info(" nodes, ");
+  print_value("%.2f", li.percent);
+  print_info(" %% deformed in ");
+  print_value("%g", tt.toc());
+  print_info(" ms\n");
+  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
+  return writeAll({{ctx.file("reference"), li.reference.get(), zero}, {ctx.file("mate"), li.mate.get(), zero}},
+                  ctx.json_path, synth::truthJson(li, s), ctx.overwrite, ctx.format) ? 0 : -1;
+}
+
 }  // namespace
 
 int
@@ -299,179 +507,17 @@ main(int argc, char** argv)
     print_error("Cannot create output folder %s.\n", outdir.c_str());
     return -1;
   }
-  auto file = [&](const std::string& stem) { return (fs::path(outdir) / (stem + "." + format)).string(); };
-  const std::string json_path = (fs::path(outdir) / "truth.json").string();
-  std::string why;
-  TicToc tt;
-
-  if (cmd == "pair") {
-    synth::RegistrationPairSettings s;
-    s.seed = seed;
-    setIf(argc, argv, "-noise", s.noise_sigma, ok);
-    setSize(argc, argv, s.size_x, s.size_y, ok);
-    setIf(argc, argv, "-source_density", s.source_density, ok);
-    setIf(argc, argv, "-target_density", s.target_density, ok);
-    setIf(argc, argv, "-overlap", s.overlap, ok);
-    setIf(argc, argv, "-relief", s.relief, ok);
-    setIf(argc, argv, "-wavelength", s.wavelength, ok);
-    setIf(argc, argv, "-buildings_per_ha", s.building_settings.per_hectare, ok);
-    setTransform(argc, argv, s.truth, true, ok);
-    setOrigin(argc, argv, s.origin, ok);
-    s.buildings = !find_switch(argc, argv, "-no_buildings");
-    if (!ok)
-      return -1;
-    if (!s.isValid(&why)) {
-      print_error("Invalid pair settings: %s.\n", why.c_str());
-      return -1;
-    }
-    if (!refuseExisting({json_path, file("source"), file("target")}, overwrite))
-      return -1;
-    tt.tic();
-    const auto pair = synth::makeRegistrationPair(s);
-    print_info("Generated pair: ");
-    print_value("%zu", pair.source->size());
-    print_info(" source, ");
-    print_value("%zu", pair.target->size());
-    print_info(" target points in ");
-    print_value("%g", tt.toc());
-    print_info(" ms\n");
-    return writeAll({{file("source"), pair.source.get(), pair.origin},
-                     {file("target"), pair.target.get(), pair.origin}},
-                    json_path, synth::truthJson(pair, s), overwrite, format) ? 0 : -1;
-  }
-  if (cmd == "scene") {
-    synth::SceneSettings s;
-    s.seed = seed;
-    setIf(argc, argv, "-noise", s.noise_sigma, ok);
-    setSize(argc, argv, s.size_x, s.size_y, ok);
-    setIf(argc, argv, "-density", s.density, ok);
-    setIf(argc, argv, "-relief", s.relief, ok);
-    setIf(argc, argv, "-wavelength", s.wavelength, ok);
-    setIf(argc, argv, "-buildings_per_ha", s.building_settings.per_hectare, ok);
-    setIf(argc, argv, "-trees", s.trees_per_hectare, ok);
-    setIf(argc, argv, "-shrubs", s.shrubs_per_hectare, ok);
-    setIf(argc, argv, "-cars", s.cars_per_hectare, ok);
-    setInt(argc, argv, "-car_class", s.car_class, 0, 255, ok);
-    setInt(argc, argv, "-towers", s.towers, 2, 100, ok);
-    setInt(argc, argv, "-wires", s.wires, 1, 20, ok);
-    setOrigin(argc, argv, s.origin, ok);
-    s.buildings = !find_switch(argc, argv, "-no_buildings");
-    s.power_line = !find_switch(argc, argv, "-no_power_line");
-    if (!ok)
-      return -1;
-    if (!s.isValid(&why)) {
-      print_error("Invalid scene settings: %s.\n", why.c_str());
-      return -1;
-    }
-    if (!refuseExisting({json_path, file("scene")}, overwrite))
-      return -1;
-    tt.tic();
-    const auto scene = synth::makeScene(s);
-    print_info("Generated scene: ");
-    print_value("%zu", scene.cloud->size());
-    print_info(" points, ");
-    print_value("%zu", scene.objects.size());
-    print_info(" objects in ");
-    print_value("%g", tt.toc());
-    print_info(" ms\n");
-    return writeAll({{file("scene"), scene.cloud.get(), scene.origin}}, json_path,
-                    synth::truthJson(scene, s), overwrite, format) ? 0 : -1;
-  }
-  if (cmd == "strips") {
-    synth::StripSettings s;
-    s.seed = seed;
-    setIf(argc, argv, "-noise", s.noise_sigma, ok);
-    setInt(argc, argv, "-strips", s.num_strips, 1, 1000, ok);
-    setIf(argc, argv, "-heading", s.heading, ok);
-    setIf(argc, argv, "-length", s.strip_length, ok);
-    setIf(argc, argv, "-swath", s.swath_width, ok);
-    setIf(argc, argv, "-side_overlap", s.side_overlap, ok);
-    setIf(argc, argv, "-density", s.density, ok);
-    setIf(argc, argv, "-speed", s.speed, ok);
-    setIf(argc, argv, "-shift_sigma", s.shift_sigma, ok);
-    setIf(argc, argv, "-angle_sigma", s.angle_sigma, ok);
-    setIf(argc, argv, "-scale_sigma", s.scale_sigma, ok);
-    setIf(argc, argv, "-relief", s.relief, ok);
-    setIf(argc, argv, "-wavelength", s.wavelength, ok);
-    setIf(argc, argv, "-buildings_per_ha", s.building_settings.per_hectare, ok);
-    setOrigin(argc, argv, s.origin, ok);
-    std::string pattern;
-    if (parse_argument(argc, argv, "-pattern", pattern) >= 0) {
-      if (pattern != "zigzag" && pattern != "parallel") {
-        print_error("-pattern must be zigzag or parallel, got '%s'.\n", pattern.c_str());
-        return -1;
-      }
-      s.pattern = pattern == "zigzag" ? synth::ScanPattern::ZIGZAG : synth::ScanPattern::PARALLEL;
-    }
-    s.buildings = !find_switch(argc, argv, "-no_buildings");
-    s.fix_first = !find_switch(argc, argv, "-no_fix_first");
-    if (!ok)
-      return -1;
-    if (!s.isValid(&why)) {
-      print_error("Invalid strip settings: %s.\n", why.c_str());
-      return -1;
-    }
-    const bool split = find_switch(argc, argv, "-split");
-    std::vector<std::string> planned{json_path, file("strips")};
-    for (int k = 0; split && k < s.num_strips; ++k)
-      planned.push_back(file("strip_" + std::to_string(s.first_source_id + k)));
-    if (!refuseExisting(planned, overwrite))
-      return -1;
-    tt.tic();
-    const auto block = synth::makeStripBlock(s);
-    print_info("Generated ");
-    print_value("%zu", block.strips.size());
-    print_info(" strips, ");
-    print_value("%zu", block.cloud->size());
-    print_info(" points in ");
-    print_value("%g", tt.toc());
-    print_info(" ms\n");
-    std::vector<Cloud::Ptr> parts;
-    std::vector<Output> outputs{{file("strips"), block.cloud.get(), block.origin}};
-    if (split)
-      for (std::size_t k = 0; k < block.strips.size(); ++k) {
-        parts.push_back(block.stripCloud(k));
-        outputs.push_back({file("strip_" + std::to_string(block.strips[k].point_source_id)),
-                           parts.back().get(), block.origin});
-      }
-    return writeAll(outputs, json_path, synth::truthJson(block, s), overwrite, format) ? 0 : -1;
-  }
-  // li
-  synth::LiSurfaceSettings s;
-  s.seed = seed;
-  setIf(argc, argv, "-noise", s.noise_sigma, ok);
-  setInt(argc, argv, "-grid", s.grid_size, 2, 20000, ok);
-  setIf(argc, argv, "-spacing", s.spacing, ok);
-  setIf(argc, argv, "-relief", s.relief, ok);
-  setIf(argc, argv, "-wavelength", s.wavelength, ok);
-  setIf(argc, argv, "-percent", s.deformation_percent, ok);
-  setIf(argc, argv, "-c", s.deformation_c, ok);
-  setTransform(argc, argv, s.truth, true, ok);
-  std::string position;
-  if (parse_argument(argc, argv, "-position", position) >= 0 &&
-      !synth::parseDeformationPosition(position, s.position)) {
-    print_error("Unknown -position '%s' (see -h).\n", position.c_str());
-    return -1;
-  }
-  s.noise_on_reference = find_switch(argc, argv, "-noise_on_reference");
-  if (!ok)
-    return -1;
-  if (!s.isValid(&why)) {
-    print_error("Invalid li settings: %s.\n", why.c_str());
-    return -1;
-  }
-  if (!refuseExisting({json_path, file("reference"), file("mate")}, overwrite))
-    return -1;
-  tt.tic();
-  const auto li = synth::makeLiSurface(s);
-  print_info("Generated Li surface: ");
-  print_value("%zu", li.reference->size());
-  print_info(" nodes, ");
-  print_value("%.2f", li.percent);
-  print_info(" %% deformed in ");
-  print_value("%g", tt.toc());
-  print_info(" ms\n");
-  const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  return writeAll({{file("reference"), li.reference.get(), zero}, {file("mate"), li.mate.get(), zero}},
-                  json_path, synth::truthJson(li, s), overwrite, format) ? 0 : -1;
+  Context ctx;
+  ctx.seed = seed;
+  ctx.outdir = outdir;
+  ctx.format = format;
+  ctx.overwrite = overwrite;
+  ctx.json_path = (fs::path(outdir) / "truth.json").string();
+  if (cmd == "pair")
+    return runPair(argc, argv, ctx);
+  if (cmd == "scene")
+    return runScene(argc, argv, ctx);
+  if (cmd == "strips")
+    return runStrips(argc, argv, ctx);
+  return runLi(argc, argv, ctx);
 }
