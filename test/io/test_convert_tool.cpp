@@ -140,3 +140,29 @@ TEST_F(ConvertTool, BadInputGivesOneErrorLineAndNonZeroExit)
   EXPECT_NE(run(dir_.file("in.las"), out, dir_), 0);  // no output named
   EXPECT_EQ(run("-h", out, dir_), 0);
 }
+
+// pcl_ls3d_info reports what the readers see; -json gives one object per file.
+TEST_F(ConvertTool, InfoToolReportsCountsStripsAndErrors)
+{
+  const std::string info_tool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_info";
+  if (!fs::exists(info_tool))
+    GTEST_SKIP() << info_tool << " is not built";
+  const std::string log = dir_.file("info.txt");
+  const auto runInfo = [&](const std::string& args, std::string& out) {
+    const int status = std::system((info_tool + " " + args + " > " + log + " 2>&1").c_str());
+    std::ifstream in(log);
+    std::stringstream s;
+    s << in.rdbuf();
+    out = s.str();
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  };
+  std::string out;
+  ASSERT_EQ(runInfo("-json " + dir_.file("in.las"), out), 0) << out;
+  EXPECT_NE(out.find("\"point_source_ids\":{\"10\":100,\"11\":100,\"12\":100}"), std::string::npos)
+      << out;
+  EXPECT_NE(out.find("\"classes\":{\"2\":100,\"5\":100,\"6\":100}"), std::string::npos) << out;
+  EXPECT_NE(out.find("\"points_loaded\":300"), std::string::npos) << out;
+  EXPECT_NE(runInfo(dir_.file("in.las") + " -bogus", out), 0);
+  EXPECT_NE(runInfo(dir_.file("none.las"), out), 0);
+  EXPECT_NE(out.find("does not exist"), std::string::npos) << out;
+}
