@@ -136,6 +136,10 @@ main(int argc, char** argv)
   all &= checkTarget("PCL-ICP mean error / LS3D-LND mean error",
                 lnd_ok && icp && icp->error.valid ? icp->error.mean / lnd->error.mean : nan, 20.0,
                 false);
+  if (lnd_ok && icpn && icpn->cpu_s > 0)
+    std::printf("  (info) LS3D-LND CPU time / PCL-ICP-N CPU time: %.3f; LS3D-LND wall / CPU: %.2f / "
+                "%.2f s\n",
+                lnd->cpu_s / icpn->cpu_s, lnd->time_s, lnd->cpu_s);
   std::printf("overall: %s\n", all ? "PASS" : "FAIL");
 
   if (!json_path.empty()) {

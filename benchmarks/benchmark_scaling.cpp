@@ -81,8 +81,8 @@ runChild(long points_per_strip, unsigned int seed)
   const long hwm = procStatusKb("VmHWM");
   const auto err =
       evaluation::computeTransformError(run.transformation, truth, evaluation::cloudToMatrix(*source));
-  std::printf("RESULT %zu %zu %.3f %.3f %d %d %.6f %.6f %.5f %ld %ld %d %s\n", source->size(),
-              target->size(), gen_s, run.time_s, run.iterations, run.converged ? 1 : 0,
+  std::printf("RESULT %zu %zu %.3f %.3f %.3f %d %d %.6f %.6f %.5f %ld %ld %d %s\n", source->size(),
+              target->size(), gen_s, run.time_s, run.cpu_s, run.iterations, run.converged ? 1 : 0,
               err.mean, err.max, run.sigma0, rss_before, hwm, reset ? 1 : 0,
               run.message.substr(0, 60).c_str());
   return run.ran ? 0 : 1;
@@ -154,8 +154,8 @@ main(int argc, char** argv)
   std::printf("LS3D-LND, 2 strips, 300 m swath, 20 %% side overlap, 4 pts/m2, sigma 5 cm, "
               "seed %d; %ld threads; one fresh process per size\n\n",
               seed, sysconf(_SC_NPROCESSORS_ONLN));
-  std::printf("%10s %10s %7s %8s %5s %5s %9s %9s %8s %10s %10s  %s\n", "src_pts", "tgt_pts",
-              "gen[s]", "reg[s]", "iter", "conv", "mean[mm]", "max[mm]", "s0[m]", "align_MB",
+  std::printf("%10s %10s %7s %8s %8s %5s %5s %9s %9s %8s %10s %10s  %s\n", "src_pts", "tgt_pts",
+              "gen[s]", "reg[s]", "cpu[s]", "iter", "conv", "mean[mm]", "max[mm]", "s0[m]", "align_MB",
               "proc_MB", "status");
   bool pass = true, ran_target_size = false;
   for (double m : sizes) {
@@ -168,21 +168,22 @@ main(int argc, char** argv)
     }
     std::istringstream in(r.line);
     std::size_t ns, nt;
-    double gen, reg, mean, max, s0;
+    double gen, reg, cpu, mean, max, s0;
     int iter, conv, reset;
     long rss_before, hwm;
     std::string status;
-    in >> ns >> nt >> gen >> reg >> iter >> conv >> mean >> max >> s0 >> rss_before >> hwm >> reset;
+    in >> ns >> nt >> gen >> reg >> cpu >> iter >> conv >> mean >> max >> s0 >> rss_before >> hwm >> reset;
     std::getline(in, status);
-    std::printf("%10zu %10zu %7.1f %8.2f %5d %5s %9.2f %9.2f %8.4f %10.0f %10.0f %s%s\n", ns, nt,
-                gen, reg, iter, conv ? "yes" : "no", mean * 1e3, max * 1e3, s0, hwm / 1024.0,
+    std::printf("%10zu %10zu %7.1f %8.2f %8.2f %5d %5s %9.2f %9.2f %8.4f %10.0f %10.0f %s%s\n", ns,
+                nt, gen, reg, cpu, iter, conv ? "yes" : "no", mean * 1e3, max * 1e3, s0, hwm / 1024.0,
                 r.maxrss_kb / 1024.0, reset ? "" : "(HWM not reset) ", status.c_str());
     std::fflush(stdout);
     ran_target_size |= m >= 5.0;
     if (m >= 5.0 && (reg > 30.0 || r.maxrss_kb > 4L * 1024 * 1024 || !r.ok))
       pass = false;
   }
-  std::printf("\nalign_MB: peak RSS from just before align() (input clouds held) to its end; "
+  std::printf("\nreg: wall time of setInput* + align(); cpu: its process CPU time (all threads).\n"
+              "align_MB: peak RSS from just before align() (input clouds held) to its end; "
               "proc_MB: whole child process peak (generation included).\n");
   pass &= ran_target_size;
   std::printf("target 5 M points/strip: reg <= 30 s and peak <= 4096 MB: %s\n",

@@ -47,8 +47,8 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth)
 {
   std::string out;
   char buf[256];
-  std::snprintf(buf, sizeof(buf), "%-10s %5s %8s %5s %8s %8s", "method", "iter", "time[s]",
-                "conv", "RMS[m]", "s0[m]");
+  std::snprintf(buf, sizeof(buf), "%-10s %5s %8s %8s %5s %8s %8s", "method", "iter", "time[s]",
+                "cpu[s]", "conv", "RMS[m]", "s0[m]");
   out += buf;
   if (with_truth) {
     std::snprintf(buf, sizeof(buf), " %9s %9s %9s | %8s %8s %8s %8s %8s %8s %8s", "mean[mm]",
@@ -58,8 +58,8 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth)
   }
   out += "\n";
   for (const auto& r : runs) {
-    std::snprintf(buf, sizeof(buf), "%-10s %5d %8.3f %5s", r.name.c_str(), r.iterations, r.time_s,
-                  !r.ran ? "FAIL" : (r.converged ? "yes" : "no"));
+    std::snprintf(buf, sizeof(buf), "%-10s %5d %8.3f %8.3f %5s", r.name.c_str(), r.iterations,
+                  r.time_s, r.cpu_s, !r.ran ? "FAIL" : (r.converged ? "yes" : "no"));
     out += buf;
     out += " " + cell(r.rms, 8, 4) + " " + cell(r.sigma0, 8, 4);
     if (with_truth) {
@@ -105,6 +105,7 @@ comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext
               {"iterations", r.iterations},
               {"time_s", num(r.time_s)},
               {"normals_time_s", num(r.normals_time_s)},
+              {"cpu_s", num(r.cpu_s)},
               {"converged", r.converged},
               {"pcl_has_converged", r.pcl_converged},
               {"rms", num(r.rms)},

@@ -44,6 +44,7 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
   }
   try {
     pcl::StopWatch watch;
+    const double cpu0 = processCpuSeconds();
     LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ> ls3d;
     ls3d.setConjugateRule(rule);
     ls3d.setMaxCorrespondenceDistance(settings.max_correspondence_distance);
@@ -54,6 +55,7 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     pcl::PointCloud<pcl::PointXYZ> output;
     ls3d.align(output);
     run.time_s = watch.getTimeSeconds();
+    run.cpu_s = processCpuSeconds() - cpu0;
 
     const AdjustmentReport& report = ls3d.getReport();
     run.ran = true;

@@ -49,6 +49,7 @@ runIcp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
        const PclMethodSettings& s, RegistrationRun& run)
 {
   pcl::StopWatch watch;
+  const double cpu0 = processCpuSeconds();
   Counted<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> icp;
   icp.setMaxCorrespondenceDistance(s.max_correspondence_distance);
   icp.setMaximumIterations(s.max_iterations);
@@ -59,6 +60,7 @@ runIcp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
   CloudXYZ output;
   alignAndCollect(icp, output, s, run);
   run.time_s = watch.getTimeSeconds();
+  run.cpu_s = processCpuSeconds() - cpu0;
 }
 
 void
@@ -66,6 +68,7 @@ runIcpNormals(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target
               const PclMethodSettings& s, RegistrationRun& run)
 {
   pcl::StopWatch watch;
+  const double cpu0 = processCpuSeconds();
   // Target normals only: PCL's point-to-plane objective (TransformationEstimationPointToPlaneLLS)
   // reads the target's normals and ignores the source's, so estimating both would only add time.
   pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::PointNormal> ne(s.threads);
@@ -91,6 +94,7 @@ runIcpNormals(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target
   CloudNormal output;
   alignAndCollect(icp, output, s, run);
   run.time_s = watch.getTimeSeconds();
+  run.cpu_s = processCpuSeconds() - cpu0;
 }
 
 void
@@ -98,6 +102,7 @@ runGicp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
         const PclMethodSettings& s, RegistrationRun& run)
 {
   pcl::StopWatch watch;
+  const double cpu0 = processCpuSeconds();
   Counted<pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> gicp;
   gicp.setMaxCorrespondenceDistance(s.max_correspondence_distance);
   gicp.setMaximumIterations(s.max_iterations);
@@ -111,6 +116,7 @@ runGicp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
   CloudXYZ output;
   alignAndCollect(gicp, output, s, run);
   run.time_s = watch.getTimeSeconds();
+  run.cpu_s = processCpuSeconds() - cpu0;
 }
 
 void
@@ -118,6 +124,7 @@ runNdt(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
        const PclMethodSettings& s, RegistrationRun& run)
 {
   pcl::StopWatch watch;
+  const double cpu0 = processCpuSeconds();
   Counted<pcl::NormalDistributionsTransform<pcl::PointXYZ, pcl::PointXYZ>> ndt;
   ndt.setResolution(static_cast<float>(s.ndt_resolution));
   ndt.setStepSize(s.ndt_step_size);
@@ -129,6 +136,7 @@ runNdt(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
   CloudXYZ output;
   alignAndCollect(ndt, output, s, run);
   run.time_s = watch.getTimeSeconds();
+  run.cpu_s = processCpuSeconds() - cpu0;
 }
 
 }  // namespace

@@ -1,9 +1,18 @@
 #include <pcl_ls3d/evaluation/registration_run.h>
 
 #include <cmath>
+#include <ctime>
 
 namespace pcl_ls3d {
 namespace evaluation {
+
+double
+processCpuSeconds()
+{
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 RunEvaluation::RunEvaluation(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
                              double max_distance)

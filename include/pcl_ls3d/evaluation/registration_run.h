@@ -30,6 +30,9 @@ struct RegistrationRun
   /// covariances, NDT grid and (PCL-ICP-N) normal estimation included.
   double time_s = 0.0;
   double normals_time_s = 0.0;      ///< part of time_s spent estimating normals (PCL-ICP-N)
+  /// Process CPU time [s] over the same span, summed over all threads. On a loaded machine it
+  /// shows the work done where the wall time only shows the share of the CPU that was granted.
+  double cpu_s = 0.0;
   /// Stopped by its own convergence criterion before the iteration limit. PCL's hasConverged()
   /// is also true when ICP/GICP/NDT merely hit the limit; that value is kept in pcl_converged.
   bool converged = false;
@@ -60,6 +63,10 @@ struct RunEvaluation
   Eigen::Matrix3Xd source_points;   ///< source (local frame), double
   pcl::KdTreeFLANN<pcl::PointXYZ> target_tree;
 };
+
+/// CPU time of this process so far [s], all threads (CLOCK_PROCESS_CPUTIME_ID).
+double
+processCpuSeconds();
 
 /// x, y, z of a cloud in double, one column per point.
 template <typename PointT>
