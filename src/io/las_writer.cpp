@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
-#include <fstream>
 #include <limits>
 #include <sstream>
 
@@ -227,22 +226,6 @@ writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
     if (!vlr.data.empty())
       std::memcpy(v + las::kVlrHeaderSize, vlr.data.data(), vlr.data.size());
     v += las::kVlrHeaderSize + vlr.data.size();
-  }
-  return true;
-}
-
-bool
-writeLasFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
-{
-  std::vector<std::uint8_t> bytes;
-  if (!writeLas(cloud, origin, bytes, error, options))
-    return false;
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out || !out.write(reinterpret_cast<const char*>(bytes.data()),
-                         static_cast<std::streamsize>(bytes.size()))) {
-    error = "cannot write the file";
-    return false;
   }
   return true;
 }

@@ -52,7 +52,7 @@ bool
 readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
         CloudInfo& info, std::string& error, const LoadOptions& options = {});
 
-/// Reads a LAS file (bulk read of the whole file, then readLas()).
+/// Reads a LAS file: maps it read-only (or bulk-reads it when mmap fails), then readLas().
 bool
 readLasFile(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
             std::string& error, const LoadOptions& options = {});
