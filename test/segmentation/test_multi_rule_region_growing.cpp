@@ -384,3 +384,39 @@ TEST(MultiRuleRegionGrowing, PclStyleApi)
     total += cl.indices.size();
   EXPECT_EQ(total, lidar->size());
 }
+
+// setInputNormals replaces the computed normals in the planar rule: with every normal set to
+// +z, roof and wall (both planar sets) grow into one segment although their true normals are
+// 90° apart; a normal cloud of the wrong size is refused.
+TEST(MultiRuleRegionGrowing, InputNormalsAreUsed)
+{
+  std::mt19937 rng(8);
+  Cloud::Ptr c(new Cloud);
+  seg_test::addPlane(*c, 0, 3, 0, 3, 3, 0.1f, 0.002f, rng);
+  const std::size_t roof_end = c->size();
+  seg_test::addWall(*c, 3.05f, 0, 3, 0, 2.95f, 0.1f, 0.002f, rng);
+
+  Segmenter s;
+  s.setInputCloud(c);
+  s.setUseSeedCondition(false);
+  s.setMergeRule(MergeRule::None);
+  std::vector<pcl::PointIndices> clusters;
+  s.extract(clusters);
+  auto l = labelsOf(clusters, c->size());
+  const std::size_t wall_mid = roof_end + (c->size() - roof_end) / 2;  // (3.05, 1.5, 1.5)
+  const std::size_t roof_mid = 15 * 31 + 15;                             // (1.5, 1.5, 3)
+  ASSERT_LT(roof_mid, roof_end);
+  ASSERT_GE(l[roof_mid], 0);
+  EXPECT_NE(l[roof_mid], l[wall_mid]) << "computed normals keep roof and wall apart";
+
+  pcl::PointCloud<pcl::Normal>::Ptr up(new pcl::PointCloud<pcl::Normal>);
+  up->resize(c->size(), pcl::Normal(0.f, 0.f, 1.f));
+  s.setInputNormals(up);
+  s.extract(clusters);
+  l = labelsOf(clusters, c->size());
+  EXPECT_EQ(l[roof_mid], l[wall_mid]) << "supplied normals must drive the planar rule";
+
+  up->resize(10);
+  s.extract(clusters);
+  EXPECT_TRUE(clusters.empty());
+}
