@@ -95,6 +95,23 @@ TEST(Synth, PairTruthReproducesSurface)
   EXPECT_GT(rms(*pair.source, SimilarityTransform()), 2.0 * s.noise_sigma);
 }
 
+// Without noise the truth is exact: truth.apply(source) lies on the true surface to float
+// rounding (local coordinates ≤ 200 m: float step ≤ 1.5e-5 m), so a systematic error of the
+// recorded truth of even 1 mm would fail here.
+TEST(Synth, PairTruthExactWithoutNoise)
+{
+  auto s = smallSettings();
+  s.noise_sigma = 0.0;
+  const auto pair = makeRegistrationPair(s);
+  double worst = 0.0;
+  for (const auto& q : *pair.source) {
+    const double r = surfaceResidual(*pair.surface, pair.truth.apply(q.getVector3fMap().cast<double>()));
+    if (std::isfinite(r))
+      worst = std::max(worst, std::abs(r));
+  }
+  EXPECT_LT(worst, 2e-4);
+}
+
 // Point counts follow density × area; the overlap fraction is as requested.
 TEST(Synth, PairDensityAndOverlap)
 {
