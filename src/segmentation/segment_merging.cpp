@@ -4,9 +4,8 @@
 
 #include <pcl_ls3d/segmentation/segment_merging.h>
 
+#include <pcl_ls3d/segmentation/adaptive_thresholds.h>
 #include <pcl_ls3d/segmentation/segment_hull.h>
-#include <pcl_ls3d/stats/data_snooping.h>
-#include <pcl_ls3d/stats/kmeans_1d.h>
 
 #include <pcl/common/time.h>
 #include <pcl/console/print.h>
@@ -68,22 +67,18 @@ hullOfContour(const MergeState& st, const std::vector<int>& ids)
   return h;
 }
 
-/// Nearest other live segment of root \a s within \a radius (or unlimited if radius < 0)
-/// through active contour points. Returns (segment, distance) or (−1, inf).
+/// Nearest other live segment of root \a s within \a radius through active contour points.
+/// Returns (segment, distance) or (−1, inf).
 std::pair<int, double>
 nearestSegment(MergeState& st, int s, double radius, const std::vector<char>& finished)
 {
   std::pair<int, double> best{-1, std::numeric_limits<double>::infinity()};
   std::vector<int> idx;
   std::vector<float> d2;
-  const int n_contour = static_cast<int>(st.contour_xyz.size());
   for (const int c : st.contour[s]) {
     pcl::PointXYZ q;
     q.getVector3fMap() = st.contour_xyz[c];
-    if (radius >= 0.0)
-      st.tree.radiusSearch(q, radius, idx, d2);
-    else
-      st.tree.nearestKSearch(q, std::min(kNearestContourCandidates, n_contour), idx, d2);
+    st.tree.radiusSearch(q, radius, idx, d2);
     for (std::size_t t = 0; t < idx.size(); ++t) {
       if (!st.contour_active[idx[t]])
         continue;
@@ -159,37 +154,6 @@ volumeChange(const MergeState& st, int i, int j, double floor, SegmentHull* merg
   if (merged)
     *merged = std::move(h);
   return std::max(0.0, dv);
-}
-
-/// Baarda backward elimination of large values, then the maximum of what remains (§3.2.2).
-double
-snoopedMaximum(const std::vector<double>& values, double alpha)
-{
-  if (values.empty())
-    return 0.0;
-  stats::DataSnoopingSettings s;
-  s.alpha = alpha;
-  s.one_sided_upper = true;
-  const stats::DataSnoopingResult r = stats::dataSnooping(values, s);
-  return r.valid ? r.max_kept : 0.0;
-}
-
-/// V_t from the candidate ΔV (§3.2.2, 3). ΔV is a ratio of volumes with a long right tail and
-/// many exact zeros (small segments inside the other hull); on the raw values the backward
-/// elimination keeps eating the tail down to 0. The snooping therefore runs on ∛ΔV
-/// (Wilson–Hilferty: the cube root of a gamma-like positive variable is near-normal; it is also
-/// the ratio of length scales), and V_t = (max kept)³.
-double
-snoopedVolumeThreshold(const std::vector<double>& dv, double alpha)
-{
-  std::vector<double> roots;
-  for (const double v : dv)
-    if (v >= 0.0 && std::isfinite(v))
-      roots.push_back(std::cbrt(v));
-  if (roots.empty())
-    return 0.0;
-  const double m = snoopedMaximum(roots, alpha);
-  return m * m * m;
 }
 
 void
@@ -276,7 +240,7 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
   const double t_nearest = watch.getTimeSeconds();
   rep.distance_threshold = settings.distance_threshold >= 0.0
                                ? settings.distance_threshold
-                               : snoopedMaximum(D, settings.alpha);
+                               : distanceThreshold(D, settings.alpha);
 
   // s_t: smallest gap between 3 k-means centres of the segment residuals R_i (eq. 1).
   rep.similarity_threshold = std::numeric_limits<double>::infinity();
@@ -287,10 +251,7 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
       std::vector<double> R(n_segments);
       for (int s = 0; s < n_segments; ++s)
         R[s] = st.meanResidual(s);
-      const stats::KMeans1DResult km =
-          stats::kMeans1D(R, static_cast<std::size_t>(std::max(2, settings.kmeans_centres)));
-      if (km.valid && std::isfinite(km.smallest_gap))
-        rep.similarity_threshold = km.smallest_gap;  // one centre only: all alike, no limit
+      rep.similarity_threshold = similarityThreshold(R, settings.kmeans_centres);
     }
   }
 
@@ -320,7 +281,7 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
         if (candidate_dv[s] >= 0.0)
           dV.push_back(candidate_dv[s]);
       rep.volume_samples = dV.size();
-      rep.volume_threshold = snoopedVolumeThreshold(dV, settings.alpha);
+      rep.volume_threshold = volumeChangeThreshold(dV, settings.alpha);
     }
   }
 

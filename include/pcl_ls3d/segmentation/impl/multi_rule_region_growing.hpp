@@ -2,6 +2,7 @@
 /// \file impl/multi_rule_region_growing.hpp
 /// \brief Template members of pcl_ls3d::MultiRuleRegionGrowing.
 
+#include <pcl_ls3d/segmentation/adaptive_thresholds.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 #include <pcl_ls3d/stats/descriptive.h>
 
@@ -216,12 +217,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::growSegments()
   if (user_residual_threshold_ >= 0.0) {
     grow_.residual_threshold = user_residual_threshold_;
   } else {
-    std::vector<double> linear;
-    for (const auto& f : features_)
-      if (f.dimensionality == Dimensionality::Linear)
-        linear.push_back(f.residual);
-    grow_.residual_threshold = linear.empty() ? std::numeric_limits<double>::infinity()
-                                              : stats::median(linear);
+    grow_.residual_threshold = segmentation::seedResidualThreshold(features_);
   }
 
   std::vector<Eigen::Vector3f> normals(n);
