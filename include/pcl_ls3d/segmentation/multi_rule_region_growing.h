@@ -145,7 +145,9 @@ public:
   pcl::uindex_t getMaxClusterSize() const { return max_cluster_size_; }
 
   // ---- inputs -------------------------------------------------------------------------------
-  /// \brief Search method (a pcl::search::KdTree is created when none is given).
+  /// \brief Search method (a pcl::search::KdTree is created when none is given). extract()
+  ///        sets its input and queries it from several OpenMP threads at once (const queries,
+  ///        as pcl::NormalEstimationOMP does), one k_max-NN query per point.
   void setSearchMethod(const KdTreePtr& tree) { search_ = tree; }
   KdTreePtr getSearchMethod() const { return search_; }
   /// \brief Optional normals used by the planar rule instead of the computed ones.
