@@ -272,14 +272,18 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       break;
     }
     report.termination = TerminationType::MAX_ITERATIONS;
-    bool negligible = it >= settings.max_iterations / 2;
+    bool negligible = 3 * it >= 2 * settings.max_iterations;
     for (int i = 0; i < 7 && !negligible; ++i)
       if (sol.determinable[static_cast<std::size_t>(i)] &&
           std::abs(sol.dx[i]) > settings.freeze_sigma_fraction * sol.sigma0 * std::sqrt(sol.qxx(i, i)))
         break;
       else if (i == 6)
         negligible = true;
-    frozen = frozen || negligible;
+    if (negligible && !frozen) {
+      frozen = true;
+      for (CorrespondenceCache& c : caches_)
+        c.frozen = true;
+    }
   }
 
   // Precision (eq. 14), correlation, determinability.

@@ -1,6 +1,10 @@
 #include <pcl_ls3d/rules/local_tin.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
 
 #include <limits>
 
@@ -71,15 +75,56 @@ enclosingTriangle(const std::vector<Eigen::Vector2d>& points, std::array<int, 3>
 }
 
 void
+planeBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& e1, Eigen::Vector3d& e2)
+{
+  const Eigen::Vector3d helper =
+      std::abs(normal.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  e1 = normal.cross(helper).normalized();
+  e2 = normal.cross(e1);
+}
+
+bool
+quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int count,
+             const Eigen::Vector3d& query, const Eigen::Vector3d& normal, double& height,
+             Eigen::Vector2d& slope)
+{
+  if (count < 8)
+    return false;
+  Eigen::Vector3d e1, e2;
+  planeBasis(normal, e1, e2);
+  // Normal equations of the 6-term quadric, coordinates scaled by the neighbourhood radius.
+  double r2 = 0.0;
+  for (int i = 0; i < count; ++i)
+    r2 = std::max(r2, (target.point(indices[static_cast<std::size_t>(i)]) - query).squaredNorm());
+  const double s = r2 > 0.0 ? 1.0 / std::sqrt(r2) : 1.0;
+  Eigen::Matrix<double, 6, 6> N = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+  for (int i = 0; i < count; ++i) {
+    const Eigen::Vector3d d = target.point(indices[static_cast<std::size_t>(i)]) - query;
+    const double u = d.dot(e1) * s, v = d.dot(e2) * s, w = d.dot(normal);
+    Eigen::Matrix<double, 6, 1> a;
+    a << 1, u, v, u * u, u * v, v * v;
+    N.noalias() += a * a.transpose();
+    b.noalias() += a * w;
+  }
+  Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(N);
+  if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-9 * ldlt.vectorD().maxCoeff()))
+    return false;
+  const Eigen::Matrix<double, 6, 1> x = ldlt.solve(b);
+  if (!x.allFinite())
+    return false;
+  height = x[0];
+  slope = Eigen::Vector2d(x[1] * s, x[2] * s);
+  return true;
+}
+
+void
 projectToPlane(const TargetSurface& target, const std::vector<int>& indices, int count,
                const Eigen::Vector3d& query, const Eigen::Vector3d& normal,
                std::vector<Eigen::Vector2d>& projected)
 {
-  // Any orthonormal basis (e1, e2) of the plane.
-  const Eigen::Vector3d helper =
-      std::abs(normal.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
-  const Eigen::Vector3d e1 = normal.cross(helper).normalized();
-  const Eigen::Vector3d e2 = normal.cross(e1);
+  Eigen::Vector3d e1, e2;
+  planeBasis(normal, e1, e2);
   projected.resize(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     const Eigen::Vector3d d = target.point(indices[static_cast<std::size_t>(i)]) - query;

@@ -93,14 +93,66 @@ searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
 
 }  // namespace
 
+namespace {
+// Signed distance along n to the plane (n, p) as one observation.
+bool
+planeObservation(const Eigen::Vector3d& query, Eigen::Vector3d n, const Eigen::Vector3d& p,
+                 double max_distance, ConjugateObservations& out)
+{
+  if (n.z() < 0.0)  // a stable orientation; the sign of (u, l) does not change the adjustment
+    n = -n;
+  const double d = n.dot(query - p);
+  if (!std::isfinite(d) || std::abs(d) > max_distance)
+    return false;
+  out.add(n, d, query - d * n);
+  return true;
+}
+}  // namespace
+
 bool
 LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target,
                        double max_distance, CorrespondenceCache& cache,
                        ConjugateObservations& out) const
 {
   std::array<Eigen::Vector3d, 3> v;
-  bool have = false;
-  if (cachedTriangle(target, cache, v)) {
+  const bool cached = cachedTriangle(target, cache, v);
+  if (cache.frozen && !cached)
+    return false;
+  if (surface_ != Surface::TRIANGLE) {
+    if (!cached || !cache.frozen) {
+      if (!searchTriangle(query, target, neighbours_, nullptr, max_distance, cache, v)) {
+        cache.vertices = {{-1, -1, -1}};
+        return false;
+      }
+      // The neighbourhood's least-squares plane (scratch still holds the neighbours).
+      Scratch& s = scratch();
+      const int count = static_cast<int>(s.indices.size());
+      Eigen::Vector3d n, c = Eigen::Vector3d::Zero();
+      if (!tin::planeNormal(target, s.indices, count, n))
+        return false;
+      for (int i = 0; i < count; ++i)
+        c += target.point(s.indices[static_cast<std::size_t>(i)]);
+      c /= count;
+      double h;
+      Eigen::Vector2d g;
+      if (surface_ == Surface::LOCAL_QUADRIC) {
+        // Tangent plane of the quadric at the query's projection: point and normal.
+        if (!tin::quadricPatch(target, s.indices, count, query, n, h, g))
+          return false;
+        Eigen::Vector3d e1, e2;
+        tin::planeBasis(n, e1, e2);
+        c = query + h * n;
+        n = (n - g.x() * e1 - g.y() * e2).normalized();
+      }
+      cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
+                      static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
+    }
+    const Eigen::Vector3d n(cache.plane[0], cache.plane[1], cache.plane[2]);
+    const Eigen::Vector3d c(cache.plane[3], cache.plane[4], cache.plane[5]);
+    return planeObservation(query, n.normalized(), c, max_distance, out);
+  }
+  bool have = cached && cache.frozen;
+  if (cached && !have) {
     const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
     have = n.squaredNorm() > 0.0 && projectsInto(query, n.normalized(), v[0], v[1], v[2]);
   }
@@ -109,17 +161,10 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     cache.vertices = {{-1, -1, -1}};
     return false;
   }
-  Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
+  const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
   if (!(n.norm() > 0.0))
     return false;
-  n.normalize();
-  if (n.z() < 0.0)  // a stable orientation; the sign of (u, l) does not change the adjustment
-    n = -n;
-  const double d = n.dot(query - v[0]);
-  if (!std::isfinite(d) || std::abs(d) > max_distance)
-    return false;
-  out.add(n, d, query - d * n);
-  return true;
+  return planeObservation(query, n.normalized(), v[0], max_distance, out);
 }
 
 bool
@@ -129,20 +174,58 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
 {
   static const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   std::array<Eigen::Vector3d, 3> v;
-  const bool have = cachedTriangle(target, cache, v) && projectsInto(query, up, v[0], v[1], v[2]);
-  if (!have && !searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
-    cache.vertices = {{-1, -1, -1}};
+  const bool cached = cachedTriangle(target, cache, v);
+  if (cache.frozen && !cached)
     return false;
+  Eigen::Vector3d n, p;  // plane normal and a point on it
+  if (surface_ != Surface::TRIANGLE) {
+    if (!cached || !cache.frozen) {
+      if (!searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
+        cache.vertices = {{-1, -1, -1}};
+        return false;
+      }
+      Scratch& s = scratch();
+      const int count = static_cast<int>(s.indices.size());
+      Eigen::Vector3d c = Eigen::Vector3d::Zero();
+      if (!tin::planeNormal(target, s.indices, count, n))
+        return false;
+      for (int i = 0; i < count; ++i)
+        c += target.point(s.indices[static_cast<std::size_t>(i)]);
+      c /= count;
+      double h;
+      Eigen::Vector2d g;
+      if (surface_ == Surface::LOCAL_QUADRIC) {
+        // z(x, y) quadric around the query (frame: e1, e2 ⟂ z); its tangent plane at (x', y').
+        if (!tin::quadricPatch(target, s.indices, count, query, up, h, g))
+          return false;
+        Eigen::Vector3d e1, e2;
+        tin::planeBasis(up, e1, e2);
+        c = query + h * up;
+        n = (up - g.x() * e1 - g.y() * e2).normalized();
+      }
+      cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
+                      static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
+    }
+    n = Eigen::Vector3d(cache.plane[0], cache.plane[1], cache.plane[2]);
+    p = Eigen::Vector3d(cache.plane[3], cache.plane[4], cache.plane[5]);
   }
-  const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
-  if (!(std::abs(n.z()) > 1e-6 * n.norm()))  // vertical triangle: no height there
+  else {
+    const bool have = cached && (cache.frozen || projectsInto(query, up, v[0], v[1], v[2]));
+    if (!have && !searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
+      cache.vertices = {{-1, -1, -1}};
+      return false;
+    }
+    n = (v[1] - v[0]).cross(v[2] - v[0]);
+    p = v[0];
+  }
+  if (!(std::abs(n.z()) > 1e-6 * n.norm()))  // vertical element: no height there
     return false;
-  // Plane n·(x − v0) = 0 at (query.x, query.y): z = v0.z − (n.x dx + n.y dy) / n.z.
-  const double z = v[0].z() - (n.x() * (query.x() - v[0].x()) + n.y() * (query.y() - v[0].y())) / n.z();
+  // Plane n·(x − p) = 0 at (query.x, query.y): z = p.z − (n.x dx + n.y dy) / n.z.
+  const double z = p.z() - (n.x() * (query.x() - p.x()) + n.y() * (query.y() - p.y())) / n.z();
   const double d = query.z() - z;
   if (!std::isfinite(d) || std::abs(d) > max_distance)
     return false;
-  // l = z' − z_tri(x', y'): its gradient w.r.t. x' is (−∂z/∂x, −∂z/∂y, 1), so a horizontal move
+  // l = z' − z(x', y'): its gradient w.r.t. x' is (−∂z/∂x, −∂z/∂y, 1), so a horizontal move
   // over a slope changes the height difference (Rosenholm's rigorous LZD linearisation).
   const Eigen::Vector3d gradient(n.x() / n.z(), n.y() / n.z(), 1.0);
   out.add(gradient, d, Eigen::Vector3d(query.x(), query.y(), z));

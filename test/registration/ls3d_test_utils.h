@@ -16,7 +16,8 @@ using LS3D = pcl_ls3d::LeastSquaresSurfaceMatching<PointT, PointT>;
 /// A small terrain pair (no buildings unless asked), default truth of the generator.
 inline pcl_ls3d::synth::RegistrationPair
 smallPair(std::uint32_t seed, double size, double src_density, double tgt_density,
-          double overlap, double noise, double wavelength = 60.0, bool buildings = false)
+          double overlap, double noise, double wavelength = 60.0, double relief = 10.0,
+          bool buildings = false)
 {
   pcl_ls3d::synth::RegistrationPairSettings s;
   s.seed = seed;
@@ -27,6 +28,7 @@ smallPair(std::uint32_t seed, double size, double src_density, double tgt_densit
   s.noise_sigma = noise;
   s.buildings = buildings;
   s.wavelength = wavelength;
+  s.relief = relief;
   return pcl_ls3d::synth::makeRegistrationPair(s);
 }
 

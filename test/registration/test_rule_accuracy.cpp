@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 using namespace ls3d_test;
@@ -57,19 +58,26 @@ TEST_P(RuleAccuracy, RecoversKnownSimilarity)
   const auto err =
       displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(), pair.truth.matrix());
   const pcl_ls3d::Vector7d truth = truthInReducedFrame(r, pair.truth);
-  std::printf("%s %s: iters %d sigma0 %.4f obs %zu  disp mean %.4f max %.4f | dX/sigma:",
+  std::printf("%s %s: iterations %d sigma0 %.4f observations %zu  displacement mean %.4f max %.4f\n",
               r.rule_name.c_str(), c.name, r.iterations, r.sigma0, r.observations_used, err.mean,
               err.max);
+  if (rule == pcl_ls3d::ConjugateRuleType::ICP) {
+    // Closest-point ICP matches sample to sample: its residuals are sampling offsets (up to half
+    // the 1 m source spacing), not noise, and tangential sliding converges slowly. Bound the
+    // error by a fraction of the point spacing; its σ_i are not meaningful, so not checked.
+    const double spacing = 1.0 / std::sqrt(c.src_density);
+    EXPECT_LT(err.mean, 0.6 * spacing);
+    EXPECT_LT(err.max, 1.0 * spacing);
+    return;
+  }
+  // LND / LZD: ~10^4 observations average the noise down, so the transform error at the edge of
+  // the data stays well below one noise σ: mean < 0.7 σ_noise, max < 1.5 σ_noise (measured:
+  // 0.25–0.58 σ and 0.45–1.2 σ). Each parameter within 4 σ_i of the truth.
+  EXPECT_LT(err.mean, 0.7 * c.noise);
+  EXPECT_LT(err.max, 1.5 * c.noise);
   for (int i = 0; i < 7; ++i)
-    std::printf(" %.2f", (r.parameters[i] - truth[i]) / r.sigmas[i]);
-  std::printf("\n   err:");
-  for (int i = 0; i < 7; ++i)
-    std::printf(" %.2e", r.parameters[i] - truth[i]);
-  std::printf("\n   sig:");
-  for (int i = 0; i < 7; ++i)
-    std::printf(" %.2e", r.sigmas[i]);
-  std::printf("\n");
-  if (c.noise > 0.04) std::printf("%s\n", r.fullReport().c_str());
+    EXPECT_LT(std::abs(r.parameters[i] - truth[i]), 4.0 * r.sigmas[i])
+        << pcl_ls3d::similarityParameterNames()[static_cast<std::size_t>(i)];
 }
 
 INSTANTIATE_TEST_SUITE_P(

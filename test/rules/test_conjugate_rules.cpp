@@ -38,9 +38,9 @@ TEST(ConjugateRules, LndGivesSignedNormalDistance)
   ConjugateObservations out;
   ASSERT_TRUE(rule.findConjugate(q, target, 10.0, cache, out));
   ASSERT_EQ(out.count, 1);
-  EXPECT_NEAR(out.items[0].distance, 0.25, 1e-9);
-  EXPECT_NEAR(out.items[0].direction.dot(n), 1.0, 1e-9);
-  EXPECT_NEAR(out.items[0].foot.z(), planeZ(out.items[0].foot.x(), out.items[0].foot.y()), 1e-9);
+  EXPECT_NEAR(out.items[0].distance, 0.25, 1e-6);  // cached plane is float
+  EXPECT_NEAR(out.items[0].direction.dot(n), 1.0, 1e-6);
+  EXPECT_NEAR(out.items[0].foot.z(), planeZ(out.items[0].foot.x(), out.items[0].foot.y()), 1e-6);
   // Max distance enforced; outside the target's extent: no correspondence.
   ConjugateObservations none;
   CorrespondenceCache fresh;
@@ -56,9 +56,9 @@ TEST(ConjugateRules, LzdGivesHeightDifferenceWithSlopeGradient)
   CorrespondenceCache cache;
   ConjugateObservations out;
   ASSERT_TRUE(rule.findConjugate(q, target, 10.0, cache, out));
-  EXPECT_NEAR(out.items[0].distance, -0.4, 1e-9);
+  EXPECT_NEAR(out.items[0].distance, -0.4, 1e-6);
   // ∂l/∂x' = (−∂z/∂x, −∂z/∂y, 1)
-  EXPECT_LT((out.items[0].direction - Eigen::Vector3d(-0.2, 0.1, 1.0)).norm(), 1e-9);
+  EXPECT_LT((out.items[0].direction - Eigen::Vector3d(-0.2, 0.1, 1.0)).norm(), 1e-6);
   EXPECT_NEAR(out.items[0].foot.x(), 1.3, 1e-12);
 }
 
@@ -75,6 +75,23 @@ TEST(ConjugateRules, IcpGivesThreeAxisObservations)
   EXPECT_NEAR(out.items[1].distance, 0.05, 1e-9);
   EXPECT_NEAR(out.items[2].distance, 0.05, 1e-9);
   EXPECT_FALSE(rule.findConjugate(Eigen::Vector3d(12, 0, planeZ(12, 0)), target, 10.0, cache, out));
+}
+
+TEST(ConjugateRules, TriangleVariantsOnThePlane)
+{
+  const auto target = tiltedPlane();
+  const Eigen::Vector3d q(1.3, -2.6, planeZ(1.3, -2.6) - 0.4);
+  CorrespondenceCache c1, c2;
+  ConjugateObservations o1, o2;
+  ASSERT_TRUE(LzdRule(8, LzdRule::Surface::TRIANGLE).findConjugate(q, target, 10.0, c1, o1));
+  EXPECT_NEAR(o1.items[0].distance, -0.4, 1e-9);
+  ASSERT_TRUE(LndRule(8, LndRule::Surface::TRIANGLE).findConjugate(q, target, 10.0, c2, o2));
+  EXPECT_NEAR(o2.items[0].distance, -0.4 / Eigen::Vector3d(-0.2, 0.1, 1.0).norm(), 1e-9);
+  // Frozen with nothing cached: no correspondence (the observation set stays fixed).
+  CorrespondenceCache frozen;
+  frozen.frozen = true;
+  ConjugateObservations o3;
+  EXPECT_FALSE(LndRule().findConjugate(q, target, 10.0, frozen, o3));
 }
 
 TEST(ConjugateRules, FactoryAndParser)

@@ -53,7 +53,12 @@ struct ConjugateObservations
 ///        last used, so a point that still projects into it needs no neighbour search).
 struct CorrespondenceCache
 {
-  std::array<std::int32_t, 3> vertices{{-1, -1, -1}};
+  std::array<std::int32_t, 3> vertices{{-1, -1, -1}};  ///< e.g. a TIN triangle (−1: none)
+  std::array<float, 6> plane{{0, 0, 0, 0, 0, 0}};      ///< e.g. a local plane: normal, point
+  /// Set by the engine once the estimate has settled: a rule should then reuse exactly what it
+  /// cached (and give no correspondence where it cached none), so the observation set and its
+  /// surface elements stay fixed and the iteration converges instead of cycling.
+  bool frozen = false;
 };
 
 /// \brief Strategy interface for conjugate-point rules. Implementations must be thread-safe in

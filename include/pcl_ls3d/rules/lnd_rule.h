@@ -16,7 +16,20 @@ namespace pcl_ls3d {
 class LndRule final : public ConjugateRule
 {
 public:
-  explicit LndRule(int neighbours = 8) : neighbours_(neighbours) {}
+  /// Which surface element gives the normal and the foot point.
+  enum class Surface {
+    TRIANGLE,     ///< the enclosing TIN triangle itself (Zuo et al.; Gruen & Akca)
+    LOCAL_PLANE,  ///< the least-squares plane of the k neighbours (normal less noisy: see below)
+    LOCAL_QUADRIC ///< a least-squares quadric of the k neighbours: no curvature bias (default)
+  };
+  /// LOCAL_QUADRIC is the default: on noisy data a triangle normal's own noise enters the design
+  /// matrix (errors in variables) and shrinks every step, so the estimate creeps towards the
+  /// truth and stops short of it; a k-point fit is much less noisy. A plane (or a facet) lies
+  /// inside curved terrain, which flattens the relief and biases the scale m; the quadric does
+  /// not. The enclosing-triangle test still decides whether the point lies over the target.
+  explicit LndRule(int neighbours = 12, Surface surface = Surface::LOCAL_QUADRIC)
+  : neighbours_(neighbours), surface_(surface)
+  {}
   std::string
   name() const override
   {
@@ -28,6 +41,7 @@ public:
 
 private:
   const int neighbours_;
+  const Surface surface_;
 };
 
 }  // namespace pcl_ls3d

@@ -38,5 +38,18 @@ projectToPlane(const TargetSurface& target, const std::vector<int>& indices, int
                const Eigen::Vector3d& query, const Eigen::Vector3d& normal,
                std::vector<Eigen::Vector2d>& projected);
 
+/// Fits w = a + b u + c v + d u² + e uv + f v² to the points in the frame (e1, e2, normal)
+/// centred on `query` (w along `normal`), i.e. a local quadric surface without the curvature
+/// bias of a plane or a TIN facet. Returns the height a at the query and the slope (b, c).
+/// False for fewer than 8 points or an ill-conditioned fit.
+bool
+quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int count,
+             const Eigen::Vector3d& query, const Eigen::Vector3d& normal, double& height,
+             Eigen::Vector2d& slope);
+
+/// The orthonormal (e1, e2) used with `normal` by projectToPlane() and quadricPatch().
+void
+planeBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& e1, Eigen::Vector3d& e2);
+
 }  // namespace tin
 }  // namespace pcl_ls3d

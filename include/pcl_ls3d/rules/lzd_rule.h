@@ -16,7 +16,15 @@ namespace pcl_ls3d {
 class LzdRule final : public ConjugateRule
 {
 public:
-  explicit LzdRule(int neighbours = 8) : neighbours_(neighbours) {}
+  /// Which surface element gives the height and its slope.
+  enum class Surface {
+    TRIANGLE,     ///< the XY-enclosing TIN triangle itself (Rosenholm; Zuo et al.)
+    LOCAL_PLANE,  ///< the least-squares plane of the k neighbours (see LndRule)
+    LOCAL_QUADRIC ///< a least-squares quadric z(x, y) of the k neighbours (default; see LndRule)
+  };
+  explicit LzdRule(int neighbours = 12, Surface surface = Surface::LOCAL_QUADRIC)
+  : neighbours_(neighbours), surface_(surface)
+  {}
   std::string
   name() const override
   {
@@ -28,6 +36,7 @@ public:
 
 private:
   const int neighbours_;
+  const Surface surface_;
 };
 
 }  // namespace pcl_ls3d
