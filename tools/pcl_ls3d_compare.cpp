@@ -14,6 +14,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -206,16 +207,16 @@ main(int argc, char** argv)
   parse_argument(argc, argv, "-ndt_res", ndt_res);
   parse_argument(argc, argv, "-rms_dist", rms_dist);
   parse_argument(argc, argv, "-thinning", thinning);
-  parse_argument(argc, argv, "-iter", iterations);
+  const bool iterations_given = parse_argument(argc, argv, "-iter", iterations) >= 0;
   parse_argument(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance);
   if (!(max_corr > 0) || !(ndt_res > 0) || !(rms_dist > 0) || !(thinning >= 0) ||
-      iterations < 0 || !(ps.gicp_gradient_tolerance > 0))
+      (iterations_given && iterations < 1) || !(ps.gicp_gradient_tolerance > 0))
     return fail("-max_corr, -ndt_res, -rms_dist, -gicp_grad must be > 0, -thinning >= 0, "
                 "-iter >= 1");
   ps.max_correspondence_distance = ls.max_correspondence_distance = max_corr;
   ps.ndt_resolution = ndt_res;
   ls.source_thinning = thinning;
-  if (iterations > 0)
+  if (iterations_given)
     ps.max_iterations = ls.max_iterations = iterations;
   std::vector<std::string> methods;
   if (!parseMethods(methods_text, methods, why))
