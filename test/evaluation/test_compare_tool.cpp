@@ -128,7 +128,8 @@ TEST_F(CompareTool, MethodSubsetWithoutTruth)
   EXPECT_FALSE(j["methods"][0].contains("error"));
 }
 
-// Bad input exits non-zero: missing file, unknown option, unknown method, bad truth, bad value,
+// Bad input exits non-zero: missing file, NaN-only file, unknown option, unknown method, bad
+// truth, bad value,
 // an output that is an input, an existing output without -overwrite.
 TEST_F(CompareTool, BadInputFails)
 {
@@ -139,6 +140,12 @@ TEST_F(CompareTool, BadInputFails)
   EXPECT_NE(run(inputs() + " -bogus"), 0);
   EXPECT_NE(run(inputs() + " -methods icp,foo"), 0);
   EXPECT_NE(run(inputs() + " -max_corr -1"), 0);
+  EXPECT_NE(run(inputs() + " -iter 0"), 0);
+  {
+    std::ofstream nan_only(dir_ / "nan_only.xyz");
+    nan_only << "nan nan nan\nnan nan nan\n";
+  }
+  EXPECT_NE(run((dir_ / "nan_only.xyz").string() + " " + (dir_ / "target.pcd").string()), 0);
   EXPECT_NE(run(src), 0);  // one file only
   EXPECT_NE(run(inputs() + " -truth " + src), 0);  // not JSON
   {
