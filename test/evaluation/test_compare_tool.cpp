@@ -129,8 +129,7 @@ TEST_F(CompareTool, MethodSubsetWithoutTruth)
 }
 
 // Bad input exits non-zero: missing file, NaN-only file, unknown option, unknown method, bad
-// truth, bad value,
-// an output that is an input, an existing output without -overwrite.
+// truth, bad value, an output that is an input, an existing output without -overwrite.
 TEST_F(CompareTool, BadInputFails)
 {
   if (!fs::exists(kTool))
