@@ -155,6 +155,12 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
   double sigma0_prev = 0.0;
   std::size_t m = 0;
   bool frozen = false;
+  // Coarse phase: every stride-th point only, until the estimate has settled to ~1 σ_i.
+  const std::size_t coarse_stride =
+      settings.coarse_observations > 0 && n > 2 * settings.coarse_observations
+          ? (n + settings.coarse_observations - 1) / settings.coarse_observations
+          : 1;
+  bool coarse = coarse_stride > 1;
   for (int it = 1; it <= settings.max_iterations; ++it) {
     lin = SimilarityLinearization(SimilarityTransform(X));
     if (!frozen)  // fresh conjugate points around the current positions
@@ -163,6 +169,10 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     // 1. Conjugate points of every transformed source point (rule strategy, §2.2).
 #pragma omp parallel for schedule(dynamic, 512)
     for (Index i = 0; i < static_cast<Index>(n); ++i) {
+      if (coarse && static_cast<std::size_t>(i) % coarse_stride != 0) {
+        counts_[static_cast<std::size_t>(i)] = 0;
+        continue;
+      }
       ConjugateObservations out;
       const Eigen::Vector3d q = o_t + lin.apply(reduced_[static_cast<std::size_t>(i)]);
       int c = 0;
@@ -267,6 +277,18 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     sigma0_prev = sol.sigma0;
 
     // 6. Convergence (Zuo §4: angle change below 1e-6 rad); freeze once changes are tiny.
+    if (coarse) {  // switch to all points once the changes are below 1 σ_i (or after 1/3)
+      const bool settled = 3 * it >= settings.max_iterations;
+      int small = 0, estimated = 0;
+      for (int i = 0; i < 7; ++i)
+        if (sol.determinable[static_cast<std::size_t>(i)]) {
+          ++estimated;
+          small += std::abs(sol.dx[i]) <= sol.sigma0 * std::sqrt(sol.qxx(i, i));
+        }
+      coarse = !(settled || small == estimated);
+      report.termination = TerminationType::MAX_ITERATIONS;
+      continue;
+    }
     if (converged(sol.dx, settings)) {
       report.termination = TerminationType::CONVERGED;
       break;

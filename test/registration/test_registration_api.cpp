@@ -287,3 +287,29 @@ TEST(Ls3dRegistration, BadInputFailsCleanly)
     EXPECT_FALSE(why.empty());
   }
 }
+
+// Coarse-to-fine (every k-th source point while far off, then all points) reaches the same
+// estimate as the plain iteration: forced here on a small pair by a tiny coarse_observations.
+TEST(Ls3dRegistration, CoarseToFineMatchesFullIteration)
+{
+  const auto pair = smallPair(12, 100.0, 1.0, 1.0, 0.8, 0.02);
+  pcl_ls3d::Vector7d full, coarse;
+  for (std::size_t coarse_obs : {std::size_t(0), std::size_t(1000)}) {
+    LS3D ls3d;
+    pcl_ls3d::AdjustmentSettings s;
+    s.coarse_observations = coarse_obs;
+    ASSERT_TRUE(ls3d.setAdjustmentSettings(s));
+    ls3d.setInputSource(pair.source);
+    ls3d.setInputTarget(pair.target);
+    Cloud out;
+    ls3d.align(out);
+    ASSERT_TRUE(ls3d.hasConverged());
+    EXPECT_EQ(ls3d.getReport().termination, pcl_ls3d::TerminationType::CONVERGED);
+    (coarse_obs ? coarse : full) = ls3d.getReport().parameters;
+    if (coarse_obs)  // the first iterations used about 1000 of ~10^4 points
+      EXPECT_LT(ls3d.getReport().log.front().observations_used, 2000u);
+  }
+  // Same fixed point up to the convergence epsilons (both end on all points, frozen).
+  EXPECT_LT((full.head<3>() - coarse.head<3>()).norm(), 1e-3);
+  EXPECT_LT((full.segment<3>(3) - coarse.segment<3>(3)).cwiseAbs().maxCoeff(), 1e-5);
+}

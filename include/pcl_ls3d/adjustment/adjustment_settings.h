@@ -5,6 +5,7 @@
 
 #include <pcl_ls3d/common/similarity_transform.h>
 
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -51,6 +52,11 @@ struct AdjustmentSettings
   /// neighbouring triangles. Freezing earlier would bias the estimate towards the initial guess
   /// (triangles chosen around the wrong positions).
   double freeze_sigma_fraction = 0.1;
+
+  /// Coarse-to-fine for big clouds: while the estimate is still far off (changes above 1 σ_i),
+  /// iterate on every k-th source point only, k chosen so that about this many are used; then
+  /// continue on all points (and finally freeze). 0 = always use every point.
+  std::size_t coarse_observations = 200000;
 
   // --- observations --------------------------------------------------------------------------
   /// Conjugate points farther than this (|signed distance| and nearest target point) are no
