@@ -163,8 +163,6 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
   bool coarse = coarse_stride > 1;
   for (int it = 1; it <= settings.max_iterations; ++it) {
     lin = SimilarityLinearization(SimilarityTransform(X));
-    if (!frozen)  // fresh conjugate points around the current positions
-      std::fill(caches_.begin(), caches_.end(), CorrespondenceCache());
 
     // 1. Conjugate points of every transformed source point (rule strategy, §2.2).
 #pragma omp parallel for schedule(dynamic, 512)

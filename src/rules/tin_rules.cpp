@@ -51,6 +51,27 @@ projectsInto(const Eigen::Vector3d& p, const Eigen::Vector3d& dir, const Eigen::
   return l1 >= tol && l2 >= tol && 1.0 - l1 - l2 >= tol;
 }
 
+// The cached local surface element may be reused: frozen, or the query moved only a small
+// fraction of the neighbourhood radius since it was built (so its choice does not depend on
+// where the query was several iterations ago — that would bias towards the initial guess).
+bool
+reusable(const CorrespondenceCache& cache, const Eigen::Vector3d& query)
+{
+  if (cache.frozen)
+    return true;
+  const Eigen::Vector3d a(cache.anchor[0], cache.anchor[1], cache.anchor[2]);
+  return (query - a).norm() <= static_cast<double>(cache.reuse_radius);
+}
+
+// Remembers where (and how far around) a local element was built.
+void
+anchor(CorrespondenceCache& cache, const Eigen::Vector3d& query)
+{
+  const Scratch& s = scratch();
+  cache.anchor = {{static_cast<float>(query.x()), static_cast<float>(query.y()), static_cast<float>(query.z())}};
+  cache.reuse_radius = s.sq_dists.empty() ? 0.f : 0.05f * std::sqrt(s.sq_dists.back());
+}
+
 bool
 cachedTriangle(const TargetSurface& target, const CorrespondenceCache& cache,
                std::array<Eigen::Vector3d, 3>& v)
@@ -119,7 +140,7 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   if (cache.frozen && !cached)
     return false;
   if (surface_ != Surface::TRIANGLE) {
-    if (!cached || !cache.frozen) {
+    if (!cached || !reusable(cache, query)) {
       if (!searchTriangle(query, target, neighbours_, nullptr, max_distance, cache, v)) {
         cache.vertices = {{-1, -1, -1}};
         return false;
@@ -144,6 +165,7 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
         c = query + h * n;
         n = (n - g.x() * e1 - g.y() * e2).normalized();
       }
+      anchor(cache, query);
       cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
                       static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
     }
@@ -152,14 +174,16 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     return planeObservation(query, n.normalized(), c, max_distance, out);
   }
   bool have = cached && cache.frozen;
-  if (cached && !have) {
+  if (cached && !have && reusable(cache, query)) {
     const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
     have = n.squaredNorm() > 0.0 && projectsInto(query, n.normalized(), v[0], v[1], v[2]);
   }
-  if (!have &&
-      !searchTriangle(query, target, neighbours_, nullptr, max_distance, cache, v)) {
-    cache.vertices = {{-1, -1, -1}};
-    return false;
+  if (!have) {
+    if (!searchTriangle(query, target, neighbours_, nullptr, max_distance, cache, v)) {
+      cache.vertices = {{-1, -1, -1}};
+      return false;
+    }
+    anchor(cache, query);
   }
   const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
   if (!(n.norm() > 0.0))
@@ -179,7 +203,7 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     return false;
   Eigen::Vector3d n, p;  // plane normal and a point on it
   if (surface_ != Surface::TRIANGLE) {
-    if (!cached || !cache.frozen) {
+    if (!cached || !reusable(cache, query)) {
       if (!searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
         cache.vertices = {{-1, -1, -1}};
         return false;
@@ -203,6 +227,7 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
         c = query + h * up;
         n = (up - g.x() * e1 - g.y() * e2).normalized();
       }
+      anchor(cache, query);
       cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
                       static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
     }
@@ -210,10 +235,14 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     p = Eigen::Vector3d(cache.plane[3], cache.plane[4], cache.plane[5]);
   }
   else {
-    const bool have = cached && (cache.frozen || projectsInto(query, up, v[0], v[1], v[2]));
-    if (!have && !searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
-      cache.vertices = {{-1, -1, -1}};
-      return false;
+    const bool have = cached && (cache.frozen || (reusable(cache, query) &&
+                                                  projectsInto(query, up, v[0], v[1], v[2])));
+    if (!have) {
+      if (!searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
+        cache.vertices = {{-1, -1, -1}};
+        return false;
+      }
+      anchor(cache, query);
     }
     n = (v[1] - v[0]).cross(v[2] - v[0]);
     p = v[0];

@@ -49,12 +49,15 @@ struct ConjugateObservations
   }
 };
 
-/// \brief Per-source-point memory a rule may keep between iterations (e.g. the TIN triangle
-///        last used, so a point that still projects into it needs no neighbour search).
+/// \brief Per-source-point memory a rule may keep between iterations (e.g. the local surface
+///        element last used, so a point that has barely moved needs no neighbour search). The
+///        engine resets it at the start of every alignment and sets `frozen` near the end.
 struct CorrespondenceCache
 {
   std::array<std::int32_t, 3> vertices{{-1, -1, -1}};  ///< e.g. a TIN triangle (−1: none)
   std::array<float, 6> plane{{0, 0, 0, 0, 0, 0}};      ///< e.g. a local plane: normal, point
+  std::array<float, 3> anchor{{0, 0, 0}};  ///< query position the element was built for
+  float reuse_radius = 0.f;                ///< reuse the element while the query stays this close
   /// Set by the engine once the estimate has settled: a rule should then reuse exactly what it
   /// cached (and give no correspondence where it cached none), so the observation set and its
   /// surface elements stay fixed and the iteration converges instead of cycling.
