@@ -27,8 +27,13 @@ namespace pcl_ls3d {
 ///   const auto& report = ls3d.getReport();    // σ0, σ_i, Qxx, correlation, r_i, ...
 /// \endcode
 /// getFinalTransformation() maps source into target coordinates (x' = m R x + t, as a 4×4).
-/// Defaults: LND rule, Zuo's 0/1 weight at 6σ0 (eq. 15), all 7 parameters free, 30 iterations,
-/// convergence when every angle change < 1e-6 rad and |dt| < 1e-5 (and |dm| < 1e-8).
+/// Defaults: LND rule (normal distance to a local quadric of 12 target neighbours; Zuo's TIN
+/// facet is LndRule::Surface::TRIANGLE), Zuo's 0/1 weight at 6σ0 (eq. 15), all 7 parameters
+/// free, 30 iterations, convergence when every angle change < 1e-6 rad and |dt| < 1e-5 (and
+/// |dm| < 1e-8). Clouds above 400 k source points start coarse (every k-th point) until the
+/// estimate settles, then use every point; conjugate points are frozen for the last iterations.
+/// Precision caveat: σ_i assume independent observations; neighbouring observations share
+/// target points, and on noisy data σ_i come out ~2× too small (see test_honest_sigma.cpp).
 /// Base-class knobs keep their PCL meaning: setMaximumIterations(), setMaxCorrespondenceDistance(),
 /// setTransformationEpsilon() (a squared translation, as in ICP: its square root replaces the
 /// translation epsilon when > 0), setSearchMethodTarget() (the kd-tree is reused across
