@@ -88,6 +88,9 @@ runChild(long points_per_strip, unsigned int seed)
   return run.ran ? 0 : 1;
 }
 
+/// Accuracy sanity bound on the mean displacement error [m] (not an issue target).
+constexpr double kMaxMeanError = 0.05;
+
 struct ChildResult
 {
   bool ok = false;
@@ -157,7 +160,7 @@ main(int argc, char** argv)
   std::printf("%10s %10s %7s %8s %8s %5s %5s %9s %9s %8s %10s %10s  %s\n", "src_pts", "tgt_pts",
               "gen[s]", "reg[s]", "cpu[s]", "iter", "conv", "mean[mm]", "max[mm]", "s0[m]", "align_MB",
               "proc_MB", "status");
-  bool pass = true, ran_target_size = false;
+  bool pass = true, ran_target_size = false, accurate = true;
   for (double m : sizes) {
     const long n = static_cast<long>(m * 1e6);
     const ChildResult r = spawnChild(n, static_cast<unsigned int>(seed));
@@ -181,6 +184,8 @@ main(int argc, char** argv)
     ran_target_size |= m >= 5.0;
     if (m >= 5.0 && (reg > 30.0 || r.maxrss_kb > 4L * 1024 * 1024 || !r.ok))
       pass = false;
+    // A fast wrong answer is no success: 5 cm is ~10x the errors a working LND reaches here.
+    accurate &= conv == 1 && mean <= kMaxMeanError;
   }
   std::printf("\nreg: wall time of setInput* + align(); cpu: its process CPU time (all threads).\n"
               "align_MB: peak RSS from just before align() (input clouds held) to its end; "
@@ -188,5 +193,7 @@ main(int argc, char** argv)
   pass &= ran_target_size;
   std::printf("target 5 M points/strip: reg <= 30 s and peak <= 4096 MB: %s\n",
               !ran_target_size ? "NOT RUN (no size >= 5 M)" : (pass ? "PASS" : "FAIL"));
-  return pass ? 0 : 2;
+  std::printf("sanity: every size converged with mean displacement error <= %.0f mm: %s\n",
+              kMaxMeanError * 1e3, accurate ? "PASS" : "FAIL");
+  return pass && accurate ? 0 : 2;
 }
