@@ -218,7 +218,17 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
         sigma_v_[j] = sigma0_prev * std::sqrt(std::max(0.0, 1.0 - a * sol.qxx * a.transpose()));
       }
     }
-    estimator.computeWeights(l, sigma_v_, sigma0_prev, weights_);
+    // First iteration: no σ0 yet, so a robust scale (1.4826 · median |l|) stands in for it;
+    // without it gross residuals (walls, vegetation) throw the first step far off.
+    double sigma0_weights = sigma0_prev;
+    if (!(sigma0_weights > 0.0)) {
+      std::vector<double> a(obs_l_.begin(), obs_l_.begin() + static_cast<std::ptrdiff_t>(m));
+      for (double& x : a)
+        x = std::abs(x);
+      std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(m / 2), a.end());
+      sigma0_weights = 1.4826 * a[m / 2];
+    }
+    estimator.computeWeights(l, sigma_v_, sigma0_weights, weights_);
 
     // 3. Normal equations AᵀPA, AᵀPL (eq. 8), one set per thread, then summed.
     NormalEquations ne;

@@ -39,7 +39,8 @@ public:
 
   /// \param[in] residuals v_i of the current iteration
   /// \param[in] sigma_v σ_vi per residual, or an empty vector (use σ0)
-  /// \param[in] sigma0 σ̂0 of the previous iteration; ≤ 0 when unknown
+  /// \param[in] sigma0 σ̂0 of the previous iteration (the engine passes 1.4826 · median |v| in
+  ///            the first iteration); ≤ 0 when unknown
   /// \param[out] weights resized by the caller to residuals.size(); w_i in [0, 1]
   virtual void
   computeWeights(const Eigen::Ref<const Eigen::VectorXd>& residuals,
