@@ -13,6 +13,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 using namespace pcl_ls3d;
 
@@ -35,7 +37,9 @@ protected:
   static void
   SetUpTestSuite()
   {
-    dir_ = fs::temp_directory_path() / "pcl_ls3d_compare_test";
+    // One directory per process: CTest runs each test of this suite as its own process in
+    // parallel, and a shared directory would be removed under a running sibling.
+    dir_ = fs::temp_directory_path() / ("pcl_ls3d_compare_test_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     synth::RegistrationPairSettings s;
