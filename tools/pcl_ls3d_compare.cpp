@@ -3,6 +3,8 @@
 ///        ICP, GICP and NDT on the same input, and prints one table (iterations, wall time, RMS /
 ///        σ0, converged; with -truth the displacement and parameter errors). -json writes the same.
 
+#include "tool_arguments.h"
+
 #include <pcl_ls3d/evaluation/comparison_report.h>
 #include <pcl_ls3d/evaluation/ls3d_method.h>
 #include <pcl_ls3d/evaluation/pcl_methods.h>
@@ -57,31 +59,6 @@ printHelp(const char* name)
       "  -rms_dist D   : NN distance cut-off of the RMS column [m] (default 1)\n"
       "  -overwrite    : replace an existing -json file (never an input)\n"
       "  -h            : this help\n");
-}
-
-/// Positional arguments; false (with a message) on an unknown option or a missing value.
-bool
-checkArguments(int argc, char** argv, std::vector<std::string>& positional, std::string& why)
-{
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (kValueOptions.count(a)) {
-      if (i + 1 >= argc) {
-        why = "option " + a + " needs a value";
-        return false;
-      }
-      ++i;
-    }
-    else if (kSwitches.count(a))
-      continue;
-    else if (a.size() > 1 && a[0] == '-') {
-      why = "unknown option " + a;
-      return false;
-    }
-    else
-      positional.push_back(a);
-  }
-  return true;
 }
 
 /// Expands the -methods list; false on an unknown name.
@@ -185,7 +162,7 @@ main(int argc, char** argv)
   }
   std::vector<std::string> files;
   std::string why;
-  if (!checkArguments(argc, argv, files, why))
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, kValueOptions, kSwitches, files, why))
     return fail(why);
   if (files.size() != 2)
     return fail("expected exactly two input files (SOURCE TARGET), got " +

@@ -2,6 +2,8 @@
 /// \brief Converts point clouds between LAS, PCD, PLY and ASCII XYZ in local coordinates with the
 ///        georeferenced origin restored on output; splits by flight strip and filters by class.
 
+#include "tool_arguments.h"
+
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_io.h>
 #include <pcl_ls3d/io/strip_tools.h>
@@ -48,45 +50,17 @@ printHelp(const char* name)
              "on writing; the origin used is printed.\n");
 }
 
-bool
-parseNumbers(const std::string& text, std::vector<double>& values)
-{
-  values.clear();
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(v))
-      return false;
-    values.push_back(v);
-  }
-  return !values.empty();
-}
-
 /// Rejects options this tool does not know (pcl::console silently ignores them).
 bool
 checkOptions(int argc, char** argv, std::vector<std::string>& positional)
 {
   const std::set<std::string> with_value = {"-split_strips", "-format", "-classes", "-origin",
                                             "-columns", "-las_format", "-las_version", "-las_scale"};
-  const std::set<std::string> switches = {"-ascii", "-overwrite", "-h", "--help"};
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (with_value.count(a)) {
-      if (i + 1 >= argc) {
-        print_error("Option %s needs a value.\n", a.c_str());
-        return false;
-      }
-      ++i;
-    }
-    else if (switches.count(a) == 0) {
-      if (a.size() > 1 && a[0] == '-') {
-        print_error("Unknown option %s (see -h).\n", a.c_str());
-        return false;
-      }
-      positional.push_back(a);
-    }
+  std::string why;
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, with_value, {"-ascii", "-overwrite"},
+                                       positional, why)) {
+    print_error("%s\n", why.c_str());
+    return false;
   }
   return true;
 }
@@ -143,7 +117,7 @@ main(int argc, char** argv)
   load.xyz_columns = columns;
   std::vector<double> values;
   if (!origin_text.empty()) {
-    if (!parseNumbers(origin_text, values) || values.size() != 3) {
+    if (!pcl_ls3d::tools::parseNumberList(origin_text, values) || values.size() != 3) {
       print_error("-origin needs three finite numbers x,y,z, got '%s'.\n", origin_text.c_str());
       return -1;
     }
@@ -152,7 +126,7 @@ main(int argc, char** argv)
   }
   std::set<std::uint8_t> classes;
   if (!classes_text.empty()) {
-    if (!parseNumbers(classes_text, values)) {
+    if (!pcl_ls3d::tools::parseNumberList(classes_text, values)) {
       print_error("-classes needs a comma-separated list of class codes, got '%s'.\n",
                   classes_text.c_str());
       return -1;

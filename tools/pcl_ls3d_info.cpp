@@ -2,6 +2,8 @@
 /// \brief Prints what pcl_ls3d's readers see in a point-cloud file: format, counts, local origin,
 ///        bounds, the LAS header, the classification histogram and the flight strips.
 
+#include "tool_arguments.h"
+
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/strip_tools.h>
 
@@ -136,19 +138,12 @@ main(int argc, char** argv)
   }
   pcl_ls3d::io::LoadOptions options;
   std::vector<std::string> files;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-columns" && i + 1 < argc)
-      options.xyz_columns = argv[++i];
-    else if (a == "-json")
-      continue;
-    else if (a.size() > 1 && a[0] == '-') {
-      print_error("Unknown option %s (see -h).\n", a.c_str());
-      return -1;
-    }
-    else
-      files.push_back(a);
+  std::string why;
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, {"-columns"}, {"-json"}, files, why)) {
+    print_error("%s\n", why.c_str());
+    return -1;
   }
+  parse_argument(argc, argv, "-columns", options.xyz_columns);
   const bool json = find_switch(argc, argv, "-json");
   if (files.empty()) {
     print_error("No input file given (see -h).\n");

@@ -2,6 +2,8 @@
 /// \brief Writes synthetic clouds with known truth: a registration pair, a labelled scene,
 ///        a block of flight strips, or Li et al.'s deformation surface, plus truth.json.
 
+#include "tool_arguments.h"
+
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/synth/truth_json.h>
 
@@ -83,41 +85,20 @@ printHelp(const char* name)
 bool
 checkOptions(int argc, char** argv, const std::string& cmd)
 {
-  std::set<std::string> values = kCommon, switches = {"-overwrite", "-h", "--help"};
+  std::set<std::string> values = kCommon, switches = {"-overwrite"};
   values.insert(kValues.at(cmd).begin(), kValues.at(cmd).end());
   switches.insert(kSwitches.at(cmd).begin(), kSwitches.at(cmd).end());
-  for (int i = 2; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (values.count(a)) {
-      if (i + 1 >= argc) {
-        print_error("Option %s needs a value.\n", a.c_str());
-        return false;
-      }
-      ++i;
-    }
-    else if (!switches.count(a)) {
-      print_error("Unknown option or argument '%s' for '%s' (see -h).\n", a.c_str(), cmd.c_str());
-      return false;
-    }
+  std::vector<std::string> stray;
+  std::string why;
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 2, values, switches, stray, why)) {
+    print_error("%s: %s\n", cmd.c_str(), why.c_str());
+    return false;
+  }
+  if (!stray.empty()) {
+    print_error("Unexpected argument '%s' for '%s' (see -h).\n", stray[0].c_str(), cmd.c_str());
+    return false;
   }
   return true;
-}
-
-/// Comma-separated finite numbers.
-bool
-parseNumbers(const std::string& text, std::vector<double>& values)
-{
-  values.clear();
-  std::stringstream ss(text);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(v))
-      return false;
-    values.push_back(v);
-  }
-  return !values.empty();
 }
 
 /// Reads option `name` (if given) as `count` numbers (count 0: any count). Sets ok = false and
@@ -129,7 +110,7 @@ numbers(int argc, char** argv, const char* name, std::size_t count, bool& ok)
   std::vector<double> v;
   if (parse_argument(argc, argv, name, text) < 0)
     return v;
-  if (!parseNumbers(text, v) || (count && v.size() != count)) {
+  if (!pcl_ls3d::tools::parseNumberList(text, v) || (count && v.size() != count)) {
     print_error("%s needs %zu finite comma-separated number(s), got '%s'.\n", name, count,
                 text.c_str());
     ok = false;
