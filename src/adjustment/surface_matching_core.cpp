@@ -133,6 +133,9 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     radius = std::max(radius, reduced_[i].norm());
   }
   caches_.assign(n, CorrespondenceCache());
+  // Overlap culling: with a finite maximum correspondence distance, points with no target point
+  // within it cannot correspond (rule contract), so their neighbour search is skipped.
+  grid_.build(target, settings.max_correspondence_distance);
   const std::size_t slots = n * static_cast<std::size_t>(std::max(1, std::min(3, rule.maxObservations())));
   counts_.resize(n);
   if (obs_u_.size() < slots) {
@@ -174,7 +177,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       ConjugateObservations out;
       const Eigen::Vector3d q = o_t + lin.apply(reduced_[static_cast<std::size_t>(i)]);
       int c = 0;
-      if (rule.findConjugate(q, target, settings.max_correspondence_distance,
+      if (grid_.mayOverlap(q) && rule.findConjugate(q, target, settings.max_correspondence_distance,
                              caches_[static_cast<std::size_t>(i)], out))
         for (int k = 0; k < std::min(out.count, stride); ++k) {
           const ConjugateObservation& o = out.items[static_cast<std::size_t>(k)];

@@ -7,6 +7,7 @@
 
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
+#include <pcl_ls3d/adjustment/overlap_grid.h>
 #include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
@@ -45,6 +46,7 @@ private:
   std::vector<double> obs_l_;
   std::vector<int> obs_point_;
   Eigen::VectorXd weights_, sigma_v_;
+  OverlapGrid grid_;
 };
 
 }  // namespace pcl_ls3d
