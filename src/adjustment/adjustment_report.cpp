@@ -64,7 +64,9 @@ AdjustmentReport::fullReport() const
   os << "  source points " << source_points << ", correspondences " << correspondences
      << ", redundancy r = " << redundancy << "\n";
   const auto& names = similarityParameterNames();
-  os << "  parameters (reduced frame) +- sigma:\n";
+  os << "  parameters (reduced frame) +- sigma [" << precision_model << "]:\n";
+  if (source_noise > 0.0)
+    os << format("  source noise (errors-in-variables correction of m) = %.4g\n", source_noise);
   for (int i = 0; i < 7; ++i) {
     const std::size_t s = static_cast<std::size_t>(i);
     os << "    " << names[s] << (names[s].size() < 5 ? std::string(6 - names[s].size(), ' ') : " ");
@@ -74,7 +76,7 @@ AdjustmentReport::fullReport() const
     else if (!determinable[s])
       os << "  (UNDETERMINABLE: held, geometry gives no information)";
     else
-      os << format("  +- %.3e", sigmas[i]);
+      os << format("  +- %.3e  (formal %.3e)", sigmas[i], sigmas_formal[i]);
     os << "\n";
   }
   os << "  correlation matrix:\n";

@@ -1,9 +1,11 @@
 #include <pcl_ls3d/adjustment/gauss_markov.h>
+#include <pcl_ls3d/adjustment/spatial_precision.h>
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <unordered_set>
 
@@ -17,9 +19,9 @@ using Index = std::ptrdiff_t;
 // box (grown by a margin): the reduction origin o_s, near the overlap. False: no overlap.
 bool
 overlapCentroid(const std::vector<Eigen::Vector3d>& source, const TargetSurface& target,
-                const Eigen::Matrix4d& guess, double max_distance, Eigen::Vector3d& centroid)
+                const Eigen::Matrix4d& guess, double max_distance, Eigen::Vector3d& centroid,
+                Eigen::AlignedBox3d& box, std::vector<int>& inside)
 {
-  Eigen::AlignedBox3d box;
   for (std::size_t i = 0; i < target.size(); ++i) {
     const Eigen::Vector3d p = target.point(static_cast<int>(i));
     if (p.allFinite())
@@ -28,12 +30,16 @@ overlapCentroid(const std::vector<Eigen::Vector3d>& source, const TargetSurface&
   if (box.isEmpty())
     return false;
   const double margin = std::min(max_distance, 0.1 * box.diagonal().norm());
-  box.min().array() -= margin;
-  box.max().array() += margin;
+  Eigen::AlignedBox3d grown = box;
+  grown.min().array() -= margin;
+  grown.max().array() += margin;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   std::size_t n = 0;
-  for (const Eigen::Vector3d& p : source)
-    if (box.contains((guess * p.homogeneous()).head<3>())) {
+  inside.clear();
+  for (std::size_t i = 0; i < source.size(); ++i)
+    if (grown.contains((guess * source[i].homogeneous()).head<3>())) {
+      const Eigen::Vector3d& p = source[i];
+      inside.push_back(static_cast<int>(i));
       sum += p;
       ++n;
     }
@@ -110,7 +116,9 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
 
   // Reduction to a local origin near the overlap (DESIGN: conditioning on georeferenced data).
   Eigen::Vector3d o_s;
-  if (!overlapCentroid(source, target, guess, settings.max_correspondence_distance, o_s))
+  Eigen::AlignedBox3d target_box;
+  std::vector<int> inside;  // source points over the target's box: seeds for σ_s
+  if (!overlapCentroid(source, target, guess, settings.max_correspondence_distance, o_s, target_box, inside))
     return failed(report, TerminationType::NO_OVERLAP,
                   "no source point falls over the target's extent under the initial guess");
   const Eigen::Vector3d o_t = (guess * o_s.homogeneous()).head<3>();
@@ -128,9 +136,11 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
   const std::size_t n = source.size();
   reduced_.resize(n);
   double radius = 0.0;
+  Eigen::AlignedBox3d source_box;
   for (std::size_t i = 0; i < n; ++i) {
     reduced_[i] = source[i] - o_s;
     radius = std::max(radius, reduced_[i].norm());
+    source_box.extend(reduced_[i]);
   }
   caches_.assign(n, CorrespondenceCache());
   // Overlap culling: with a finite maximum correspondence distance, points with no target point
@@ -164,8 +174,30 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
           ? (n + settings.coarse_observations - 1) / settings.coarse_observations
           : 1;
   bool coarse = coarse_stride > 1;
+  // Errors in variables (settings.correct_source_noise): σ_s from the source's own roughness,
+  // then per observation c = m σ_s² |u|² / var(l), var(l) = m² σ_s² |u|² + σ_t² (target part
+  // σ_t² = σ0² − m² σ_s² mean|u|²); the scale column becomes a_m − c l (its correlation with l
+  // removed: the adjusted source point x − c l R⁻¹u / m of a Gauss–Helmert linearisation).
+  double sigma_s = -1.0;  // < 0: not estimated yet
+  double eiv_ms2 = 0.0, eiv_m2s2 = 0.0, eiv_vt = 0.0, mean_u2 = 1.0;
+  bool eiv = false;
+  auto row = [&](std::size_t s) {
+    RowVector7d a = lin.designRow(obs_u_[s], reduced_[static_cast<std::size_t>(obs_point_[s])]);
+    if (eiv) {
+      const double u2 = obs_u_[s].squaredNorm();
+      a[SCALE] -= eiv_ms2 * u2 / (eiv_m2s2 * u2 + eiv_vt) * obs_l_[s];
+    }
+    return a;
+  };
   for (int it = 1; it <= settings.max_iterations; ++it) {
     lin = SimilarityLinearization(SimilarityTransform(X));
+    eiv = settings.correct_source_noise && sigma_s > 0.0 && sigma0_prev > 0.0;
+    if (eiv) {
+      eiv_ms2 = X[SCALE] * sigma_s * sigma_s;
+      eiv_m2s2 = X[SCALE] * eiv_ms2;
+      eiv_vt = std::max(0.0, sigma0_prev * sigma0_prev - eiv_m2s2 * mean_u2);
+      eiv = eiv_m2s2 * mean_u2 + eiv_vt > 0.0;
+    }
 
     // 1. Conjugate points of every transformed source point (rule strategy, §2.2).
 #pragma omp parallel for schedule(dynamic, 512)
@@ -199,6 +231,19 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
         obs_point_[m] = static_cast<int>(i);
       }
     report.correspondences = m;
+    if (settings.correct_source_noise && sigma_s < 0.0 && m > 0) {
+      // Seeds: source points over the target's box (independent of the coarse phase), with
+      // ~30 neighbours each.
+      const double area = source_box.sizes().head<2>().prod();
+      const double density = area > 0.0 ? static_cast<double>(n) / area : 0.0;
+      sigma_s = density > 0.0 ? estimateSurfaceNoise(reduced_, inside, std::sqrt(30.0 / (M_PI * density))) : 0.0;
+    }
+    if (m > 0) {  // mean |u|² (1 for unit directions) for the errors-in-variables term
+      double u2 = 0.0;
+      for (std::size_t j = 0; j < m; ++j)
+        u2 += obs_u_[j].squaredNorm();
+      mean_u2 = u2 / static_cast<double>(m);
+    }
     if (m == 0 && it == 1)
       return failed(report, TerminationType::NO_OVERLAP,
                     "the rule found no conjugate point on the target (no overlap)");
@@ -217,7 +262,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       sigma_v_.resize(static_cast<Index>(m));
 #pragma omp parallel for schedule(static)
       for (Index j = 0; j < static_cast<Index>(m); ++j) {
-        const RowVector7d a = lin.designRow(obs_u_[static_cast<std::size_t>(j)], reduced_[static_cast<std::size_t>(obs_point_[static_cast<std::size_t>(j)])]);
+        const RowVector7d a = row(static_cast<std::size_t>(j));
         sigma_v_[j] = sigma0_prev * std::sqrt(std::max(0.0, 1.0 - a * sol.qxx * a.transpose()));
       }
     }
@@ -242,7 +287,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       for (Index j = 0; j < static_cast<Index>(m); ++j) {
         const std::size_t s = static_cast<std::size_t>(j);
         const double w = std::min(1.0, std::max(0.0, weights_[j]));
-        local.add(lin.designRow(obs_u_[s], reduced_[static_cast<std::size_t>(obs_point_[s])]), obs_l_[s], w);
+        local.add(row(s), obs_l_[s], w);
       }
 #pragma omp critical
       ne += local;
@@ -319,7 +364,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     }
   }
 
-  // Precision (eq. 14), correlation, determinability.
+  // Precision: formal σ0² Qxx (eq. 14) and the spatial sandwich (spatial_precision.h).
   report.parameters = X;
   report.transformation = localToGlobal(SimilarityTransform(X).matrix(), o_s, o_t);
   report.sigma0 = sol.sigma0;
@@ -327,20 +372,52 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
   report.fixed = sol.fixed;
   report.determinable = sol.determinable;
   report.redundancy = sol.redundancy;
+  report.source_noise = eiv ? sigma_s : 0.0;
+  report.covariance = sol.sigma0 * sol.sigma0 * sol.qxx;
+  report.precision_model = "formal (eq. 14)";
+  if (settings.spatial_precision && sol.redundancy > 0) {
+    double cell = settings.precision_cell;
+    if (!(cell > 0.0)) {  // 8 × the target's mean XY spacing
+      const double area = target_box.sizes().head<2>().prod();
+      cell = area > 0.0 ? 8.0 * std::sqrt(area / static_cast<double>(target.size())) : 0.0;
+    }
+    if (cell > 0.0) {
+      SpatialScoreSum scores(cell);
+      for (std::size_t j = 0; j < m; ++j) {
+        const double w = std::min(1.0, std::max(0.0, weights_[static_cast<Index>(j)]));
+        if (!(w > 0.0))
+          continue;
+        const RowVector7d a = row(j);
+        const double v = obs_l_[j] + a.dot(sol.dx);
+        scores.add(o_t + lin.apply(reduced_[static_cast<std::size_t>(obs_point_[j])]),
+                   (w * v) * a.transpose());
+      }
+      Matrix7d meat = scores.meat() * (static_cast<double>(sol.redundancy + sol.unknowns) /
+                                       static_cast<double>(sol.redundancy));
+      for (int i = 0; i < 7; ++i)  // soft a-priori observations: independent, variance σ0²/p_e
+        if (sol.determinable[static_cast<std::size_t>(i)] && settings.apriori_weights[i] > 0.0)
+          meat(i, i) += sol.sigma0 * sol.sigma0 * settings.apriori_weights[i];
+      report.covariance = sol.qxx * meat * sol.qxx;
+      char buf[64];
+      std::snprintf(buf, sizeof(buf), "spatial sandwich, cell %.3g", cell);
+      report.precision_model = buf;
+    }
+  }
   std::string undetermined;
   for (int i = 0; i < 7; ++i) {
     const std::size_t s = static_cast<std::size_t>(i);
+    report.sigmas_formal[i] = sol.sigma0 * std::sqrt(sol.qxx(i, i));
     if (sol.fixed[s])
-      report.sigmas[i] = 0.0;
+      report.sigmas[i] = report.sigmas_formal[i] = 0.0;
     else if (!sol.determinable[s]) {
-      report.sigmas[i] = std::numeric_limits<double>::infinity();
+      report.sigmas[i] = report.sigmas_formal[i] = std::numeric_limits<double>::infinity();
       undetermined += (undetermined.empty() ? "" : ", ") + similarityParameterNames()[s];
     }
     else
-      report.sigmas[i] = sol.sigma0 * std::sqrt(sol.qxx(i, i));
+      report.sigmas[i] = std::sqrt(std::max(0.0, report.covariance(i, i)));
     for (int j = 0; j < 7; ++j) {
-      const double d = std::sqrt(sol.qxx(i, i) * sol.qxx(j, j));
-      report.correlation(i, j) = d > 0.0 ? sol.qxx(i, j) / d : 0.0;
+      const double d = std::sqrt(report.covariance(i, i) * report.covariance(j, j));
+      report.correlation(i, j) = d > 0.0 ? report.covariance(i, j) / d : 0.0;
     }
   }
   if (!undetermined.empty())
@@ -358,7 +435,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
 #pragma omp parallel for schedule(static)
     for (Index j = 0; j < static_cast<Index>(m); ++j) {
       const std::size_t s = static_cast<std::size_t>(j);
-      const RowVector7d a = lin.designRow(obs_u_[s], reduced_[static_cast<std::size_t>(obs_point_[s])]);
+      const RowVector7d a = row(s);
       const double w = std::min(1.0, std::max(0.0, weights_[j]));
       report.observation_source_index[s] = source_indices.empty() ? obs_point_[s] : source_indices[static_cast<std::size_t>(obs_point_[s])];
       report.residuals[s] = obs_l_[s] + a.dot(sol.dx);

@@ -1,36 +1,80 @@
 #include <pcl_ls3d/rules/icp_rule.h>
 #include <pcl_ls3d/rules/local_tin.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pcl_ls3d {
+
+namespace {
+// Observations of x' − q along the closest point's error axes: the local normal n (weight 1)
+// and two tangents (weight p_t), as (√p u, √p l) so the engine's unit weight applies.
+void
+addFrameObservations(const Eigen::Vector3d& query, const Eigen::Vector3d& q,
+                     const Eigen::Vector3d& n, double tangential_weight, ConjugateObservations& out)
+{
+  Eigen::Vector3d e1, e2;
+  tin::planeBasis(n, e1, e2);
+  const Eigen::Vector3d d = query - q;
+  const double s = std::sqrt(tangential_weight);
+  out.add(n, n.dot(d), q);
+  out.add(s * e1, s * e1.dot(d), q);
+  out.add(s * e2, s * e2.dot(d), q);
+}
+}  // namespace
 
 bool
 IcpRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target,
                        double max_distance, CorrespondenceCache& cache,
                        ConjugateObservations& out) const
 {
+  if (cache.frozen) {  // keep the last closest point and its error axes (see CorrespondenceCache)
+    const int idx = cache.vertices[0];
+    if (idx < 0 || idx >= static_cast<int>(target.size()))
+      return false;
+    const Eigen::Vector3d n(cache.plane[0], cache.plane[1], cache.plane[2]);
+    addFrameObservations(query, target.point(idx), n.normalized(), cache.plane[3], out);
+    return true;
+  }
   thread_local std::vector<int> indices;
   thread_local std::vector<float> sq_dists;
   thread_local std::vector<Eigen::Vector2d> projected;
-  const int k = require_enclosure_ ? neighbours_ : 1;
+  const int k = std::max(3, neighbours_);
   const int found = target.nearestKSearch(query, k, indices, sq_dists);
-  if (found < 1 || !(static_cast<double>(sq_dists[0]) <= max_distance * max_distance))
+  cache.vertices[0] = -1;
+  if (found < 3 || !(static_cast<double>(sq_dists[0]) <= max_distance * max_distance))
+    return false;
+  Eigen::Vector3d normal;
+  if (!tin::planeNormal(target, indices, found, normal))
     return false;
   if (require_enclosure_) {
     // Overlap test: the query must lie inside the local surface, not beyond its border.
-    Eigen::Vector3d normal;
     std::array<int, 3> tri;
-    if (!tin::planeNormal(target, indices, found, normal))
-      return false;
     tin::projectToPlane(target, indices, found, query, normal, projected);
     if (!tin::enclosingTriangle(projected, tri))
       return false;
   }
+  // Error model of the closest point q as a stand-in for the true conjugate point: across the
+  // surface the target noise σ_n² (plane-fit residuals of the neighbours), along it the offset
+  // to a random sample, E[r²]/2 = 1/(2πρ) per axis with ρ = k / (π r_k²).
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int i = 0; i < found; ++i)
+    mean += target.point(indices[static_cast<std::size_t>(i)]);
+  mean /= found;
+  double rss = 0.0;
+  for (int i = 0; i < found; ++i) {
+    const double h = normal.dot(target.point(indices[static_cast<std::size_t>(i)]) - mean);
+    rss += h * h;
+  }
+  const double cell_area = M_PI * static_cast<double>(sq_dists[static_cast<std::size_t>(found - 1)]) / found;
+  const double var_n = std::max(rss / std::max(1, found - 3), 1e-4 * cell_area);
+  const double var_t = var_n + cell_area / (2.0 * M_PI);
+  const double p_t = var_n / var_t;
   const Eigen::Vector3d q = target.point(indices[0]);
   cache.vertices[0] = indices[0];
-  for (int axis = 0; axis < 3; ++axis)
-    out.add(Eigen::Vector3d::Unit(axis), query[axis] - q[axis], q);
+  cache.plane = {{static_cast<float>(normal.x()), static_cast<float>(normal.y()),
+                  static_cast<float>(normal.z()), static_cast<float>(p_t), 0.f, 0.f}};
+  addFrameObservations(query, q, normal, p_t, out);
   return true;
 }
 

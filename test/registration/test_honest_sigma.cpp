@@ -1,105 +1,114 @@
-// Honest precision: over repeated noise draws on pairs of the same kind, the empirical spread of each
-// estimated parameter must agree with the reported σ_i (eq. 14), and 95 % intervals must
-// contain the truth in roughly 95 % of the draws.
+// Honest precision: over repeated noise draws on one pair geometry, the spread of each estimated
+// parameter must agree with the reported σ_i (spatial sandwich, spatial_precision.h), and 95 %
+// intervals must contain the truth in roughly 95 % of the draws.
+//
+// Statistical tolerance: 40 draws estimate a spread with ≈ 11 % relative standard error, so
+// "within a factor 1.5" is a ≥ 3.5-standard-error band; the coverage of 40 nominal-95 % intervals
+// has a binomial standard deviation of 3.4 %, so ≥ 85 % is 3 standard deviations below 95 %.
 #include "ls3d_test_utils.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <random>
 #include <vector>
 
 using namespace ls3d_test;
 
 namespace {
 
-struct DrawStats
+constexpr int kDraws = 40;
+
+struct Figures
 {
-  std::vector<pcl_ls3d::Vector7d> errors, sigmas;
+  pcl_ls3d::Vector7d spread_ratio, coverage;
+  int used = 0;
 };
 
-DrawStats
-runDraws(pcl_ls3d::ConjugateRuleType rule, int draws)
+// One noise-free 100 m pair (1 pt/m², 80 % overlap); each draw adds fresh isotropic noise of
+// σ_source to the source and σ_target to the target.
+Figures
+runDraws(double sigma_source, double sigma_target)
 {
-  DrawStats st;
-  for (int d = 0; d < draws; ++d) {
-    // Each seed draws new noise and a new terrain of the same kind (the generator has one
-    // seed); σ_i is the yardstick of each draw's own geometry.
-    const auto pair = smallPair(100 + static_cast<std::uint32_t>(d), 100.0, 1.0, 1.0, 0.8, 0.05, 60.0, 10.0);
+  const auto base = smallPair(100, 100.0, 1.0, 1.0, 0.8, 0.0, 60.0, 10.0);
+  std::vector<pcl_ls3d::Vector7d> errors, sigmas;
+  for (int d = 0; d < kDraws; ++d) {
+    std::mt19937 rng(1000 + static_cast<unsigned>(d));
+    std::normal_distribution<float> z(0.f, 1.f);
+    Cloud::Ptr src(new Cloud(*base.source)), tgt(new Cloud(*base.target));
+    for (auto& p : *src)
+      p.getVector3fMap() += static_cast<float>(sigma_source) * Eigen::Vector3f(z(rng), z(rng), z(rng));
+    for (auto& p : *tgt)
+      p.getVector3fMap() += static_cast<float>(sigma_target) * Eigen::Vector3f(z(rng), z(rng), z(rng));
     LS3D ls3d;
-    ls3d.setConjugateRule(rule);
-    ls3d.setInputSource(pair.source);
-    ls3d.setInputTarget(pair.target);
+    ls3d.setInputSource(src);
+    ls3d.setInputTarget(tgt);
     Cloud aligned;
     ls3d.align(aligned);
     if (!ls3d.hasConverged())
       continue;
     const auto& r = ls3d.getReport();
-    st.errors.push_back(r.parameters - truthInReducedFrame(r, pair.truth));
-    st.sigmas.push_back(r.sigmas);
+    errors.push_back(r.parameters - truthInReducedFrame(r, base.truth));
+    sigmas.push_back(r.sigmas);
   }
-  return st;
-}
-
-// Ratio of the RMS error about the truth to the mean reported σ_i, and the share of draws whose
-// 95 % interval (±1.96 σ_i) contains the truth.
-void
-honestFigures(const DrawStats& st, const char* rule, pcl_ls3d::Vector7d& ratio,
-              pcl_ls3d::Vector7d& coverage)
-{
-  const double n = static_cast<double>(st.errors.size());
+  Figures f;
+  f.used = static_cast<int>(errors.size());
+  const double n = static_cast<double>(errors.size());
   for (int i = 0; i < 7; ++i) {
-    double sum2 = 0.0, mean_sigma = 0.0;
+    double mean = 0.0, mean_sigma = 0.0, sq = 0.0;
     int covered = 0;
-    for (std::size_t k = 0; k < st.errors.size(); ++k) {
-      sum2 += st.errors[k][i] * st.errors[k][i];
-      mean_sigma += st.sigmas[k][i];
-      covered += std::abs(st.errors[k][i]) <= 1.96 * st.sigmas[k][i];
+    for (std::size_t k = 0; k < errors.size(); ++k) {
+      mean += errors[k][i] / n;
+      mean_sigma += sigmas[k][i] / n;
+      covered += std::abs(errors[k][i]) <= 1.96 * sigmas[k][i];
     }
-    ratio[i] = std::sqrt(sum2 / n) / (mean_sigma / n);  // about the truth: includes any bias
-    coverage[i] = covered / n;
-    std::printf("%s %-6s rms error %.3e  mean sigma %.3e  ratio %.2f  coverage %.2f\n", rule,
-                pcl_ls3d::similarityParameterNames()[static_cast<std::size_t>(i)].c_str(),
-                std::sqrt(sum2 / n), mean_sigma / n, ratio[i], coverage[i]);
+    for (const auto& e : errors)
+      sq += (e[i] - mean) * (e[i] - mean);
+    const double spread = std::sqrt(sq / (n - 1.0));
+    f.spread_ratio[i] = spread / mean_sigma;
+    f.coverage[i] = covered / n;
+    std::printf("noise %.2f/%.2f %-6s bias %+.2e spread %.3e sigma %.3e ratio %.2f coverage %.2f\n",
+                sigma_source, sigma_target,
+                pcl_ls3d::similarityParameterNames()[static_cast<std::size_t>(i)].c_str(), mean,
+                spread, mean_sigma, f.spread_ratio[i], f.coverage[i]);
   }
+  return f;
 }
 
 void
-checkHonest(pcl_ls3d::ConjugateRuleType rule, const char* name, double max_ratio,
-            double min_coverage)
+expectHonest(const Figures& f, double factor, double min_coverage)
 {
-  const int draws = 30;
-  const DrawStats st = runDraws(rule, draws);
-  ASSERT_GE(static_cast<int>(st.errors.size()), draws * 9 / 10) << "too many failed draws";
-  pcl_ls3d::Vector7d ratio, coverage;
-  honestFigures(st, name, ratio, coverage);
+  ASSERT_GE(f.used, kDraws * 9 / 10) << "too many failed draws";
   for (int i = 0; i < 7; ++i) {
-    EXPECT_GT(ratio[i], 1.0 / max_ratio) << "parameter " << i;
-    EXPECT_LT(ratio[i], max_ratio) << "parameter " << i;
-    EXPECT_GE(coverage[i], min_coverage) << "parameter " << i;
+    const auto& name = pcl_ls3d::similarityParameterNames()[static_cast<std::size_t>(i)];
+    EXPECT_GT(f.spread_ratio[i], 1.0 / factor) << name;
+    EXPECT_LT(f.spread_ratio[i], factor) << name;
+    EXPECT_GE(f.coverage[i], min_coverage) << name;
   }
 }
 
 }  // namespace
 
-// The specification: spread within a factor 1.5 of σ_i and ≥ 85 % coverage of nominal 95 %
-// intervals. NOT MET yet (measured, 30 draws, 100 m pairs, 1 pt/m², σ = 5 cm, LND quadric):
-// ratio 1.4–2.1 for t and angles, 3.2 for m; coverage 0.73–0.87, 0.5 for m. The reported σ_i
-// are too small by ~2 because neighbouring observations share target points (the local
-// surface fits reuse them), so the residuals are correlated while P = I assumes independence.
-// Kept as a disabled test so the gap stays visible; run with --gtest_also_run_disabled_tests.
-TEST(Ls3dHonestSigma, DISABLED_LndSpreadWithinFactor1p5OfSigma)
+// The engine's part of the specification: source noise (independent observations, but noisy
+// coordinates in the design matrix — the errors-in-variables scale bias of −σ_s²/mean((uᵀRx)²),
+// 1.75 σ_m before the correction). Measured: ratio 0.89–1.28, coverage 0.88–0.97.
+TEST(Ls3dHonestSigma, SourceNoiseSpreadWithinFactor1p5AndCoverage)
 {
-  checkHonest(pcl_ls3d::ConjugateRuleType::LND, "LND", 1.5, 0.85);
+  expectHonest(runDraws(0.05, 0.0), 1.5, 0.85);
 }
 
-TEST(Ls3dHonestSigma, DISABLED_LzdSpreadWithinFactor1p5OfSigma)
+// Both clouds noisy (σ = 5 cm each), default LND: observations sharing target points are
+// correlated; the spatial sandwich brings the spread / σ_i ratio from 1.1–1.95 (formal
+// σ0 √q_ii) to 0.98–1.42 here. Coverage is 0.80–0.90, not ≥ 0.85 everywhere: the LND surface's
+// partial-overlap bias (tx, ty ≈ 0.4–0.8 σ on this geometry; a conjugate-surface matter) shifts
+// the intervals. So the factor 1.5 of the specification is asserted, coverage at ≥ 0.75; the
+// full specification (coverage ≥ 0.85) is the disabled test below.
+TEST(Ls3dHonestSigma, BothNoisySpreadWithinFactor1p5)
 {
-  checkHonest(pcl_ls3d::ConjugateRuleType::LZD, "LZD", 1.5, 0.85);
+  expectHonest(runDraws(0.05, 0.05), 1.5, 0.75);
 }
 
-// Regression guard on the current state (see above): σ_i within a factor 4 of the spread and
-// ≥ 40 % coverage, so a change that makes the precision figures worse is caught.
-TEST(Ls3dHonestSigma, LndSpreadWithinFactor4OfSigma)
+TEST(Ls3dHonestSigma, DISABLED_BothNoisySpreadWithinFactor1p5AndCoverage85)
 {
-  checkHonest(pcl_ls3d::ConjugateRuleType::LND, "LND", 4.0, 0.40);
+  expectHonest(runDraws(0.05, 0.05), 1.5, 0.85);
 }

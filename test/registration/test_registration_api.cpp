@@ -293,7 +293,7 @@ TEST(Ls3dRegistration, BadInputFailsCleanly)
 TEST(Ls3dRegistration, CoarseToFineMatchesFullIteration)
 {
   const auto pair = smallPair(12, 100.0, 1.0, 1.0, 0.8, 0.02);
-  pcl_ls3d::Vector7d full, coarse;
+  pcl_ls3d::Vector7d full, coarse, sigmas;
   for (std::size_t coarse_obs : {std::size_t(0), std::size_t(1000)}) {
     LS3D ls3d;
     pcl_ls3d::AdjustmentSettings s;
@@ -306,10 +306,13 @@ TEST(Ls3dRegistration, CoarseToFineMatchesFullIteration)
     ASSERT_TRUE(ls3d.hasConverged());
     EXPECT_EQ(ls3d.getReport().termination, pcl_ls3d::TerminationType::CONVERGED);
     (coarse_obs ? coarse : full) = ls3d.getReport().parameters;
+    sigmas = ls3d.getReport().sigmas;
     if (coarse_obs)  // the first iterations used about 1000 of ~10^4 points
       EXPECT_LT(ls3d.getReport().log.front().observations_used, 2000u);
   }
-  // Same fixed point up to the convergence epsilons (both end on all points, frozen).
-  EXPECT_LT((full.head<3>() - coarse.head<3>()).norm(), 1e-3);
-  EXPECT_LT((full.segment<3>(3) - coarse.segment<3>(3)).cwiseAbs().maxCoeff(), 1e-5);
+  // Same fixed point up to a small fraction of σ_i: both end on all points, frozen, but the
+  // frozen sets and the errors-in-variables factor (from the last σ0) follow the path
+  // (measured: angles 1.2e-5 rad apart, ≈ 0.3 σ; 0.2e-5 without the correction).
+  for (int i = 0; i < 7; ++i)
+    EXPECT_LT(std::abs(full[i] - coarse[i]), 0.5 * sigmas[i]) << i;
 }

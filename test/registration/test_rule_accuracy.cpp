@@ -62,14 +62,13 @@ TEST_P(RuleAccuracy, RecoversKnownSimilarity)
               r.rule_name.c_str(), c.name, r.iterations, r.sigma0, r.observations_used, err.mean,
               err.max);
   if (rule == pcl_ls3d::ConjugateRuleType::ICP) {
-    // Closest-point ICP matches sample to sample: its residuals are sampling offsets (up to half
-    // the 1 m source spacing), not noise, and tangential sliding converges slowly. Bound the
-    // error by a fraction of the point spacing; its σ_i are not meaningful, so not checked.
-    // Measured (30 iterations, not converged): mean 0.29–0.63, max 0.38–0.83 spacings; more
-    // iterations do not help the 30 % overlap case (boundary pull remains).
-    const double spacing = 1.0 / std::sqrt(c.src_density);
-    EXPECT_LT(err.mean, 0.75 * spacing);
-    EXPECT_LT(err.max, 1.0 * spacing);
+    // Closest-point ICP matches sample to sample: q carries the target noise undamped (no local
+    // surface averages it) plus a tangential sampling offset, which its error-axis weights
+    // discount (icp_rule.h). It must converge (not stop at the limit) to within one noise σ on
+    // average and two σ at worst (measured: mean 0.37–0.64 σ, max 0.8–1.35 σ, 10–20 iterations).
+    EXPECT_EQ(r.termination, pcl_ls3d::TerminationType::CONVERGED) << r.fullReport();
+    EXPECT_LT(err.mean, 1.0 * c.noise);
+    EXPECT_LT(err.max, 2.0 * c.noise);
     return;
   }
   // LND / LZD: ~10^4 observations average the noise down, so the transform error at the edge of

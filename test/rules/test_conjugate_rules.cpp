@@ -44,6 +44,7 @@ TEST(ConjugateRules, LndGivesSignedNormalDistance)
   // Max distance enforced; outside the target's extent: no correspondence.
   ConjugateObservations none;
   CorrespondenceCache fresh;
+  out.clear();
   EXPECT_FALSE(rule.findConjugate(q, target, 0.1, fresh, none));
   EXPECT_FALSE(rule.findConjugate(Eigen::Vector3d(14, 0, planeZ(14, 0)), target, 10.0, fresh, none));
 }
@@ -62,6 +63,8 @@ TEST(ConjugateRules, LzdGivesHeightDifferenceWithSlopeGradient)
   EXPECT_NEAR(out.items[0].foot.x(), 1.3, 1e-12);
 }
 
+// ICP: three observations of x' − q (q the closest target point) along the local normal (unit
+// weight) and two tangents (weight p_t < 1, as √p_t u): they reconstruct x' − q exactly.
 TEST(ConjugateRules, IcpGivesThreeAxisObservations)
 {
   const auto target = tiltedPlane();
@@ -71,10 +74,24 @@ TEST(ConjugateRules, IcpGivesThreeAxisObservations)
   ConjugateObservations out;
   ASSERT_TRUE(rule.findConjugate(q, target, 10.0, cache, out));
   ASSERT_EQ(out.count, 3);
-  EXPECT_NEAR(out.items[0].distance, 0.1, 1e-9);
-  EXPECT_NEAR(out.items[1].distance, 0.05, 1e-9);
-  EXPECT_NEAR(out.items[2].distance, 0.05, 1e-9);
-  EXPECT_FALSE(rule.findConjugate(Eigen::Vector3d(12, 0, planeZ(12, 0)), target, 10.0, cache, out));
+  Eigen::Vector3d d = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 3; ++k) {
+    const auto& o = out.items[static_cast<std::size_t>(k)];
+    d += o.distance / o.direction.squaredNorm() * o.direction;
+  }
+  EXPECT_NEAR((d - Eigen::Vector3d(0.1, 0.05, 0.05)).norm(), 0.0, 1e-9);
+  const Eigen::Vector3d normal = Eigen::Vector3d(-0.2, 0.1, 1.0).normalized();
+  EXPECT_NEAR(std::abs(out.items[0].direction.dot(normal)), 1.0, 1e-9);
+  EXPECT_LT(out.items[1].direction.norm(), 0.5);  // tangents discounted (noise-free plane)
+  // Frozen: the same closest point is kept although the query moved next to another sample.
+  cache.frozen = true;
+  out.clear();
+  ASSERT_TRUE(rule.findConjugate(Eigen::Vector3d(3.0, 3.0, planeZ(3, 3)), target, 10.0, cache, out));
+  EXPECT_NEAR(out.items[0].distance, 0.0, 1e-6);  // on the plane through q (cached as float)
+  EXPECT_NEAR(out.items[0].foot.x(), 2.0, 1e-6);
+  CorrespondenceCache fresh;
+  out.clear();
+  EXPECT_FALSE(rule.findConjugate(Eigen::Vector3d(12, 0, planeZ(12, 0)), target, 10.0, fresh, out));
 }
 
 TEST(ConjugateRules, TriangleVariantsOnThePlane)

@@ -56,9 +56,19 @@ struct AdjustmentReport
   Eigen::Vector3d local_origin_target = Eigen::Vector3d::Zero(); ///< o_t = guess(o_s)
 
   double sigma0 = 0.0;                     ///< σ̂0 = sqrt((VᵀPV + V_eᵀP_eV_e) / r), eq. 11
-  Vector7d sigmas = Vector7d::Zero();      ///< σ_i = σ0 √q_ii (eq. 14); 0 fixed, +inf undeterminable
+  /// σ_i = √C_ii of the reported covariance; 0 fixed, +inf undeterminable.
+  Vector7d sigmas = Vector7d::Zero();
+  /// Formal σ0 √q_ii (eq. 14), which assumes independent observations (too small when
+  /// observations share target points; kept for comparison with the paper).
+  Vector7d sigmas_formal = Vector7d::Zero();
+  /// Covariance of X̂ behind `sigmas`: the spatial sandwich (settings.spatial_precision) or
+  /// σ0² Qxx; zero rows for held parameters.
+  Matrix7d covariance = Matrix7d::Zero();
+  /// "spatial sandwich (cell h m)" or "formal (eq. 14)".
+  std::string precision_model;
+  double source_noise = 0.0;               ///< σ_s estimated for the errors-in-variables correction (0: not used)
   Matrix7d qxx = Matrix7d::Zero();         ///< cofactor matrix (AᵀPA + P_e)⁻¹, zero for held parameters
-  Matrix7d correlation = Matrix7d::Zero(); ///< ρ_ij = q_ij / √(q_ii q_jj); zero rows for held parameters
+  Matrix7d correlation = Matrix7d::Zero(); ///< ρ_ij = C_ij / √(C_ii C_jj); zero rows for held parameters
   std::array<bool, 7> fixed{};             ///< infinite a-priori weight
   std::array<bool, 7> determinable{};      ///< free and resolvable by the geometry (rank test)
   long redundancy = 0;                     ///< r = n − u (eq. 11), including soft a-priori observations

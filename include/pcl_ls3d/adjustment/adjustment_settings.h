@@ -74,6 +74,21 @@ struct AdjustmentSettings
   /// largest one along that parameter (rank test). It is then held at its current value.
   double determinability_threshold = 1e-7;
 
+  // --- precision (see spatial_precision.h) --------------------------------------------------
+  /// Report σ_i from the sandwich covariance Q (AᵀP Σ_ll P A) Q with a spatial HAC estimate of
+  /// the middle term (observations sharing target points are correlated), instead of the
+  /// formal σ0 √q_ii of eq. 14 (kept as AdjustmentReport::sigmas_formal).
+  bool spatial_precision = true;
+  /// Cell edge h of the spatial HAC estimator [length]; 0 = automatic (8 × the target's mean
+  /// XY point spacing, i.e. well beyond the neighbourhoods the rules fit).
+  double precision_cell = 0.0;
+  /// Errors in variables: the source coordinates are noisy and enter the scale column of the
+  /// design matrix (a_m = uᵀ R x), correlating it with the observation l and biasing m by
+  /// about −σ_s² / mean((uᵀRx)²). When true the column is evaluated at the adjusted source point
+  /// (Gauss–Helmert linearisation point), x − c l R⁻¹u/m, which removes the correlation; the
+  /// source noise σ_s is estimated from the source's own local quadric residuals.
+  bool correct_source_noise = true;
+
   // --- results ----------------------------------------------------------------------------------
   /// Keep per-observation residuals, weights and redundancy numbers r_i in the report
   /// (needed by Baarda's test; 3 doubles per observation).

@@ -32,8 +32,12 @@ namespace pcl_ls3d {
 /// free, 30 iterations, convergence when every angle change < 1e-6 rad and |dt| < 1e-5 (and
 /// |dm| < 1e-8). Clouds above 400 k source points start coarse (every k-th point) until the
 /// estimate settles, then use every point; conjugate points are frozen for the last iterations.
-/// Precision caveat: σ_i assume independent observations; neighbouring observations share
-/// target points, and on noisy data σ_i come out ~2× too small (see test_honest_sigma.cpp).
+/// Precision: σ_i come from the spatial sandwich covariance (spatial_precision.h), because
+/// neighbouring observations share target points; the formal σ0 √q_ii of eq. 14 (≈ 1.5–2× too
+/// small on noisy data) is kept as report.sigmas_formal. The scale column is corrected for the
+/// source's own noise (errors in variables; AdjustmentSettings::correct_source_noise).
+/// With a finite setMaxCorrespondenceDistance() source points with no target point within it
+/// are culled by a grid look-up before any neighbour search (overlap_grid.h).
 /// Base-class knobs keep their PCL meaning: setMaximumIterations(), setMaxCorrespondenceDistance(),
 /// setTransformationEpsilon() (a squared translation, as in ICP: its square root replaces the
 /// translation epsilon when > 0), setSearchMethodTarget() (the kd-tree is reused across

@@ -1,15 +1,26 @@
 #pragma once
 /// \file icp_rule.h
 /// \brief ICP rule (Besl & McKay 1992; Zuo et al. 2012, Fig. 1c): the conjugate point is the
-///        closest target point; three observations, the coordinate differences along x, y, z.
+///        closest target point; three observations, the components of x' − q along the three
+///        axes of the closest point's error ellipsoid (local normal and two tangents).
+///
+/// Weighting: q stands in for the true conjugate point with an anisotropic error, the target
+/// noise σ_n across the surface but the offset to a random sample (variance 1/(2πρ) per axis,
+/// ρ the local target density) along it. Equal weights on three coordinate axes (the plain
+/// point-to-point form) let the tangential components, which carry only that sampling offset,
+/// anchor the estimate at the current correspondences: the iteration crept (0.3–0.6 m after 30
+/// iterations). Weighting each axis by 1/variance (tangents p_t = σ_n²/(σ_n² + 1/(2πρ)), normal
+/// 1) is the least-squares form of the same three observations and converges.
+/// When the engine freezes correspondences the rule keeps its closest point and axes.
 
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
 namespace pcl_ls3d {
 
-/// \brief Closest target point. With require_enclosure (default), a query is used only when a
-///        triangle of its k nearest target points encloses it in the local tangent plane, so
-///        points beyond the target's border (partial overlap) do not pull towards the border.
+/// \brief Closest target point. The k nearest target points give the local normal and density;
+///        with require_enclosure (default), a query is used only when a triangle of them
+///        encloses it in the local tangent plane, so points beyond the target's border (partial
+///        overlap) do not pull towards the border.
 class IcpRule final : public ConjugateRule
 {
 public:
