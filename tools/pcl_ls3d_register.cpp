@@ -141,6 +141,34 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
     corr.push_back(row);
   }
   j["correlation"] = corr;
+  auto matrix7 = [](const pcl_ls3d::Matrix7d& M) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (int a = 0; a < 7; ++a) {
+      nlohmann::json row = nlohmann::json::array();
+      for (int b = 0; b < 7; ++b)
+        row.push_back(M(a, b));
+      rows.push_back(row);
+    }
+    return rows;
+  };
+  j["qxx"] = matrix7(r.qxx);
+  j["covariance"] = matrix7(r.covariance);
+  j["precision_model"] = r.precision_model;
+  nlohmann::json formal;
+  for (std::size_t i = 0; i < 7; ++i)
+    formal[names[i]] = finiteOrNull(r.sigmas_formal[static_cast<int>(i)]);
+  j["sigmas_formal"] = formal;
+  j["source_noise"] = r.source_noise;
+  nlohmann::json log = nlohmann::json::array();
+  for (const auto& it : r.log)
+    log.push_back({{"iteration", it.iteration},
+                   {"sigma0", it.sigma0},
+                   {"observations_used", it.observations_used},
+                   {"observations_rejected", it.observations_rejected},
+                   {"max_angle_change", it.max_angle_change},
+                   {"translation_change", it.translation_change},
+                   {"scale_change", it.scale_change}});
+  j["log"] = log;
   j["observations_used"] = r.observations_used;
   j["observations_rejected"] = r.observations_rejected;
   j["correspondences"] = r.correspondences;
@@ -269,7 +297,12 @@ main(int argc, char** argv)
   ls3d.setInputSource(source);
   ls3d.setInputTarget(target);
   Cloud aligned;
-  ls3d.align(aligned);
+  {  // the library's own PCL_ERROR would be a second error line: the report's message is printed
+    const auto verbosity = getVerbosityLevel();
+    setVerbosityLevel(L_ALWAYS);
+    ls3d.align(aligned);
+    setVerbosityLevel(verbosity);
+  }
   const double t_align = tt.toc();
   const pcl_ls3d::AdjustmentReport& r = ls3d.getReport();
   if (!r.isSolutionUsable())

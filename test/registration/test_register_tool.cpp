@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -24,10 +25,12 @@ struct ToolRun
   std::string output;
 };
 
+// stderr_only: capture the error stream alone (the tool reports progress on stdout).
 ToolRun
-runTool(const std::string& args)
+runTool(const std::string& args, bool stderr_only = false)
 {
-  const std::string cmd = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_register " + args + " 2>&1";
+  const std::string cmd = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_register " + args +
+                          (stderr_only ? " 2>&1 >/dev/null" : " 2>&1");
   ToolRun r;
   FILE* p = popen(cmd.c_str(), "r");
   if (!p)
@@ -79,6 +82,13 @@ protected:
     j["transformation"] = rows;
     t << j.dump();
     std::ofstream(path("empty.pcd")) << "";
+    std::ofstream(path("nan.pcd")) << "# .PCD v0.7\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                      "COUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\n"
+                                      "POINTS 2\nDATA ascii\nnan nan nan\nnan nan nan\n";
+    // The target 10 km away: no overlap.
+    ASSERT_TRUE(pcl_ls3d::io::saveCloud(path("far.pcd"), *pair_.target,
+                                        origin + Eigen::Vector3d(10000.0, 0.0, 0.0), error))
+        << error;
   }
   void
   TearDown() override
@@ -146,4 +156,42 @@ TEST_F(RegisterTool, BadInputGivesOneErrorLineAndNonZeroExit)
     EXPECT_NE(r.code, 0) << args;
     EXPECT_EQ(errorLines(r.output), 1) << args << "\n" << r.output;
   }
+}
+
+// Inputs that load but cannot be registered: NaN-only clouds and no overlap. Non-zero exit and
+// exactly one line on stderr (the library's own PCL_ERROR is not repeated).
+TEST_F(RegisterTool, NanOnlyAndNoOverlapGiveOneErrorLine)
+{
+  const std::string s = path("source.pcd"), t = path("target.pcd");
+  for (const std::string& args : {s + " " + path("nan.pcd"), path("nan.pcd") + " " + t,
+                                   s + " " + path("far.pcd")}) {
+    const ToolRun r = runTool(args, true);
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_EQ(errorLines(r.output), 1) << args << "\n" << r.output;
+  }
+}
+
+// -params 6 fixes m and -fix tz fixes tz exactly at the guess (identity); the report carries
+// Qxx, the covariance behind the σ_i, the formal σ and one log record per iteration.
+TEST_F(RegisterTool, ParamsAndFixAreHonouredAndReportComplete)
+{
+  const ToolRun r = runTool(path("source.pcd") + " " + path("target.pcd") + " -params 6 -fix tz -json " +
+                            path("fixed.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(path("fixed.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["parameters"]["m"].get<double>(), 1.0);
+  EXPECT_EQ(j["parameters"]["tz"].get<double>(), 0.0);
+  EXPECT_TRUE(j["fixed"]["m"].get<bool>());
+  EXPECT_TRUE(j["fixed"]["tz"].get<bool>());
+  EXPECT_FALSE(j["fixed"]["tx"].get<bool>());
+  EXPECT_EQ(j["sigmas"]["m"].get<double>(), 0.0);
+  EXPECT_GT(j["sigmas"]["tx"].get<double>(), 0.0);
+  EXPECT_GT(j["sigmas_formal"]["tx"].get<double>(), 0.0);
+  EXPECT_EQ(j["qxx"].size(), 7u);
+  const double var_tx = j["covariance"][0][0].get<double>();
+  EXPECT_NEAR(var_tx, std::pow(j["sigmas"]["tx"].get<double>(), 2), 1e-12 * var_tx);
+  EXPECT_EQ(j["log"].size(), j["iterations"].get<std::size_t>());
+  EXPECT_EQ(j["termination"].get<std::string>(), "CONVERGED");
+  EXPECT_EQ(j["redundancy"].get<long>(), j["observations_used"].get<long>() - 5);
 }

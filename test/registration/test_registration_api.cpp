@@ -7,6 +7,7 @@
 
 #include <pcl/common/io.h>
 #include <pcl/registration/icp.h>
+#include <pcl/search/kdtree.h>
 
 #include <gtest/gtest.h>
 
@@ -315,4 +316,116 @@ TEST(Ls3dRegistration, CoarseToFineMatchesFullIteration)
   // (measured: angles 1.2e-5 rad apart, ≈ 0.3 σ; 0.2e-5 without the correction).
   for (int i = 0; i < 7; ++i)
     EXPECT_LT(std::abs(full[i] - coarse[i]), 0.5 * sigmas[i]) << i;
+}
+
+// A soft a-priori observation (finite P_e, eq. 9) pulls the parameter towards L_e in
+// proportion to its weight; a huge weight pins it; TRANSLATION_3 holds rotations and scale.
+TEST(Ls3dRegistration, SoftConstraintsAndTranslationPreset)
+{
+  const auto pair = smallPair(13, 100.0, 1.0, 1.0, 0.8, 0.02);
+  const double le_m = 1.002;  // a-priori scale, ~20 σ_m away from the estimate
+  auto run = [&](double weight_m, pcl_ls3d::ParameterModel model) {
+    LS3D ls3d;
+    ls3d.setParameterModel(model);
+    if (weight_m > 0.0) {
+      Vector7d w = Vector7d::Zero(), values = Vector7d::Zero();
+      w[pcl_ls3d::SCALE] = weight_m;
+      values[pcl_ls3d::SCALE] = le_m;
+      ls3d.setParameterWeights(w);
+      ls3d.setParameterValues(values);
+    }
+    ls3d.setInputSource(pair.source);
+    ls3d.setInputTarget(pair.target);
+    Cloud out;
+    ls3d.align(out);
+    EXPECT_TRUE(ls3d.hasConverged());
+    return ls3d.getReport();
+  };
+  const auto free_fit = run(0.0, pcl_ls3d::ParameterModel::SIMILARITY_7);
+  const double m_free = free_fit.parameters[pcl_ls3d::SCALE];
+  ASSERT_GT(std::abs(le_m - m_free), 5.0 * free_fit.sigmas[pcl_ls3d::SCALE]);
+  // Weight equal to the data's information on m: about halfway from the estimate to L_e.
+  const double info = 1.0 / free_fit.qxx(pcl_ls3d::SCALE, pcl_ls3d::SCALE);
+  const double m_half = run(info, pcl_ls3d::ParameterModel::SIMILARITY_7).parameters[pcl_ls3d::SCALE];
+  EXPECT_GT((m_half - m_free) / (le_m - m_free), 0.3);
+  EXPECT_LT((m_half - m_free) / (le_m - m_free), 0.7);
+  const auto pinned = run(1e6 * info, pcl_ls3d::ParameterModel::SIMILARITY_7);
+  EXPECT_LT(std::abs(pinned.parameters[pcl_ls3d::SCALE] - le_m), 1e-4 * std::abs(le_m - m_free));
+  EXPECT_FALSE(pinned.fixed[pcl_ls3d::SCALE]);
+  const auto shift = run(0.0, pcl_ls3d::ParameterModel::TRANSLATION_3);
+  for (int i = pcl_ls3d::PHI; i <= pcl_ls3d::KAPPA; ++i)
+    EXPECT_EQ(shift.parameters[i], 0.0);
+  EXPECT_EQ(shift.parameters[pcl_ls3d::SCALE], 1.0);
+  EXPECT_TRUE(shift.determinable[pcl_ls3d::TX]);
+}
+
+// The report is complete and self-consistent: Σ r_i over weighted observations = n − u
+// (trace of the redundancy matrix), unit diagonal correlation, symmetric Qxx, one log record
+// per iteration, σ_i from the reported covariance, formal σ from σ0 √q_ii.
+TEST(Ls3dRegistration, ReportIsSelfConsistent)
+{
+  const auto pair = smallPair(14, 100.0, 1.0, 1.0, 0.8, 0.02);
+  LS3D ls3d;
+  ls3d.setInputSource(pair.source);
+  ls3d.setInputTarget(pair.target);
+  Cloud out;
+  ls3d.align(out);
+  ASSERT_TRUE(ls3d.hasConverged());
+  const auto& r = ls3d.getReport();
+  EXPECT_EQ(r.termination, pcl_ls3d::TerminationType::CONVERGED);
+  ASSERT_EQ(r.log.size(), static_cast<std::size_t>(r.iterations));
+  EXPECT_EQ(r.log.back().observations_used, r.observations_used);
+  double trace = 0.0;
+  for (std::size_t i = 0; i < r.redundancy_numbers.size(); ++i)
+    if (r.weights[i] > 0.0)
+      trace += r.redundancy_numbers[i];
+  EXPECT_NEAR(trace, static_cast<double>(r.redundancy), 1e-6 * static_cast<double>(r.redundancy));
+  EXPECT_EQ(r.redundancy, static_cast<long>(r.observations_used) - 7);
+  EXPECT_LT((r.qxx - r.qxx.transpose()).norm(), 1e-12 * r.qxx.norm());
+  for (int i = 0; i < 7; ++i) {
+    EXPECT_NEAR(r.correlation(i, i), 1.0, 1e-12);
+    EXPECT_NEAR(r.sigmas[i], std::sqrt(r.covariance(i, i)), 1e-15);
+    EXPECT_NEAR(r.sigmas_formal[i], r.sigma0 * std::sqrt(r.qxx(i, i)), 1e-15);
+  }
+  EXPECT_NE(r.precision_model.find("sandwich"), std::string::npos);
+  EXPECT_NE(r.fullReport().find("kappa"), std::string::npos);
+}
+
+namespace {
+// A kd-tree that counts its queries, to see that the engine searches through the caller's tree.
+class CountingTree : public pcl::search::KdTree<PointT>
+{
+public:
+  using Ptr = std::shared_ptr<CountingTree>;
+  int
+  nearestKSearch(const PointT& p, int k, pcl::Indices& idx, std::vector<float>& d) const override
+  {
+    ++calls;
+    return pcl::search::KdTree<PointT>::nearestKSearch(p, k, idx, d);
+  }
+  mutable std::atomic<long> calls{0};
+};
+}  // namespace
+
+// setSearchMethodTarget: a caller's kd-tree (force_no_recompute) is used as PCL's ICP does, and
+// gives the same result as the tree align() builds itself.
+TEST(Ls3dRegistration, CallerSuppliedSearchTree)
+{
+  const auto pair = smallPair(15, 80.0, 1.0, 1.0, 0.8, 0.02);
+  CountingTree::Ptr tree(new CountingTree);
+  tree->setInputCloud(pair.target);
+  Eigen::Matrix4f with_tree, without;
+  for (bool supply : {true, false}) {
+    LS3D ls3d;
+    if (supply)
+      ls3d.setSearchMethodTarget(tree, true);
+    ls3d.setInputSource(pair.source);
+    ls3d.setInputTarget(pair.target);
+    Cloud out;
+    ls3d.align(out);
+    ASSERT_TRUE(ls3d.hasConverged());
+    (supply ? with_tree : without) = ls3d.getFinalTransformation();
+  }
+  EXPECT_GT(tree->calls.load(), static_cast<long>(pair.source->size() / 2));
+  EXPECT_LT((with_tree - without).cwiseAbs().maxCoeff(), 1e-6);
 }
