@@ -167,7 +167,8 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
                    {"observations_rejected", it.observations_rejected},
                    {"max_angle_change", it.max_angle_change},
                    {"translation_change", it.translation_change},
-                   {"scale_change", it.scale_change}});
+                   {"scale_change", it.scale_change},
+                   {"extrapolated", it.extrapolated}});
   j["log"] = log;
   j["observations_used"] = r.observations_used;
   j["observations_rejected"] = r.observations_rejected;

@@ -91,8 +91,9 @@ AdjustmentReport::fullReport() const
     os << format("    %3.0f  sigma0 %.5g", it.iteration, it.sigma0)
        << format("  used %.0f  rejected %.0f", static_cast<double>(it.observations_used),
                  static_cast<double>(it.observations_rejected))
-       << format("  dangle %.2e  dt %.2e  dm %.2e\n", it.max_angle_change, it.translation_change,
-                 it.scale_change);
+       << format("  dangle %.2e  dt %.2e  dm %.2e", it.max_angle_change, it.translation_change,
+                 it.scale_change)
+       << (it.extrapolated ? "  (extrapolated)\n" : "\n");
   return os.str();
 }
 

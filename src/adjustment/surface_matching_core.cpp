@@ -168,6 +168,8 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
   double sigma0_prev = 0.0;
   std::size_t m = 0;
   bool frozen = false;
+  int last_extrapolation = -10;
+  Vector7d previous_step = Vector7d::Zero();
   // Coarse phase: every stride-th point only, until the estimate has settled to ~1 σ_i.
   const std::size_t coarse_stride =
       settings.coarse_observations > 0 && n > 2 * settings.coarse_observations
@@ -350,6 +352,22 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       break;
     }
     report.termination = TerminationType::MAX_ITERATIONS;
+    // Besl & McKay (1992, §IV-C) acceleration: while correspondences are still searched afresh,
+    // a creeping iteration (closest-point rules: consecutive steps nearly parallel, each a fixed
+    // fraction ρ of the previous one) is extrapolated to the limit of its geometric series,
+    // X += dx ρ/(1 − ρ). Steps are compared as displacements at the data's edge.
+    const Vector7d step = sol.dx.cwiseQuotient(problem.scaling);
+    if (settings.accelerate && !frozen && it >= last_extrapolation + 3 && previous_step.norm() > 0.0) {
+      const double rho = step.norm() / previous_step.norm();
+      const double cosine = step.dot(previous_step) / (step.norm() * previous_step.norm());
+      if (cosine > 0.98 && rho > 0.3 && rho < 0.97) {
+        X += std::min(10.0, rho / (1.0 - rho)) * sol.dx;
+        report.log.back().extrapolated = true;
+        report.log.back().parameters = X;
+        last_extrapolation = it;
+      }
+    }
+    previous_step = step;
     bool negligible = 3 * it >= 2 * settings.max_iterations;
     for (int i = 0; i < 7 && !negligible; ++i)
       if (sol.determinable[static_cast<std::size_t>(i)] &&

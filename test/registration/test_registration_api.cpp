@@ -11,6 +11,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <limits>
 
@@ -428,4 +429,34 @@ TEST(Ls3dRegistration, CallerSuppliedSearchTree)
   }
   EXPECT_GT(tree->calls.load(), static_cast<long>(pair.source->size() / 2));
   EXPECT_LT((with_tree - without).cwiseAbs().maxCoeff(), 1e-6);
+}
+
+// Besl & McKay acceleration (AdjustmentSettings::accelerate): the closest-point rule creeps
+// (steps parallel, shrinking ~10 % per iteration); extrapolating the geometric series brings it
+// much closer before the correspondences are frozen. 150 m pair, 1 vs 4 pts/m², σ = 5 cm;
+// measured (seeds 3, 4): 123 / 111 mm without, 28 / 53 mm with.
+TEST(Ls3dRegistration, AccelerationHelpsTheCreepingIcpRule)
+{
+  const auto pair = smallPair(3, 150.0, 1.0, 4.0, 0.7, 0.05);
+  double error[2];
+  for (int accelerate = 0; accelerate < 2; ++accelerate) {
+    LS3D ls3d;
+    pcl_ls3d::AdjustmentSettings s;
+    s.accelerate = accelerate == 1;
+    ASSERT_TRUE(ls3d.setAdjustmentSettings(s));
+    ls3d.setConjugateRule(pcl_ls3d::ConjugateRuleType::ICP);
+    ls3d.setInputSource(pair.source);
+    ls3d.setInputTarget(pair.target);
+    Cloud out;
+    ls3d.align(out);
+    ASSERT_TRUE(ls3d.hasConverged());
+    const auto& log = ls3d.getReport().log;
+    const bool extrapolated =
+        std::any_of(log.begin(), log.end(), [](const pcl_ls3d::IterationRecord& r) { return r.extrapolated; });
+    EXPECT_EQ(extrapolated, accelerate == 1);
+    error[accelerate] = displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
+                                          pair.truth.matrix()).mean;
+  }
+  EXPECT_LT(error[1], 0.5 * error[0]);
+  EXPECT_LT(error[1], 0.05);  // within one noise σ
 }

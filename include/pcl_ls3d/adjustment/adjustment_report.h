@@ -40,6 +40,7 @@ struct IterationRecord
   double translation_change = 0.0;        ///< [length] |dt|
   double scale_change = 0.0;              ///< |dm|
   Vector7d parameters = Vector7d::Zero(); ///< estimate after this iteration (reduced frame)
+  bool extrapolated = false;              ///< the step was extrapolated (settings.accelerate)
 };
 
 /// \brief Everything one adjustment produced. Parameter order: tx, ty, tz, φ, ω, κ, m.

@@ -53,6 +53,11 @@ struct AdjustmentSettings
   /// (triangles chosen around the wrong positions).
   double freeze_sigma_fraction = 0.1;
 
+  /// Besl & McKay's acceleration: when consecutive steps are nearly parallel and shrink by a
+  /// steady ratio ρ (0.3 < ρ < 0.97; the creep of closest-point rules), jump to the limit of the
+  /// geometric series (at most 10 steps ahead). LND/LZD steps shrink faster and are unaffected.
+  bool accelerate = true;
+
   /// Coarse-to-fine for big clouds: while the estimate is still far off (changes above 1 σ_i),
   /// iterate on every k-th source point only, k chosen so that about this many are used; then
   /// continue on all points (and finally freeze). 0 = always use every point.

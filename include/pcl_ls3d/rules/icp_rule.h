@@ -10,7 +10,9 @@
 /// point-to-point form) let the tangential components, which carry only that sampling offset,
 /// anchor the estimate at the current correspondences: the iteration crept (0.3–0.6 m after 30
 /// iterations). Weighting each axis by 1/variance (tangents p_t = σ_n²/(σ_n² + 1/(2πρ)), normal
-/// 1) is the least-squares form of the same three observations and converges.
+/// 1) is the least-squares form of the same three observations and converges much faster; the
+/// engine's Besl & McKay acceleration (AdjustmentSettings::accelerate) removes most of the rest
+/// of the creep (1 vs 4 pts/m², σ 5 cm, 300 m pair: 104 mm → 27 mm, 15 iterations).
 /// When the engine freezes correspondences the rule keeps its closest point and axes.
 
 #include <pcl_ls3d/rules/conjugate_rule.h>
