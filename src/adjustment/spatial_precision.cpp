@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include <algorithm>
 #include <cmath>
@@ -36,34 +37,46 @@ cellOf(const Eigen::Vector3d& x, double inv_cell)
 }  // namespace
 
 void
-SpatialScoreSum::add(const Eigen::Vector3d& x, const Vector7d& score)
+SpatialScoreSum::add(const Eigen::Vector3d& x, const Vector7d& a, double p, const Vector7d& score)
 {
   const Eigen::Array3i c = cellOf(x, inv_cell_);
-  auto it = sums_.find(cellKey(c.x(), c.y(), c.z()));
-  if (it == sums_.end())
-    sums_.emplace(cellKey(c.x(), c.y(), c.z()), score);
-  else
-    it->second += score;
+  Cell& cell = cells_[cellKey(c.x(), c.y(), c.z())];
+  cell.score += score;
+  cell.normal.selfadjointView<Eigen::Upper>().rankUpdate(a, p);
 }
 
 Matrix7d
-SpatialScoreSum::meat() const
+SpatialScoreSum::meat(const Matrix7d* q) const
 {
   Matrix7d M = Matrix7d::Zero();
-  for (const auto& kv : sums_) {
-    const std::int64_t x = signExtend(kv.first >> (2 * kBits)), y = signExtend(kv.first >> kBits),
-                       z = signExtend(kv.first);
-    for (int dx = -1; dx <= 1; ++dx)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dz = -1; dz <= 1; ++dz) {
-          const auto it = sums_.find(cellKey(x + dx, y + dy, z + dz));
-          if (it == sums_.end())
-            continue;
-          // Bartlett weight of the 2-cell block average: 1 - |Δ|/2 per axis.
-          const double w = (dx ? 0.5 : 1.0) * (dy ? 0.5 : 1.0) * (dz ? 0.5 : 1.0);
-          M.noalias() += w * kv.second * it->second.transpose();
-        }
+  std::unordered_map<std::uint64_t, Cell> blocks;
+  blocks.reserve(cells_.size());
+  for (int shift = 0; shift < 8; ++shift) {
+    const int sx = shift & 1, sy = (shift >> 1) & 1, sz = (shift >> 2) & 1;
+    blocks.clear();
+    for (const auto& kv : cells_) {
+      const std::int64_t x = signExtend(kv.first >> (2 * kBits)), y = signExtend(kv.first >> kBits),
+                         z = signExtend(kv.first);
+      // Block of 2 × 2 × 2 cells; floor division for negative indices.
+      auto half = [](std::int64_t v) { return v >= 0 ? v / 2 : -((1 - v) / 2); };
+      Cell& b = blocks[cellKey(half(x + sx), half(y + sy), half(z + sz))];
+      b.score += kv.second.score;
+      b.normal += kv.second.normal;
+    }
+    for (const auto& kv : blocks) {
+      Vector7d s = kv.second.score;
+      if (q) {
+        const Matrix7d nb = kv.second.normal.selfadjointView<Eigen::Upper>();
+        const Matrix7d I_NQ = Matrix7d::Identity() - nb * (*q);
+        const Eigen::FullPivLU<Matrix7d> lu(I_NQ);
+        // A block holding (nearly) all the information cannot be corrected: keep it plain.
+        if (lu.isInvertible() && lu.rcond() > 1e-3)
+          s = lu.solve(s);
+      }
+      M.noalias() += s * s.transpose();
+    }
   }
+  M /= 8.0;
   return 0.5 * (M + M.transpose());
 }
 

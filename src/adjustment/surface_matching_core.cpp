@@ -408,10 +408,9 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
         const RowVector7d a = row(j);
         const double v = obs_l_[j] + a.dot(sol.dx);
         scores.add(o_t + lin.apply(reduced_[static_cast<std::size_t>(obs_point_[j])]),
-                   (w * v) * a.transpose());
+                   a.transpose(), w, (w * v) * a.transpose());
       }
-      Matrix7d meat = scores.meat() * (static_cast<double>(sol.redundancy + sol.unknowns) /
-                                       static_cast<double>(sol.redundancy));
+      Matrix7d meat = scores.meat(&sol.qxx);
       for (int i = 0; i < 7; ++i)  // soft a-priori observations: independent, variance σ0²/p_e
         if (sol.determinable[static_cast<std::size_t>(i)] && settings.apriori_weights[i] > 0.0)
           meat(i, i) += sol.sigma0 * sol.sigma0 * settings.apriori_weights[i];

@@ -12,13 +12,15 @@
 ///
 /// The covariance of the least-squares estimate X̂ = −Q AᵀP L under any Σ_ll is the sandwich
 /// C = Q (AᵀP Σ_ll P A) Q. The middle term is estimated from the residuals with a spatial
-/// Bartlett kernel (a spatial HAC estimator, Conley 1999): with s_i = p_i v_i a_iᵀ and S_c the
-/// sum of s_i over cubic cells of edge h,
-///   M = n/(n−u) · Σ_c Σ_{c' adjacent or equal} w(c, c') S_c S_c'ᵀ,  w = Π_axes (1 − |Δ|/2),
-/// which equals the average of the plain block (cluster) estimator over the 8 grids of 2h blocks
-/// shifted by h, hence positive semi-definite. Pairs closer than ~h are counted with weight ≥ ½;
-/// h must exceed the correlation length (the rule's neighbourhood diameter). Without
-/// correlation M → σ0² AᵀPA and C → σ0² Q, eq. 14.
+/// Bartlett kernel (a spatial HAC estimator, Conley 1999): with s_i = p_i v_i a_iᵀ summed over
+/// cubic cells of edge h, M is the average over the 8 grids of 2h blocks shifted by h of
+/// Σ_B S_B S_Bᵀ, i.e. Σ_c Σ_{c' adjacent or equal} w(c, c') S_c S_c'ᵀ with w = Π_axes (1 − |Δ|/2),
+/// positive semi-definite. Pairs closer than ~h count with weight ≥ ½; h must exceed the
+/// correlation length (the rule's neighbourhood diameter). Each block score is corrected for the
+/// block's own leverage (S_B → (I − N_B Q)⁻¹ S_B, a block jackknife / CR3 form), because
+/// Σ_i a_i v_i = 0 makes the plain estimator too small when blocks are few. Without
+/// correlation M → σ0² AᵀPA and C → σ0² Q, eq. 14. Derivation and measurements:
+/// docs/LS3D_PRECISION.md.
 
 #include <pcl_ls3d/common/similarity_transform.h>
 
@@ -30,29 +32,39 @@
 
 namespace pcl_ls3d {
 
-/// \brief Accumulates per-observation scores s_i into cells and forms the HAC middle term.
+/// \brief Accumulates per-observation scores into cells and forms the HAC middle term.
 class SpatialScoreSum
 {
 public:
   explicit SpatialScoreSum(double cell) : inv_cell_(1.0 / cell) {}
 
-  /// Adds the score s = p v aᵀ of an observation at position x.
+  /// Adds an observation at position x with design row a (weight p) and score s = p v aᵀ.
   void
-  add(const Eigen::Vector3d& x, const Vector7d& score);
+  add(const Eigen::Vector3d& x, const Vector7d& a, double p, const Vector7d& score);
 
-  /// Σ_c Σ_c' w(c, c') S_c S_c'ᵀ (without the n/(n−u) factor).
+  /// The average over the 8 grids of 2 × 2 × 2-cell blocks shifted by one cell of
+  /// Σ_B S*_B S*_Bᵀ (without the n/(n−u) factor). With q = nullptr, S*_B = S_B (the Bartlett
+  /// form in the file comment); with the cofactor matrix Q, the block-jackknife (CR3) correction
+  /// S*_B = (I − N_B Q)⁻¹ S_B, N_B = Σ_{i∈B} p_i a_iᵀa_i: the residuals of a block are shrunk by
+  /// its own leverage (Σ_i a_i v_i = 0 over all data), which biases the plain estimator low when
+  /// blocks are few (push-through form of (I − H_BB)⁻¹ v_B, Bell & McCaffrey 2002).
   Matrix7d
-  meat() const;
+  meat(const Matrix7d* q = nullptr) const;
 
   std::size_t
   cells() const
   {
-    return sums_.size();
+    return cells_.size();
   }
 
 private:
+  struct Cell
+  {
+    Vector7d score = Vector7d::Zero();
+    Matrix7d normal = Matrix7d::Zero();
+  };
   double inv_cell_;
-  std::unordered_map<std::uint64_t, Vector7d> sums_;
+  std::unordered_map<std::uint64_t, Cell> cells_;
 };
 
 /// \brief Robust estimate of the isotropic noise σ of a sampled smooth surface: local quadrics
