@@ -93,6 +93,8 @@ AdjustmentSettings::isValid(std::string* why) const
     return fail("max_correspondence_distance must be > 0");
   if (!(source_thinning >= 0.0) || std::isinf(source_thinning))
     return fail("source_thinning must be >= 0 and finite");
+  if (recheck_interval < 0)
+    return fail("recheck_interval must be >= 0");
   if (!(precision_cell >= 0.0) || std::isinf(precision_cell))
     return fail("precision_cell must be >= 0 and finite");
   if (!(freeze_sigma_fraction >= 0.0) || std::isinf(freeze_sigma_fraction))

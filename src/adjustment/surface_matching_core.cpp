@@ -191,8 +191,13 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     }
     return a;
   };
+  // Without a finite reach (no overlap grid), points that found no correspondence in their last
+  // search are skipped except every recheck_interval-th iteration (and never once frozen).
+  missed_.assign(n, 0);
   for (int it = 1; it <= settings.max_iterations; ++it) {
     lin = SimilarityLinearization(SimilarityTransform(X));
+    const bool skip_missed = !grid_.built() && !frozen && !coarse && settings.recheck_interval > 1 &&
+                             it % settings.recheck_interval != 0;
     eiv = settings.correct_source_noise && sigma_s > 0.0 && sigma0_prev > 0.0;
     if (eiv) {
       eiv_ms2 = X[SCALE] * sigma_s * sigma_s;
@@ -204,15 +209,17 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     // 1. Conjugate points of every transformed source point (rule strategy, §2.2).
 #pragma omp parallel for schedule(dynamic, 512)
     for (Index i = 0; i < static_cast<Index>(n); ++i) {
-      if (coarse && static_cast<std::size_t>(i) % coarse_stride != 0) {
+      if ((coarse && static_cast<std::size_t>(i) % coarse_stride != 0) ||
+          (skip_missed && missed_[static_cast<std::size_t>(i)])) {
         counts_[static_cast<std::size_t>(i)] = 0;
         continue;
       }
       ConjugateObservations out;
       const Eigen::Vector3d q = o_t + lin.apply(reduced_[static_cast<std::size_t>(i)]);
       int c = 0;
-      if (grid_.mayOverlap(q) && rule.findConjugate(q, target, settings.max_correspondence_distance,
-                             caches_[static_cast<std::size_t>(i)], out))
+      const bool in_reach = grid_.mayOverlap(q);
+      if (in_reach && rule.findConjugate(q, target, settings.max_correspondence_distance,
+                                         caches_[static_cast<std::size_t>(i)], out))
         for (int k = 0; k < std::min(out.count, stride); ++k) {
           const ConjugateObservation& o = out.items[static_cast<std::size_t>(k)];
           if (!std::isfinite(o.distance) || !o.direction.allFinite())
@@ -222,6 +229,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
           obs_l_[slot] = o.distance;
         }
       counts_[static_cast<std::size_t>(i)] = static_cast<unsigned char>(c);
+      missed_[static_cast<std::size_t>(i)] = c == 0;
     }
     // Compact the slots in place (target index never exceeds the slot index).
     m = 0;

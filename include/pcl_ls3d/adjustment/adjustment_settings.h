@@ -63,6 +63,12 @@ struct AdjustmentSettings
   /// continue on all points (and finally freeze). 0 = always use every point.
   std::size_t coarse_observations = 200000;
 
+  /// With an unlimited max_correspondence_distance (no overlap grid, see overlap_grid.h), a
+  /// source point that found no correspondence is searched again only every recheck_interval-th
+  /// iteration (a point outside the overlap costs one search in that many); 0 or 1 = every
+  /// iteration. Frozen iterations reuse the rules' caches and need no search anyway.
+  int recheck_interval = 3;
+
   // --- observations --------------------------------------------------------------------------
   /// Conjugate points farther than this (|signed distance| and nearest target point) are no
   /// correspondence. Default: unlimited, as in pcl::Registration.

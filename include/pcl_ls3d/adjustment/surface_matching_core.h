@@ -42,6 +42,7 @@ private:
   std::vector<Eigen::Vector3d> reduced_;
   std::vector<CorrespondenceCache> caches_;
   std::vector<unsigned char> counts_;
+  std::vector<unsigned char> missed_;  ///< no correspondence at the point's last search
   std::vector<Eigen::Vector3d> obs_u_;
   std::vector<double> obs_l_;
   std::vector<int> obs_point_;
