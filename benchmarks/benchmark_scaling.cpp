@@ -50,7 +50,7 @@ resetPeak()
 
 /// Child: generate, register strip 2 onto strip 1, print one RESULT line.
 int
-runChild(long points_per_strip, unsigned int seed, bool parallel)
+runChild(long points_per_strip, unsigned int seed, bool parallel, double thin)
 {
   synth::StripSettings s;
   s.pattern = parallel ? synth::ScanPattern::PARALLEL : synth::ScanPattern::ZIGZAG;
@@ -78,6 +78,7 @@ runChild(long points_per_strip, unsigned int seed, bool parallel)
   const bool reset = resetPeak();
   const long rss_before = procStatusKb("VmRSS");
   evaluation::Ls3dMethodSettings ls;
+  ls.source_thinning = thin;
   const auto run = evaluation::runLs3d(ConjugateRuleType::LND, source, target, ls);
   const long hwm = procStatusKb("VmHWM");
   const auto err =
@@ -101,7 +102,7 @@ struct ChildResult
 
 /// Re-executes this program with -child N and collects its RESULT line and rusage.
 ChildResult
-spawnChild(long n, unsigned int seed, bool parallel)
+spawnChild(long n, unsigned int seed, bool parallel, double thin)
 {
   ChildResult r;
   int fd[2];
@@ -112,9 +113,9 @@ spawnChild(long n, unsigned int seed, bool parallel)
     dup2(fd[1], STDOUT_FILENO);
     close(fd[0]);
     close(fd[1]);
-    const std::string ns = std::to_string(n), ss = std::to_string(seed);
+    const std::string ns = std::to_string(n), ss = std::to_string(seed), ts = std::to_string(thin);
     execl("/proc/self/exe", "benchmark_scaling", "-child", ns.c_str(), "-seed", ss.c_str(),
-          parallel ? "-parallel" : "-zigzag", static_cast<char*>(nullptr));
+          parallel ? "-parallel" : "-zigzag", "-thin", ts.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
   close(fd[1]);
@@ -142,31 +143,38 @@ int
 main(int argc, char** argv)
 {
   if (pcl::console::find_switch(argc, argv, "-h")) {
-    pcl::console::print_info("Usage: %s [-sizes 0.5,1,2,5] [-seed S] [-parallel]\n"
+    pcl::console::print_info("Usage: %s [-sizes 0.5,1,2,5] [-seed S] [-parallel] [-thin STEP]\n"
                              "  -sizes     points per strip in millions (default 0.5,1,2,5)\n"
-                             "  -parallel  rotating-polygon scan lines instead of zig-zag\n",
+                             "  -parallel  rotating-polygon scan lines instead of zig-zag\n"
+                             "  -thin      one source observation per voxel of this edge [m] (default 0: all)\n",
                              argv[0]);
     return 0;
   }
   int seed = 1;
   pcl::console::parse_argument(argc, argv, "-seed", seed);
   const bool parallel = pcl::console::find_switch(argc, argv, "-parallel");
+  double thin = 0.0;
+  pcl::console::parse_argument(argc, argv, "-thin", thin);
+  if (!(thin >= 0.0)) {
+    pcl::console::print_error("-thin must be >= 0\n");
+    return 1;
+  }
   long child = 0;
   if (pcl::console::parse_argument(argc, argv, "-child", child) >= 0)
-    return runChild(child, static_cast<unsigned int>(seed), parallel);
+    return runChild(child, static_cast<unsigned int>(seed), parallel, thin);
 
   std::vector<double> sizes{0.5, 1.0, 2.0, 5.0};
   pcl::console::parse_x_arguments(argc, argv, "-sizes", sizes);
   std::printf("LS3D-LND, 2 strips, 300 m swath, 20 %% side overlap, 4 pts/m2, %s scan, sigma 5 cm, "
-              "seed %d; %ld threads; one fresh process per size\n\n",
-              parallel ? "parallel" : "zig-zag", seed, sysconf(_SC_NPROCESSORS_ONLN));
+              "seed %d, source thinning %g m; %ld threads; one fresh process per size\n\n",
+              parallel ? "parallel" : "zig-zag", seed, thin, sysconf(_SC_NPROCESSORS_ONLN));
   std::printf("%10s %10s %7s %8s %8s %5s %5s %9s %9s %8s %10s %10s  %s\n", "src_pts", "tgt_pts",
               "gen[s]", "reg[s]", "cpu[s]", "iter", "conv", "mean[mm]", "max[mm]", "s0[m]", "align_MB",
               "proc_MB", "status");
   bool pass = true, ran_target_size = false, accurate = true;
   for (double m : sizes) {
     const long n = static_cast<long>(m * 1e6);
-    const ChildResult r = spawnChild(n, static_cast<unsigned int>(seed), parallel);
+    const ChildResult r = spawnChild(n, static_cast<unsigned int>(seed), parallel, thin);
     if (r.line.empty()) {
       std::printf("%10ld  child failed\n", n);
       pass = false;
