@@ -432,20 +432,56 @@ TEST(Ls3dRegistration, CallerSuppliedSearchTree)
   EXPECT_LT((with_tree - without).cwiseAbs().maxCoeff(), 1e-6);
 }
 
-// Besl & McKay acceleration (AdjustmentSettings::accelerate): the closest-point rule creeps
-// (steps parallel, shrinking ~10 % per iteration); extrapolating the geometric series brings it
-// much closer before the correspondences are frozen. 150 m pair, 1 vs 4 pts/m², σ = 5 cm;
-// measured (seeds 3, 4): 123 / 111 mm without, 28 / 53 mm with.
-TEST(Ls3dRegistration, AccelerationHelpsTheCreepingIcpRule)
+namespace {
+// Plain point-to-point rule (closest target point, three unit-weight axis observations): the
+// classic creeping iteration, written as a user rule.
+class PointToPointRule : public pcl_ls3d::ConjugateRule
 {
-  const auto pair = smallPair(3, 150.0, 1.0, 4.0, 0.7, 0.05);
+public:
+  std::string
+  name() const override
+  {
+    return "PointToPoint";
+  }
+  int
+  maxObservations() const override
+  {
+    return 3;
+  }
+  bool
+  findConjugate(const Eigen::Vector3d& x, const pcl_ls3d::TargetSurface& t, double max_distance,
+                pcl_ls3d::CorrespondenceCache&, pcl_ls3d::ConjugateObservations& out) const override
+  {
+    thread_local std::vector<int> idx;
+    thread_local std::vector<float> d2;
+    if (t.nearestKSearch(x, 1, idx, d2) < 1 || !(d2[0] <= max_distance * max_distance))
+      return false;
+    const Eigen::Vector3d q = t.point(idx[0]);
+    for (int axis = 0; axis < 3; ++axis)
+      out.add(Eigen::Vector3d::Unit(axis), x[axis] - q[axis], q);
+    return true;
+  }
+};
+}  // namespace
+
+// Besl & McKay acceleration (AdjustmentSettings::accelerate): a point-to-point iteration creeps
+// (steps parallel, each a steady fraction of the previous one); extrapolating the geometric
+// series gets as far in far fewer iterations (measured: 60 iterations / 489.7 mm without,
+// 31 / 484.5 mm with; the plain point-to-point result itself is poor, see icp_rule.h).
+// Full-overlap 100 m pair, 1 vs 4 pts/m², σ = 2 cm, 60 iterations allowed.
+TEST(Ls3dRegistration, AccelerationShortensACreepingIteration)
+{
+  const auto pair = smallPair(3, 100.0, 1.0, 4.0, 1.0, 0.02);
+  int iterations[2];
   double error[2];
   for (int accelerate = 0; accelerate < 2; ++accelerate) {
     LS3D ls3d;
     pcl_ls3d::AdjustmentSettings s;
     s.accelerate = accelerate == 1;
+    s.max_iterations = 60;
+    s.max_correspondence_distance = 2.0;
     ASSERT_TRUE(ls3d.setAdjustmentSettings(s));
-    ls3d.setConjugateRule(pcl_ls3d::ConjugateRuleType::ICP);
+    ls3d.setConjugateRule(std::make_shared<PointToPointRule>());
     ls3d.setInputSource(pair.source);
     ls3d.setInputTarget(pair.target);
     Cloud out;
@@ -455,11 +491,14 @@ TEST(Ls3dRegistration, AccelerationHelpsTheCreepingIcpRule)
     const bool extrapolated =
         std::any_of(log.begin(), log.end(), [](const pcl_ls3d::IterationRecord& r) { return r.extrapolated; });
     EXPECT_EQ(extrapolated, accelerate == 1);
+    iterations[accelerate] = ls3d.getReport().iterations;
     error[accelerate] = displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
                                           pair.truth.matrix()).mean;
   }
-  EXPECT_LT(error[1], 0.5 * error[0]);
-  EXPECT_LT(error[1], 0.05);  // within one noise σ
+  std::printf("point-to-point: %d iterations, %.1f mm without acceleration; %d, %.1f mm with\n",
+              iterations[0], 1e3 * error[0], iterations[1], 1e3 * error[1]);
+  EXPECT_LT(iterations[1], iterations[0] * 3 / 4);
+  EXPECT_LT(error[1], error[0] * 1.05);
 }
 
 // Overlap culling without a finite correspondence distance: points that found no conjugate point

@@ -64,11 +64,13 @@ TEST_P(RuleAccuracy, RecoversKnownSimilarity)
   if (rule == pcl_ls3d::ConjugateRuleType::ICP) {
     // Closest-point ICP matches sample to sample: q carries the target noise undamped (no local
     // surface averages it) plus a tangential sampling offset, which its error-axis weights
-    // discount (icp_rule.h). It must converge (not stop at the limit) to within one noise σ on
-    // average and two σ at worst (measured: mean 0.37–0.64 σ, max 0.8–1.35 σ, 10–20 iterations).
+    // discount (icp_rule.h). It must converge by its own criteria, before the engine freezes
+    // correspondences at 2/3 of the iteration limit, to within 0.8 noise σ on average and 1.6 σ
+    // at worst (measured: mean 0.36–0.64 σ, max 0.75–1.34 σ, 9–14 iterations).
     EXPECT_EQ(r.termination, pcl_ls3d::TerminationType::CONVERGED) << r.fullReport();
-    EXPECT_LT(err.mean, 1.0 * c.noise);
-    EXPECT_LT(err.max, 2.0 * c.noise);
+    EXPECT_LT(r.iterations, 20);
+    EXPECT_LT(err.mean, 0.8 * c.noise);
+    EXPECT_LT(err.max, 1.6 * c.noise);
     return;
   }
   // LND / LZD: ~10^4 observations average the noise down, so the transform error at the edge of
