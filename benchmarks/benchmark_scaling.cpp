@@ -6,6 +6,8 @@
 //                   before it, i.e. input clouds held + everything LS3D allocates.
 // Target (issue): 5 M-point strips registered in <= 30 s on 2 cores with <= 4 GB peak.
 #include <pcl_ls3d/evaluation/ls3d_method.h>
+#include <pcl_ls3d/registration/least_squares_surface_matching.h>
+#include <pcl_ls3d/rules/lnd_rule.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/synth/strip_block.h>
 
@@ -49,8 +51,40 @@ resetPeak()
 }
 
 /// Child: generate, register strip 2 onto strip 1, print one RESULT line.
+/// LS3D-LND with Zuo's TIN facet as the local surface (LndRule::Surface::TRIANGLE), same
+/// settings as runLs3d(): the accurate reference while the quadric LND fails on zig-zag strips.
+evaluation::RegistrationRun
+runTriangleLnd(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
+               const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
+               const evaluation::Ls3dMethodSettings& settings)
+{
+  evaluation::RegistrationRun run;
+  pcl::console::TicToc tt;
+  tt.tic();
+  const double cpu0 = evaluation::processCpuSeconds();
+  LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ> ls3d;
+  ls3d.setConjugateRule(std::make_shared<LndRule>(12, LndRule::Surface::TRIANGLE));
+  ls3d.setMaxCorrespondenceDistance(settings.max_correspondence_distance);
+  ls3d.setMaximumIterations(settings.max_iterations);
+  ls3d.setSourceThinning(settings.source_thinning);
+  ls3d.setInputSource(source);
+  ls3d.setInputTarget(target);
+  pcl::PointCloud<pcl::PointXYZ> output;
+  ls3d.align(output);
+  run.time_s = tt.toc() / 1000.0;
+  run.cpu_s = evaluation::processCpuSeconds() - cpu0;
+  const AdjustmentReport& report = ls3d.getReport();
+  run.ran = true;
+  run.iterations = report.iterations;
+  run.converged = report.termination == TerminationType::CONVERGED;
+  run.sigma0 = report.sigma0;
+  run.transformation = report.transformation;
+  run.message = terminationTypeToString(report.termination);
+  return run;
+}
+
 int
-runChild(long points_per_strip, unsigned int seed, bool parallel, double thin)
+runChild(long points_per_strip, unsigned int seed, bool parallel, double thin, bool triangle)
 {
   synth::StripSettings s;
   s.pattern = parallel ? synth::ScanPattern::PARALLEL : synth::ScanPattern::ZIGZAG;
@@ -79,7 +113,8 @@ runChild(long points_per_strip, unsigned int seed, bool parallel, double thin)
   const long rss_before = procStatusKb("VmRSS");
   evaluation::Ls3dMethodSettings ls;
   ls.source_thinning = thin;
-  const auto run = evaluation::runLs3d(ConjugateRuleType::LND, source, target, ls);
+  const auto run = triangle ? runTriangleLnd(source, target, ls)
+                            : evaluation::runLs3d(ConjugateRuleType::LND, source, target, ls);
   const long hwm = procStatusKb("VmHWM");
   const auto err =
       evaluation::computeTransformError(run.transformation, truth, evaluation::cloudToMatrix(*source));
@@ -102,7 +137,7 @@ struct ChildResult
 
 /// Re-executes this program with -child N and collects its RESULT line and rusage.
 ChildResult
-spawnChild(long n, unsigned int seed, bool parallel, double thin)
+spawnChild(long n, unsigned int seed, bool parallel, double thin, bool triangle)
 {
   ChildResult r;
   int fd[2];
@@ -115,7 +150,8 @@ spawnChild(long n, unsigned int seed, bool parallel, double thin)
     close(fd[1]);
     const std::string ns = std::to_string(n), ss = std::to_string(seed), ts = std::to_string(thin);
     execl("/proc/self/exe", "benchmark_scaling", "-child", ns.c_str(), "-seed", ss.c_str(),
-          parallel ? "-parallel" : "-zigzag", "-thin", ts.c_str(), static_cast<char*>(nullptr));
+          parallel ? "-parallel" : "-zigzag", "-thin", ts.c_str(), triangle ? "-triangle" : "-quadric",
+          static_cast<char*>(nullptr));
     _exit(127);
   }
   close(fd[1]);
@@ -143,16 +179,18 @@ int
 main(int argc, char** argv)
 {
   if (pcl::console::find_switch(argc, argv, "-h")) {
-    pcl::console::print_info("Usage: %s [-sizes 0.5,1,2,5] [-seed S] [-parallel] [-thin STEP]\n"
+    pcl::console::print_info("Usage: %s [-sizes 0.5,1,2,5] [-seed S] [-parallel] [-thin STEP] [-triangle]\n"
                              "  -sizes     points per strip in millions (default 0.5,1,2,5)\n"
                              "  -parallel  rotating-polygon scan lines instead of zig-zag\n"
-                             "  -thin      one source observation per voxel of this edge [m] (default 0: all)\n",
+                             "  -thin      one source observation per voxel of this edge [m] (default 0: all)\n"
+                             "  -triangle  LND on Zuo's TIN facet instead of the local quadric\n",
                              argv[0]);
     return 0;
   }
   int seed = 1;
   pcl::console::parse_argument(argc, argv, "-seed", seed);
   const bool parallel = pcl::console::find_switch(argc, argv, "-parallel");
+  const bool triangle = pcl::console::find_switch(argc, argv, "-triangle");
   double thin = 0.0;
   pcl::console::parse_argument(argc, argv, "-thin", thin);
   if (!(thin >= 0.0)) {
@@ -161,20 +199,20 @@ main(int argc, char** argv)
   }
   long child = 0;
   if (pcl::console::parse_argument(argc, argv, "-child", child) >= 0)
-    return runChild(child, static_cast<unsigned int>(seed), parallel, thin);
+    return runChild(child, static_cast<unsigned int>(seed), parallel, thin, triangle);
 
   std::vector<double> sizes{0.5, 1.0, 2.0, 5.0};
   pcl::console::parse_x_arguments(argc, argv, "-sizes", sizes);
-  std::printf("LS3D-LND, 2 strips, 300 m swath, 20 %% side overlap, 4 pts/m2, %s scan, sigma 5 cm, "
+  std::printf("LS3D-LND (%s), 2 strips, 300 m swath, 20 %% side overlap, 4 pts/m2, %s scan, sigma 5 cm, "
               "seed %d, source thinning %g m; %ld threads; one fresh process per size\n\n",
-              parallel ? "parallel" : "zig-zag", seed, thin, sysconf(_SC_NPROCESSORS_ONLN));
+              triangle ? "TIN facet" : "local quadric", parallel ? "parallel" : "zig-zag", seed, thin, sysconf(_SC_NPROCESSORS_ONLN));
   std::printf("%10s %10s %7s %8s %8s %5s %5s %9s %9s %8s %10s %10s  %s\n", "src_pts", "tgt_pts",
               "gen[s]", "reg[s]", "cpu[s]", "iter", "conv", "mean[mm]", "max[mm]", "s0[m]", "align_MB",
               "proc_MB", "status");
   bool pass = true, ran_target_size = false, accurate = true;
   for (double m : sizes) {
     const long n = static_cast<long>(m * 1e6);
-    const ChildResult r = spawnChild(n, static_cast<unsigned int>(seed), parallel, thin);
+    const ChildResult r = spawnChild(n, static_cast<unsigned int>(seed), parallel, thin, triangle);
     if (r.line.empty()) {
       std::printf("%10ld  child failed\n", n);
       pass = false;
