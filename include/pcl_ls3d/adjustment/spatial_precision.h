@@ -26,6 +26,9 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <cmath>
+
 #include <cstdint>
 #include <unordered_map>
 #include <vector>
@@ -67,13 +70,29 @@ private:
   std::unordered_map<std::uint64_t, Cell> cells_;
 };
 
-/// \brief Robust estimate of the isotropic noise σ of a sampled smooth surface: local quadrics
-///        fitted to the points within `radius` of up to max_seeds seed points (spread over
-///        `seeds`), pooled as the median of RSS/(k − 6) corrected to a mean. Returns 0 when no
-///        seed has enough neighbours. Surface roughness (vegetation, edges) counts as noise, so
-///        it is an upper bound on rough ground.
-double
-estimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& seeds,
-                     double radius, std::size_t max_seeds = 256);
+/// \brief The sandwich covariance C = Q M Q of the parameters. `observation(j, x, a, p, v)` fills
+///        position x, design row a, weight p and residual v of observation j < m (false: skip).
+///        Soft a-priori observations (finite weight p_e on a determinable parameter) add their
+///        own independent term σ0² p_e to M.
+template <typename ObservationFn>
+Matrix7d
+spatialSandwichCovariance(std::size_t m, double cell, const Matrix7d& qxx, double sigma0,
+                          const Vector7d& apriori_weights, const std::array<bool, 7>& determinable,
+                          ObservationFn observation)
+{
+  SpatialScoreSum scores(cell);
+  Eigen::Vector3d x;
+  Vector7d a;
+  double p = 0.0, v = 0.0;
+  for (std::size_t j = 0; j < m; ++j)
+    if (observation(j, x, a, p, v) && p > 0.0)
+      scores.add(x, a, p, (p * v) * a);
+  Matrix7d meat = scores.meat(&qxx);
+  for (int i = 0; i < 7; ++i)
+    if (determinable[static_cast<std::size_t>(i)] && apriori_weights[i] > 0.0 &&
+        std::isfinite(apriori_weights[i]))
+      meat(i, i) += sigma0 * sigma0 * apriori_weights[i];
+  return qxx * meat * qxx;
+}
 
 }  // namespace pcl_ls3d

@@ -8,6 +8,7 @@
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
 #include <pcl_ls3d/adjustment/overlap_grid.h>
+#include <pcl_ls3d/adjustment/similarity_jacobian.h>
 #include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
@@ -38,6 +39,14 @@ public:
       const Eigen::Matrix4d& guess);
 
 private:
+  /// Step 1 of an iteration: the conjugate observations of every `every`-th transformed source
+  /// point (skipping those that missed last time when skip_missed), compacted into obs_*;
+  /// returns their number.
+  std::size_t
+  findCorrespondences(const SimilarityLinearization& lin, const Eigen::Vector3d& o_t,
+                      const TargetSurface& target, const ConjugateRule& rule, double max_distance,
+                      std::size_t every, bool skip_missed, int stride);
+
   // Reused buffers (grow only): reduced source, per-point rule caches, observation slots.
   std::vector<Eigen::Vector3d> reduced_;
   std::vector<CorrespondenceCache> caches_;
