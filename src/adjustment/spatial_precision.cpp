@@ -1,7 +1,5 @@
 #include <pcl_ls3d/adjustment/spatial_precision.h>
 
-#include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include <algorithm>
