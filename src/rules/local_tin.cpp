@@ -12,8 +12,8 @@ namespace pcl_ls3d {
 namespace tin {
 
 bool
-planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count,
-            Eigen::Vector3d& normal)
+neighbourhoodPca(const TargetSurface& target, const std::vector<int>& indices, int count,
+                 Eigen::Vector3d& normal, Eigen::Vector3d& eigenvalues)
 {
   if (count < 3)
     return false;
@@ -27,12 +27,43 @@ planeNormal(const TargetSurface& target, const std::vector<int>& indices, int co
     cov.noalias() += d * d.transpose();
   }
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(cov);
+  es.computeDirect(cov / count);
+  eigenvalues = es.eigenvalues();
   // Degenerate when the neighbourhood is (nearly) a line: second eigenvalue ~ 0.
-  if (!(es.eigenvalues()[1] > 1e-12 * es.eigenvalues()[2]))
+  if (!(eigenvalues[1] > 1e-12 * eigenvalues[2]))
     return false;
   normal = es.eigenvectors().col(0).normalized();
   return normal.allFinite();
+}
+
+bool
+planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count,
+            Eigen::Vector3d& normal)
+{
+  Eigen::Vector3d eigenvalues;
+  return neighbourhoodPca(target, indices, count, normal, eigenvalues);
+}
+
+bool
+wellSpread(const Eigen::Vector3d& eigenvalues, double min_ratio)
+{
+  return eigenvalues[1] >= min_ratio * eigenvalues[2];
+}
+
+bool
+centredSupport(const std::vector<Eigen::Vector2d>& projected, double max_offset)
+{
+  if (projected.empty())
+    return false;
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& p : projected)
+    mean += p;
+  mean /= static_cast<double>(projected.size());
+  double ms = 0.0;
+  for (const auto& p : projected)
+    ms += (p - mean).squaredNorm();
+  ms /= static_cast<double>(projected.size());
+  return mean.squaredNorm() <= max_offset * max_offset * ms;
 }
 
 bool
@@ -86,7 +117,7 @@ planeBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& e1, Eigen::Vector3d& 
 bool
 quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int count,
              const Eigen::Vector3d& query, const Eigen::Vector3d& normal, double& height,
-             Eigen::Vector2d& slope)
+             Eigen::Vector2d& slope, double* height_variance)
 {
   if (count < 8)
     return false;
@@ -113,6 +144,8 @@ quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int c
   const Eigen::Matrix<double, 6, 1> x = ldlt.solve(b);
   if (!x.allFinite())
     return false;
+  if (height_variance)
+    *height_variance = ldlt.solve(Eigen::Matrix<double, 6, 1>::Unit(0))[0];
   height = x[0];
   slope = Eigen::Vector2d(x[1] * s, x[2] * s);
   return true;

@@ -4,6 +4,7 @@
 #include <pcl_ls3d/rules/lnd_rule.h>
 #include <pcl_ls3d/rules/lzd_rule.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pcl_ls3d {
@@ -15,7 +16,22 @@ struct Scratch
   std::vector<int> indices;
   std::vector<float> sq_dists;
   std::vector<Eigen::Vector2d> projected;
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  // PCA normal of `indices`
 };
+
+// Neighbourhood quality (see tin::wellSpread / tin::centredSupport). A set of k nearest points
+// that is nearly a line is widened once to kWiden·k points before the query is given up.
+constexpr double kMinSpreadRatio = 0.1;  // λ1/λ2: ≤ ~3.2 : 1 anisotropy of the 2-D spread
+constexpr int kWiden = 3;
+// The query may sit off its neighbours' centroid by at most this × their RMS spread: an
+// interior point of a k-NN set lies near its middle (offset ~0.1–0.3), a point on the border of
+// the target (neighbours on one side only) at ≳ 0.7.
+constexpr double kMaxCentroidOffset = 0.5;
+// A local quadric is used only when its height at the query is no noisier than half a single
+// point's (variance factor q_aa ≤ 0.5; well-spread 12-point sets give ≈ 0.35). Zig-zag scans put
+// most 12-NN sets on two scan lines (median q_aa 1.6 on generated strips): the fit is then
+// redone on kWiden·k neighbours (median 0.11), and the point is dropped if that fails too.
+constexpr double kMaxHeightVariance = 0.7;
 
 Scratch&
 scratch()
@@ -93,15 +109,25 @@ searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
                std::array<Eigen::Vector3d, 3>& v)
 {
   Scratch& s = scratch();
-  const int found = target.nearestKSearch(query, k, s.indices, s.sq_dists);
-  if (found < 3 || !(static_cast<double>(s.sq_dists[0]) <= max_distance * max_distance))
-    return false;
-  Eigen::Vector3d normal;
-  if (dir)
-    normal = *dir;
-  else if (!tin::planeNormal(target, s.indices, found, normal))
-    return false;
+  int found = 0;
+  Eigen::Vector3d eigenvalues;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    found = target.nearestKSearch(query, attempt == 0 ? k : kWiden * k, s.indices, s.sq_dists);
+    if (found < 3 || !(static_cast<double>(s.sq_dists[0]) <= max_distance * max_distance))
+      return false;
+    s.indices.resize(static_cast<std::size_t>(found));
+    s.sq_dists.resize(static_cast<std::size_t>(found));
+    if (!tin::neighbourhoodPca(target, s.indices, found, s.normal, eigenvalues))
+      return false;
+    if (tin::wellSpread(eigenvalues, kMinSpreadRatio))
+      break;
+    if (attempt == 1)
+      return false;
+  }
+  const Eigen::Vector3d normal = dir ? *dir : s.normal;
   tin::projectToPlane(target, s.indices, found, query, normal, s.projected);
+  if (!tin::centredSupport(s.projected, kMaxCentroidOffset))
+    return false;
   std::array<int, 3> tri;
   if (!tin::enclosingTriangle(s.projected, tri))
     return false;
@@ -110,6 +136,28 @@ searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
     v[i] = target.point(cache.vertices[i]);
   }
   return true;
+}
+
+
+// Local quadric (tin::quadricPatch) of the scratch neighbours, frame axis `axis`; refitted once on
+// kWiden·k neighbours when its height is ill-determined (see kMaxHeightVariance).
+bool
+conditionedQuadric(const Eigen::Vector3d& query, const TargetSurface& target, int k,
+                   const Eigen::Vector3d& axis, double& height, Eigen::Vector2d& slope)
+{
+  Scratch& s = scratch();
+  double q = 0.0;
+  int count = static_cast<int>(s.indices.size());
+  if (tin::quadricPatch(target, s.indices, count, query, axis, height, slope, &q) &&
+      q <= kMaxHeightVariance)
+    return true;
+  if (count >= kWiden * k)
+    return false;
+  count = target.nearestKSearch(query, kWiden * k, s.indices, s.sq_dists);
+  s.indices.resize(static_cast<std::size_t>(std::max(count, 0)));
+  s.sq_dists.resize(static_cast<std::size_t>(std::max(count, 0)));
+  return tin::quadricPatch(target, s.indices, count, query, axis, height, slope, &q) &&
+         q <= kMaxHeightVariance;
 }
 
 }  // namespace
@@ -148,9 +196,7 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
       // The neighbourhood's least-squares plane (scratch still holds the neighbours).
       Scratch& s = scratch();
       const int count = static_cast<int>(s.indices.size());
-      Eigen::Vector3d n, c = Eigen::Vector3d::Zero();
-      if (!tin::planeNormal(target, s.indices, count, n))
-        return false;
+      Eigen::Vector3d n = s.normal, c = Eigen::Vector3d::Zero();
       for (int i = 0; i < count; ++i)
         c += target.point(s.indices[static_cast<std::size_t>(i)]);
       c /= count;
@@ -158,7 +204,7 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
       Eigen::Vector2d g;
       if (surface_ == Surface::LOCAL_QUADRIC) {
         // Tangent plane of the quadric at the query's projection: point and normal.
-        if (!tin::quadricPatch(target, s.indices, count, query, n, h, g))
+        if (!conditionedQuadric(query, target, neighbours_, n, h, g))
           return false;
         Eigen::Vector3d e1, e2;
         tin::planeBasis(n, e1, e2);
@@ -211,8 +257,7 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
       Scratch& s = scratch();
       const int count = static_cast<int>(s.indices.size());
       Eigen::Vector3d c = Eigen::Vector3d::Zero();
-      if (!tin::planeNormal(target, s.indices, count, n))
-        return false;
+      n = s.normal;
       for (int i = 0; i < count; ++i)
         c += target.point(s.indices[static_cast<std::size_t>(i)]);
       c /= count;
@@ -220,7 +265,7 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
       Eigen::Vector2d g;
       if (surface_ == Surface::LOCAL_QUADRIC) {
         // z(x, y) quadric around the query (frame: e1, e2 ⟂ z); its tangent plane at (x', y').
-        if (!tin::quadricPatch(target, s.indices, count, query, up, h, g))
+        if (!conditionedQuadric(query, target, neighbours_, up, h, g))
           return false;
         Eigen::Vector3d e1, e2;
         tin::planeBasis(up, e1, e2);

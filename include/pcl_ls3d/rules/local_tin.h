@@ -20,6 +20,26 @@ bool
 planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count,
             Eigen::Vector3d& normal);
 
+/// As planeNormal(), also giving the covariance eigenvalues (ascending: λ0 across the surface,
+/// λ1 ≤ λ2 its spread in the tangent plane).
+bool
+neighbourhoodPca(const TargetSurface& target, const std::vector<int>& indices, int count,
+                 Eigen::Vector3d& normal, Eigen::Vector3d& eigenvalues);
+
+/// True when a neighbourhood spreads in both tangent directions (λ1 ≥ min_ratio·λ2). Anisotropic
+/// scans (zig-zag lines converging at the swath edge) give k-NN sets that are one or two nearly
+/// collinear lines: their PCA normal, and any surface fitted to them, is free to tilt about the
+/// line, which biases the registration by decimetres.
+bool
+wellSpread(const Eigen::Vector3d& eigenvalues, double min_ratio = 0.1);
+
+/// True when the query (the origin of `projected`) is surrounded by its neighbours, not at the
+/// side of a one-sided set: the offset of their 2-D centroid from the query is at most
+/// max_offset × their RMS distance from that centroid. At the border of the target (partial
+/// overlap) the neighbours all lie inwards; a surface fitted there is extrapolated.
+bool
+centredSupport(const std::vector<Eigen::Vector2d>& projected, double max_offset);
+
 /// True when the origin lies inside (or on the border of) the 2-D triangle a, b, c.
 bool
 containsOrigin(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c);
@@ -41,11 +61,14 @@ projectToPlane(const TargetSurface& target, const std::vector<int>& indices, int
 /// Fits w = a + b u + c v + d u² + e uv + f v² to the points in the frame (e1, e2, normal)
 /// centred on `query` (w along `normal`), i.e. a local quadric surface without the curvature
 /// bias of a plane or a TIN facet. Returns the height a at the query and the slope (b, c).
-/// False for fewer than 8 points or an ill-conditioned fit.
+/// False for fewer than 8 points or an ill-conditioned fit. `height_variance` (optional) gets
+/// the variance factor q_aa = (AᵀA)⁻¹₀₀ of the height, i.e. σ²(a) / σ²(point): about 1/3 for
+/// points well spread around the query, large when the neighbours lie on two scan lines (the
+/// quadratic term along the line spacing is then undetermined and a is extrapolated).
 bool
 quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int count,
              const Eigen::Vector3d& query, const Eigen::Vector3d& normal, double& height,
-             Eigen::Vector2d& slope);
+             Eigen::Vector2d& slope, double* height_variance = nullptr);
 
 /// The orthonormal (e1, e2) used with `normal` by projectToPlane() and quadricPatch().
 void
