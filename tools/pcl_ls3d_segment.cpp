@@ -38,7 +38,7 @@ namespace {
 
 const std::set<std::string> kValueOptions{"-o", "-mode", "-json", "-k", "-Nt", "-Mt", "-vt",
                                           "-dt", "-st", "-Vt", "-classes", "-threads",
-                                          "-eval_min_size"};
+                                          "-eval_min_size", "-min_fragment"};
 const std::set<std::string> kFlagOptions{"-evaluate", "-overwrite", "-h", "--help", "-help"};
 
 void
@@ -61,6 +61,8 @@ printHelp(const char* prog)
              "                     (codes 0 and 1 are excluded from the evaluation)\n"
              "  -eval_min_size n   evaluate segments under n points as no segment (default 0);\n"
              "                     majority mapping rewards fragments, n = 30 matches pcl_rg's minimum\n"
+             "  -min_fragment n    IMRG/MRG: segments under n points join the adjacent segment with\n"
+             "                     the most k-NN links (default: class default; 0 = off, as the paper)\n"
              "  -threads n         OpenMP threads (default: all)\n"
              "  -overwrite         allow replacing existing output files\n"
              "pcl::RegionGrowing uses NormalEstimationOMP k 20, k 20, 10 deg, curvature 0.1, min 30.\n",
@@ -135,8 +137,9 @@ parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string
     s.k_min = static_cast<int>(a);
     s.k_max = static_cast<int>(b);
   }
-  double threads = 0;
-  if (!parseNumber(argc, argv, "-Nt", s.normal_angle_deg, error) ||
+  double threads = 0, min_fragment = -1;
+  if (!parseNumber(argc, argv, "-min_fragment", min_fragment, error) ||
+      !parseNumber(argc, argv, "-Nt", s.normal_angle_deg, error) ||
       !parseNumber(argc, argv, "-Mt", s.principal_angle_deg, error) ||
       !parseNumber(argc, argv, "-vt", s.residual_threshold, error) ||
       !parseNumber(argc, argv, "-dt", s.distance_threshold, error) ||
@@ -157,6 +160,13 @@ parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string
     return false;
   }
   s.threads = static_cast<int>(threads);
+  if (min_fragment >= 0) {
+    if (min_fragment != std::floor(min_fragment) || min_fragment > 1e9) {
+      error = "-min_fragment must be a non-negative integer";
+      return false;
+    }
+    s.min_fragment_size = static_cast<int>(min_fragment);
+  }
   return s.isValid(&error);
 }
 
@@ -196,8 +206,11 @@ runToJson(const ev::SegmentationRun& r)
   j["volumetric_radius_m"] = num(r.volumetric_radius);
   j["dimensionality"] = {{"linear", r.linear}, {"planar", r.planar},
                          {"volumetric", r.volumetric}, {"invalid", r.invalid}};
+  j["fragments_absorbed"] = r.fragments_absorbed;
   j["seconds"] = {{"total", r.seconds_total}, {"normals", r.seconds_normals},
-                  {"segmentation", r.seconds_segmentation}};
+                  {"segmentation", r.seconds_segmentation}, {"search", r.seconds_search},
+                  {"features", r.seconds_features}, {"growing", r.seconds_growing},
+                  {"merging", r.seconds_merging}, {"absorbing", r.seconds_absorbing}};
   return j;
 }
 

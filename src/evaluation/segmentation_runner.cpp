@@ -34,6 +34,8 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   seg.setVolumeChangeThreshold(s.volume_threshold);
   if (s.threads > 0)
     seg.setNumberOfThreads(s.threads);
+  if (s.min_fragment_size >= 0)
+    seg.setMinFragmentSize(static_cast<std::size_t>(s.min_fragment_size));
 
   pcl::StopWatch watch;
   seg.extract(run.segments);
@@ -47,6 +49,13 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   run.segments_before_merge = seg.getNumberOfInitialSegments();
   run.segments_after_merge = m.segments_after;
   run.merges = m.merges;
+  run.fragments_absorbed = seg.getNumberOfAbsorbedFragments();
+  const auto& t = seg.getStageTimes();
+  run.seconds_search = t.search;
+  run.seconds_features = t.features;
+  run.seconds_growing = t.growing;
+  run.seconds_merging = t.merging;
+  run.seconds_absorbing = t.absorbing;
   run.distance_samples = m.distance_samples;
   run.volume_samples = m.volume_samples;
   run.spacing = seg.getSpacing();

@@ -45,6 +45,7 @@ struct SegmentationRunSettings
   double similarity_threshold = -1.0;     ///< s_t [m]; < 0: adaptive
   double volume_threshold = -1.0;         ///< V_t [-]; < 0: adaptive
   int threads = 0;                        ///< OpenMP threads; 0: default
+  int min_fragment_size = -1;             ///< absorb segments under this size; < 0: class default
 
   int rg_normal_k = 20;                   ///< NormalEstimationOMP k
   int rg_k = 20;                          ///< RegionGrowing k
@@ -75,6 +76,10 @@ struct SegmentationRun
   std::vector<std::uint8_t> dimensionality;
   std::size_t segments_before_merge = 0, segments_after_merge = 0, merges = 0;
   std::size_t distance_samples = 0, volume_samples = 0;  ///< |D| and |ΔV| fed to the snooping
+  std::size_t fragments_absorbed = 0;  ///< IMRG/MRG: segments absorbed after merging
+  /// IMRG/MRG wall time per stage [s]: search structure, features, growing, merging, absorbing.
+  double seconds_search = 0.0, seconds_features = 0.0, seconds_growing = 0.0,
+         seconds_merging = 0.0, seconds_absorbing = 0.0;
 };
 
 /// \brief Runs settings.method on `cloud` (finite points; local coordinates).

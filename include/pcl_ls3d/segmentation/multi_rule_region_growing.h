@@ -4,6 +4,7 @@
 ///        used like pcl::RegionGrowing.
 
 #include <pcl_ls3d/segmentation/dimensionality_features.h>
+#include <pcl_ls3d/segmentation/fragment_absorption.h>
 #include <pcl_ls3d/segmentation/rule_growing.h>
 #include <pcl_ls3d/segmentation/segment_merging.h>
 
@@ -138,6 +139,27 @@ public:
   double getSimilarityThreshold() const { return merge_report_.similarity_threshold; }
   double getVolumeChangeThreshold() const { return merge_report_.volume_threshold; }
 
+  // ---- fragment absorption (after merging; see segmentation::absorbFragments) -------------
+  /// \brief Segments under \a n points after merging join the adjacent segment sharing the most
+  ///        k-NN graph links (default 30; 0 or 1: off, the paper's output). Not a filter:
+  ///        no point is lost. 30 = pcl::RegionGrowing's usual minimum cluster size.
+  void setMinFragmentSize(std::size_t n) { min_fragment_size_ = n; }
+  std::size_t getMinFragmentSize() const { return min_fragment_size_; }
+  /// \brief Number of segments absorbed in the last extract().
+  std::size_t getNumberOfAbsorbedFragments() const { return absorbed_fragments_; }
+
+  /// \brief Wall time [s] of each stage of the last extract().
+  struct StageTimes
+  {
+    double search = 0.0;     ///< checks, local coordinates, search-structure build
+    double features = 0.0;   ///< k_max-NN query per point, eigen-entropy scan, features, graph
+    double growing = 0.0;    ///< v_t and rule-based region growing
+    double merging = 0.0;    ///< hulls, d_t / s_t / V_t, merge loop (§3.2)
+    double absorbing = 0.0;  ///< fragment absorption
+    double total = 0.0;      ///< the whole extract()
+  };
+  const StageTimes& getStageTimes() const { return stage_times_; }
+
   // ---- output filtering (as pcl::RegionGrowing) ---------------------------------------------
   void setMinClusterSize(pcl::uindex_t n) { min_cluster_size_ = n; }
   pcl::uindex_t getMinClusterSize() const { return min_cluster_size_; }
@@ -203,6 +225,9 @@ protected:
   segmentation::MergeReport merge_report_;
   double spacing_ = 0.0;
   std::size_t initial_segments_ = 0;
+  std::size_t min_fragment_size_ = 30;
+  std::size_t absorbed_fragments_ = 0;
+  StageTimes stage_times_;
 };
 
 }  // namespace pcl_ls3d

@@ -59,23 +59,44 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   grow_.residual_threshold = std::numeric_limits<double>::quiet_NaN();
   initial_segments_ = 0;
 
+  absorbed_fragments_ = 0;
+  stage_times_ = StageTimes{};
+
   pcl::StopWatch watch;
+  double last = 0.0;
+  const auto lap = [&watch, &last](double& stage) {
+    const double now = watch.getTimeSeconds();
+    stage = now - last;
+    last = now;
+  };
   if (!initCompute())
     return;
-  if (!prepareForSegmentation() || !computeFeatures()) {
+  if (!prepareForSegmentation()) {
     deinitCompute();
     return;
   }
-  const double t_features = watch.getTimeSeconds();
+  lap(stage_times_.search);
+  if (!computeFeatures()) {
+    deinitCompute();
+    return;
+  }
+  lap(stage_times_.features);
   growSegments();
-  const double t_grow = watch.getTimeSeconds();
+  lap(stage_times_.growing);
   mergeSegments();
-  const double t_merge = watch.getTimeSeconds();
+  lap(stage_times_.merging);
+  if (min_fragment_size_ > 1)
+    absorbed_fragments_ = segmentation::absorbFragments(graph_, grow_.graph_k, segment_of_,
+                                                        min_fragment_size_);
+  lap(stage_times_.absorbing);
   assembleRegions();
   clusters = clusters_;
-  PCL_DEBUG("[pcl_ls3d::%s::extract] %zu points: features %.2f s, growing %.2f s, merging %.2f s, "
-            "%zu -> %zu segments.\n", getClassName().c_str(), points_.size(), t_features,
-            t_grow - t_features, t_merge - t_grow, initial_segments_, clusters_.size());
+  stage_times_.total = watch.getTimeSeconds();
+  PCL_DEBUG("[pcl_ls3d::%s::extract] %zu points: search %.2f s, features %.2f s, growing %.2f s, "
+            "merging %.2f s, absorbing %.2f s; %zu -> %zu segments (%zu fragments absorbed).\n",
+            getClassName().c_str(), points_.size(), stage_times_.search, stage_times_.features,
+            stage_times_.growing, stage_times_.merging, stage_times_.absorbing,
+            initial_segments_, clusters_.size(), absorbed_fragments_);
   deinitCompute();
 }
 
@@ -252,7 +273,9 @@ template <typename PointT, typename NormalT>
 void
 MultiRuleRegionGrowing<PointT, NormalT>::assembleRegions()
 {
-  std::vector<pcl::PointIndices> all(merge_report_.segments_after);
+  const int n_labels =
+      segment_of_.empty() ? 0 : *std::max_element(segment_of_.begin(), segment_of_.end()) + 1;
+  std::vector<pcl::PointIndices> all(static_cast<std::size_t>(std::max(0, n_labels)));
   for (std::size_t p = 0; p < segment_of_.size(); ++p)
     if (segment_of_[p] >= 0)
       all[segment_of_[p]].indices.push_back(valid_indices_[p]);
