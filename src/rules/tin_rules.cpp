@@ -23,14 +23,15 @@ struct Scratch
 // that is nearly a line is widened once to kWiden·k points before the query is given up.
 constexpr double kMinSpreadRatio = 0.1;  // λ1/λ2: ≤ ~3.2 : 1 anisotropy of the 2-D spread
 constexpr int kWiden = 3;
-// The query may sit off its neighbours' centroid by at most this × their RMS spread: an
-// interior point of a k-NN set lies near its middle (offset ~0.1–0.3), a point on the border of
-// the target (neighbours on one side only) at ≳ 0.7.
-constexpr double kMaxCentroidOffset = 0.5;
-// A local quadric is used only when its height at the query is no noisier than half a single
-// point's (variance factor q_aa ≤ 0.5; well-spread 12-point sets give ≈ 0.35). Zig-zag scans put
-// most 12-NN sets on two scan lines (median q_aa 1.6 on generated strips): the fit is then
-// redone on kWiden·k neighbours (median 0.11), and the point is dropped if that fails too.
+// The query may sit off its neighbours' centroid by at most this × their RMS spread: interior
+// points of random 20-NN sets reach 0.3–0.5 (a limit of 0.25 dropped a third of them), a point
+// on the border of the target (neighbours in a half disc) ≈ 0.75.
+constexpr double kMaxCentroidOffset = 0.7;
+// A local quadric is used only when its height at the query is at most 0.7 times as noisy (in
+// variance) as a single point (variance factor q_aa; well-spread 12-point sets give ≈ 0.35,
+// 20-point sets ≈ 0.2). Zig-zag scans put most 12-NN sets on two scan lines (median q_aa 1.6 on
+// generated strips; 20-NN 0.76): the fit is then redone on kWiden·k neighbours (36-NN: median
+// 0.11), and the point is dropped if that fails too.
 constexpr double kMaxHeightVariance = 0.7;
 
 Scratch&

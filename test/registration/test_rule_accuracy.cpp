@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -75,9 +76,13 @@ TEST_P(RuleAccuracy, RecoversKnownSimilarity)
   }
   // LND / LZD: ~10^4 observations average the noise down, so the transform error at the edge of
   // the data stays well below one noise σ: mean < 0.7 σ_noise, max < 1.5 σ_noise (measured:
-  // 0.25–0.58 σ and 0.45–1.2 σ). Each parameter within 4 σ_i of the truth.
-  EXPECT_LT(err.mean, 0.7 * c.noise);
-  EXPECT_LT(err.max, 1.5 * c.noise);
+  // 0.28–0.45 σ and 0.54–0.95 σ at 70 % overlap). Each parameter within 4 σ_i of the truth.
+  // With less overlap the same noise is averaged over fewer observations (∝ overlap) and
+  // extrapolated over the whole source footprint: the bounds grow with √(0.7 / overlap) below
+  // 70 % (30 %: mean < 1.07 σ, max < 2.3 σ; measured 0.89 σ / 1.7 σ).
+  const double scale = std::sqrt(std::max(1.0, 0.7 / c.overlap));
+  EXPECT_LT(err.mean, 0.7 * scale * c.noise);
+  EXPECT_LT(err.max, 1.5 * scale * c.noise);
   for (int i = 0; i < 7; ++i)
     EXPECT_LT(std::abs(r.parameters[i] - truth[i]), 4.0 * r.sigmas[i])
         << pcl_ls3d::similarityParameterNames()[static_cast<std::size_t>(i)];

@@ -22,7 +22,7 @@ public:
     LOCAL_PLANE,  ///< the least-squares plane of the k neighbours (see LndRule)
     LOCAL_QUADRIC ///< a least-squares quadric z(x, y) of the k neighbours (default; see LndRule)
   };
-  explicit LzdRule(int neighbours = 12, Surface surface = Surface::LOCAL_QUADRIC)
+  explicit LzdRule(int neighbours = 20, Surface surface = Surface::LOCAL_QUADRIC)
   : neighbours_(neighbours), surface_(surface)
   {}
   std::string
