@@ -22,6 +22,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -47,7 +48,8 @@ printHelp(const char* prog)
   print_info("Multi-factor segmentation by improved multi-rule region growing (Wang et al. 2021).\n\n"
              "Syntax: %s INPUT [options]\n"
              "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference)\n"
-             "  -o SEGMENTS.pcd    write points (input order, local coords) with label = segment id\n"
+             "  -o SEGMENTS.pcd    write points (input order, input coordinates; double when\n"
+             "                     georeferenced) with label = segment id\n"
              "                     (0 = none) and an rgb per segment\n"
              "  -mode imrg|mrg|pcl_rg   method for -o and the JSON report (default imrg)\n"
              "  -json REPORT.json  thresholds, dimensionality counts, segment counts, timings\n"
@@ -232,22 +234,59 @@ evaluationToJson(const ev::SegmentationEvaluation& e)
   return j;
 }
 
+/// SEGMENTS.pcd: input points in input order, rgba per segment, label = segment id (0 none).
+/// Coordinates are the input's: x_local + origin, FLOAT64 when the origin is non-zero (a float
+/// cannot hold UTM coordinates to the centimetre), FLOAT32 otherwise.
 bool
 saveSegments(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const std::vector<pcl::PointIndices>& segments, std::string& error)
+             const Eigen::Vector3d& origin, const std::vector<pcl::PointIndices>& segments,
+             std::string& error)
 {
   const auto labels = ev::labelsFromSegments(segments, cloud.size());
-  pcl::PointCloud<pcl::PointXYZRGBL> out;
-  out.resize(cloud.size());
+  const bool shifted = !origin.isZero();
+  const std::uint8_t xyz_type =
+      shifted ? pcl::PCLPointField::FLOAT64 : pcl::PCLPointField::FLOAT32;
+  const std::uint32_t xyz_size = shifted ? 8 : 4;
+  pcl::PCLPointCloud2 out;
+  std::uint32_t offset = 0;
+  const auto add = [&](const char* name, std::uint8_t type, std::uint32_t size) {
+    pcl::PCLPointField f;
+    f.name = name;
+    f.offset = offset;
+    f.datatype = type;
+    f.count = 1;
+    out.fields.push_back(f);
+    offset += size;
+  };
+  add("x", xyz_type, xyz_size);
+  add("y", xyz_type, xyz_size);
+  add("z", xyz_type, xyz_size);
+  add("rgba", pcl::PCLPointField::UINT32, 4);
+  add("label", pcl::PCLPointField::UINT32, 4);
+  out.point_step = offset;
+  out.width = static_cast<std::uint32_t>(cloud.size());
+  out.height = 1;
+  out.row_step = out.point_step * out.width;
+  out.is_dense = true;
+  out.data.resize(static_cast<std::size_t>(out.row_step));
   for (std::size_t i = 0; i < cloud.size(); ++i) {
-    auto& p = out[i];
-    p.x = cloud[i].x;
-    p.y = cloud[i].y;
-    p.z = cloud[i].z;
-    p.rgba = ev::segmentColour(labels[i]);
-    p.label = labels[i];
+    std::uint8_t* p = out.data.data() + i * out.point_step;
+    const double xyz[3] = {cloud[i].x + origin.x(), cloud[i].y + origin.y(),
+                           cloud[i].z + origin.z()};
+    for (int k = 0; k < 3; ++k) {
+      if (shifted) {
+        std::memcpy(p + 8 * k, &xyz[k], 8);
+      } else {
+        const float v = (&cloud[i].x)[k];
+        std::memcpy(p + 4 * k, &v, 4);
+      }
+    }
+    const std::uint32_t rgba = ev::segmentColour(labels[i]);
+    const std::uint32_t label = labels[i];
+    std::memcpy(p + 3 * xyz_size, &rgba, 4);
+    std::memcpy(p + 3 * xyz_size + 4, &label, 4);
   }
-  if (pcl::io::savePCDFileBinary(path, out) < 0) {
+  if (pcl::PCDWriter().writeBinary(path, out) < 0) {
     error = "cannot write '" + path + "'";
     return false;
   }
@@ -390,12 +429,13 @@ main(int argc, char** argv)
   // ---- write -----------------------------------------------------------------------------
   if (!out_pcd.empty()) {
     tt.tic();
-    if (!saveSegments(out_pcd, cloud, selected, error))
+    if (!saveSegments(out_pcd, cloud, info.origin, selected, error))
       return fail(error);
     const double t_write = tt.toc() / 1000.0;
     report["seconds_write"] = t_write;
-    print_info("Wrote %s (%zu points, %zu segments, local coordinates: add the origin) in %.3f s\n",
-               out_pcd.c_str(), cloud.size(), selected.size(), t_write);
+    print_info("Wrote %s (%zu points, %zu segments, input coordinates%s) in %.3f s\n",
+               out_pcd.c_str(), cloud.size(), selected.size(),
+               info.origin.isZero() ? "" : ", x y z in double", t_write);
   }
   if (!out_json.empty()) {
     std::ofstream f(out_json);

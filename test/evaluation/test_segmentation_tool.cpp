@@ -15,6 +15,7 @@
 #include <unistd.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -198,4 +199,34 @@ TEST_F(SegmentTool, BadInputExitsNonZeroWithOneErrorLine)
   EXPECT_EQ(back.size(), scene_.size());
   // -h succeeds.
   EXPECT_EQ(run("-h").code, 0);
+}
+
+TEST_F(SegmentTool, GeoreferencedInputKeepsInputCoordinatesInDouble)
+{
+  // The same scene shifted to UTM-like coordinates, as ASCII XYZ (read in double): the reader
+  // picks a local origin, and SEGMENTS.pcd must give the input coordinates back, x y z FLOAT64.
+  const double ox = 512345.678, oy = 5432109.876, oz = 250.0;
+  const fs::path xyz = dir_ / "utm.xyz", out = dir_ / "utm_segments.pcd";
+  {
+    std::ofstream f(xyz);
+    f.precision(12);
+    for (const auto& p : scene_.points)
+      f << (p.x + ox) << ' ' << (p.y + oy) << ' ' << (p.z + oz) << '\n';
+  }
+  const ToolResult r = run(xyz.string() + " -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  pcl::PCLPointCloud2 blob;
+  ASSERT_EQ(pcl::io::loadPCDFile(out.string(), blob), 0);
+  ASSERT_EQ(blob.width * blob.height, scene_.size());
+  ASSERT_GE(blob.fields.size(), 3u);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_EQ(blob.fields[k].datatype, pcl::PCLPointField::FLOAT64) << blob.fields[k].name;
+  for (std::size_t i = 0; i < scene_.size(); i += 97) {
+    double x = 0.0, y = 0.0;
+    std::memcpy(&x, blob.data.data() + i * blob.point_step + blob.fields[0].offset, 8);
+    std::memcpy(&y, blob.data.data() + i * blob.point_step + blob.fields[1].offset, 8);
+    // Float local coordinates (< 100 m) carry ~1e-5 m; the file wrote 12 digits (1e-6 m).
+    EXPECT_NEAR(x, scene_[i].x + ox, 1e-4) << i;
+    EXPECT_NEAR(y, scene_[i].y + oy, 1e-4) << i;
+  }
 }
