@@ -53,14 +53,12 @@ TEST_P(StripPatterns, RecoversStripDisplacement)
               s.pattern == synth::ScanPattern::ZIGZAG ? "zigzag" : "parallel",
               ls3d.getReport().sigma0, ls3d.getReport().observations_used, err.mean, err.max);
   // ~3.5·10^4 observations in the band; the error is extrapolated over the whole 150 m swath.
-  // Parallel lines: below half a noise σ on average, one σ at worst (measured 11 / 23 mm).
-  // Zig-zag: below 2 σ / 4 σ (measured 64 / 130 mm on this small block — still 6× the parallel
-  // figure, open; the 300 m × 417 m strips of benchmark_scaling reach 4 mm; before the
-  // conditioning check the rules converged 0.4–0.5 m off). σ0 must be that of two noisy
-  // surfaces, not inflated by tilted patches (before: 0.073 m on zig-zag).
-  const bool zigzag = s.pattern == synth::ScanPattern::ZIGZAG;
-  EXPECT_LT(err.mean, (zigzag ? 2.0 : 0.5) * noise);
-  EXPECT_LT(err.max, (zigzag ? 4.0 : 1.0) * noise);
+  // Both patterns: below half a noise σ on average and one σ at worst (measured 9–11 / 17–21 mm;
+  // before the conditioning check zig-zag gave 0.4–0.5 m on benchmark_scaling's strips, and with
+  // the check but 12 neighbours 64 / 130 mm here). σ0 must be that of two noisy surfaces, not
+  // inflated by tilted patches (before: 0.073 m on zig-zag).
+  EXPECT_LT(err.mean, 0.5 * noise);
+  EXPECT_LT(err.max, 1.0 * noise);
   EXPECT_LT(ls3d.getReport().sigma0, 1.2 * noise);
 }
 
