@@ -21,14 +21,8 @@ AdjustmentSettings::isFixed(int index) const
 void
 AdjustmentSettings::setParameterModel(ParameterModel model)
 {
-  // Which parameters each preset estimates, in the order tx, ty, tz, φ, ω, κ, m.
-  static const bool free_params[4][7] = {{true, true, true, true, true, true, true},
-                                         {true, true, true, true, true, true, false},
-                                         {true, true, true, false, false, false, false},
-                                         {false, false, true, false, false, false, false}};
-  const int row = static_cast<int>(model);
-  for (int i = 0; i < 7; ++i)
-    fixParameter(i, !free_params[row][i]);
+  // Soft weights are lost: the preset frees its parameters and fixes the rest.
+  apriori_weights = parameterModelWeights(model);
 }
 
 AdjustmentSettings

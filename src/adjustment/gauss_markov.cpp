@@ -1,5 +1,7 @@
 #include <pcl_ls3d/adjustment/gauss_markov.h>
 
+#include "gauss_markov_steps.h"
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
@@ -10,18 +12,11 @@ namespace pcl_ls3d {
 
 namespace {
 
-std::vector<int>
-indicesOf(const std::array<bool, 7>& mask)
-{
-  std::vector<int> idx;
-  for (int i = 0; i < 7; ++i)
-    if (mask[static_cast<std::size_t>(i)])
-      idx.push_back(i);
-  return idx;
-}
+using namespace detail;
 
+template <typename Matrix>
 Eigen::MatrixXd
-subMatrix(const Matrix7d& M, const std::vector<int>& idx)
+subMatrix(const Matrix& M, const std::vector<int>& idx)
 {
   const int k = static_cast<int>(idx.size());
   Eigen::MatrixXd S(k, k);
@@ -33,9 +28,10 @@ subMatrix(const Matrix7d& M, const std::vector<int>& idx)
 
 // Rank test on the scaled reduced normal matrix: while its smallest eigenvalue is below
 // threshold × largest, the parameter dominating that eigenvector is undeterminable.
+template <typename Matrix>
 void
-removeUndeterminable(const Matrix7d& N, const Vector7d& scaling, double threshold,
-                     std::array<bool, 7>& estimated)
+removeUndeterminable(const Matrix& N, const Eigen::VectorXd& scaling, double threshold,
+                     std::vector<bool>& estimated)
 {
   for (;;) {
     const std::vector<int> idx = indicesOf(estimated);
@@ -58,27 +54,40 @@ removeUndeterminable(const Matrix7d& N, const Vector7d& scaling, double threshol
   }
 }
 
-}  // namespace
-
-GaussMarkovSolution
-solveGaussMarkov(const NormalEquations& ne, const GaussMarkovProblem& problem)
+// Adds the a-priori observations (eq. 9) to N and b; marks fixed parameters.
+template <typename Matrix, typename Vector>
+void
+addAprioriObservations(const GaussMarkovProblem& problem, Matrix& N, Vector& b,
+                       GaussMarkovSolution& sol, std::vector<bool>& estimated)
 {
-  GaussMarkovSolution sol;
-  const Vector7d& pe = problem.apriori_weights;
-  // L_e of eq. 9 at the current estimate: V_e = dx + (X0 − L_e).
-  const Vector7d le = problem.current - problem.apriori_values;
-
-  Matrix7d N = ne.N;
-  Vector7d b = ne.b;
-  std::array<bool, 7> estimated{};
-  for (int i = 0; i < 7; ++i) {
-    sol.fixed[static_cast<std::size_t>(i)] = std::isinf(pe[i]);
-    estimated[static_cast<std::size_t>(i)] = !std::isinf(pe[i]);
+  const Eigen::VectorXd& pe = problem.apriori_weights;
+  for (Eigen::Index i = 0; i < N.rows(); ++i) {
+    const std::size_t s = static_cast<std::size_t>(i);
+    sol.fixed[s] = std::isinf(pe[i]);
+    estimated[s] = !std::isinf(pe[i]);
     if (!std::isinf(pe[i]) && pe[i] > 0.0) {
       N(i, i) += pe[i];
-      b[i] += pe[i] * le[i];
+      b[i] += pe[i] * (problem.current[i] - problem.apriori_values[i]);  // L_e at X0
     }
   }
+}
+
+// The solve on Eigen storage of either fixed (7: bit-identical to the pair engine's history)
+// or dynamic size.
+template <typename Matrix, typename Vector>
+GaussMarkovSolution
+solve(const Matrix& N0, const Vector& b0, double ltpl, std::size_t n, const GaussMarkovProblem& problem)
+{
+  const Eigen::Index u = N0.rows();
+  GaussMarkovSolution sol;
+  sol.dx = Eigen::VectorXd::Zero(u);
+  sol.qxx = Eigen::MatrixXd::Zero(u, u);
+  sol.fixed.assign(static_cast<std::size_t>(u), false);
+  sol.determinable.assign(static_cast<std::size_t>(u), false);
+  Matrix N = N0;
+  Vector b = b0;
+  std::vector<bool> estimated(static_cast<std::size_t>(u), false);
+  addAprioriObservations(problem, N, b, sol, estimated);
   if (indicesOf(estimated).empty()) {
     sol.message = "every parameter is fixed: nothing to estimate";
     return sol;
@@ -89,13 +98,11 @@ solveGaussMarkov(const NormalEquations& ne, const GaussMarkovProblem& problem)
     sol.message = "the geometry determines none of the free parameters (singular normal matrix)";
     return sol;
   }
-
-  const Eigen::MatrixXd Nr = subMatrix(N, idx);
   const int k = static_cast<int>(idx.size());
   Eigen::VectorXd br(k);
   for (int r = 0; r < k; ++r)
     br[r] = b[idx[static_cast<std::size_t>(r)]];
-  Eigen::LDLT<Eigen::MatrixXd> ldlt(Nr);
+  Eigen::LDLT<Eigen::MatrixXd> ldlt(subMatrix(N, idx));
   if (ldlt.info() != Eigen::Success || !ldlt.isPositive()) {
     sol.message = "reduced normal matrix is not positive definite";
     return sol;
@@ -106,28 +113,50 @@ solveGaussMarkov(const NormalEquations& ne, const GaussMarkovProblem& problem)
     sol.message = "solve produced non-finite values";
     return sol;
   }
+  Vector dx = Vector::Zero(u);
   for (int r = 0; r < k; ++r) {
     const int i = idx[static_cast<std::size_t>(r)];
-    sol.dx[i] = dxr[r];
+    dx[i] = dxr[r];
     for (int c = 0; c < k; ++c)
       sol.qxx(i, idx[static_cast<std::size_t>(c)]) = Qr(r, c);
   }
+  sol.dx = dx;
   sol.determinable = estimated;
   sol.unknowns = k;
-
-  // VᵀPV = LᵀPL + 2 dxᵀ AᵀPL + dxᵀ AᵀPA dx (eq. 12 without storing V).
-  sol.vtpv = std::max(0.0, ne.ltpl + 2.0 * sol.dx.dot(ne.b) + sol.dx.dot(ne.N * sol.dx));
-  for (int i : idx)
-    if (pe[i] > 0.0) {
-      const double ve = sol.dx[i] + le[i];  // eq. 13
-      sol.vetpve += pe[i] * ve * ve;
-      ++sol.soft_constraints;
-    }
-  sol.redundancy = static_cast<long>(ne.n) + sol.soft_constraints - sol.unknowns;
-  if (sol.redundancy > 0)
-    sol.sigma0 = std::sqrt((sol.vtpv + sol.vetpve) / static_cast<double>(sol.redundancy));
+  fillResidualStatistics(N0, b0, ltpl, n, dx, idx, problem, sol);
   sol.ok = true;
   return sol;
+}
+
+bool
+consistent(const Eigen::MatrixXd& N, const Eigen::VectorXd& b, const GaussMarkovProblem& p)
+{
+  const Eigen::Index u = N.rows();
+  return u > 0 && N.cols() == u && b.size() == u && p.current.size() == u &&
+         p.apriori_values.size() == u && p.apriori_weights.size() == u && p.scaling.size() == u;
+}
+
+}  // namespace
+
+GaussMarkovProblem::GaussMarkovProblem(int unknowns)
+: current(Eigen::VectorXd::Zero(unknowns))
+, apriori_values(Eigen::VectorXd::Zero(unknowns))
+, apriori_weights(Eigen::VectorXd::Zero(unknowns))
+, scaling(Eigen::VectorXd::Ones(unknowns))
+{}
+
+GaussMarkovSolution
+solveGaussMarkov(const Eigen::MatrixXd& N, const Eigen::VectorXd& b, double ltpl, std::size_t n,
+                 const GaussMarkovProblem& problem)
+{
+  if (!consistent(N, b, problem)) {
+    GaussMarkovSolution sol;
+    sol.message = "normal equations and problem differ in size";
+    return sol;
+  }
+  if (N.rows() == 7)  // one parameter block: fixed-size arithmetic
+    return solve(Matrix7d(N), Vector7d(b), ltpl, n, problem);
+  return solve(N, b, ltpl, n, problem);
 }
 
 }  // namespace pcl_ls3d

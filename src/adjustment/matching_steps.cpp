@@ -1,5 +1,7 @@
 #include "matching_steps.h"
 
+#include <pcl_ls3d/adjustment/errors_in_variables.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -40,30 +42,63 @@ overlapCentroid(const std::vector<Eigen::Vector3d>& source, const TargetSurface&
 }
 
 bool
-converged(const Vector7d& dx, const AdjustmentSettings& s)
+setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& target,
+          const Eigen::Matrix4d& guess, const AdjustmentSettings& settings, PairSetup& setup,
+          std::vector<Eigen::Vector3d>& reduced)
 {
-  return dx.segment<3>(PHI).cwiseAbs().maxCoeff() < s.angle_epsilon &&
-         dx.head<3>().norm() < s.translation_epsilon && std::abs(dx[SCALE]) < s.scale_epsilon;
-}
-
-bool
-changesBelow(const GaussMarkovSolution& sol, double fraction)
-{
+  Eigen::Vector3d o_s;
+  if (!overlapCentroid(source, target, guess, settings.max_correspondence_distance, o_s,
+                       setup.target_box, setup.inside))
+    return false;
+  const Eigen::Vector3d o_t = (guess * o_s.homogeneous()).head<3>();
+  ParameterBlock& block = setup.source;
+  block.input_origin = o_s;
+  block.output_origin = o_t;
+  block.values = SimilarityTransform::fromMatrix(globalToLocal(guess, o_s, o_t)).vector();
+  block.values.head<3>().setZero();  // o_t = guess(o_s) by construction
+  block.apriori_values = settings.apriori_from_guess ? block.values : settings.apriori_values;
+  block.apriori_weights = settings.apriori_weights;
   for (int i = 0; i < 7; ++i)
-    if (sol.determinable[static_cast<std::size_t>(i)] &&
-        std::abs(sol.dx[i]) > fraction * sol.sigma0 * std::sqrt(sol.qxx(i, i)))
-      return false;
+    if (settings.isFixed(i))
+      block.values[i] = block.apriori_values[i];
+  setup.target = ParameterBlock::fixedIdentity(o_t);
+
+  reduced.resize(source.size());
+  setup.radius = 0.0;
+  for (std::size_t i = 0; i < source.size(); ++i) {
+    reduced[i] = source[i] - o_s;
+    setup.radius = std::max(setup.radius, reduced[i].norm());
+    setup.source_box.extend(reduced[i]);
+  }
   return true;
 }
 
-double
-robustScale(const std::vector<double>& l, std::size_t m)
+Vector7d
+rankTestScaling(double radius)
 {
-  std::vector<double> a(l.begin(), l.begin() + static_cast<std::ptrdiff_t>(m));
-  for (double& x : a)
-    x = std::abs(x);
-  std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(m / 2), a.end());
-  return 1.4826 * a[m / 2];
+  const double inv_r = radius > 0.0 ? 1.0 / radius : 1.0;
+  Vector7d scaling;
+  scaling << 1, 1, 1, inv_r, inv_r, inv_r, inv_r;
+  return scaling;
+}
+
+double
+sourceNoise(const std::vector<Eigen::Vector3d>& reduced, const PairSetup& setup)
+{
+  const double area = setup.source_box.sizes().head<2>().prod();
+  const double density = area > 0.0 ? static_cast<double>(reduced.size()) / area : 0.0;
+  if (!(density > 0.0))
+    return 0.0;
+  return estimateSurfaceNoise(reduced, setup.inside, std::sqrt(30.0 / (M_PI * density)));
+}
+
+double
+precisionCell(const AdjustmentSettings& settings, const PairSetup& setup, std::size_t target_size)
+{
+  if (settings.precision_cell > 0.0)
+    return settings.precision_cell;
+  const double area = setup.target_box.sizes().head<2>().prod();
+  return area > 0.0 ? 8.0 * std::sqrt(area / static_cast<double>(target_size)) : 0.0;
 }
 
 std::string
@@ -87,6 +122,15 @@ fillPrecision(AdjustmentReport& report, const GaussMarkovSolution& sol)
     }
   }
   return undetermined;
+}
+
+std::array<bool, 7>
+flags7(const std::vector<bool>& flags)
+{
+  std::array<bool, 7> out{};
+  for (std::size_t i = 0; i < 7 && i < flags.size(); ++i)
+    out[i] = flags[i];
+  return out;
 }
 
 }  // namespace detail

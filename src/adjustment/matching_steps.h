@@ -1,9 +1,14 @@
 #pragma once
-// Internal steps of SurfaceMatchingCore::run (not installed): reduction origin, convergence and
-// freeze tests, robust start scale, and the precision fields of the report.
+// Internal steps of SurfaceMatchingCore::run (not installed): the pair's frames and starting
+// values, the source-noise estimate, the design rows and normal equations of one iteration, and
+// the precision and reliability fields of the report.
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
 #include <pcl_ls3d/adjustment/gauss_markov.h>
+#include <pcl_ls3d/adjustment/errors_in_variables.h>
+#include <pcl_ls3d/adjustment/normal_equations.h>
+#include <pcl_ls3d/adjustment/pair_matcher.h>
+#include <pcl_ls3d/adjustment/parameter_block.h>
 #include <pcl_ls3d/rules/target_surface.h>
 
 #include <Eigen/Geometry>
@@ -14,6 +19,18 @@
 namespace pcl_ls3d {
 namespace detail {
 
+/// Stage 1 for a pair: the source block (o_s → o_t, starting values, a-priori observations),
+/// the target block (fixed identity about o_t) and what later stages need to know of the data.
+struct PairSetup
+{
+  ParameterBlock source;
+  ParameterBlock target;
+  Eigen::AlignedBox3d target_box;       ///< of the target points (cloud coordinates)
+  Eigen::AlignedBox3d source_box;       ///< of the reduced source points
+  std::vector<int> inside;              ///< source points over the target's box (σ_s seeds)
+  double radius = 0.0;                  ///< largest |reduced source point|
+};
+
 /// Centroid of the source points whose image under the guess falls into the target's bounding
 /// box (grown by a margin): the reduction origin o_s, near the overlap; also the target's box and
 /// the indices of those source points. False: no overlap.
@@ -22,22 +39,79 @@ overlapCentroid(const std::vector<Eigen::Vector3d>& source, const TargetSurface&
                 const Eigen::Matrix4d& guess, double max_distance, Eigen::Vector3d& centroid,
                 Eigen::AlignedBox3d& box, std::vector<int>& inside);
 
-/// Zuo's criterion (every angle change below ε) plus translation and scale epsilons.
+/// Reduction to a local origin near the overlap (conditioning on georeferenced data), starting
+/// values from the guess (eq. 9; fixed parameters start exactly at L_e), and the reduced source
+/// points. False: no source point lies over the target.
 bool
-converged(const Vector7d& dx, const AdjustmentSettings& s);
+setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& target,
+          const Eigen::Matrix4d& guess, const AdjustmentSettings& settings, PairSetup& setup,
+          std::vector<Eigen::Vector3d>& reduced);
 
-/// Every estimated parameter changed by less than `fraction` of its formal σ_i.
-bool
-changesBelow(const GaussMarkovSolution& sol, double fraction);
+/// Column scaling of the rank test: a unit change of each scaled parameter displaces the edge
+/// of the data by about one unit.
+Vector7d
+rankTestScaling(double radius);
 
-/// Robust stand-in for σ0 before the first solve: 1.4826 · median |l| of the first m values.
+/// σ_s of the source from its own roughness around the points over the target (~30 neighbours
+/// each), for the errors-in-variables correction; 0 when it cannot be estimated.
 double
-robustScale(const std::vector<double>& l, std::size_t m);
+sourceNoise(const std::vector<Eigen::Vector3d>& reduced, const PairSetup& setup);
+
+/// Cell edge of the spatial precision estimator: settings.precision_cell, or 8 × the target's
+/// mean XY spacing; 0 when neither is known.
+double
+precisionCell(const AdjustmentSettings& settings, const PairSetup& setup, std::size_t target_size);
 
 /// σ_i (√C_ii of report.covariance; 0 fixed, +inf undeterminable), formal σ0 √q_ii and the
 /// correlation from C; returns the names of the undeterminable parameters.
 std::string
 fillPrecision(AdjustmentReport& report, const GaussMarkovSolution& sol);
+
+/// The 7 flags of a one-block solution as the report's array.
+std::array<bool, 7>
+flags7(const std::vector<bool>& flags);
+
+
+/// Design row of the source block with the errors-in-variables correction of the scale column
+/// (errors_in_variables.h): a_m' = a_m − c l.
+struct SourceRows
+{
+  const PairMatcher& matcher;
+  const ObservationSet& set;
+  const ScaleColumnCorrection& eiv;
+
+  RowVector7d
+  operator()(std::size_t j) const
+  {
+    const Observation& o = set[j];
+    RowVector7d a = matcher.sourceRow(o);
+    a[SCALE] -= eiv.coefficient(o.direction.squaredNorm()) * o.distance;
+    return a;
+  }
+};
+
+/// Eq. 8: AᵀPA, AᵀPL over the observations with weights p (in [0, 1]).
+NormalEquations
+accumulateNormalEquations(const SourceRows& row, const Eigen::VectorXd& weights);
+
+/// Mean |u|² of the observations (1 for unit directions), for the errors-in-variables term.
+double
+meanSquaredGradient(const ObservationSet& set);
+
+/// The log line of one iteration.
+IterationRecord
+iterationRecord(int it, const NormalEquations& ne, std::size_t m, const GaussMarkovSolution& sol);
+
+/// Precision: formal σ0² Qxx (eq. 14), replaced by the spatial sandwich (spatial_precision.h)
+/// when there is redundancy and a cell, from the last iteration's observation set.
+void
+fillCovariance(AdjustmentReport& report, const GaussMarkovSolution& sol, const SourceRows& row,
+               const Eigen::VectorXd& weights, const Vector7d& apriori_weights, double cell);
+
+/// Reliability: residuals (eq. 12) and redundancy numbers r_i = 1 − p_i a_iᵀ Qxx a_i.
+void
+storeObservations(AdjustmentReport& report, const GaussMarkovSolution& sol, const SourceRows& row,
+                  const Eigen::VectorXd& weights, const std::vector<int>& source_indices);
 
 }  // namespace detail
 }  // namespace pcl_ls3d

@@ -1,6 +1,10 @@
 #include <pcl_ls3d/estimators/robust_estimator.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <iterator>
+#include <utility>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -99,6 +103,57 @@ TukeyEstimator::computeWeights(const Eigen::Ref<const Eigen::VectorXd>& residual
     const double u = residuals[i] / (c_ * sigma);
     weights[i] = std::abs(u) <= 1.0 ? (1.0 - u * u) * (1.0 - u * u) : 0.0;
   }
+}
+
+}  // namespace pcl_ls3d
+
+namespace pcl_ls3d {
+
+RobustEstimator::Ptr
+makeRobustEstimator(RobustEstimatorType type, double constant)
+{
+  const bool given = std::isfinite(constant);
+  switch (type) {
+  case RobustEstimatorType::LEAST_SQUARES: return std::make_shared<LeastSquaresEstimator>();
+  case RobustEstimatorType::ZUO: return std::make_shared<ZuoEstimator>(given ? constant : 6.0);
+  case RobustEstimatorType::HUBER: return std::make_shared<HuberEstimator>(given ? constant : 1.345);
+  case RobustEstimatorType::TUKEY: return std::make_shared<TukeyEstimator>(given ? constant : 4.685);
+  }
+  return nullptr;
+}
+
+RobustEstimator::Ptr
+parseRobustEstimator(const std::string& text, std::string* why)
+{
+  auto fail = [why](const std::string& reason) -> RobustEstimator::Ptr {
+    if (why)
+      *why = reason;
+    return nullptr;
+  };
+  std::string name = text.substr(0, text.find(':'));
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  static const std::pair<const char*, RobustEstimatorType> names[] = {
+      {"ls", RobustEstimatorType::LEAST_SQUARES}, {"least-squares", RobustEstimatorType::LEAST_SQUARES},
+      {"zuo", RobustEstimatorType::ZUO},          {"huber", RobustEstimatorType::HUBER},
+      {"tukey", RobustEstimatorType::TUKEY}};
+  const auto* found = std::find_if(std::begin(names), std::end(names),
+                                   [&](const auto& entry) { return name == entry.first; });
+  if (found == std::end(names))
+    return fail("unknown estimator '" + name + "' (ls, zuo, huber, tukey)");
+  double constant = std::numeric_limits<double>::quiet_NaN();
+  const std::size_t colon = text.find(':');
+  if (colon != std::string::npos) {
+    const std::string number = text.substr(colon + 1);
+    char* end = nullptr;
+    constant = std::strtod(number.c_str(), &end);
+    if (number.empty() || end != number.c_str() + number.size() || !std::isfinite(constant) ||
+        !(constant > 0.0))
+      return fail("tuning constant of '" + name + "' must be a positive number, got '" + number + "'");
+    if (found->second == RobustEstimatorType::LEAST_SQUARES)
+      return fail("least squares has no tuning constant");
+  }
+  return makeRobustEstimator(found->second, constant);
 }
 
 }  // namespace pcl_ls3d

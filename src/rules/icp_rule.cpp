@@ -9,17 +9,19 @@ namespace pcl_ls3d {
 namespace {
 // Observations of x' − q along the closest point's error axes: the local normal n (weight 1)
 // and two tangents (weight p_t), as (√p u, √p l) so the engine's unit weight applies.
+// Each scaled observation has the variance σ_n² of the normal one.
 void
 addFrameObservations(const Eigen::Vector3d& query, const Eigen::Vector3d& q,
-                     const Eigen::Vector3d& n, double tangential_weight, ConjugateObservations& out)
+                     const Eigen::Vector3d& n, double tangential_weight, double variance,
+                     ConjugateObservations& out)
 {
   Eigen::Vector3d e1, e2;
   tin::planeBasis(n, e1, e2);
   const Eigen::Vector3d d = query - q;
   const double s = std::sqrt(tangential_weight);
-  out.add(n, n.dot(d), q);
-  out.add(s * e1, s * e1.dot(d), q);
-  out.add(s * e2, s * e2.dot(d), q);
+  out.add(n, n.dot(d), q, variance);
+  out.add(s * e1, s * e1.dot(d), q, variance);
+  out.add(s * e2, s * e2.dot(d), q, variance);
 }
 }  // namespace
 
@@ -33,7 +35,8 @@ IcpRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     if (idx < 0 || idx >= static_cast<int>(target.size()))
       return false;
     const Eigen::Vector3d n(cache.plane[0], cache.plane[1], cache.plane[2]);
-    addFrameObservations(query, target.point(idx), n.normalized(), cache.plane[3], out);
+    addFrameObservations(query, target.point(idx), n.normalized(), cache.plane[3], cache.variance,
+                         out);
     return true;
   }
   thread_local std::vector<int> indices;
@@ -60,8 +63,7 @@ IcpRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   // neighbour's distance). Within the closest point's own Voronoi cell the offset would be
   // smaller (1/(2πρ)), but it is re-drawn at every re-association, so it carries no information
   // on the parameters, and at the target's border its mean points inwards by up to r_k: weighted
-  // by the cell variance, the tangents pulled the estimate towards the border (300 m pair,
-  // 1 vs 4 pts/m², σ 5 cm: 27 mm, m +175 ppm; with r_k²/4: 10 mm).
+  // by the cell variance, the tangents pulled the estimate towards the border.
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (int i = 0; i < found; ++i)
     mean += target.point(indices[static_cast<std::size_t>(i)]);
@@ -79,7 +81,8 @@ IcpRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   cache.vertices[0] = indices[0];
   cache.plane = {{static_cast<float>(normal.x()), static_cast<float>(normal.y()),
                   static_cast<float>(normal.z()), static_cast<float>(p_t), 0.f, 0.f}};
-  addFrameObservations(query, q, normal, p_t, out);
+  cache.variance = static_cast<float>(var_n);
+  addFrameObservations(query, q, normal, p_t, var_n, out);
   return true;
 }
 

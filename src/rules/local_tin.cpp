@@ -117,7 +117,7 @@ planeBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& e1, Eigen::Vector3d& 
 bool
 quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int count,
              const Eigen::Vector3d& query, const Eigen::Vector3d& normal, double& height,
-             Eigen::Vector2d& slope, double* height_variance)
+             Eigen::Vector2d& slope, double* height_variance, double* residual_variance)
 {
   if (count < 8)
     return false;
@@ -130,6 +130,7 @@ quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int c
   const double s = r2 > 0.0 ? 1.0 / std::sqrt(r2) : 1.0;
   Eigen::Matrix<double, 6, 6> N = Eigen::Matrix<double, 6, 6>::Zero();
   Eigen::Matrix<double, 6, 1> b = Eigen::Matrix<double, 6, 1>::Zero();
+  double ww = 0.0;
   for (int i = 0; i < count; ++i) {
     const Eigen::Vector3d d = target.point(indices[static_cast<std::size_t>(i)]) - query;
     const double u = d.dot(e1) * s, v = d.dot(e2) * s, w = d.dot(normal);
@@ -137,6 +138,7 @@ quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int c
     a << 1, u, v, u * u, u * v, v * v;
     N.noalias() += a * a.transpose();
     b.noalias() += a * w;
+    ww += w * w;
   }
   Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(N);
   if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().minCoeff() > 1e-9 * ldlt.vectorD().maxCoeff()))
@@ -146,6 +148,8 @@ quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int c
     return false;
   if (height_variance)
     *height_variance = ldlt.solve(Eigen::Matrix<double, 6, 1>::Unit(0))[0];
+  if (residual_variance)
+    *residual_variance = std::max(0.0, ww - x.dot(b)) / (count - 6);
   height = x[0];
   slope = Eigen::Vector2d(x[1] * s, x[2] * s);
   return true;

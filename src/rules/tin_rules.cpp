@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pcl_ls3d {
 
@@ -144,21 +145,23 @@ searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
 // kWiden·k neighbours when its height is ill-determined (see kMaxHeightVariance).
 bool
 conditionedQuadric(const Eigen::Vector3d& query, const TargetSurface& target, int k,
-                   const Eigen::Vector3d& axis, double& height, Eigen::Vector2d& slope)
+                   const Eigen::Vector3d& axis, double& height, Eigen::Vector2d& slope,
+                   float& variance)
 {
   Scratch& s = scratch();
-  double q = 0.0;
+  double q = 0.0, noise = 0.0;
   int count = static_cast<int>(s.indices.size());
-  if (tin::quadricPatch(target, s.indices, count, query, axis, height, slope, &q) &&
-      q <= kMaxHeightVariance)
-    return true;
-  if (count >= kWiden * k)
-    return false;
-  count = target.nearestKSearch(query, kWiden * k, s.indices, s.sq_dists);
-  s.indices.resize(static_cast<std::size_t>(std::max(count, 0)));
-  s.sq_dists.resize(static_cast<std::size_t>(std::max(count, 0)));
-  return tin::quadricPatch(target, s.indices, count, query, axis, height, slope, &q) &&
+  bool ok = tin::quadricPatch(target, s.indices, count, query, axis, height, slope, &q, &noise) &&
+            q <= kMaxHeightVariance;
+  if (!ok && count < kWiden * k) {
+    count = target.nearestKSearch(query, kWiden * k, s.indices, s.sq_dists);
+    s.indices.resize(static_cast<std::size_t>(std::max(count, 0)));
+    s.sq_dists.resize(static_cast<std::size_t>(std::max(count, 0)));
+    ok = tin::quadricPatch(target, s.indices, count, query, axis, height, slope, &q, &noise) &&
          q <= kMaxHeightVariance;
+  }
+  variance = static_cast<float>(q * noise);  // σ² of the fitted height at the query
+  return ok;
 }
 
 }  // namespace
@@ -167,14 +170,14 @@ namespace {
 // Signed distance along n to the plane (n, p) as one observation.
 bool
 planeObservation(const Eigen::Vector3d& query, Eigen::Vector3d n, const Eigen::Vector3d& p,
-                 double max_distance, ConjugateObservations& out)
+                 double max_distance, double variance, ConjugateObservations& out)
 {
   if (n.z() < 0.0)  // a stable orientation; the sign of (u, l) does not change the adjustment
     n = -n;
   const double d = n.dot(query - p);
   if (!std::isfinite(d) || std::abs(d) > max_distance)
     return false;
-  out.add(n, d, query - d * n);
+  out.add(n, d, query - d * n, variance);
   return true;
 }
 }  // namespace
@@ -205,7 +208,7 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
       Eigen::Vector2d g;
       if (surface_ == Surface::LOCAL_QUADRIC) {
         // Tangent plane of the quadric at the query's projection: point and normal.
-        if (!conditionedQuadric(query, target, neighbours_, n, h, g))
+        if (!conditionedQuadric(query, target, neighbours_, n, h, g, cache.variance))
           return false;
         Eigen::Vector3d e1, e2;
         tin::planeBasis(n, e1, e2);
@@ -218,7 +221,7 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     }
     const Eigen::Vector3d n(cache.plane[0], cache.plane[1], cache.plane[2]);
     const Eigen::Vector3d c(cache.plane[3], cache.plane[4], cache.plane[5]);
-    return planeObservation(query, n.normalized(), c, max_distance, out);
+    return planeObservation(query, n.normalized(), c, max_distance, cache.variance, out);
   }
   bool have = cached && cache.frozen;
   if (cached && !have && reusable(cache, query)) {
@@ -235,7 +238,8 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
   if (!(n.norm() > 0.0))
     return false;
-  return planeObservation(query, n.normalized(), v[0], max_distance, out);
+  return planeObservation(query, n.normalized(), v[0], max_distance,
+                          std::numeric_limits<double>::quiet_NaN(), out);
 }
 
 bool
@@ -266,7 +270,7 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
       Eigen::Vector2d g;
       if (surface_ == Surface::LOCAL_QUADRIC) {
         // z(x, y) quadric around the query (frame: e1, e2 ⟂ z); its tangent plane at (x', y').
-        if (!conditionedQuadric(query, target, neighbours_, up, h, g))
+        if (!conditionedQuadric(query, target, neighbours_, up, h, g, cache.variance))
           return false;
         Eigen::Vector3d e1, e2;
         tin::planeBasis(up, e1, e2);
@@ -303,7 +307,7 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   // l = z' − z(x', y'): its gradient w.r.t. x' is (−∂z/∂x, −∂z/∂y, 1), so a horizontal move
   // over a slope changes the height difference (Rosenholm's rigorous LZD linearisation).
   const Eigen::Vector3d gradient(n.x() / n.z(), n.y() / n.z(), 1.0);
-  out.add(gradient, d, Eigen::Vector3d(query.x(), query.y(), z));
+  out.add(gradient, d, Eigen::Vector3d(query.x(), query.y(), z), cache.variance);
   return true;
 }
 

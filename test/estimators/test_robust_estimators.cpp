@@ -54,3 +54,40 @@ TEST(RobustEstimators, ZuoCutsAtKSigma0)
   zuo.computeWeights(v, Eigen::VectorXd(), 0.0, w);
   EXPECT_EQ(w.sum(), 4.0);
 }
+
+// The factory and name parser (as for rules): names, tuning constants, refusals.
+TEST(RobustEstimatorFactory, ParsesNamesAndConstants)
+{
+  std::string why;
+  const RobustEstimator::Ptr zuo = parseRobustEstimator("Zuo", &why);
+  ASSERT_TRUE(zuo) << why;
+  EXPECT_EQ(zuo->name(), "zuo-K(6)");
+  EXPECT_EQ(parseRobustEstimator("zuo:7")->name(), "zuo-K(7)");
+  EXPECT_EQ(parseRobustEstimator("huber")->name(), "huber(1.345)");
+  EXPECT_EQ(parseRobustEstimator("tukey:3.5")->name(), "tukey(3.5)");
+  EXPECT_EQ(parseRobustEstimator("ls")->name(), "least-squares");
+  // The parsed constant is the one used: Huber's weight at u = 3 with k = 1.5 is 1.5 / 3.
+  Eigen::VectorXd v(1), w(1);
+  v << 3.0;
+  parseRobustEstimator("huber:1.5")->computeWeights(v, Eigen::VectorXd(), 1.0, w);
+  EXPECT_DOUBLE_EQ(w[0], 0.5);
+  for (const char* bad : {"", "median", "zuo:", "zuo:abc", "zuo:6x", "zuo:-1", "zuo:0", "ls:2", "huber:inf"}) {
+    why.clear();
+    EXPECT_FALSE(parseRobustEstimator(bad, &why)) << bad;
+    EXPECT_FALSE(why.empty()) << bad;
+  }
+}
+
+TEST(RobustEstimatorFactory, MakesEveryShippedEstimator)
+{
+  for (const RobustEstimatorType type : {RobustEstimatorType::LEAST_SQUARES, RobustEstimatorType::ZUO,
+                                         RobustEstimatorType::HUBER, RobustEstimatorType::TUKEY}) {
+    const RobustEstimator::Ptr e = makeRobustEstimator(type);
+    ASSERT_TRUE(e);
+    Eigen::VectorXd v(3), w(3);
+    v << 0.0, 0.5, -0.5;
+    e->computeWeights(v, Eigen::VectorXd(), 1.0, w);
+    EXPECT_EQ(w[0], 1.0) << e->name();
+    EXPECT_EQ(w[1], w[2]) << e->name();
+  }
+}

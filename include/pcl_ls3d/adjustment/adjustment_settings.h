@@ -3,21 +3,13 @@
 /// \brief Every knob of the LS3D Gauss–Markoff adjustment in one plain struct (Ceres `Options`
 ///        style): in-class defaults, named presets, and isValid() for tools and setters.
 
-#include <pcl_ls3d/common/similarity_transform.h>
+#include <pcl_ls3d/adjustment/parameter_block.h>
 
 #include <cstddef>
 #include <limits>
 #include <string>
 
 namespace pcl_ls3d {
-
-/// \brief Which of the 7 similarity parameters (tx, ty, tz, φ, ω, κ, m) are estimated.
-enum class ParameterModel {
-  SIMILARITY_7,      ///< all seven free
-  RIGID_6,           ///< m fixed (Zuo's 6-parameter case; LHD = LZD rule + RIGID_6)
-  TRANSLATION_3,     ///< tx, ty, tz free; rotations and scale fixed
-  HEIGHT_1           ///< only tz free (classic strip height offset)
-};
 
 /// \brief Settings of the adjustment. Units: lengths in the unit of the data, angles [rad].
 ///

@@ -1,7 +1,8 @@
 #pragma once
 /// \file normal_equations.h
 /// \brief Accumulated normal equations of V = A X + L, P (Zuo et al. 2012, eq. 8): N = AᵀPA,
-///        b = AᵀPL, LᵀPL, in double, summable across threads.
+///        b = AᵀPL, LᵀPL, in double, summable across threads. Fixed size: 7 for one parameter
+///        block (a pair), 14 for the two blocks of one overlap in a strip block adjustment.
 
 #include <pcl_ls3d/adjustment/similarity_jacobian.h>
 
@@ -10,20 +11,25 @@
 namespace pcl_ls3d {
 
 /// \brief N = Σ p aᵀa, b = Σ p aᵀ l, ltpl = Σ p l², n = number of observations with p > 0.
-struct NormalEquations
+template <int Dim>
+struct NormalEquationsN
 {
-  Matrix7d N = Matrix7d::Zero();
-  Vector7d b = Vector7d::Zero();
+  using Matrix = Eigen::Matrix<double, Dim, Dim>;
+  using Vector = Eigen::Matrix<double, Dim, 1>;
+  using Row = Eigen::Matrix<double, 1, Dim>;
+
+  Matrix N = Matrix::Zero();
+  Vector b = Vector::Zero();
   double ltpl = 0.0;
   std::size_t n = 0;
 
   /// Adds one observation row a with constant term l and weight p (skipped when p ≤ 0).
   void
-  add(const RowVector7d& a, double l, double p)
+  add(const Row& a, double l, double p)
   {
     if (!(p > 0.0))
       return;
-    N.selfadjointView<Eigen::Upper>().rankUpdate(a.transpose(), p);
+    N.template selfadjointView<Eigen::Upper>().rankUpdate(a.transpose(), p);
     b.noalias() += (p * l) * a.transpose();
     ltpl += p * l * l;
     ++n;
@@ -33,11 +39,11 @@ struct NormalEquations
   void
   symmetrize()
   {
-    N.triangularView<Eigen::StrictlyLower>() = N.transpose();
+    N.template triangularView<Eigen::StrictlyLower>() = N.transpose();
   }
 
-  NormalEquations&
-  operator+=(const NormalEquations& o)
+  NormalEquationsN&
+  operator+=(const NormalEquationsN& o)
   {
     N += o.N;
     b += o.b;
@@ -46,5 +52,10 @@ struct NormalEquations
     return *this;
   }
 };
+
+/// One parameter block (the pair adjustment).
+using NormalEquations = NormalEquationsN<7>;
+/// Two parameter blocks [source | target] of one overlap (strip block adjustment).
+using PairNormalEquations = NormalEquationsN<14>;
 
 }  // namespace pcl_ls3d

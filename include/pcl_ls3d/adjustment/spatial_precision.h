@@ -7,8 +7,8 @@
 /// surface it is measured to. Every target point enters the local surfaces of all source points
 /// around it (a 12-point fit at equal densities is shared by ~12 observations), so the target
 /// part is correlated over a neighbourhood: Σ_ll = σ_s² I + Σ_t with Σ_t non-diagonal, while
-/// eq. 14 assumes Σ_ll = σ0² I. Measured (100 m pairs, 1 pt/m², 5 cm noise, LND): target noise
-/// alone gives a parameter spread 1.6–2.5 × σ0 √q_ii; source noise alone 0.8–1.1 ×.
+/// eq. 14 assumes Σ_ll = σ0² I, and the formal σ0 √q_ii is too small (measured in
+/// docs/LS3D_PRECISION.md).
 ///
 /// The covariance of the least-squares estimate X̂ = −Q AᵀP L under any Σ_ll is the sandwich
 /// C = Q (AᵀP Σ_ll P A) Q. The middle term is estimated from the residuals with a spatial

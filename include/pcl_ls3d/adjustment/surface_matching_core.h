@@ -1,14 +1,16 @@
 #pragma once
 /// \file surface_matching_core.h
-/// \brief The PCL-free LS3D engine (Zuo et al. 2012, §2): iterate conjugate points (rule) →
-///        robust weights (eq. 15) → normal equations (eq. 8) → Gauss–Markoff solve with a-priori
-///        observations (eqs. 9–11) → update, until the angle changes fall below ε; then
-///        precision (eq. 14) and redundancy numbers. Buffers persist across runs.
+/// \brief The PCL-free LS3D pair adjustment (Zuo et al. 2012, §2), composed of the engine's
+///        stages (docs/ARCHITECTURE.md): parameter blocks and frames (parameter_block.h) →
+///        conjugate points (pair_matcher.h) → robust weights (observation_weighting.h, eq. 15) →
+///        normal equations (eq. 8) → Gauss–Markoff solve with a-priori observations
+///        (gauss_markov.h, eqs. 9–11) → iteration control (iteration_control.h); then precision
+///        (eq. 14, spatial_precision.h) and reliability (redundancy numbers).
 
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
-#include <pcl_ls3d/adjustment/overlap_grid.h>
-#include <pcl_ls3d/adjustment/similarity_jacobian.h>
+#include <pcl_ls3d/adjustment/observation_weighting.h>
+#include <pcl_ls3d/adjustment/pair_matcher.h>
 #include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
@@ -21,7 +23,8 @@ namespace pcl_ls3d {
 std::vector<int>
 thinByVoxel(const std::vector<Eigen::Vector3d>& points, double step);
 
-/// \brief Runs LS3D adjustments. Not thread-safe itself; parallel inside (OpenMP).
+/// \brief Runs LS3D pair adjustments. Not thread-safe itself; parallel inside (OpenMP). Buffers
+///        persist across runs.
 class SurfaceMatchingCore
 {
 public:
@@ -39,24 +42,9 @@ public:
       const Eigen::Matrix4d& guess);
 
 private:
-  /// Step 1 of an iteration: the conjugate observations of every `every`-th transformed source
-  /// point (skipping those that missed last time when skip_missed), compacted into obs_*;
-  /// returns their number.
-  std::size_t
-  findCorrespondences(const SimilarityLinearization& lin, const Eigen::Vector3d& o_t,
-                      const TargetSurface& target, const ConjugateRule& rule, double max_distance,
-                      std::size_t every, bool skip_missed, int stride);
-
-  // Reused buffers (grow only): reduced source, per-point rule caches, observation slots.
-  std::vector<Eigen::Vector3d> reduced_;
-  std::vector<CorrespondenceCache> caches_;
-  std::vector<unsigned char> counts_;
-  std::vector<unsigned char> missed_;  ///< no correspondence at the point's last search
-  std::vector<Eigen::Vector3d> obs_u_;
-  std::vector<double> obs_l_;
-  std::vector<int> obs_point_;
-  Eigen::VectorXd weights_, sigma_v_;
-  OverlapGrid grid_;
+  std::vector<Eigen::Vector3d> reduced_;  ///< source points minus the source block's origin
+  PairMatcher matcher_;
+  ObservationWeighting weighting_;
 };
 
 }  // namespace pcl_ls3d

@@ -4,17 +4,50 @@
 ///        shared pointer (Ceres LossFunction / pcl::SampleConsensusModel style).
 ///
 /// Contract for every estimator: given all residuals v_i of one iteration, their standard
-/// deviations σ_vi (may be empty: then σ0 is used for every observation) and σ0 of the previous
-/// iteration (≤ 0 when not known yet, i.e. in the first iteration), fill weights w_i in [0, 1]
-/// with w = 1 for v = 0 and w(−v) = w(v). The whole vector is passed so that scale estimators
-/// (MAD) and Baarda's test can be written as estimators too.
+/// deviations σ_vi (may be empty: then the scale is used for every observation) and the scale
+/// (σ0 of the previous iteration, or a robust start scale in the first one), fill weights w_i in
+/// [0, 1] with w = 1 for v = 0 and w(−v) = w(v). The whole vector is passed so that scale
+/// estimators (MAD) and Baarda's test can be written as estimators too. The engine calls
+/// weigh(), which also hands over the observation set itself (which source point each residual
+/// belongs to, stable across iterations, and where its conjugate point lies) and, on request,
+/// the redundancy numbers; the engine clamps the weights to [0, 1] afterwards
+/// (adjustment/observation_weighting.h).
+
+#include <pcl_ls3d/adjustment/observation_set.h>
 
 #include <Eigen/Core>
 
+#include <limits>
 #include <memory>
 #include <string>
 
 namespace pcl_ls3d {
+
+/// \brief Everything an estimator may look at in one iteration.
+struct WeightingInput
+{
+  WeightingInput(const Eigen::VectorXd& residuals_, const Eigen::VectorXd& sigma_v_,
+                 const Eigen::VectorXd& redundancy_, double scale_,
+                 const ObservationSet* observations_ = nullptr, int iteration_ = 0)
+  : residuals(residuals_)
+  , sigma_v(sigma_v_)
+  , redundancy(redundancy_)
+  , scale(scale_)
+  , observations(observations_)
+  , iteration(iteration_)
+  {}
+
+  const Eigen::VectorXd& residuals;   ///< v_i (the signed distances at the current estimate)
+  /// σ_vi = σ0 √r_i from the previous solve when needsResidualSigmas(), else empty.
+  const Eigen::VectorXd& sigma_v;
+  /// r_i = 1 − a_iᵀ Qxx a_i (unit a-priori weight) when needsResidualSigmas(), else empty.
+  const Eigen::VectorXd& redundancy;
+  /// σ0 of the previous iteration; in the first, 1.4826 · median |v| (robust start scale).
+  double scale;
+  /// The observations behind the residuals (same order), or null when called without them.
+  const ObservationSet* observations;
+  int iteration;                      ///< 1 for the first iteration
+};
 
 /// \brief Abstract robust estimator: one main virtual, computeWeights().
 class RobustEstimator
@@ -35,6 +68,15 @@ public:
   needsResidualSigmas() const
   {
     return false;
+  }
+
+  /// \brief The engine's entry point. The default hands the residuals to computeWeights();
+  ///        estimators that follow observations across iterations or need their positions or
+  ///        redundancy numbers override this.
+  virtual void
+  weigh(const WeightingInput& input, Eigen::Ref<Eigen::VectorXd> weights) const
+  {
+    computeWeights(input.residuals, input.sigma_v, input.scale, weights);
   }
 
   /// \param[in] residuals v_i of the current iteration
@@ -122,5 +164,23 @@ public:
 private:
   const double c_;
 };
+
+/// The estimators shipped with the library.
+enum class RobustEstimatorType {
+  LEAST_SQUARES,  ///< w = 1
+  ZUO,            ///< Zuo et al. 2012, eq. 15: 0/1 weight at K σ0 (default K = 6)
+  HUBER,          ///< Huber, k = 1.345 (95 % efficiency)
+  TUKEY           ///< Tukey biweight on 1.4826 MAD, c = 4.685 (95 % efficiency)
+};
+
+/// Creates one of the shipped estimators; a finite `constant` replaces its default tuning
+/// constant (K, k or c, in σ units).
+RobustEstimator::Ptr
+makeRobustEstimator(RobustEstimatorType type, double constant = std::numeric_limits<double>::quiet_NaN());
+
+/// Parses "ls", "zuo", "huber", "tukey" (case-insensitive), optionally with a tuning constant
+/// after a colon ("zuo:7", "huber:1.5"). Returns null and says why when the text is not one.
+RobustEstimator::Ptr
+parseRobustEstimator(const std::string& text, std::string* why = nullptr);
 
 }  // namespace pcl_ls3d

@@ -15,6 +15,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace pcl_ls3d {
 
@@ -27,7 +28,7 @@ namespace pcl_ls3d {
 ///   const auto& report = ls3d.getReport();    // σ0, σ_i, Qxx, correlation, r_i, ...
 /// \endcode
 /// getFinalTransformation() maps source into target coordinates (x' = m R x + t, as a 4×4).
-/// Defaults: LND rule (normal distance to a local quadric of 12 target neighbours; Zuo's TIN
+/// Defaults: LND rule (normal distance to a local quadric of 20 target neighbours; Zuo's TIN
 /// facet is LndRule::Surface::TRIANGLE), Zuo's 0/1 weight at 6σ0 (eq. 15), all 7 parameters
 /// free, 30 iterations, convergence when every angle change < 1e-6 rad and |dt| < 1e-5 (and
 /// |dm| < 1e-8). Clouds above 400 k source points start coarse (every k-th point) until the
@@ -174,6 +175,17 @@ protected:
   computeTransformation(PointCloudSource& output, const Matrix4& guess) override;
 
 private:
+  /// Finite source points over indices_ (with their cloud indices), thinned by `thinning`.
+  void
+  collectSourcePoints(double thinning, std::vector<Eigen::Vector3d>& points,
+                      std::vector<int>& index_of) const;
+  /// Why the inputs cannot be adjusted (empty string when they can); prepares the rule.
+  std::string
+  checkInputs(const std::vector<Eigen::Vector3d>& points, const TargetSurface& surface) const;
+  /// PCL's members (final transformation, convergence, iterations) from report_.
+  void
+  adoptReport();
+
   AdjustmentSettings settings_;
   ConjugateRule::Ptr rule_;
   RobustEstimator::Ptr estimator_;

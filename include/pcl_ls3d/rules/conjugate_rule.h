@@ -14,6 +14,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 
@@ -27,6 +28,9 @@ struct ConjugateObservation
   Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< u = ∂l/∂x' (target coordinates)
   double distance = 0.0;                                ///< signed l = uᵀ(x' − q)
   Eigen::Vector3d foot = Eigen::Vector3d::Zero();       ///< conjugate point q on the target
+  /// Variance of the local target surface at q along u (from the rule's local fit); NaN when
+  /// the rule does not estimate it. Deformation detection uses it for the residuals' σ.
+  double variance = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// \brief Up to three observations of one source point (fixed capacity, no allocation).
@@ -42,10 +46,11 @@ struct ConjugateObservations
   }
   /// Appends one observation (ignored beyond three).
   void
-  add(const Eigen::Vector3d& direction, double distance, const Eigen::Vector3d& foot)
+  add(const Eigen::Vector3d& direction, double distance, const Eigen::Vector3d& foot,
+      double variance = std::numeric_limits<double>::quiet_NaN())
   {
     if (count < 3)
-      items[static_cast<std::size_t>(count++)] = {direction, distance, foot};
+      items[static_cast<std::size_t>(count++)] = {direction, distance, foot, variance};
   }
 };
 
@@ -58,6 +63,7 @@ struct CorrespondenceCache
   std::array<float, 6> plane{{0, 0, 0, 0, 0, 0}};      ///< e.g. a local plane: normal, point
   std::array<float, 3> anchor{{0, 0, 0}};  ///< query position the element was built for
   float reuse_radius = 0.f;                ///< reuse the element while the query stays this close
+  float variance = std::numeric_limits<float>::quiet_NaN();  ///< the element's surface variance
   /// Set by the engine once the estimate has settled: a rule should then reuse exactly what it
   /// cached (and give no correspondence where it cached none), so the observation set and its
   /// surface elements stay fixed and the iteration converges instead of cycling.

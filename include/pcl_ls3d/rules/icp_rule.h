@@ -6,14 +6,12 @@
 ///
 /// Weighting: q stands in for the true conjugate point with an anisotropic error: the target
 /// noise σ_n across the surface, an offset anywhere within the k-neighbourhood along it (r_k²/4
-/// per axis). Equal weights on three coordinate axes (the plain point-to-point form) let the
-/// tangential components, which carry only that sampling offset (re-drawn at every
-/// re-association, and biased inwards at the target's border), anchor the estimate at the
-/// current correspondences and pull it towards the border: the iteration crept (0.3–0.6 m after
-/// 30 iterations). Weighting each axis by 1/variance (tangents p_t = σ_n²/(σ_n² + r_k²/4),
-/// normal 1) is the least-squares form of the same three observations; with the engine's
-/// Besl & McKay acceleration (AdjustmentSettings::accelerate) it converges (1 vs 4 pts/m²,
-/// σ 5 cm, 300 m pair: 104 mm → 10 mm).
+/// per axis). Equal weights on the three axes (the plain point-to-point form) let the tangential
+/// components, which carry only that sampling offset (re-drawn at every re-association, and
+/// biased inwards at the target's border), anchor the estimate and pull it towards the border.
+/// Weighting each axis by 1/variance (tangents p_t = σ_n²/(σ_n² + r_k²/4), normal 1) is the
+/// least-squares form of the same three observations; with the engine's Besl & McKay
+/// acceleration it converges (figures in docs/ARCHITECTURE.md).
 /// When the engine freezes correspondences the rule keeps its closest point and axes.
 
 #include <pcl_ls3d/rules/conjugate_rule.h>

@@ -22,14 +22,12 @@ public:
     LOCAL_PLANE,  ///< the least-squares plane of the k neighbours (normal less noisy: see below)
     LOCAL_QUADRIC ///< a least-squares quadric of the k neighbours: no curvature bias (default)
   };
-  /// LOCAL_QUADRIC is the default: on noisy data a triangle normal's own noise enters the design
-  /// matrix (errors in variables) and shrinks every step, so the estimate creeps towards the
-  /// truth and stops short of it; a k-point fit is much less noisy. A plane (or a facet) lies
-  /// inside curved terrain, which flattens the relief and biases the scale m; the quadric does
-  /// not. The enclosing-triangle test still decides whether the point lies over the target.
-  /// 20 neighbours: the fitted surface's own noise enters the slopes (errors in variables) and
-  /// attenuates the horizontal parameters; with 12 the 300 m benchmark pair ended 9.2 mm off,
-  /// with 20 4.3 mm (24: 5.0 mm; wider sets start to smooth the relief).
+  /// LOCAL_QUADRIC is the default: a triangle normal's own noise enters the design matrix (errors
+  /// in variables) and the estimate stops short of the truth; a plane or a facet inside curved
+  /// terrain biases the scale; a k-point quadric does neither. The enclosing-triangle test still
+  /// decides whether the point lies over the target. 20 neighbours: fewer let the fitted
+  /// surface's noise attenuate the horizontal parameters, more smooth the relief
+  /// (docs/ARCHITECTURE.md, "Where the defaults come from").
   explicit LndRule(int neighbours = 20, Surface surface = Surface::LOCAL_QUADRIC)
   : neighbours_(neighbours), surface_(surface)
   {}

@@ -83,25 +83,10 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::getAdjustmentSett
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void
-LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransformation(
-    PointCloudSource& output, const Matrix4& guess)
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::collectSourcePoints(
+    double thinning, std::vector<Eigen::Vector3d>& points, std::vector<int>& index_of) const
 {
-  nr_iterations_ = 0;
-  converged_ = false;
-  final_transformation_ = guess;
-  report_ = AdjustmentReport();
-  report_.rule_name = rule_->name();
-  report_.estimator_name = estimator_->name();
-
-  auto finish = [&]() {
-    output = *input_;
-    pcl::transformPointCloud(*input_, output, final_transformation_);
-  };
-
-  // Finite source points (over indices_, as PCL does), then regular thinning.
-  const AdjustmentSettings settings = getAdjustmentSettings();
-  std::vector<Eigen::Vector3d> points;
-  std::vector<int> index_of;
+  // Finite source points over indices_, as PCL does; then regular thinning.
   points.reserve(indices_->size());
   index_of.reserve(indices_->size());
   for (const auto idx : *indices_) {
@@ -111,44 +96,42 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransforma
       index_of.push_back(static_cast<int>(idx));
     }
   }
+  if (!(thinning > 0.0))
+    return;
+  const std::vector<int> keep = thinByVoxel(points, thinning);
+  std::vector<Eigen::Vector3d> thinned(keep.size());
+  std::vector<int> thinned_index(keep.size());
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    thinned[i] = points[static_cast<std::size_t>(keep[i])];
+    thinned_index[i] = index_of[static_cast<std::size_t>(keep[i])];
+  }
+  points.swap(thinned);
+  index_of.swap(thinned_index);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+std::string
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::checkInputs(
+    const std::vector<Eigen::Vector3d>& points, const TargetSurface& surface) const
+{
+  if (points.empty())
+    return "the source cloud has no finite point";
   std::size_t finite_target = 0;
   for (const auto& p : *target_)
     finite_target += std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-  if (points.empty() || finite_target < 3) {
-    report_.termination = TerminationType::INVALID_INPUT;
-    report_.message = points.empty() ? "the source cloud has no finite point"
-                                     : "the target cloud has fewer than 3 finite points";
-    PCL_ERROR("[pcl_ls3d::%s::computeTransformation] %s\n", getClassName().c_str(),
-              report_.message.c_str());
-    finish();
-    return;
-  }
-  if (settings.source_thinning > 0.0) {
-    const std::vector<int> keep = thinByVoxel(points, settings.source_thinning);
-    std::vector<Eigen::Vector3d> thinned(keep.size());
-    std::vector<int> thinned_index(keep.size());
-    for (std::size_t i = 0; i < keep.size(); ++i) {
-      thinned[i] = points[static_cast<std::size_t>(keep[i])];
-      thinned_index[i] = index_of[static_cast<std::size_t>(keep[i])];
-    }
-    points.swap(thinned);
-    index_of.swap(thinned_index);
-  }
-
-  const PclTargetSurface<PointTarget> surface(target_, tree_);
+  if (finite_target < 3)
+    return "the target cloud has fewer than 3 finite points";
   std::string why;
-  if (!rule_->prepare(surface, &why)) {
-    report_.termination = TerminationType::INVALID_INPUT;
-    report_.message = "rule " + rule_->name() + " could not prepare: " + why;
-    PCL_ERROR("[pcl_ls3d::%s::computeTransformation] %s\n", getClassName().c_str(),
-              report_.message.c_str());
-    finish();
-    return;
-  }
-  report_ = core_.run(points, index_of, surface, *rule_, *estimator_, settings,
-                      guess.template cast<double>());
-  nr_iterations_ = report_.iterations;
+  if (!rule_->prepare(surface, &why))
+    return "rule " + rule_->name() + " could not prepare: " + why;
+  return "";
+}
 
+template <typename PointSource, typename PointTarget, typename Scalar>
+void
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::adoptReport()
+{
+  nr_iterations_ = report_.iterations;
   if (report_.isSolutionUsable()) {
     final_transformation_ = report_.transformation.template cast<Scalar>();
     // As pcl::DefaultConvergenceCriteria: reaching the iteration limit counts as converged
@@ -162,9 +145,40 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransforma
     PCL_ERROR("[pcl_ls3d::%s::computeTransformation] %s: %s\n", getClassName().c_str(),
               terminationTypeToString(report_.termination), report_.message.c_str());
   }
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransformation(
+    PointCloudSource& output, const Matrix4& guess)
+{
+  nr_iterations_ = 0;
+  converged_ = false;
+  final_transformation_ = guess;
+  report_ = AdjustmentReport();
+  report_.rule_name = rule_->name();
+  report_.estimator_name = estimator_->name();
+
+  const AdjustmentSettings settings = getAdjustmentSettings();
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> index_of;
+  collectSourcePoints(settings.source_thinning, points, index_of);
+  const PclTargetSurface<PointTarget> surface(target_, tree_);
+  const std::string invalid = checkInputs(points, surface);
+  if (!invalid.empty()) {
+    report_.termination = TerminationType::INVALID_INPUT;
+    report_.message = invalid;
+    PCL_ERROR("[pcl_ls3d::%s::computeTransformation] %s\n", getClassName().c_str(), invalid.c_str());
+  }
+  else {
+    report_ = core_.run(points, index_of, surface, *rule_, *estimator_, settings,
+                        guess.template cast<double>());
+    adoptReport();
+  }
   transformation_ = final_transformation_;
   previous_transformation_ = final_transformation_;
-  finish();
+  output = *input_;
+  pcl::transformPointCloud(*input_, output, final_transformation_);
 }
 
 }  // namespace pcl_ls3d

@@ -1,0 +1,76 @@
+#pragma once
+/// \file iteration_control.h
+/// \brief Stage 5 of the engine: how the iterations are run and when they stop. Coarse-to-fine
+///        sampling for big clouds, re-searching missed points only now and then, Besl–McKay
+///        extrapolation of creeping steps, freezing the correspondences once the estimate has
+///        settled, and Zuo's convergence test (every angle change below ε, §4).
+
+#include <pcl_ls3d/adjustment/adjustment_settings.h>
+#include <pcl_ls3d/adjustment/gauss_markov.h>
+#include <pcl_ls3d/adjustment/step_extrapolation.h>
+
+#include <cstddef>
+
+namespace pcl_ls3d {
+
+/// Zuo's criterion (every angle change below ε) plus translation and scale epsilons.
+bool
+converged(const Vector7d& dx, const AdjustmentSettings& settings);
+
+/// Every estimated parameter changed by less than `fraction` of its formal σ_i.
+bool
+changesBelow(const GaussMarkovSolution& sol, double fraction);
+
+/// \brief The state machine of one adjustment's iterations:
+///          coarse (every k-th point) → fine (all points, fresh correspondences, extrapolation)
+///          → frozen (fixed correspondences) → converged.
+class IterationControl
+{
+public:
+  /// \param[in] source_points points the matcher may observe
+  /// \param[in] culling the matcher culls points outside the overlap (finite reach)
+  IterationControl(const AdjustmentSettings& settings, std::size_t source_points, bool culling);
+
+  /// Observe every k-th point in this iteration (k > 1 only while coarse).
+  std::size_t
+  stride() const
+  {
+    return coarse_ ? coarse_stride_ : 1;
+  }
+  /// Skip points that found no correspondence last time (in all but every recheck-th iteration,
+  /// while correspondences are searched afresh and no grid culls the non-overlap).
+  bool
+  skipMissed(int iteration) const;
+
+  /// What to do after the solve of iteration `it` (dx already applied).
+  struct Decision
+  {
+    bool converged = false;      ///< stop: the changes fell below the epsilons
+    double extrapolation = 0.0;  ///< apply X += extrapolation · dx (Besl & McKay)
+    bool freeze = false;         ///< freeze the correspondences from the next iteration on
+  };
+  /// \param[in] scaling per-parameter scaling to "displacement at the edge of the data"
+  Decision
+  next(const GaussMarkovSolution& sol, const Vector7d& scaling, int it);
+
+  bool
+  frozen() const
+  {
+    return frozen_;
+  }
+  bool
+  coarse() const
+  {
+    return coarse_;
+  }
+
+private:
+  const AdjustmentSettings& settings_;
+  std::size_t coarse_stride_ = 1;
+  bool coarse_ = false;
+  bool frozen_ = false;
+  bool culling_ = false;
+  StepExtrapolator extrapolator_;
+};
+
+}  // namespace pcl_ls3d
