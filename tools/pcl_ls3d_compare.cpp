@@ -20,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -180,16 +181,16 @@ main(int argc, char** argv)
   double max_corr = ps.max_correspondence_distance, ndt_res = ps.ndt_resolution, rms_dist = 1.0;
   double thinning = 0.0;
   int iterations = 0;
-  parse_argument(argc, argv, "-max_corr", max_corr);
-  parse_argument(argc, argv, "-ndt_res", ndt_res);
-  parse_argument(argc, argv, "-rms_dist", rms_dist);
-  parse_argument(argc, argv, "-thinning", thinning);
-  const bool iterations_given = parse_argument(argc, argv, "-iter", iterations) >= 0;
-  parse_argument(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance);
-  if (!(max_corr > 0) || !(ndt_res > 0) || !(rms_dist > 0) || !(thinning >= 0) ||
-      (iterations_given && iterations < 1) || !(ps.gicp_gradient_tolerance > 0))
-    return fail("-max_corr, -ndt_res, -rms_dist, -gicp_grad must be > 0, -thinning >= 0, "
-                "-iter >= 1");
+  const double tiny = std::numeric_limits<double>::min();
+  using pcl_ls3d::tools::numberOption;
+  if (!numberOption(argc, argv, "-max_corr", max_corr, why, tiny) ||
+      !numberOption(argc, argv, "-ndt_res", ndt_res, why, tiny) ||
+      !numberOption(argc, argv, "-rms_dist", rms_dist, why, tiny) ||
+      !numberOption(argc, argv, "-thinning", thinning, why, 0.0) ||
+      !numberOption(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance, why, tiny) ||
+      !pcl_ls3d::tools::integerOption(argc, argv, "-iter", iterations, why, 1, 1000000))
+    return fail(why);
+  const bool iterations_given = iterations > 0;
   ps.max_correspondence_distance = ls.max_correspondence_distance = max_corr;
   ps.ndt_resolution = ndt_res;
   ls.source_thinning = thinning;
@@ -199,13 +200,9 @@ main(int argc, char** argv)
   if (!parseMethods(methods_text, methods, why))
     return fail(why);
 
-  if (!json_path.empty()) {
-    for (const auto& in : {source_path, target_path, truth_path})
-      if (!in.empty() && pcl_ls3d::io::isSameFile(json_path, in))
-        return fail("-json " + json_path + " is an input file; refusing to overwrite it");
-    if (std::ifstream(json_path).good() && !overwrite)
-      return fail(json_path + " exists; use -overwrite to replace it");
-  }
+  if (!pcl_ls3d::tools::checkOutputFile(json_path, {source_path, target_path, truth_path},
+                                        overwrite, why))
+    return fail(why);
 
   // Target first; the source shares its origin so both live in one local frame.
   TicToc tt;
@@ -239,11 +236,20 @@ main(int argc, char** argv)
              ls.describe().c_str());
   RunEvaluation evaluation(source, target, rms_dist);
   std::vector<RegistrationRun> runs;
+  std::size_t usable = 0;
   for (const auto& m : methods) {
     print_info("Running %s ... ", m.c_str());
-    runs.push_back(runMethod(m, source, target, ps, ls));
+    {  // PCL's own warnings and errors would land in the middle of the table: the row says it
+      const auto verbosity = getVerbosityLevel();
+      setVerbosityLevel(L_ALWAYS);
+      runs.push_back(runMethod(m, source, target, ps, ls));
+      setVerbosityLevel(verbosity);
+    }
     evaluation.evaluate(runs.back(), has_truth ? &truth_local : nullptr);
-    print_info("%.3f s\n", runs.back().time_s);
+    const RegistrationRun& r = runs.back();
+    const bool ok = r.ran && r.pcl_converged && r.transformation.allFinite();
+    usable += ok;
+    print_info("%.3f s%s%s\n", r.time_s, ok ? "" : ", failed: ", ok ? "" : r.message.c_str());
   }
   std::printf("\n%s", formatComparisonTable(runs, has_truth).c_str());
   std::printf("RMS: nearest-neighbour distances within %g m. %s\n", rms_dist,
@@ -268,5 +274,7 @@ main(int argc, char** argv)
       return fail("cannot write " + json_path);
     print_info("Wrote %s\n", json_path.c_str());
   }
+  if (usable == 0)
+    return fail("every method failed on " + source_path + " -> " + target_path);
   return 0;
 }

@@ -43,6 +43,8 @@ printHelp(const char* name)
   print_info("    -las_format N      : LAS output point format 0-10 (default: input's, else 3)\n");
   print_info("    -las_version 1.N   : LAS output version 1.0-1.4 (default: input's, else 1.2)\n");
   print_info("    -las_scale S       : LAS output quantum (default: input's, else 0.001)\n");
+  print_info("    -xyz_decimals N    : XYZ output: x y z with N fixed decimals (0-17; default:\n"
+             "                         full precision, the shortest text that reads back exactly)\n");
   print_info("    -ascii             : write PCD/PLY in ASCII instead of binary\n");
   print_info("    -overwrite         : replace existing output files (never an input)\n");
   print_info("    -h                 : this help\n");
@@ -55,7 +57,8 @@ bool
 checkOptions(int argc, char** argv, std::vector<std::string>& positional)
 {
   const std::set<std::string> with_value = {"-split_strips", "-format", "-classes", "-origin",
-                                            "-columns", "-las_format", "-las_version", "-las_scale"};
+                                            "-columns", "-las_format", "-las_version", "-las_scale",
+                                            "-xyz_decimals"};
   std::string why;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, with_value, {"-ascii", "-overwrite"},
                                        positional, why)) {
@@ -84,6 +87,67 @@ save(const std::string& path, const Cloud& cloud, const pcl_ls3d::io::CloudInfo&
   print_value("%g", tt.toc());
   print_info(" ms\n");
   return true;
+}
+
+/// Output settings given on the command line, parsed strictly before anything is read; -1 / 0
+/// mean "not given" (the input's LAS layout, full XYZ precision).
+struct OutputOverrides
+{
+  int las_format = -1, las_minor = -1, xyz_decimals = -1;
+  double las_scale = 0.0;
+};
+
+bool
+parseOverrides(int argc, char** argv, OutputOverrides& o, std::string& why)
+{
+  using pcl_ls3d::tools::integerOption;
+  if (!integerOption(argc, argv, "-las_format", o.las_format, why, 0, 10) ||
+      !integerOption(argc, argv, "-xyz_decimals", o.xyz_decimals, why, 0, 17) ||
+      !pcl_ls3d::tools::numberOption(argc, argv, "-las_scale", o.las_scale, why, 1e-12))
+    return false;
+  const char* version = pcl_ls3d::tools::optionValue(argc, argv, "-las_version");
+  if (version) {
+    const std::string v = version;
+    if (v.size() != 3 || v.compare(0, 2, "1.") != 0 || v[2] < '0' || v[2] > '4') {
+      why = "-las_version must be 1.0-1.4, got '" + v + "'";
+      return false;
+    }
+    o.las_minor = v[2] - '0';
+  }
+  return true;
+}
+
+/// LAS output keeps the input's LAS layout unless told otherwise.
+pcl_ls3d::io::SaveOptions
+saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const OutputOverrides& o)
+{
+  pcl_ls3d::io::SaveOptions s;
+  if (info.format == "las") {
+    s.las_point_format = info.las.point_format;
+    s.las_minor_version = info.las.version_minor;
+    s.las_scale = info.las.scale;
+    s.las_vlrs = info.las.vlrs;
+    s.las_adjusted_standard_gps_time = info.las.global_encoding & 1;
+  }
+  else {
+    for (const auto& p : cloud)
+      if (p.classification > 31 || p.return_number > 7 || p.number_of_returns > 7) {
+        s.las_point_format = 6;  // formats 0-5 cannot hold these values
+        s.las_minor_version = 4;
+        break;
+      }
+  }
+  if (o.las_format >= 0) {
+    s.las_point_format = static_cast<std::uint8_t>(o.las_format);
+    if (o.las_format >= 6)
+      s.las_minor_version = 4;
+  }
+  if (o.las_minor >= 0)
+    s.las_minor_version = static_cast<std::uint8_t>(o.las_minor);
+  if (o.las_scale > 0.0)
+    s.las_scale = Eigen::Vector3d::Constant(o.las_scale);
+  s.xyz_decimals = o.xyz_decimals;
+  return s;
 }
 
 }  // namespace
@@ -140,6 +204,32 @@ main(int argc, char** argv)
     }
   }
 
+  std::string why;
+  OutputOverrides overrides;
+  if (!parseOverrides(argc, argv, overrides, why)) {
+    print_error("%s\n", why.c_str());
+    return -1;
+  }
+  if (splitting && format.empty())
+    format = pcl_ls3d::io::fileExtension(input);
+  if (splitting && format != "las" && format != "pcd" && format != "ply" && format != "xyz" &&
+      format != "txt") {
+    print_error("-format must be las, pcd, ply, xyz or txt, got '%s'.\n", format.c_str());
+    return -1;
+  }
+
+  // Outputs are checked before the input is read (which can take long).
+  const bool overwrite = find_switch(argc, argv, "-overwrite");
+  if (!splitting && pcl_ls3d::io::isSameFile(input, files[1])) {
+    print_error("Output %s is the input file; refusing to overwrite it.\n", files[1].c_str());
+    return -1;
+  }
+  if (splitting ? !pcl_ls3d::tools::checkOutputFolder(split_dir, why)
+                : !pcl_ls3d::tools::checkOutputFile(files[1], {input}, overwrite, why)) {
+    print_error("%s\n", why.c_str());
+    return -1;
+  }
+
   // Load.
   TicToc tt;
   tt.tic();
@@ -179,69 +269,15 @@ main(int argc, char** argv)
     cloud = filtered;
   }
 
-  // Save options: LAS output keeps the input's LAS layout unless told otherwise.
-  pcl_ls3d::io::SaveOptions save_options;
-  save_options.overwrite = find_switch(argc, argv, "-overwrite");
+  pcl_ls3d::io::SaveOptions save_options = saveOptions(*cloud, info, overrides);
+  save_options.overwrite = overwrite;
   save_options.binary = !find_switch(argc, argv, "-ascii");
-  if (info.format == "las") {
-    save_options.las_point_format = info.las.point_format;
-    save_options.las_minor_version = info.las.version_minor;
-    save_options.las_scale = info.las.scale;
-    save_options.las_vlrs = info.las.vlrs;
-    save_options.las_adjusted_standard_gps_time = info.las.global_encoding & 1;
-  }
-  else {
-    for (const auto& p : *cloud)
-      if (p.classification > 31 || p.return_number > 7 || p.number_of_returns > 7) {
-        save_options.las_point_format = 6;  // formats 0-5 cannot hold these values
-        save_options.las_minor_version = 4;
-        break;
-      }
-  }
-  int las_format = -1;
-  if (parse_argument(argc, argv, "-las_format", las_format) >= 0) {
-    if (las_format < 0 || las_format > 10) {
-      print_error("-las_format must be 0-10, got %d.\n", las_format);
-      return -1;
-    }
-    save_options.las_point_format = static_cast<std::uint8_t>(las_format);
-    if (las_format >= 6)
-      save_options.las_minor_version = 4;
-  }
-  std::string version;
-  if (parse_argument(argc, argv, "-las_version", version) >= 0) {
-    if (version.size() != 3 || version.compare(0, 2, "1.") != 0 || version[2] < '0' ||
-        version[2] > '4') {
-      print_error("-las_version must be 1.0-1.4, got '%s'.\n", version.c_str());
-      return -1;
-    }
-    save_options.las_minor_version = static_cast<std::uint8_t>(version[2] - '0');
-  }
-  double scale = 0.0;
-  if (parse_argument(argc, argv, "-las_scale", scale) >= 0) {
-    if (!(scale > 0.0) || !std::isfinite(scale)) {
-      print_error("-las_scale must be positive, got %g.\n", scale);
-      return -1;
-    }
-    save_options.las_scale = Eigen::Vector3d::Constant(scale);
-  }
 
   if (!splitting) {
-    const std::string output = files[1];
-    if (pcl_ls3d::io::isSameFile(input, output)) {
-      print_error("Output %s is the input file; refusing to overwrite it.\n", output.c_str());
-      return -1;
-    }
-    return save(output, *cloud, info, save_options) ? 0 : -1;
+    return save(files[1], *cloud, info, save_options) ? 0 : -1;
   }
 
   // -split_strips DIR: one file per point-source id.
-  if (format.empty())
-    format = pcl_ls3d::io::fileExtension(input);
-  if (format != "las" && format != "pcd" && format != "ply" && format != "xyz" && format != "txt") {
-    print_error("-format must be las, pcd, ply, xyz or txt, got '%s'.\n", format.c_str());
-    return -1;
-  }
   std::error_code ec;
   fs::create_directories(split_dir, ec);
   if (!fs::is_directory(split_dir, ec)) {

@@ -5,6 +5,7 @@
 #include "tool_arguments.h"
 
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/io/strip_tools.h>
 
 #include <pcl/console/parse.h>
@@ -161,7 +162,7 @@ main(int argc, char** argv)
     }
     const nlohmann::json j = describe(path, cloud, info, tt.toc());
     if (json)
-      std::cout << j.dump() << std::endl;
+      std::cout << pcl_ls3d::io::toJsonText(j) << std::endl;
     else
       printText(j);
   }

@@ -1,6 +1,9 @@
 // pcl_ls3d_register: least-squares 3-D surface matching of SOURCE onto TARGET (Zuo et al. 2012).
+#include "tool_arguments.h"
+
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 
 #include <pcl/console/parse.h>
@@ -11,6 +14,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -194,23 +198,12 @@ main(int argc, char** argv)
     return 0;
   }
   // Positional files and the known options (anything else starting with '-' is an error).
-  static const std::vector<std::string> valued = {"-o", "-rule", "-params", "-fix", "-max_iter",
-                                                  "-K", "-thin", "-max_dist", "-json", "-truth"};
+  static const std::set<std::string> valued = {"-o", "-rule", "-params", "-fix", "-max_iter",
+                                               "-K", "-thin", "-max_dist", "-json", "-truth"};
   std::vector<std::string> files;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-overwrite")
-      continue;
-    if (std::find(valued.begin(), valued.end(), a) != valued.end()) {
-      if (i + 1 >= argc)
-        return fail("option " + a + " needs a value"), 1;
-      ++i;
-      continue;
-    }
-    if (!a.empty() && a[0] == '-' && !(a.size() > 1 && (std::isdigit(a[1]) || a[1] == '.')))
-      return fail("unknown option " + a + " (see -h)"), 1;
-    files.push_back(a);
-  }
+  std::string why;
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite"}, files, why))
+    return fail(why), 1;
   if (files.size() != 2)
     return fail("expected exactly two input files, SOURCE and TARGET (see -h)"), 1;
   const std::string source_path = files[0], target_path = files[1];
@@ -221,14 +214,16 @@ main(int argc, char** argv)
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   parse_argument(argc, argv, "-o", out_path);
   parse_argument(argc, argv, "-rule", rule_text);
-  parse_argument(argc, argv, "-params", params);
   parse_argument(argc, argv, "-fix", fix_text);
-  parse_argument(argc, argv, "-max_iter", max_iter);
-  parse_argument(argc, argv, "-K", K);
-  parse_argument(argc, argv, "-thin", thin);
-  parse_argument(argc, argv, "-max_dist", max_dist);
   parse_argument(argc, argv, "-json", json_path);
   parse_argument(argc, argv, "-truth", truth_path);
+  using pcl_ls3d::tools::integerOption;
+  using pcl_ls3d::tools::numberOption;
+  if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
+      !integerOption(argc, argv, "-max_iter", max_iter, why, 1, 1000000) ||
+      !numberOption(argc, argv, "-K", K, why) || !numberOption(argc, argv, "-thin", thin, why) ||
+      !numberOption(argc, argv, "-max_dist", max_dist, why))
+    return fail(why), 1;
 
   // Settings, validated before any file is read.
   pcl_ls3d::ConjugateRuleType rule;
@@ -251,23 +246,18 @@ main(int argc, char** argv)
   settings.source_thinning = thin;
   if (max_dist != -1.0)
     settings.max_correspondence_distance = max_dist;
-  std::string why;
   if (!settings.isValid(&why))
     return fail("invalid settings: " + why), 1;
   if (!(K > 0.0) || !std::isfinite(K))
     return fail("-K must be > 0"), 1;
 
-  // Outputs must not clobber inputs or existing files.
-  for (const std::string& out : {out_path, json_path}) {
-    if (out.empty())
-      continue;
-    if (pcl_ls3d::io::isSameFile(out, source_path) || pcl_ls3d::io::isSameFile(out, target_path) ||
-        out == source_path || out == target_path)
-      return fail("output " + out + " would overwrite an input file"), 1;
-    if (!overwrite && std::ifstream(out).good())
-      return fail("output " + out + " exists (use -overwrite)"), 1;
-  }
-  if (!out_path.empty() && out_path == json_path)
+  // Outputs must be writable and must not clobber inputs or existing files: checked before any
+  // input is read, not after the adjustment.
+  for (const std::string& out : {out_path, json_path})
+    if (!pcl_ls3d::tools::checkOutputFile(out, {source_path, target_path, truth_path}, overwrite,
+                                          why))
+      return fail(why), 1;
+  if (!out_path.empty() && pcl_ls3d::io::isSameFile(out_path, json_path))
     return fail("-o and -json name the same file"), 1;
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
   std::string error;
@@ -343,7 +333,7 @@ main(int argc, char** argv)
   }
   if (!json_path.empty()) {
     std::ofstream out(json_path);
-    if (!(out << j.dump(2) << "\n"))
+    if (!(out << pcl_ls3d::io::toJsonText(j, 2) << "\n"))
       return fail("cannot write " + json_path), 1;
   }
   return 0;

@@ -6,12 +6,15 @@
 /// non-finite points; the count dropped is printed), local coordinates (origin printed and
 /// written to the JSON report), label = segment id (0 = in no segment), rgb per segment.
 
+#include "tool_arguments.h"
+
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_metrics.h>
 #include <pcl_ls3d/evaluation/segmentation_report.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/json_text.h>
 
 #include <pcl/common/time.h>
 #include <pcl/console/parse.h>
@@ -101,21 +104,11 @@ checkArguments(int argc, char** argv, std::string& input, std::string& error)
   return !input.empty();
 }
 
-/// Strict number: the whole string must parse and be finite.
+/// Strict number (tool_arguments.h): the whole string must parse and be finite.
 bool
 parseNumber(int argc, char** argv, const char* name, double& value, std::string& error)
 {
-  std::string s;
-  if (parse_argument(argc, argv, name, s) < 0)
-    return true;
-  char* end = nullptr;
-  const double v = std::strtod(s.c_str(), &end);
-  if (s.empty() || *end != '\0' || !std::isfinite(v)) {
-    error = std::string("option ") + name + " expects a number, got '" + s + "'";
-    return false;
-  }
-  value = v;
-  return true;
+  return tools::numberOption(argc, argv, name, value, error);
 }
 
 bool
@@ -172,21 +165,12 @@ parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string
   return s.isValid(&error);
 }
 
-/// Refuses an output equal to the input, or an existing one without -overwrite.
+/// Refuses an output equal to the input, an existing one without -overwrite, or one that cannot
+/// be written (tool_arguments.h), before any work.
 bool
 checkOutput(const std::string& out, const std::string& input, bool overwrite, std::string& error)
 {
-  if (out.empty())
-    return true;
-  if (io::isSameFile(out, input)) {
-    error = "output '" + out + "' is the input file; refusing to overwrite it";
-    return false;
-  }
-  if (std::filesystem::exists(out) && !overwrite) {
-    error = "output '" + out + "' exists (use -overwrite to replace it)";
-    return false;
-  }
-  return true;
+  return tools::checkOutputFile(out, {input}, overwrite, error);
 }
 
 json
@@ -439,7 +423,7 @@ main(int argc, char** argv)
   }
   if (!out_json.empty()) {
     std::ofstream f(out_json);
-    f << report.dump(2) << '\n';
+    f << io::toJsonText(report, 2) << '\n';
     if (!f)
       return fail("cannot write '" + out_json + "'");
     print_info("Wrote %s\n", out_json.c_str());

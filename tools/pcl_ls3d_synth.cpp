@@ -483,6 +483,11 @@ main(int argc, char** argv)
   if (!ok)
     return -1;
   std::error_code ec;
+  std::string why;
+  if (!pcl_ls3d::tools::checkOutputFolder(outdir, why)) {
+    print_error("%s\n", why.c_str());
+    return -1;
+  }
   fs::create_directories(outdir, ec);
   if (ec || !fs::is_directory(outdir)) {
     print_error("Cannot create output folder %s.\n", outdir.c_str());

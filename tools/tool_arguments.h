@@ -1,11 +1,25 @@
 #pragma once
 /// \file tool_arguments.h
-/// \brief Command-line checks shared by the pcl_ls3d_* tools. pcl::console's parse_argument()
-///        silently ignores options it is not asked about, so a typo (-max_iters for -max_iter)
-///        would run with defaults; every tool first validates argv against its option table.
+/// \brief Command-line checks shared by the pcl_ls3d_* tools.
+///
+/// - splitArguments(): pcl::console's parse_argument() silently ignores options it is not asked
+///   about, so a typo (-max_iters for -max_iter) would run with defaults; every tool first
+///   validates argv against its option table (unknown, repeated or value-less options refused).
+/// - numberOption() / integerOption(): pcl::console's parse_argument() reads "6x" as 6 and "abc"
+///   as 0; every numeric option goes through these strict parsers instead (the whole word must
+///   be a finite number, integers must be whole and in range).
+/// - checkOutputFile() / checkOutputFolder(): an output that cannot be written is refused before
+///   any input is read, not after a long run.
 
+#include <pcl_ls3d/io/cloud_io.h>
+
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -16,14 +30,20 @@ namespace tools {
 
 /// \brief Splits argv[first..argc) into positional arguments. Options in `with_value` consume
 ///        the next word, `switches` stand alone, "-h"/"--help" are always accepted. Returns false
-///        with a one-line reason on an unknown option or an option missing its value.
+///        with a one-line reason on an unknown or repeated option, or an option missing its value.
 inline bool
 splitArguments(int argc, char** argv, int first, const std::set<std::string>& with_value,
                const std::set<std::string>& switches, std::vector<std::string>& positional,
                std::string& why)
 {
+  std::set<std::string> seen;
   for (int i = first; i < argc; ++i) {
     const std::string a = argv[i];
+    const bool option = with_value.count(a) || switches.count(a);
+    if (option && !seen.insert(a).second) {
+      why = "Option " + a + " is given twice";
+      return false;
+    }
     if (with_value.count(a)) {
       if (i + 1 >= argc) {
         why = "Option " + a + " needs a value";
@@ -43,6 +63,75 @@ splitArguments(int argc, char** argv, int first, const std::set<std::string>& wi
   return true;
 }
 
+/// \brief The whole of `text` as a finite number ("6x", "abc", "", "nan", "1e999" are refused).
+inline bool
+parseStrictDouble(const std::string& text, double& value)
+{
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text[0])))
+    return false;
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(text.c_str(), &end);
+  if (*end != '\0' || errno == ERANGE || !std::isfinite(v))
+    return false;
+  value = v;
+  return true;
+}
+
+/// \brief The value of option `name` (the word after it), or nullptr when it is not given.
+inline const char*
+optionValue(int argc, char** argv, const std::string& name)
+{
+  for (int i = 1; i + 1 < argc; ++i)
+    if (name == argv[i])
+      return argv[i + 1];
+  return nullptr;
+}
+
+/// \brief Reads numeric option `name` into `value` when given; false with a one-line reason
+///        when it is not a finite number in [lo, hi]. `value` is untouched when absent.
+inline bool
+numberOption(int argc, char** argv, const std::string& name, double& value, std::string& why,
+             double lo = -std::numeric_limits<double>::max(),
+             double hi = std::numeric_limits<double>::max())
+{
+  const char* text = optionValue(argc, argv, name);
+  if (!text)
+    return true;
+  double v = 0.0;
+  if (!parseStrictDouble(text, v) || v < lo || v > hi) {
+    std::ostringstream s;
+    s << name << " expects a number";
+    if (lo > -std::numeric_limits<double>::max() || hi < std::numeric_limits<double>::max())
+      s << " in [" << lo << ", " << hi << "]";
+    s << ", got '" << text << "'";
+    why = s.str();
+    return false;
+  }
+  value = v;
+  return true;
+}
+
+/// \brief Integer version of numberOption(): whole numbers in [lo, hi] only ("6x", "6.5" refused).
+template <typename Int>
+inline bool
+integerOption(int argc, char** argv, const std::string& name, Int& value, std::string& why,
+              long long lo, long long hi)
+{
+  const char* text = optionValue(argc, argv, name);
+  if (!text)
+    return true;
+  double v = 0.0;
+  if (!parseStrictDouble(text, v) || v != std::floor(v) || v < static_cast<double>(lo) ||
+      v > static_cast<double>(hi)) {
+    why = name + " expects an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+          "], got '" + text + "'";
+    return false;
+  }
+  value = static_cast<Int>(v);
+  return true;
+}
+
 /// \brief Parses "a,b,c" into finite doubles; false on an empty list, an empty item, trailing
 ///        characters or a non-finite value.
 inline bool
@@ -52,13 +141,64 @@ parseNumberList(const std::string& text, std::vector<double>& values)
   std::stringstream ss(text);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    char* end = nullptr;
-    const double v = std::strtod(item.c_str(), &end);
-    if (item.empty() || *end != '\0' || !std::isfinite(v))
+    double v = 0.0;
+    if (!parseStrictDouble(item, v))
       return false;
     values.push_back(v);
   }
-  return !values.empty();
+  return !values.empty() && text.back() != ',';
+}
+
+/// \brief Refuses an output file before any work: it names one of `inputs`, exists without
+///        `overwrite`, is a folder, or cannot be created (missing folder, a file where the folder
+///        should be, no write permission). Creates and changes nothing. An empty path passes.
+inline bool
+checkOutputFile(const std::string& path, const std::vector<std::string>& inputs, bool overwrite,
+                std::string& why)
+{
+  namespace fs = std::filesystem;
+  if (path.empty())
+    return true;
+  for (const auto& in : inputs)
+    if (!in.empty() && io::isSameFile(path, in)) {
+      why = "output " + path + " is the input file " + in + "; refusing to overwrite it";
+      return false;
+    }
+  std::error_code ec;
+  if (fs::is_directory(path, ec))
+    why = "output " + path + " is a folder, not a file";
+  else if (fs::exists(path, ec) && !overwrite)
+    why = "output " + path + " exists already (use -overwrite to replace it)";
+  else if (fs::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
+    why = "cannot write " + path + ": no write permission";
+  else if (!fs::exists(path, ec)) {
+    const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".")
+                                                                 : fs::path(path).parent_path();
+    if (!fs::exists(parent, ec))
+      why = "cannot write " + path + ": folder " + parent.string() + " does not exist";
+    else if (!fs::is_directory(parent, ec))
+      why = "cannot write " + path + ": " + parent.string() + " is not a folder";
+    else if (::access(parent.c_str(), W_OK | X_OK) != 0)
+      why = "cannot write " + path + ": no permission to create files in " + parent.string();
+  }
+  return why.empty();
+}
+
+/// \brief Refuses an output folder that exists but is not a writable folder, or that cannot be
+///        created (its nearest existing ancestor is not a writable folder). Creates nothing.
+inline bool
+checkOutputFolder(const std::string& dir, std::string& why)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::path p = fs::absolute(dir, ec);
+  while (!p.empty() && !fs::exists(p, ec) && p != p.parent_path())
+    p = p.parent_path();
+  if (!fs::is_directory(p, ec))
+    why = "cannot create or write the folder " + dir + ": " + p.string() + " is not a folder";
+  else if (::access(p.c_str(), W_OK | X_OK) != 0)
+    why = "cannot create or write the folder " + dir + ": no write permission in " + p.string();
+  return why.empty();
 }
 
 }  // namespace tools

@@ -1,4 +1,5 @@
 #include <pcl_ls3d/evaluation/comparison_report.h>
+#include <pcl_ls3d/io/json_text.h>
 
 #include <nlohmann/json.hpp>
 
@@ -129,7 +130,7 @@ comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext
     methods.push_back(m);
   }
   j["methods"] = methods;
-  return j.dump(2);
+  return io::toJsonText(j, 2);
 }
 
 }  // namespace evaluation

@@ -3,9 +3,11 @@
 
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_io.h>
+#include <pcl_ls3d/io/pcd_io.h>
+#include <pcl_ls3d/io/ply_io.h>
 #include <pcl_ls3d/io/xyz_io.h>
 
-#include "local_origin.h"
+#include "mapped_file.h"
 #include "pcl_formats.h"
 
 #include <algorithm>
@@ -85,8 +87,13 @@ loadByFormat(const std::string& format, const std::string& path,
 {
   if (format == "las")
     return readLasFile(path, cloud, info, error, options);
-  if (format == "pcd" || format == "ply")
-    return detail::readPclFile(path, format, cloud, info, error, options);
+  if (format == "pcd" || format == "ply") {
+    detail::MappedFile file;
+    if (!file.open(path, error))
+      return false;
+    return format == "pcd" ? readPcd(file.data(), file.size(), cloud, info, error, options)
+                           : readPly(file.data(), file.size(), cloud, info, error, options);
+  }
   std::ifstream in(path);
   if (!in) {
     error = "cannot open file";

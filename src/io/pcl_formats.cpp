@@ -1,12 +1,10 @@
 /// \file pcl_formats.cpp
-/// \brief PCD/PLY via pcl::PCLPointCloud2: typed field access in double, FLOAT64 x/y/z on write.
+/// \brief PCD/PLY writers via pcl::PCLPointCloud2 and PCL's writers: FLOAT64 x/y/z when the
+///        origin is not zero (the readers are pcd_reader.cpp and ply_reader.cpp).
 
 #include "pcl_formats.h"
 
-#include "local_origin.h"
-
 #include <pcl/PCLPointCloud2.h>
-#include <pcl/console/print.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
 
@@ -42,55 +40,6 @@ typeSize(std::uint8_t datatype)
   default:
     return 0;
   }
-}
-
-template <typename T>
-double
-as(const std::uint8_t* p)
-{
-  T v;
-  std::memcpy(&v, p, sizeof(T));
-  return static_cast<double>(v);
-}
-
-double
-readAsDouble(const std::uint8_t* p, std::uint8_t datatype)
-{
-  switch (datatype) {
-  case pcl::PCLPointField::INT8: return as<std::int8_t>(p);
-  case pcl::PCLPointField::UINT8: return as<std::uint8_t>(p);
-  case pcl::PCLPointField::INT16: return as<std::int16_t>(p);
-  case pcl::PCLPointField::UINT16: return as<std::uint16_t>(p);
-  case pcl::PCLPointField::INT32: return as<std::int32_t>(p);
-  case pcl::PCLPointField::UINT32: return as<std::uint32_t>(p);
-  case pcl::PCLPointField::INT64: return as<std::int64_t>(p);
-  case pcl::PCLPointField::UINT64: return as<std::uint64_t>(p);
-  case pcl::PCLPointField::FLOAT32: return as<float>(p);
-  default: return as<double>(p);
-  }
-}
-
-/// A usable field (known type, inside the point step), or nullptr.
-const pcl::PCLPointField*
-findField(const pcl::PCLPointCloud2& c, const std::string& name)
-{
-  for (const auto& f : c.fields) {
-    const std::size_t size = typeSize(f.datatype);
-    if (f.name == name && size > 0 && f.count >= 1 && f.offset + size <= c.point_step)
-      return &f;
-  }
-  return nullptr;
-}
-
-/// Integer attribute clamped to [0, max]; NaN becomes 0.
-template <typename T>
-T
-clampTo(double v)
-{
-  if (!(v > 0.0))
-    return 0;
-  const double hi = static_cast<double>(std::numeric_limits<T>::max());
-  return static_cast<T>(v >= hi ? hi : std::round(v));
 }
 
 void
@@ -132,84 +81,6 @@ writePlyAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
 }
 
 }  // namespace
-
-bool
-readPclFile(const std::string& path, const std::string& format,
-            pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
-            const LoadOptions& options)
-{
-  info = CloudInfo();
-  info.format = format;
-  pcl::PCLPointCloud2 c;
-  int status = -1;
-  bool threw = false;
-  // PCL's readers print several lines on a bad file; tools promise one. Their detail stays
-  // visible at debug verbosity (pcl::console::setVerbosityLevel(L_DEBUG)).
-  const auto verbosity = pcl::console::getVerbosityLevel();
-  if (verbosity < pcl::console::L_DEBUG)
-    pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  try {
-    status = format == "pcd" ? pcl::io::loadPCDFile(path, c) : pcl::io::loadPLYFile(path, c);
-  }
-  catch (const std::exception& e) {
-    error = std::string("PCL's ") + format + " reader failed: " + e.what();
-    threw = true;
-  }
-  pcl::console::setVerbosityLevel(verbosity);
-  if (threw)
-    return false;
-  if (status < 0) {
-    error = "PCL's " + format + " reader rejected the file (malformed header or truncated data)";
-    return false;
-  }
-  const std::size_t n = static_cast<std::size_t>(c.width) * c.height;
-  if (c.point_step == 0 || c.data.size() < n * c.point_step) {
-    error = "point data shorter than the header says";
-    return false;
-  }
-  const pcl::PCLPointField* fx = findField(c, "x");
-  const pcl::PCLPointField* fy = findField(c, "y");
-  const pcl::PCLPointField* fz = findField(c, "z");
-  if (!fx || !fy || !fz) {
-    error = "no x, y, z fields";
-    return false;
-  }
-  const pcl::PCLPointField* f_int = findField(c, "intensity");
-  const pcl::PCLPointField* f_time = findField(c, "gps_time");
-  const pcl::PCLPointField* f_psid = findField(c, "point_source_id");
-  const pcl::PCLPointField* f_class = findField(c, "classification");
-  if (!f_class)
-    f_class = findField(c, "label");
-  const pcl::PCLPointField* f_ret = findField(c, "return_number");
-  const pcl::PCLPointField* f_nret = findField(c, "number_of_returns");
-  for (const pcl::PCLPointField* f : {fx, fy, fz, f_int, f_time, f_psid, f_class, f_ret, f_nret})
-    if (f)
-      info.fields.push_back(f->name);
-
-  cloud.resize(n);
-  std::vector<double> xyz(3 * n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t* p = c.data.data() + i * c.point_step;
-    xyz[3 * i] = readAsDouble(p + fx->offset, fx->datatype);
-    xyz[3 * i + 1] = readAsDouble(p + fy->offset, fy->datatype);
-    xyz[3 * i + 2] = readAsDouble(p + fz->offset, fz->datatype);
-    PointLiDAR& q = cloud[i];
-    if (f_int)
-      q.intensity = static_cast<float>(readAsDouble(p + f_int->offset, f_int->datatype));
-    if (f_time)
-      q.gps_time = readAsDouble(p + f_time->offset, f_time->datatype);
-    if (f_psid)
-      q.point_source_id = clampTo<std::uint16_t>(readAsDouble(p + f_psid->offset, f_psid->datatype));
-    if (f_class)
-      q.classification = clampTo<std::uint8_t>(readAsDouble(p + f_class->offset, f_class->datatype));
-    if (f_ret)
-      q.return_number = clampTo<std::uint8_t>(readAsDouble(p + f_ret->offset, f_ret->datatype));
-    if (f_nret)
-      q.number_of_returns = clampTo<std::uint8_t>(readAsDouble(p + f_nret->offset, f_nret->datatype));
-  }
-  applyLocalOrigin(xyz, cloud, info, options);
-  return true;
-}
 
 bool
 writePclFile(const std::string& path, const std::string& format,

@@ -4,6 +4,7 @@
 #include <pcl_ls3d/io/xyz_io.h>
 
 #include "local_origin.h"
+#include "point_fields.h"
 
 #include <algorithm>
 #include <cctype>
@@ -91,6 +92,16 @@ mappingFromNames(const std::vector<std::string_view>& names, std::vector<Column>
   return has[0] && has[1] && has[2];
 }
 
+/// "line L, column C: cannot parse 'abc' as a number", the token quoted short (a 10 MB line of
+/// garbage gives a one-line message of a hundred characters, not of 10 MB).
+std::string
+notANumber(const std::string& line, std::size_t line_number, std::string_view token)
+{
+  const std::size_t column = static_cast<std::size_t>(token.data() - line.data()) + 1;
+  return "line " + std::to_string(line_number) + ", column " + std::to_string(column) +
+         ": cannot parse " + detail::quote(token) + " as a number";
+}
+
 template <typename T>
 T
 clampTo(double v)
@@ -117,11 +128,11 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
     tokenize(spec, 0, tokens);
     for (const auto& t : tokens)
       if (columnOf(std::string(t)) == Column::Unknown) {
-        error = "unknown XYZ column name '" + std::string(t) + "'";
+        error = "unknown XYZ column name " + detail::quote(t);
         return false;
       }
     if (!mappingFromNames(tokens, map)) {
-      error = "XYZ column list '" + spec + "' must name x, y and z";
+      error = "XYZ column list " + detail::quote(spec) + " must name x, y and z";
       return false;
     }
   }
@@ -149,8 +160,7 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
           map = candidate;
       }
       else if (!comment) {
-        error = "line " + std::to_string(line_number) + ": cannot parse '" +
-                std::string(tokens[0]) + "' as a number";
+        error = notANumber(line, line_number, tokens[0]);
         return false;
       }
       continue;
@@ -182,8 +192,7 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
       if (map[c] == Column::Skip)
         continue;
       if (!parseNumber(tokens[c], v)) {
-        error = "line " + std::to_string(line_number) + ": cannot parse '" +
-                std::string(tokens[c]) + "' as a number";
+        error = notANumber(line, line_number, tokens[c]);
         return false;
       }
       switch (map[c]) {
@@ -210,6 +219,24 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
   return true;
 }
 
+namespace {
+
+/// Appends `v` and a separator: the shortest text that reads back as exactly `v` (to_chars), or
+/// `decimals` fixed decimals when decimals >= 0.
+void
+appendNumber(std::string& out, double v, int decimals, char separator)
+{
+  char buffer[64];
+  const auto r = decimals < 0
+                     ? std::to_chars(buffer, buffer + sizeof(buffer), v)
+                     : std::to_chars(buffer, buffer + sizeof(buffer), v, std::chars_format::fixed,
+                                     std::min(decimals, 17));
+  out.append(buffer, r.ec == std::errc() ? r.ptr : buffer);
+  out.push_back(separator);
+}
+
+}  // namespace
+
 bool
 writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
              const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
@@ -219,15 +246,19 @@ writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
     error = "cannot open the file for writing";
     return false;
   }
-  const int d = std::clamp(options.xyz_decimals, 0, 12);
   bool ok = std::fputs("# x y z intensity classification point_source_id gps_time return_number "
                        "number_of_returns\n", f) >= 0;
+  std::string line;
   for (std::size_t i = 0; ok && i < cloud.size(); ++i) {
     const PointLiDAR& p = cloud[i];
-    ok = std::fprintf(f, "%.*f %.*f %.*f %.9g %u %u %.6f %u %u\n", d, p.x + origin[0], d,
-                      p.y + origin[1], d, p.z + origin[2], static_cast<double>(p.intensity),
-                      unsigned(p.classification), unsigned(p.point_source_id), p.gps_time,
-                      unsigned(p.return_number), unsigned(p.number_of_returns)) > 0;
+    line.clear();
+    for (int k = 0; k < 3; ++k)  // x_file = x_local + origin in double
+      appendNumber(line, static_cast<double>(p.data[k]) + origin[k], options.xyz_decimals, ' ');
+    appendNumber(line, static_cast<double>(p.intensity), -1, ' ');
+    line += std::to_string(p.classification) + ' ' + std::to_string(p.point_source_id) + ' ';
+    appendNumber(line, p.gps_time, -1, ' ');
+    line += std::to_string(p.return_number) + ' ' + std::to_string(p.number_of_returns) + '\n';
+    ok = std::fwrite(line.data(), 1, line.size(), f) == line.size();
   }
   ok = (std::fclose(f) == 0) && ok;
   if (!ok)

@@ -1,4 +1,5 @@
 #include <pcl_ls3d/synth/truth_json.h>
+#include <pcl_ls3d/io/json_text.h>
 
 #include <nlohmann/json.hpp>
 
@@ -121,7 +122,7 @@ truthJson(const RegistrationPair& pair, const RegistrationPairSettings& s)
                  {"source_by_class", classCounts(*pair.source)},
                  {"target_by_class", classCounts(*pair.target)},
                  {"buildings", pair.surface ? pair.surface->buildings().buildings().size() : 0}};
-  return j.dump(2);
+  return io::toJsonText(j, 2);
 }
 
 std::string
@@ -165,7 +166,7 @@ truthJson(const StripBlock& block, const StripSettings& s)
     j["strips"].push_back(k);
   }
   j["counts"] = {{"points", block.cloud->size()}, {"by_class", classCounts(*block.cloud)}};
-  return j.dump(2);
+  return io::toJsonText(j, 2);
 }
 
 std::string
@@ -194,7 +195,7 @@ truthJson(const LiSurface& li, const LiSurfaceSettings& s)
       {"indices", li.deformed_indices},
       {"mask", li.deformed}};
   j["counts"] = {{"reference", li.reference->size()}, {"mate", li.mate->size()}};
-  return j.dump(2);
+  return io::toJsonText(j, 2);
 }
 
 std::string
@@ -228,7 +229,7 @@ truthJson(const LabelledScene& scene, const SceneSettings& s)
                             {"size", vec(o.size)},
                             {"heading", o.heading},
                             {"points", o.point_count}});
-  return j.dump(2);
+  return io::toJsonText(j, 2);
 }
 
 bool

@@ -132,7 +132,7 @@ TEST(XyzIO, MalformedInputGivesALineNumber)
   EXPECT_FALSE(parse("1 2 3\n4 5\n", cloud, info, error));
   EXPECT_NE(error.find("line 2: expected at least 3 columns, found 2"), std::string::npos) << error;
   EXPECT_FALSE(parse("1 2 3\n4 5 abc\n", cloud, info, error));
-  EXPECT_NE(error.find("line 2: cannot parse 'abc'"), std::string::npos) << error;
+  EXPECT_NE(error.find("line 2, column 5: cannot parse 'abc'"), std::string::npos) << error;
   EXPECT_FALSE(parse("hello world\n1 2 3\n", cloud, info, error));
   EXPECT_NE(error.find("line 1"), std::string::npos) << error;
   io::LoadOptions options;

@@ -91,7 +91,9 @@ struct SaveOptions
   /// (GPS seconds − 1e9). Default false = GPS week time. The writer never converts the values.
   bool las_adjusted_standard_gps_time = false;
   std::vector<LasVlr> las_vlrs;                      ///< VLRs to write (e.g. copied from the input)
-  int xyz_decimals = 4;                              ///< ASCII XYZ: decimals for x, y, z
+  /// ASCII XYZ: x, y, z with this many fixed decimals; -1 (default) = full precision, the
+  /// shortest text that reads back as exactly the double x_local + origin.
+  int xyz_decimals = -1;
 };
 
 /// \brief What a reader found.

@@ -15,7 +15,9 @@
 ///
 /// Writing. A header comment "# x y z intensity classification point_source_id gps_time
 /// return_number number_of_returns" and one line per point, space separated; the reader maps the
-/// columns back from that header.
+/// columns back from that header. Numbers keep full precision (the shortest text that reads back
+/// as the same double) unless SaveOptions::xyz_decimals asks for fixed decimals.
+/// Errors quote at most 40 characters of the offending text, with its line and column.
 
 #include <pcl_ls3d/io/cloud_io.h>
 
