@@ -5,6 +5,7 @@
 #include <pcl_ls3d/io/las_io.h>
 
 #include "las_format.h"
+#include "local_origin.h"
 
 #include <algorithm>
 #include <cmath>
@@ -241,8 +242,16 @@ readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
     }
   }
   info.origin = options.use_origin ? options.origin : chooseOrigin(info.min_file, info.max_file);
-  // x_local = X * s + (offset - origin): one double multiply-add per coordinate.
+  // x_local = X * s + (offset - origin): one double multiply-add per coordinate. Its extremes
+  // (at the integer bounds) must fit in a float.
   const Eigen::Vector3d shift = h.offset - info.origin;
+  Eigen::Vector3d local_lo, local_hi;
+  for (int k = 0; k < 3; ++k) {
+    local_lo[k] = lo[k] * h.scale[k] + shift[k];
+    local_hi[k] = hi[k] * h.scale[k] + shift[k];
+  }
+  if (n > 0 && !detail::fitsInFloat(local_lo, local_hi, Eigen::Vector3d::Zero(), error))
+    return false;
   const bool new_layout = h.point_format >= 6;
 
   cloud.resize(n);

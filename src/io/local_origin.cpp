@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 namespace pcl_ls3d {
 namespace io {
@@ -18,16 +19,30 @@ chooseOrigin(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file)
     if (!std::isfinite(min_file[k]) || !std::isfinite(max_file[k]))
       continue;
     if (std::max(std::abs(min_file[k]), std::abs(max_file[k])) >= 1e4)
-      origin[k] = std::round(0.5 * (min_file[k] + max_file[k]));
+      origin[k] = std::round(0.5 * min_file[k] + 0.5 * max_file[k]);  // no overflow near 1e308
   }
   return origin;
 }
 
 namespace detail {
 
-void
+bool
+fitsInFloat(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file,
+            const Eigen::Vector3d& origin, std::string& error)
+{
+  const double reach = std::max((min_file - origin).cwiseAbs().maxCoeff(),
+                                (max_file - origin).cwiseAbs().maxCoeff());
+  if (reach <= static_cast<double>(std::numeric_limits<float>::max()))
+    return true;
+  std::ostringstream s;
+  s << "coordinates reach " << reach << " from the local origin, beyond what a float holds";
+  error = s.str();
+  return false;
+}
+
+bool
 applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cloud,
-                 CloudInfo& info, const LoadOptions& options)
+                 CloudInfo& info, const LoadOptions& options, std::string& error)
 {
   const std::size_t n = cloud.size();
   info.points_in_file = n;
@@ -52,6 +67,10 @@ applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cl
     info.max_file = hi;
   }
   info.origin = options.use_origin ? options.origin : chooseOrigin(info.min_file, info.max_file);
+  if (kept > 0 && !fitsInFloat(info.min_file, info.max_file, info.origin, error)) {
+    cloud.clear();
+    return false;
+  }
   for (std::size_t j = 0; j < kept; ++j) {
     const std::size_t i = keep[j];
     PointLiDAR p = cloud[i];
@@ -60,8 +79,11 @@ applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cl
     p.z = static_cast<float>(xyz[3 * i + 2] - info.origin[2]);
     cloud[j] = p;
   }
-  cloud.resize(kept);  // also sets width = kept, height = 1
+  cloud.resize(kept);
+  cloud.width = static_cast<std::uint32_t>(kept);
+  cloud.height = 1;
   cloud.is_dense = true;
+  return true;
 }
 
 }  // namespace detail

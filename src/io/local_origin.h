@@ -5,6 +5,7 @@
 
 #include <pcl_ls3d/io/cloud_io.h>
 
+#include <string>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -12,10 +13,17 @@ namespace io {
 namespace detail {
 
 /// `xyz` holds 3 doubles per point of `cloud` (whose attributes are already set). Compacts the
-/// cloud to the finite points, fills info.origin, bounds and counts. Sets points_in_file.
-void
+/// cloud to the finite points, fills info.origin, bounds and counts. Sets points_in_file. False
+/// (cloud cleared) when a local coordinate would not fit in a float (fitsInFloat).
+bool
 applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cloud,
-                 CloudInfo& info, const LoadOptions& options);
+                 CloudInfo& info, const LoadOptions& options, std::string& error);
+
+/// True when every x_file in [min_file, max_file] minus `origin` is a finite float; else false
+/// with a one-line reason (a file whose coordinates span 1e300 cannot be held in local floats).
+bool
+fitsInFloat(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file,
+            const Eigen::Vector3d& origin, std::string& error);
 
 }  // namespace detail
 }  // namespace io

@@ -181,8 +181,7 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
                              &xyz[3 * i]);
       }
   }
-  detail::applyLocalOrigin(xyz, cloud, info, options);
-  return true;
+  return detail::applyLocalOrigin(xyz, cloud, info, options, error);
 }
 
 }  // namespace io

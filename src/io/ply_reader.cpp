@@ -216,8 +216,7 @@ readPly(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
       cloud.clear();
       return false;
     }
-  detail::applyLocalOrigin(xyz, cloud, info, options);
-  return true;
+  return detail::applyLocalOrigin(xyz, cloud, info, options, error);
 }
 
 }  // namespace io

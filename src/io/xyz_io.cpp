@@ -215,8 +215,7 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
     error = "read error";
     return false;
   }
-  detail::applyLocalOrigin(xyz, cloud, info, options);
-  return true;
+  return detail::applyLocalOrigin(xyz, cloud, info, options, error);
 }
 
 namespace {
