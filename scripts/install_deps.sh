@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages pcl_ls3d builds with. Idempotent; needs root (or sudo).
+# Installs the Debian 12 packages pcl_ls3d builds and tests with (only the missing ones).
+# Idempotent; needs root (or sudo). The README's dependency table says what each is for.
 set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config
           libpcl-dev libeigen3-dev libboost-dev libflann-dev libqhull-dev
-          libgtest-dev nlohmann-json3-dev)
+          libgtest-dev nlohmann-json3-dev
+          libgdal-dev libpng-dev slurm-wlm munge)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -64,7 +64,7 @@ class SegmentTool : public ::testing::Test
     fs::create_directories(dir_);
     tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_segment";
     if (!fs::exists(tool_))
-      GTEST_SKIP() << "tool not built: " << tool_;
+      FAIL() << "tool not built: " << tool_;
     scene_ = pcl_ls3d_test::makeSmallScene();
     input_ = dir_ / "scene.pcd";
     ASSERT_EQ(pcl::io::savePCDFileBinary(input_.string(), scene_), 0);

@@ -42,7 +42,7 @@ protected:
   SetUp() override
   {
     if (!fs::exists(kTool))
-      GTEST_SKIP() << kTool << " is not built";
+      FAIL() << kTool << " is not built";
     // 3 strips (psid 10, 11, 12), classes 2 / 6 / 5 in turn, UTM coordinates.
     std::vector<Eigen::Vector3d> truth;
     pcl_ls3d_test::makeUtmCloud(300, 3, {600000.0, 5000000.0, 100.0}, origin_, cloud_, truth);
@@ -146,7 +146,7 @@ TEST_F(ConvertTool, InfoToolReportsCountsStripsAndErrors)
 {
   const std::string info_tool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_info";
   if (!fs::exists(info_tool))
-    GTEST_SKIP() << info_tool << " is not built";
+    FAIL() << info_tool << " is not built";
   const std::string log = dir_.file("info.txt");
   const auto runInfo = [&](const std::string& args, std::string& out) {
     const int status = std::system((info_tool + " " + args + " > " + log + " 2>&1").c_str());

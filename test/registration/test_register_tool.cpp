@@ -65,7 +65,7 @@ protected:
   SetUp() override
   {
     if (!fs::exists(std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_register"))
-      GTEST_SKIP() << "pcl_ls3d_register not built";
+      FAIL() << "pcl_ls3d_register not built";
     dir_ = fs::temp_directory_path() / ("ls3d_tool_" + std::to_string(::getpid()));
     fs::create_directories(dir_);
     pair_ = smallPair(11, 80.0, 1.0, 1.0, 0.8, 0.02);

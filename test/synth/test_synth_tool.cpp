@@ -39,7 +39,7 @@ freshDir(const std::string& name)
 TEST(SynthTool, PairFilesAndTruth)
 {
   if (!fs::exists(kTool))
-    GTEST_SKIP() << kTool << " not built";
+    FAIL() << kTool << " not built";
   const fs::path dir = freshDir("pair");
   ASSERT_EQ(run("pair -seed 7 -size 60,50 -origin 500000,5000000,100 -o " + dir.string()), 0);
   for (const char* f : {"source.pcd", "target.pcd", "truth.json"})
@@ -75,7 +75,7 @@ TEST(SynthTool, PairFilesAndTruth)
 TEST(SynthTool, RefusalsAndErrors)
 {
   if (!fs::exists(kTool))
-    GTEST_SKIP() << kTool << " not built";
+    FAIL() << kTool << " not built";
   const fs::path dir = freshDir("refuse");
   ASSERT_EQ(run("li -o " + dir.string()), 0);
   EXPECT_TRUE(fs::exists(dir / "reference.pcd"));
@@ -95,7 +95,7 @@ TEST(SynthTool, RefusalsAndErrors)
 TEST(SynthTool, StripsAndScene)
 {
   if (!fs::exists(kTool))
-    GTEST_SKIP() << kTool << " not built";
+    FAIL() << kTool << " not built";
   const fs::path dir = freshDir("strips");
   ASSERT_EQ(run("strips -strips 2 -length 80 -swath 40 -density 1 -split -format las -o " +
                 dir.string()),
