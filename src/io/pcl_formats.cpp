@@ -4,6 +4,8 @@
 
 #include "pcl_formats.h"
 
+#include "ascii_writers.h"
+
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -52,32 +54,6 @@ addField(pcl::PCLPointCloud2& c, const std::string& name, std::uint8_t datatype)
   f.count = 1;
   c.fields.push_back(f);
   c.point_step += static_cast<std::uint32_t>(typeSize(datatype));
-}
-
-/// ASCII PLY with the same properties as the binary writer, doubles with 15 digits.
-bool
-writePlyAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-              const Eigen::Vector3d& origin)
-{
-  std::FILE* f = std::fopen(path.c_str(), "w");
-  if (!f)
-    return false;
-  const char* xyz_type = origin.isZero(0.0) ? "float" : "double";
-  bool ok = std::fprintf(f,
-                         "ply\nformat ascii 1.0\ncomment pcl_ls3d\nelement vertex %zu\n"
-                         "property %s x\nproperty %s y\nproperty %s z\nproperty float intensity\n"
-                         "property double gps_time\nproperty ushort point_source_id\n"
-                         "property uchar classification\nproperty uchar return_number\n"
-                         "property uchar number_of_returns\nend_header\n",
-                         cloud.size(), xyz_type, xyz_type, xyz_type) > 0;
-  for (std::size_t i = 0; ok && i < cloud.size(); ++i) {
-    const PointLiDAR& p = cloud[i];
-    ok = std::fprintf(f, "%.15g %.15g %.15g %.9g %.15g %u %u %u %u\n", p.x + origin[0],
-                      p.y + origin[1], p.z + origin[2], static_cast<double>(p.intensity),
-                      p.gps_time, unsigned(p.point_source_id), unsigned(p.classification),
-                      unsigned(p.return_number), unsigned(p.number_of_returns)) > 0;
-  }
-  return (std::fclose(f) == 0) && ok;
 }
 
 }  // namespace
@@ -129,20 +105,16 @@ writePclFile(const std::string& path, const std::string& format,
   }
   int status = -1;
   try {
-    // ASCII precision 15: a UTM northing (7 digits before the point) keeps 1e-8 units.
-    if (format == "pcd") {
-      pcl::PCDWriter w;
-      status = options.binary ? w.writeBinary(path, c)
-                              : w.writeASCII(path, c, Eigen::Vector4f::Zero(),
-                                             Eigen::Quaternionf::Identity(), 15);
-    }
-    else if (options.binary) {
-      pcl::PLYWriter w;  // no camera element: other PLY readers do not expect one
-      status = w.writeBinary(path, c, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity(),
-                             false);
-    }
-    else  // PCL 1.13's ASCII PLY writer prints doubles with 6 digits: write it here
-      status = writePlyAscii(path, cloud, origin) ? 0 : -1;
+    // ASCII: pcl_ls3d's own writers (ascii_writers.h) print every number exactly; PCL 1.13's
+    // print a fixed number of digits (PLY doubles: 6).
+    if (!options.binary)
+      status = (format == "pcd" ? writePcdAscii(path, cloud, origin)
+                                : writePlyAscii(path, cloud, origin)) ? 0 : -1;
+    else if (format == "pcd")
+      status = pcl::PCDWriter().writeBinary(path, c);
+    else  // no camera element: other PLY readers do not expect one
+      status = pcl::PLYWriter().writeBinary(path, c, Eigen::Vector4f::Zero(),
+                                            Eigen::Quaternionf::Identity(), false);
   }
   catch (const std::exception& e) {
     error = std::string("PCL ") + format + " writer failed: " + e.what();

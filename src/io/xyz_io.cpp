@@ -3,6 +3,7 @@
 
 #include <pcl_ls3d/io/xyz_io.h>
 
+#include "ascii_writers.h"
 #include "local_origin.h"
 #include "point_fields.h"
 
@@ -218,24 +219,6 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
   return detail::applyLocalOrigin(xyz, cloud, info, options, error);
 }
 
-namespace {
-
-/// Appends `v` and a separator: the shortest text that reads back as exactly `v` (to_chars), or
-/// `decimals` fixed decimals when decimals >= 0.
-void
-appendNumber(std::string& out, double v, int decimals, char separator)
-{
-  char buffer[64];
-  const auto r = decimals < 0
-                     ? std::to_chars(buffer, buffer + sizeof(buffer), v)
-                     : std::to_chars(buffer, buffer + sizeof(buffer), v, std::chars_format::fixed,
-                                     std::min(decimals, 17));
-  out.append(buffer, r.ec == std::errc() ? r.ptr : buffer);
-  out.push_back(separator);
-}
-
-}  // namespace
-
 bool
 writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
              const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
@@ -251,12 +234,14 @@ writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
   for (std::size_t i = 0; ok && i < cloud.size(); ++i) {
     const PointLiDAR& p = cloud[i];
     line.clear();
-    for (int k = 0; k < 3; ++k)  // x_file = x_local + origin in double
-      appendNumber(line, static_cast<double>(p.data[k]) + origin[k], options.xyz_decimals, ' ');
-    appendNumber(line, static_cast<double>(p.intensity), -1, ' ');
-    line += std::to_string(p.classification) + ' ' + std::to_string(p.point_source_id) + ' ';
-    appendNumber(line, p.gps_time, -1, ' ');
-    line += std::to_string(p.return_number) + ' ' + std::to_string(p.number_of_returns) + '\n';
+    for (int k = 0; k < 3; ++k) {  // x_file = x_local + origin in double
+      detail::appendNumber(line, static_cast<double>(p.data[k]) + origin[k], options.xyz_decimals);
+      line += ' ';
+    }
+    detail::appendNumber(line, p.intensity);
+    line += ' ' + std::to_string(p.classification) + ' ' + std::to_string(p.point_source_id) + ' ';
+    detail::appendNumber(line, p.gps_time);
+    line += ' ' + std::to_string(p.return_number) + ' ' + std::to_string(p.number_of_returns) + '\n';
     ok = std::fwrite(line.data(), 1, line.size(), f) == line.size();
   }
   ok = (std::fclose(f) == 0) && ok;
