@@ -1,9 +1,12 @@
 /// \file las_reader_fuzzer.cpp
-/// \brief libFuzzer target: pcl_ls3d::io::readLas on arbitrary bytes must return true or false,
-///        never crash, over-read or allocate more than the input justifies. When a buffer parses,
-///        the cloud is written back and re-read (writer coverage, and a consistency check).
+/// \brief libFuzzer target: pcl_ls3d::io::readLas on arbitrary bytes must return true or false
+///        (fuzz_checks.h), never crash, over-read or allocate more than the input justifies. When
+///        a buffer parses, the cloud is written back and re-read (writer coverage, and a
+///        consistency check).
 
 #include <pcl_ls3d/io/las_io.h>
+
+#include "fuzz_checks.h"
 
 #include <cstdint>
 #include <cstdlib>
@@ -18,11 +21,10 @@ LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
   std::string error;
   pcl_ls3d::io::LoadOptions load;
   load.allow_empty = true;
-  if (!pcl_ls3d::io::readLas(data, size, cloud, info, error, load)) {
-    if (error.empty())
-      std::abort();  // a failure must always say why
+  const bool ok = pcl_ls3d::io::readLas(data, size, cloud, info, error, load);
+  pcl_ls3d_fuzz::checkResult(ok, error, cloud, info);
+  if (!ok)
     return 0;
-  }
   if (cloud.size() != info.las.point_count)
     std::abort();
   pcl_ls3d::io::SaveOptions save;

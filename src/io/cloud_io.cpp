@@ -9,6 +9,7 @@
 
 #include "mapped_file.h"
 #include "pcl_formats.h"
+#include "point_fields.h"
 
 #include <algorithm>
 #include <cctype>
@@ -127,7 +128,8 @@ loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo
     if (format.empty())
       format = formatOf(ext);
     if (format.empty())
-      reason = "unknown file type '." + ext + "' (supported: .las .pcd .ply .xyz .txt .csv)";
+      reason = "unknown file type " + detail::quote("." + ext) +
+               " (supported: .las .pcd .ply .xyz .txt .csv)";
   }
   if (reason.empty() && !options.origin.allFinite() && options.use_origin)
     reason = "the forced origin is not finite";
@@ -140,7 +142,7 @@ loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo
                        " points are NaN/inf)";
   }
   if (!reason.empty()) {
-    error = path + ": " + reason;
+    error = detail::printable(path) + ": " + reason;
     return false;
   }
   return true;
@@ -155,7 +157,8 @@ saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
   std::string reason;
   std::error_code ec;
   if (format.empty() || format == "laz")
-    reason = "cannot write '." + ext + "' files (supported: .las .pcd .ply .xyz .txt .csv)";
+    reason = "cannot write " + detail::quote("." + ext) +
+             " files (supported: .las .pcd .ply .xyz .txt .csv)";
   else if (cloud.empty())
     reason = "refusing to write an empty cloud";
   else if (!origin.allFinite())
@@ -171,7 +174,7 @@ saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
   else
     detail::writePclFile(path, format, cloud, origin, reason, options);
   if (!reason.empty()) {
-    error = path + ": " + reason;
+    error = detail::printable(path) + ": " + reason;
     return false;
   }
   return true;

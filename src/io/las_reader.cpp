@@ -6,6 +6,7 @@
 
 #include "las_format.h"
 #include "local_origin.h"
+#include "point_fields.h"
 
 #include <algorithm>
 #include <cmath>
@@ -71,8 +72,8 @@ readVlrs(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
       return false;
     }
     if (pos + las::kVlrHeaderSize + length > end) {
-      error = concat("VLR ", i + 1, " (", vlr.user_id, "/", vlr.record_id, ") of ", length,
-                     " bytes runs past the point data at byte ", end);
+      error = concat("VLR ", i + 1, " (", detail::clip(vlr.user_id), "/", vlr.record_id, ") of ",
+                     length, " bytes runs past the point data at byte ", end);
       return false;
     }
     vlr.data.assign(v + las::kVlrHeaderSize, v + las::kVlrHeaderSize + length);

@@ -157,7 +157,8 @@ readElement(const PlyElement& e, const PlyHeader& h, const std::vector<Attribute
   const bool ascii = h.format == PlyFormat::Ascii;
   const std::uint64_t fits = room(e, h.format, ascii ? a.size - a.pos : b.size - b.pos);
   if (e.count > fits)
-    return fail(error, "header says " + std::to_string(e.count) + " " + e.name + " items, the " +
+    return fail(error, "header says " + std::to_string(e.count) + " " + detail::clip(e.name) +
+                           " items, the " +
                            "data after it can hold at most " + std::to_string(fits));
   if (!ascii && !e.hasList() && !attributes) {
     b.skip(e.count * e.minimumBytes());  // fits: checked above
@@ -173,7 +174,7 @@ readElement(const PlyElement& e, const PlyHeader& h, const std::vector<Attribute
     PointLiDAR& p = attributes ? cloud[i] : unused;
     double* x = attributes ? &xyz[3 * i] : unused_xyz;
     if (ascii && !a.next())
-      return fail(error, "header says " + std::to_string(e.count) + " " + e.name +
+      return fail(error, "header says " + std::to_string(e.count) + " " + detail::clip(e.name) +
                              " items, the data ends after " + std::to_string(i));
     if (!(ascii ? asciiItem(e, attributes, a, p, x, error)
                 : binaryItem(e, attributes, b, p, x, error)))

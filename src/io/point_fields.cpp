@@ -129,12 +129,27 @@ setAttribute(Attribute a, double value, PointLiDAR& point, double* xyz)
 }
 
 std::string
+printable(std::string_view text)
+{
+  std::string out(text);
+  for (char& c : out)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      c = '?';
+  return out;
+}
+
+std::string
+clip(std::string_view text, std::size_t max_chars)
+{
+  return printable(text.substr(0, max_chars));
+}
+
+std::string
 quote(std::string_view text, std::size_t max_chars)
 {
   if (text.size() <= max_chars)
-    return "'" + std::string(text) + "'";
-  return "'" + std::string(text.substr(0, max_chars)) + "...' (" + std::to_string(text.size()) +
-         " characters)";
+    return "'" + clip(text, max_chars) + "'";
+  return "'" + clip(text, max_chars) + "...' (" + std::to_string(text.size()) + " characters)";
 }
 
 bool

@@ -47,7 +47,16 @@ hasXyz(const std::vector<Attribute>& attributes);
 void
 setAttribute(Attribute a, double value, PointLiDAR& point, double* xyz);
 
-/// `text` for an error message: at most `max_chars` bytes, then "..." and the full length.
+/// `text` with control bytes shown as '?' (a newline in a file's string or name would break the
+/// one-line error).
+std::string
+printable(std::string_view text);
+
+/// printable() of at most the first `max_chars` bytes of `text`.
+std::string
+clip(std::string_view text, std::size_t max_chars = 40);
+
+/// clip() in quotes, followed by the full length when it was cut: 'abc...' (1000 characters).
 std::string
 quote(std::string_view text, std::size_t max_chars = 40);
 

@@ -214,6 +214,27 @@ TEST(CloudIO, FormatDetectionAndWriterRefusals)
   EXPECT_NE(error.find("empty cloud"), std::string::npos) << error;
 }
 
+// A file name with a newline or other control bytes (any byte but '/' and NUL is allowed) is
+// shown with '?' in its place: reader and writer errors stay one line.
+TEST(CloudIO, ControlBytesInFileNamesKeepErrorsOnOneLine)
+{
+  TempDir dir("ls3d_names");
+  const std::string name = dir.file("two\nlines\r\x1b.pcd");
+  std::ofstream(name) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                         "WIDTH 10\nHEIGHT 1\nPOINTS 10\nDATA binary\nab";
+  pcl::PointCloud<PointLiDAR> cloud, back;
+  cloud.push_back(PointLiDAR(1.f, 2.f, 3.f));
+  io::CloudInfo info;
+  std::string error;
+  EXPECT_FALSE(io::loadCloud(name, back, info, error));
+  EXPECT_NE(error.find("two?lines??.pcd: PCD header says 10 points"), std::string::npos) << error;
+  EXPECT_FALSE(io::saveCloud(name, cloud, Eigen::Vector3d::Zero(), error));
+  EXPECT_NE(error.find("two?lines??.pcd: exists already"), std::string::npos) << error;
+  EXPECT_FALSE(io::saveCloud(dir.file("x.\n\t"), cloud, Eigen::Vector3d::Zero(), error));
+  EXPECT_NE(error.find("cannot write '.??' files"), std::string::npos) << error;
+  EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+}
+
 TEST(StripTools, SplitByPointSourceAndFilterByClassification)
 {
   pcl::PointCloud<PointLiDAR> cloud;
