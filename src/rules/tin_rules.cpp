@@ -4,6 +4,8 @@
 #include <pcl_ls3d/rules/lnd_rule.h>
 #include <pcl_ls3d/rules/lzd_rule.h>
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -164,6 +166,80 @@ conditionedQuadric(const Eigen::Vector3d& query, const TargetSurface& target, in
   return ok;
 }
 
+// Distance to the farthest of the scratch neighbours (0 when there are none).
+double
+neighbourhoodRadius()
+{
+  const Scratch& s = scratch();
+  return s.sq_dists.empty() ? 0.0 : std::sqrt(static_cast<double>(s.sq_dists.back()));
+}
+
+// Height at (x, y) of the least-squares plane z = a + b dx + c dy through the scratch
+// neighbours (their mean height when that plane is ill-determined); NaN without neighbours.
+double
+heightBelow(const Eigen::Vector3d& query, const TargetSurface& target)
+{
+  const Scratch& s = scratch();
+  if (s.indices.size() < 3)
+    return std::numeric_limits<double>::quiet_NaN();
+  Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  double mean = 0.0;
+  for (const int i : s.indices) {
+    const Eigen::Vector3d p = target.point(i);
+    const Eigen::Vector3d a(1.0, p.x() - query.x(), p.y() - query.y());
+    N += a * a.transpose();
+    b += a * p.z();
+    mean += p.z();
+  }
+  mean /= static_cast<double>(s.indices.size());
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(N);
+  const Eigen::Vector3d x = ldlt.solve(b);
+  return ldlt.info() == Eigen::Success && x.allFinite() && ldlt.rcond() > 1e-10 ? x[0] : mean;
+}
+
+// One LZD surface element around `centre`: normal n and point c of the local quadric's tangent
+// plane (or the neighbours' plane), and the surface height at (centre.x, centre.y) — also when
+// the element is rejected (one-sided neighbours), so the caller can re-centre; NaN without
+// neighbours.
+bool
+lzdElement(const Eigen::Vector3d& centre, const TargetSurface& target, int k, LzdRule::Surface surface,
+           double max_distance, CorrespondenceCache& cache, std::array<Eigen::Vector3d, 3>& v,
+           Eigen::Vector3d& n, Eigen::Vector3d& c, double& height)
+{
+  static const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
+  Scratch& s = scratch();
+  s.indices.clear();
+  s.sq_dists.clear();
+  const bool found = searchTriangle(centre, target, k, &up, max_distance, cache, v);
+  if (s.indices.size() >= 3 && !s.sq_dists.empty() &&
+      static_cast<double>(s.sq_dists.front()) <= max_distance * max_distance)
+    height = heightBelow(centre, target);
+  if (!found)
+    return false;
+  const int count = static_cast<int>(s.indices.size());
+  c = Eigen::Vector3d::Zero();
+  n = s.normal;
+  for (int i = 0; i < count; ++i)
+    c += target.point(s.indices[static_cast<std::size_t>(i)]);
+  c /= count;
+  if (surface == LzdRule::Surface::LOCAL_QUADRIC) {
+    // z(x, y) quadric around the query (frame: e1, e2 ⟂ z); its tangent plane at (x', y').
+    double h;
+    Eigen::Vector2d g;
+    if (!conditionedQuadric(centre, target, k, up, h, g, cache.variance))
+      return false;
+    Eigen::Vector3d e1, e2;
+    tin::planeBasis(up, e1, e2);
+    c = centre + h * up;
+    n = (up - g.x() * e1 - g.y() * e2).normalized();
+    height = c.z();
+  }
+  else if (std::abs(n.z()) > 1e-6)
+    height = c.z() - (n.x() * (centre.x() - c.x()) + n.y() * (centre.y() - c.y())) / n.z();
+  return true;
+}
+
 }  // namespace
 
 namespace {
@@ -255,27 +331,23 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   Eigen::Vector3d n, p;  // plane normal and a point on it
   if (surface_ != Surface::TRIANGLE) {
     if (!cached || !reusable(cache, query)) {
-      if (!searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
+      // LZD observes along z, so its neighbours must surround the query's vertical. A query far
+      // above or below the surface (a height offset or a deformation of several point spacings
+      // on steep relief) has its 3-D nearest neighbours on the nearest slope, one-sided: then
+      // the search is repeated once from the query moved vertically to the height found first.
+      Eigen::Vector3d centre = query, c;
+      bool ok = false;
+      for (int attempt = 0; attempt < 2; ++attempt) {
+        double height = std::numeric_limits<double>::quiet_NaN();
+        ok = lzdElement(centre, target, neighbours_, surface_, max_distance, cache, v, n, c, height);
+        if (attempt == 1 || !std::isfinite(height) ||
+            std::abs(height - centre.z()) <= neighbourhoodRadius())
+          break;  // accepted, or near the surface already (a retry would find the same set)
+        centre.z() = height;
+      }
+      if (!ok) {
         cache.vertices = {{-1, -1, -1}};
         return false;
-      }
-      Scratch& s = scratch();
-      const int count = static_cast<int>(s.indices.size());
-      Eigen::Vector3d c = Eigen::Vector3d::Zero();
-      n = s.normal;
-      for (int i = 0; i < count; ++i)
-        c += target.point(s.indices[static_cast<std::size_t>(i)]);
-      c /= count;
-      double h;
-      Eigen::Vector2d g;
-      if (surface_ == Surface::LOCAL_QUADRIC) {
-        // z(x, y) quadric around the query (frame: e1, e2 ⟂ z); its tangent plane at (x', y').
-        if (!conditionedQuadric(query, target, neighbours_, up, h, g, cache.variance))
-          return false;
-        Eigen::Vector3d e1, e2;
-        tin::planeBasis(up, e1, e2);
-        c = query + h * up;
-        n = (up - g.x() * e1 - g.y() * e2).normalized();
       }
       anchor(cache, query);
       cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
