@@ -74,10 +74,10 @@ printHelp(const char* name)
       "          (0.3) -density D (4) -pattern zigzag|parallel -speed V (60 m/s) -shift_sigma S\n"
       "          (0.15 m) -angle_sigma A (3e-4 rad) -scale_sigma S (5e-5) -origin x,y,z\n"
       "          -relief R -wavelength W -buildings_per_ha N -no_buildings -no_fix_first -split\n"
-      "  li:     -grid N (50) -spacing S (100) -relief R (5000) -wavelength W (1500) -percent P\n"
+      "  li:     -grid N (50) -spacing S (100) -relief R (5000) -wavelength W (3000) -percent P\n"
       "          (9) -c C (10: deformation N(c*sigma, sigma)) -position NAME (upper_right; also\n"
       "          upper_left upper left middle right lower_left lower lower_right)\n"
-      "          -transform tx,ty,tz,phi,omega,kappa[,m] (default 30,-20,15,-0.0015,0.002,0.003)\n"
+      "          -transform tx,ty,tz,phi,omega,kappa[,m] (default Li Table 4: 500,500,500 and 5 deg each)\n"
       "          -noise_on_reference\n");
 }
 

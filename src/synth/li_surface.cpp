@@ -39,8 +39,9 @@ parseDeformationPosition(const std::string& name, DeformationPosition& p)
 SimilarityTransform
 defaultLiTruth()
 {
+  const double a = 5.0 * M_PI / 180.0;  // Li et al. 2001, Table 4: 5°, 5°, 5°, 500, 500, 500
   Vector7d p;
-  p << 30.0, -20.0, 15.0, -1.5e-3, 2e-3, 3e-3, 1.0;
+  p << 500.0, 500.0, 500.0, a, a, a, 1.0;
   return SimilarityTransform(p);
 }
 
