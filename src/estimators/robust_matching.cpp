@@ -1,0 +1,256 @@
+#include <pcl_ls3d/estimators/robust_matching.h>
+
+#include <pcl_ls3d/adjustment/surface_matching_core.h>
+#include <pcl_ls3d/sample_consensus/linearized_matching.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+namespace pcl_ls3d {
+
+namespace {
+
+const char* const kNames[] = {"ls", "zuo", "huber", "m", "md", "lms", "mm"};
+
+RobustMatchingReport&
+fail(RobustMatchingReport& report, TerminationType type, const std::string& message)
+{
+  report.termination = type;
+  report.message = message;
+  return report;
+}
+
+/// The weight function of a method (LMS: Li's M-step, MM: the Tukey M-step at a fixed scale).
+RobustEstimator::Ptr
+weightFunction(RobustMethod method, double constant, double fixed_scale)
+{
+  const bool given = std::isfinite(constant);
+  switch (method) {
+  case RobustMethod::LEAST_SQUARES: return std::make_shared<LeastSquaresEstimator>();
+  case RobustMethod::ZUO: return std::make_shared<ZuoEstimator>(given ? constant : 6.0);
+  case RobustMethod::HUBER: return std::make_shared<HuberEstimator>(given ? constant : kHuber95);
+  case RobustMethod::M:
+  case RobustMethod::LMS: return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
+  case RobustMethod::MD: return std::make_shared<MdEstimator>(given ? constant : kTukey95);
+  case RobustMethod::MM:
+    return std::make_shared<TukeyEstimator>(given ? constant : kTukey95, ScaleRule::FIXED, fixed_scale);
+  }
+  return nullptr;
+}
+
+/// σ̂ of the estimator on the final residuals.
+double
+finalScale(const RobustEstimator& estimator, const AdjustmentReport& r)
+{
+  const Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(r.residuals.data(), static_cast<Eigen::Index>(r.residuals.size()));
+  const Eigen::VectorXd none;
+  return estimator.scale(WeightingInput(v, none, none, r.sigma0));
+}
+
+/// Largest displacement between two estimates over the corners of the points' box.
+double
+maxDisplacement(const LinearizedMatching& lin, const Vector7d& a, const Vector7d& b)
+{
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : lin.reducedPoints())
+    if (p.allFinite())
+      box.extend(p);
+  const Eigen::Matrix4d Ta = SimilarityTransform(a).matrix(), Tb = SimilarityTransform(b).matrix();
+  double d = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector4d x = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).homogeneous();
+    d = std::max(d, (Ta * x - Tb * x).head<3>().norm());
+  }
+  return d;
+}
+
+/// The high-breakdown stage: rounds of subset searches, re-linearised at the last estimate
+/// while it moves by more than a tenth of the search's scale.
+bool
+highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, RobustMatchingReport& report)
+{
+  const bool lms = s.method == RobustMethod::LMS;
+  SubsetSearchSettings ss;
+  ss.subsets = s.subsetCount();
+  ss.sample_size = s.sample_size;
+  ss.score_points = s.score_points;
+  Vector7d X = lin.linearizationPoint();
+  bool have = false;
+  for (int round = 1; round <= s.max_rounds; ++round) {
+    ss.seed = s.seed + static_cast<std::uint32_t>(round - 1);
+    SubsetSearchResult res = lms ? leastMedianOfSquares(lin, ss) : leastTrimmedSquares(lin, ss);
+    report.rounds = round;
+    report.subsets_drawn += res.drawn;
+    if (!res.ok) {
+      if (!have)
+        return false;
+      break;
+    }
+    if (have) {  // the previous round's estimate competes on the new linearisation
+      const double previous = lms ? lmsCriterion(lin, X) : ltsCriterion(lin, X, ss.coverage);
+      if (previous <= res.criterion) {
+        res.parameters = X;
+        res.criterion = previous;
+      }
+    }
+    const double moved = maxDisplacement(lin, res.parameters, lin.linearizationPoint());
+    X = res.parameters;
+    report.search = res;
+    have = true;
+    if (!(moved > 0.1 * res.scale) || round == s.max_rounds || !lin.relinearize(X))
+      break;
+  }
+  report.high_breakdown_transformation = lin.matrixOf(X);
+  report.high_breakdown_scale = report.search.scale;
+  if (s.method == RobustMethod::MM) {  // the scale the M-step keeps fixed
+    Eigen::VectorXd v;
+    lin.residuals(X, v);
+    const double s0 = report.search.scale;
+    const double fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, s0) : reweightedScale(v, s0);
+    report.high_breakdown_scale = fixed > 0.0 ? fixed : s0;
+  }
+  return true;
+}
+
+}  // namespace
+
+const char*
+toString(RobustMethod method)
+{
+  return kNames[static_cast<int>(method)];
+}
+
+bool
+parseRobustMethod(const std::string& text, RobustMethod& method)
+{
+  std::string t = text;
+  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (t == "least-squares")
+    t = "ls";
+  else if (t == "m-d" || t == "gm")
+    t = "md";
+  else if (t == "tukey")
+    t = "m";
+  for (int i = 0; i < 7; ++i)
+    if (t == kNames[i]) {
+      method = static_cast<RobustMethod>(i);
+      return true;
+    }
+  return false;
+}
+
+bool
+RobustMatchingSettings::isValid(std::string* why) const
+{
+  auto bad = [why](const char* reason) {
+    if (why)
+      *why = reason;
+    return false;
+  };
+  std::string adj;
+  if (!adjustment.isValid(&adj)) {
+    if (why)
+      *why = adj;
+    return false;
+  }
+  if (std::isfinite(constant) && !(constant > 0.0))
+    return bad("the tuning constant must be > 0");
+  if (subsets < 0 || subsets > 10000000)
+    return bad("subsets must be in [0, 1e7] (0: from eq. 12)");
+  if (!(contamination > 0.0 && contamination < 1.0))
+    return bad("contamination must be in (0, 1)");
+  if (sample_size < 1 || sample_size > 64)
+    return bad("sample_size must be in [1, 64]");
+  if (max_rounds < 1)
+    return bad("max_rounds must be >= 1");
+  return true;
+}
+
+std::string
+RobustMatchingReport::brief() const
+{
+  char buf[256];
+  std::snprintf(buf, sizeof(buf), "%s: %s, sigma_hat %.4g, %d iterations%s", estimator.c_str(),
+                terminationTypeToString(termination), scale, iterations,
+                subsets_drawn > 0 ? (", " + std::to_string(subsets_drawn) + " subsets in " +
+                                     std::to_string(rounds) + " round(s)").c_str()
+                                  : "");
+  return buf;
+}
+
+RobustMatchingReport
+robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector<int>& all_indices,
+               const TargetSurface& reference, const ConjugateRule& rule,
+               const RobustMatchingSettings& s, const Eigen::Matrix4d& guess)
+{
+  // Non-finite points are no observations (as PCL drops them); indices keep the caller's.
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> point_indices;
+  points.reserve(all_points.size());
+  point_indices.reserve(all_points.size());
+  for (std::size_t i = 0; i < all_points.size(); ++i)
+    if (all_points[i].allFinite()) {
+      points.push_back(all_points[i]);
+      point_indices.push_back(i < all_indices.size() ? all_indices[i] : static_cast<int>(i));
+    }
+  RobustMatchingReport report;
+  report.method = s.method;
+  report.estimator = toString(s.method);
+  std::string why;
+  if (!s.isValid(&why))
+    return fail(report, TerminationType::INVALID_INPUT, "invalid settings: " + why);
+
+  // 1. All-points least squares (Li: LHD with all matchable points).
+  SurfaceMatchingCore core;
+  const LeastSquaresEstimator ls;
+  Eigen::Matrix4d from = guess;
+  if (s.least_squares_start || s.method == RobustMethod::LEAST_SQUARES) {
+    report.start = core.run(points, point_indices, reference, rule, ls, s.adjustment, guess);
+    report.iterations = report.start.iterations;
+    if (!report.start.isSolutionUsable()) {
+      report.adjustment = report.start;
+      return fail(report, report.start.termination, "least-squares start: " + report.start.message);
+    }
+    from = report.start.transformation;
+  }
+  double fixed_scale = 0.0;
+
+  // 2. High-breakdown start (LMS, MM).
+  if (s.method == RobustMethod::LMS || s.method == RobustMethod::MM) {
+    LinearizedMatching lin;
+    if (!lin.reset(points, reference, rule, s.adjustment, from, &why))
+      return fail(report, TerminationType::NO_OVERLAP, why);
+    const std::size_t matched = lin.size();
+    if (matched < static_cast<std::size_t>(std::max(s.sample_size, lin.freeParameters() + 1)))
+      return fail(report, TerminationType::TOO_FEW_OBSERVATIONS,
+                  "only " + std::to_string(matched) + " epoch points have a conjugate point (sample size " +
+                      std::to_string(s.sample_size) + ")");
+    if (!highBreakdownSearch(lin, s, report))
+      return fail(report, TerminationType::SINGULAR,
+                  "no subset of " + std::to_string(s.sample_size) + " points determined the parameters");
+    from = report.high_breakdown_transformation;
+    fixed_scale = report.high_breakdown_scale;
+  }
+
+  // 3. The final adjustment: IRLS with the method's weight function (none for LS).
+  const RobustEstimator::Ptr w = weightFunction(s.method, s.constant, fixed_scale);
+  if (s.method == RobustMethod::LEAST_SQUARES)
+    report.adjustment = report.start;
+  else {
+    report.adjustment = core.run(points, point_indices, reference, rule, *w, s.adjustment, from);
+    report.iterations += report.adjustment.iterations;
+  }
+  report.estimator = s.method == RobustMethod::LMS || s.method == RobustMethod::MM
+                         ? std::string(toString(s.method)) + "(" + std::to_string(report.subsets_drawn) +
+                               " subsets) + " + w->name()
+                         : w->name();
+  report.termination = report.adjustment.termination;
+  report.message = report.adjustment.message;
+  if (report.adjustment.isSolutionUsable())
+    report.scale = finalScale(*w, report.adjustment);
+  return report;
+}
+
+}  // namespace pcl_ls3d

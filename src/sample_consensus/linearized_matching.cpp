@@ -1,0 +1,195 @@
+#include <pcl_ls3d/sample_consensus/linearized_matching.h>
+
+#include <pcl_ls3d/adjustment/normal_equations.h>
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_ls3d {
+
+namespace {
+
+// Centroid of the points whose image under `guess` falls over the reference's box (grown by a
+// margin), as the engine's pair set-up; false when none does.
+bool
+overlapCentroid(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
+                const Eigen::Matrix4d& guess, double max_distance, Eigen::Vector3d& centroid)
+{
+  Eigen::AlignedBox3d box;
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    const Eigen::Vector3d p = reference.point(static_cast<int>(i));
+    if (p.allFinite())
+      box.extend(p);
+  }
+  if (box.isEmpty())
+    return false;
+  const double margin = std::min(max_distance, 0.1 * box.diagonal().norm());
+  box.min().array() -= margin;
+  box.max().array() += margin;
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::size_t n = 0;
+  for (const Eigen::Vector3d& p : points)
+    if (p.allFinite() && box.contains((guess * p.homogeneous()).head<3>())) {
+      sum += p;
+      ++n;
+    }
+  if (n == 0)
+    return false;
+  centroid = sum / static_cast<double>(n);
+  return true;
+}
+
+}  // namespace
+
+bool
+LinearizedMatching::reset(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
+                          const ConjugateRule& rule, const AdjustmentSettings& settings,
+                          const Eigen::Matrix4d& guess, std::string* why)
+{
+  auto fail = [why](const char* reason) {
+    if (why)
+      *why = reason;
+    return false;
+  };
+  Eigen::Vector3d o_s;
+  if (!guess.allFinite() || !overlapCentroid(points, reference, guess, settings.max_correspondence_distance, o_s))
+    return fail("no epoch point falls over the reference's extent under the initial guess");
+  const Eigen::Vector3d o_t = (guess * o_s.homogeneous()).head<3>();
+  block_ = ParameterBlock();
+  block_.input_origin = o_s;
+  block_.output_origin = o_t;
+  block_.values = SimilarityTransform::fromMatrix(globalToLocal(guess, o_s, o_t)).vector();
+  block_.values.head<3>().setZero();
+  block_.apriori_values = settings.apriori_from_guess ? block_.values : settings.apriori_values;
+  block_.apriori_weights = settings.apriori_weights;
+  for (int i = 0; i < 7; ++i)
+    if (settings.isFixed(i))
+      block_.values[i] = block_.apriori_values[i];
+  target_block_ = ParameterBlock::fixedIdentity(o_t);
+
+  reduced_.resize(points.size());
+  double radius = 0.0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    reduced_[i] = points[i] - o_s;
+    if (reduced_[i].allFinite())
+      radius = std::max(radius, reduced_[i].norm());
+  }
+  problem_ = GaussMarkovProblem(7);
+  problem_.apriori_values = block_.apriori_values;
+  problem_.apriori_weights = block_.apriori_weights;
+  problem_.determinability_threshold = settings.determinability_threshold;
+  const double inv_r = radius > 0.0 ? 1.0 / radius : 1.0;
+  problem_.scaling = (Eigen::VectorXd(7) << 1, 1, 1, inv_r, inv_r, inv_r, inv_r).finished();
+  matcher_.reset(reduced_, reference, rule, settings.max_correspondence_distance);
+  if (!relinearize(block_.values))
+    return fail("no epoch point found a conjugate point on the reference (no overlap)");
+  return true;
+}
+
+bool
+LinearizedMatching::relinearize(const Vector7d& X)
+{
+  block_.values = X;
+  x0_ = X;
+  problem_.current = X;
+  matcher_.match(BlockLinearization(block_), BlockLinearization(target_block_), PairMatcher::Sampling());
+  rebuildRows();
+  return l_.size() > 0;
+}
+
+void
+LinearizedMatching::rebuildRows()
+{
+  const ObservationSet& set = matcher_.observations();
+  const Eigen::Index m = static_cast<Eigen::Index>(set.size());
+  rows_.resize(m, 7);
+  l_.resize(m);
+  first_.assign(reduced_.size(), -1);
+  count_.assign(reduced_.size(), 0);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const Observation& o = set[static_cast<std::size_t>(j)];
+    rows_.row(j) = matcher_.sourceRow(o);
+    l_[j] = o.distance;
+  }
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const auto p = static_cast<std::size_t>(set[static_cast<std::size_t>(j)].point);
+    if (first_[p] < 0)
+      first_[p] = static_cast<int>(j);
+    ++count_[p];
+  }
+}
+
+Vector7d
+LinearizedMatching::parametersOf(const Eigen::Matrix4d& T) const
+{
+  return SimilarityTransform::fromMatrix(globalToLocal(T, block_.input_origin, block_.output_origin)).vector();
+}
+
+Eigen::Matrix4d
+LinearizedMatching::matrixOf(const Vector7d& X) const
+{
+  return localToGlobal(SimilarityTransform(X).matrix(), block_.input_origin, block_.output_origin);
+}
+
+int
+LinearizedMatching::freeParameters() const
+{
+  int n = 0;
+  for (int i = 0; i < 7; ++i)
+    n += !block_.isFixed(i);
+  return n;
+}
+
+bool
+LinearizedMatching::fit(const int* obs, std::size_t count, Vector7d& X) const
+{
+  NormalEquations ne;
+  for (std::size_t k = 0; k < count; ++k) {
+    const Eigen::Index j = obs[k];
+    ne.add(rows_.row(j), l_[j], 1.0);
+  }
+  ne.symmetrize();
+  const GaussMarkovSolution sol = solveGaussMarkov(ne, problem_);
+  if (!sol.ok || sol.redundancy < 0 || sol.unknowns < freeParameters())
+    return false;
+  X = x0_ + Vector7d(sol.dx);
+  return X.allFinite();
+}
+
+bool
+LinearizedMatching::fitWeighted(const Eigen::VectorXd& weights, Vector7d& X, GaussMarkovSolution* solution) const
+{
+  NormalEquations ne;
+  const Eigen::Index m = l_.size();
+#pragma omp parallel
+  {
+    NormalEquations local;
+#pragma omp for schedule(static) nowait
+    for (Eigen::Index j = 0; j < m; ++j)
+      local.add(rows_.row(j), l_[j], weights[j]);
+#pragma omp critical
+    ne += local;
+  }
+  ne.symmetrize();
+  GaussMarkovSolution sol = solveGaussMarkov(ne, problem_);
+  const bool ok = sol.ok && sol.unknowns >= freeParameters() && sol.redundancy >= 0;
+  if (ok)
+    X = x0_ + Vector7d(sol.dx);
+  if (solution)
+    *solution = std::move(sol);
+  return ok && X.allFinite();
+}
+
+void
+LinearizedMatching::residuals(const Vector7d& X, Eigen::VectorXd& v) const
+{
+  const Vector7d dx = X - x0_;
+  v.resize(l_.size());
+  v.noalias() = rows_ * dx;
+  v += l_;
+}
+
+}  // namespace pcl_ls3d
