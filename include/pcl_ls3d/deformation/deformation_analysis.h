@@ -1,0 +1,63 @@
+#pragma once
+/// \file deformation_analysis.h
+/// \brief Local deformation between two epochs in one call (Li et al. 2001): robust matching of
+///        the epoch onto the reference (estimators/robust_matching.h), the residual field with σ
+///        and significance (residual_field.h), and connected regions with area, displacement and
+///        volume (deformation_regions.h). PCL-free; detectDeformation() below takes PCL clouds.
+
+#include <pcl_ls3d/deformation/deformation_regions.h>
+#include <pcl_ls3d/deformation/residual_field.h>
+#include <pcl_ls3d/estimators/robust_matching.h>
+
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace deformation {
+
+/// \brief Everything the analysis can be told.
+struct DeformationSettings
+{
+  /// Estimator and adjustment (default: MM, LZD-style 6 parameters; see docs/BENCHMARKS.md).
+  RobustMatchingSettings matching = defaultMatching();
+  ConjugateRuleType rule = ConjugateRuleType::LZD;  ///< LHD (Li et al.) = LZD + 6 parameters
+  ResidualSettings residuals;
+  RegionSettings regions;
+
+  static RobustMatchingSettings
+  defaultMatching()
+  {
+    RobustMatchingSettings s;
+    s.method = RobustMethod::MM;
+    return s;
+  }
+  bool
+  isValid(std::string* why = nullptr) const;
+};
+
+/// \brief The analysis' result: the matching (transformation EPOCH → REFERENCE, σ, σ̂, weights,
+///        subsets, why it stopped), the residual field and its regions (epoch order).
+struct DeformationResult
+{
+  RobustMatchingReport matching;
+  ResidualField field;
+  RegionAnalysis regions;
+  /// True when the matching gave a usable estimate and the field was computed.
+  bool
+  ok() const
+  {
+    return matching.isSolutionUsable();
+  }
+};
+
+/// Robust matching of `epoch` onto `reference`, then the residual field and its regions.
+/// \param[in] epoch points in the epoch's own coordinates (NaN allowed: no residual)
+/// \param[in] rule prepared on `reference`
+/// \param[in] guess EPOCH → REFERENCE start (4×4)
+DeformationResult
+analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface& reference,
+                   const ConjugateRule& rule, const DeformationSettings& settings,
+                   const Eigen::Matrix4d& guess = Eigen::Matrix4d::Identity());
+
+}  // namespace deformation
+}  // namespace pcl_ls3d

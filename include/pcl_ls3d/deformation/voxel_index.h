@@ -1,0 +1,61 @@
+#pragma once
+/// \file voxel_index.h
+/// \brief A hashed voxel grid over a point set for fixed-radius and k-nearest searches, and the
+///        point spacing and dominant plane of a cloud (for deformation regions, areas and the
+///        M3C2-style neighbourhoods). PCL-free; searches are const and thread-safe.
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace deformation {
+
+/// \brief Mean point spacing s = √(A / n) over the largest of the three axis-plane projections
+///        of the points' box (terrain: xy; a wall: xz or yz), and that plane's normal axis
+///        (2 = z for terrain). Non-finite points are ignored; s = 0 for fewer than 2 points.
+struct CloudSpacing
+{
+  double spacing = 0.0;
+  int normal_axis = 2;
+};
+
+CloudSpacing
+cloudSpacing(const std::vector<Eigen::Vector3d>& points);
+
+/// \brief Points hashed into cubic voxels of edge `cell` (non-finite points are left out).
+class VoxelIndex
+{
+public:
+  VoxelIndex(const std::vector<Eigen::Vector3d>& points, double cell);
+
+  /// Indices of the points within `radius` of `query` (any order).
+  void
+  radiusSearch(const Eigen::Vector3d& query, double radius, std::vector<int>& out) const;
+
+  /// The k nearest points of `query` (closest first; fewer when the cloud has fewer).
+  void
+  nearestK(const Eigen::Vector3d& query, int k, std::vector<int>& out) const;
+
+  double
+  cell() const
+  {
+    return cell_;
+  }
+
+private:
+  std::int64_t
+  key(const Eigen::Vector3d& p) const;
+  static std::int64_t
+  key(std::int64_t x, std::int64_t y, std::int64_t z);
+
+  const std::vector<Eigen::Vector3d>& points_;
+  double cell_;
+  std::unordered_map<std::int64_t, std::vector<int>> voxels_;
+  std::size_t stored_ = 0;
+};
+
+}  // namespace deformation
+}  // namespace pcl_ls3d
