@@ -26,7 +26,10 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
   ResidualSettings rs = settings.residuals;
   rs.max_distance = std::min(rs.max_distance, settings.matching.adjustment.max_correspondence_distance);
   out.field = computeResidualField(epoch, reference, rule, out.matching.adjustment, out.matching.scale, rs);
-  out.regions = analyseRegions(epoch, out.field, settings.regions);
+  RegionSettings regions = settings.regions;
+  if (regions.plane_axis < 0 && settings.rule == ConjugateRuleType::LZD)
+    regions.plane_axis = 2;  // LZD residuals are heights: areas and volumes on the xy plane
+  out.regions = analyseRegions(epoch, out.field, regions);
   return out;
 }
 

@@ -90,6 +90,8 @@ RegionSettings::isValid(std::string* why) const
   };
   if (min_points < 1)
     return bad("min_points must be >= 1");
+  if (plane_axis < -1 || plane_axis > 2)
+    return bad("plane_axis must be -1, 0, 1 or 2");
   if (!(adjacency >= 0.0) || !(cell >= 0.0) || !std::isfinite(adjacency) || !std::isfinite(cell))
     return bad("adjacency and cell must be finite and >= 0");
   return true;
@@ -105,7 +107,7 @@ analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& 
   for (std::size_t i = 0; i < n; ++i)
     if (std::isfinite(field.residual[i]))
       observed[i] = points[i];
-  const CloudSpacing sp = cloudSpacing(observed);
+  const CloudSpacing sp = cloudSpacing(observed, s.plane_axis);
   out.spacing = sp.spacing;
   out.plane_normal_axis = sp.normal_axis;
   out.adjacency = s.adjacency > 0.0 ? s.adjacency : 2.5 * sp.spacing;

@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_set>
 
 namespace pcl_ls3d {
 namespace deformation {
 
 CloudSpacing
-cloudSpacing(const std::vector<Eigen::Vector3d>& points)
+cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis)
 {
   Eigen::AlignedBox3d box;
   std::size_t n = 0;
@@ -23,10 +24,25 @@ cloudSpacing(const std::vector<Eigen::Vector3d>& points)
     return out;
   const Eigen::Vector3d e = box.sizes();
   const double areas[3] = {e.y() * e.z(), e.x() * e.z(), e.x() * e.y()};  // normal x, y, z
-  out.normal_axis = static_cast<int>(std::max_element(areas, areas + 3) - areas);
+  out.normal_axis = axis >= 0 && axis < 3 ? axis : static_cast<int>(std::max_element(areas, areas + 3) - areas);
   out.spacing = std::sqrt(areas[out.normal_axis] / static_cast<double>(n));
-  if (!(out.spacing > 0.0))  // collinear points: spacing along the line
+  if (!(out.spacing > 0.0)) {  // collinear points: spacing along the line
     out.spacing = e.maxCoeff() / static_cast<double>(n);
+    return out;
+  }
+  // The box overstates the footprint of a rotated or irregular cloud (a lake, a corridor):
+  // refine with the area of the occupied cells, twice.
+  const int a = (out.normal_axis + 1) % 3, b = (out.normal_axis + 2) % 3;
+  for (int pass = 0; pass < 2; ++pass) {
+    std::unordered_set<std::int64_t> cells;
+    for (const Eigen::Vector3d& p : points)
+      if (p.allFinite()) {
+        const auto u = static_cast<std::int64_t>(std::floor(p[a] / out.spacing));
+        const auto v = static_cast<std::int64_t>(std::floor(p[b] / out.spacing));
+        cells.insert((u << 32) ^ (v & 0xffffffff));
+      }
+    out.spacing = std::sqrt(static_cast<double>(cells.size()) * out.spacing * out.spacing / static_cast<double>(n));
+  }
   return out;
 }
 

@@ -160,8 +160,9 @@ TEST(RobustMatching, BadInput)
   EXPECT_NE(ls.message.find("undeterminable"), std::string::npos) << ls.message;
   const RobustMatchingReport lms = on_plane(RobustMethod::LMS, plane.truth.matrix());
   EXPECT_FALSE(lms.message.empty());
-  if (lms.isSolutionUsable())
+  if (lms.isSolutionUsable()) {
     EXPECT_NE(lms.message.find("undeterminable"), std::string::npos) << lms.message;
+  }
 
   const synth::LiSurface li = liSurface(10.0, 10.0, synth::DeformationPosition::MIDDLE);
   LiRun run(li);

@@ -26,6 +26,9 @@ struct RegionSettings
   std::size_t min_points = 10;  ///< smaller connected sets are noise
   double adjacency = 0.0;       ///< link distance; 0: 2.5 × the point spacing
   double cell = 0.0;            ///< area cell edge; 0: the point spacing
+  /// Normal axis of the plane areas are counted on (0 x, 1 y, 2 z); −1: the largest projection
+  /// of the epoch's box. analyseDeformation() sets 2 (xy) for the LZD rule.
+  int plane_axis = -1;
 
   bool
   isValid(std::string* why = nullptr) const;

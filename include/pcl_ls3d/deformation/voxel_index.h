@@ -22,8 +22,11 @@ struct CloudSpacing
   int normal_axis = 2;
 };
 
+/// \param[in] axis the plane's normal axis (0 x, 1 y, 2 z), or −1: the box's largest projection.
+///  The box estimate is refined twice by the area of the occupied cells of edge s (a rotated or
+///  irregular footprint occupies less than its box).
 CloudSpacing
-cloudSpacing(const std::vector<Eigen::Vector3d>& points);
+cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis = -1);
 
 /// \brief Points hashed into cubic voxels of edge `cell` (non-finite points are left out).
 class VoxelIndex

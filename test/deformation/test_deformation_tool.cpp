@@ -1,0 +1,152 @@
+// pcl_ls3d_deformation end to end on Li's surface (known truth and planted deformation): the
+// JSON report's transformation is the truth, the residual cloud has one record per epoch point
+// in order with the documented fields, and bad input gives one error line and a non-zero exit.
+#include "../io/tool_run.h"
+
+#include <pcl_ls3d/deformation/point_residual.h>
+#include <pcl_ls3d/evaluation/transform_error.h>
+#include <pcl_ls3d/synth/li_surface.h>
+
+#include <pcl/io/pcd_io.h>
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+using namespace pcl_ls3d;
+using pcl_ls3d_test::lineCount;
+using pcl_ls3d_test::runTool;
+
+namespace {
+
+struct Scratch
+{
+  Scratch()
+  {
+    dir = fs::temp_directory_path() / ("pcl_ls3d_deformation_tool_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+  }
+  ~Scratch()
+  {
+    std::error_code ec;
+    fs::remove_all(dir, ec);
+  }
+  std::string
+  file(const std::string& name) const
+  {
+    return (dir / name).string();
+  }
+  fs::path dir;
+};
+
+}  // namespace
+
+TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
+{
+  const Scratch s;
+  synth::LiSurfaceSettings ls;
+  ls.deformation_percent = 20.0;
+  ls.deformation_c = 10.0;
+  ls.position = synth::DeformationPosition::LOWER_RIGHT;
+  const synth::LiSurface li = synth::makeLiSurface(ls);
+  pcl::PointCloud<pcl::PointXYZ> ref, mate;
+  pcl::copyPointCloud(*li.reference, ref);
+  pcl::copyPointCloud(*li.mate, mate);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  ASSERT_EQ(pcl::io::savePCDFileASCII(s.file("epoch.pcd"), mate), 0);
+
+  const auto run = runTool("pcl_ls3d_deformation",
+                           s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -o " + s.file("res.pcd") +
+                               " -json " + s.file("report.json"),
+                           s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  std::ifstream in(s.file("report.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  for (const char* key : {"transformation", "converged", "parameters", "sigmas", "estimator", "scale",
+                          "subsets", "percent_deformed", "regions", "noise", "local_origin"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_TRUE(j["converged"].get<bool>());
+  Eigen::Matrix4d T;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      T(r, c) = j["transformation"][static_cast<std::size_t>(r)][static_cast<std::size_t>(c)].get<double>();
+  Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(li.mate->size()));
+  for (std::size_t i = 0; i < li.mate->size(); ++i)
+    pts.col(static_cast<Eigen::Index>(i)) = (*li.mate)[i].getVector3fMap().cast<double>();
+  EXPECT_LT(evaluation::computeTransformError(T, li.truth.matrix(), pts).max, 0.5 * 20.0);
+  EXPECT_NEAR(j["percent_deformed"].get<double>(), li.percent, 3.0);
+  ASSERT_GE(j["regions"].size(), 1u);
+  EXPECT_EQ(j["regions"][0]["sign"].get<int>(), 1);
+
+  pcl::PointCloud<PointResidual> res;
+  ASSERT_EQ(pcl::io::loadPCDFile(s.file("res.pcd"), res), 0);
+  ASSERT_EQ(res.size(), li.mate->size());
+  std::size_t tp = 0, fp = 0, fn = 0;
+  for (std::size_t i = 0; i < res.size(); ++i) {
+    EXPECT_FLOAT_EQ(res[i].x, (*li.mate)[i].x);
+    EXPECT_FLOAT_EQ(res[i].z, (*li.mate)[i].z);
+    if (!std::isfinite(res[i].residual))
+      continue;  // border nodes without a conjugate
+    const bool found = res[i].region > 0;
+    tp += found && li.deformed[i];
+    fp += found && !li.deformed[i];
+    fn += !found && li.deformed[i];
+  }
+  EXPECT_GE(static_cast<double>(tp) / static_cast<double>(tp + fp), 0.95);
+  EXPECT_GE(static_cast<double>(tp) / static_cast<double>(tp + fn), 0.9);
+
+  // Never overwrites an input or an existing output.
+  const auto clobber = runTool("pcl_ls3d_deformation",
+                               s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -o " + s.file("epoch.pcd"),
+                               s.dir.string());
+  EXPECT_NE(clobber.code, 0);
+  EXPECT_EQ(lineCount(clobber.err), 1u) << clobber.err;
+  const auto again = runTool("pcl_ls3d_deformation",
+                             s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -json " + s.file("report.json"),
+                             s.dir.string());
+  EXPECT_NE(again.code, 0);
+  EXPECT_NE(again.err.find("exists"), std::string::npos) << again.err;
+}
+
+TEST(DeformationTool, BadInputGivesOneErrorLine)
+{
+  const Scratch s;
+  synth::LiSurfaceSettings ls;
+  ls.grid_size = 20;
+  const synth::LiSurface li = synth::makeLiSurface(ls);
+  pcl::PointCloud<pcl::PointXYZ> ref;
+  pcl::copyPointCloud(*li.reference, ref);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  pcl::PointCloud<pcl::PointXYZ> few;
+  for (int i = 0; i < 4; ++i)
+    few.push_back(ref[static_cast<std::size_t>(200 + i)]);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("few.pcd"), few), 0);
+  const std::string a = s.file("ref.pcd") + " " + s.file("ref.pcd");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {s.file("ref.pcd"), "two input files"},
+      {a + " -estimator ransac", "unknown -estimator"},
+      {a + " -rule icp", "unknown -rule"},
+      {a + " -params 5", "-params"},
+      {a + " -k 0", "-k"},
+      {a + " -subsets 6x", "-subsets"},
+      {a + " -contamination 0.8", "-contamination"},
+      {a + " -o " + s.file("out.las"), ".pcd, .xyz or .txt"},
+      {a + " -bogus", "Unknown option"},
+      {s.file("missing.pcd") + " " + s.file("ref.pcd"), ""},
+      {s.file("ref.pcd") + " " + s.file("few.pcd"), "failed"},
+  };
+  for (const auto& [args, expect] : cases) {
+    const auto r = runTool("pcl_ls3d_deformation", args, s.dir.string());
+    EXPECT_NE(r.code, 0) << args;
+    EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << args << ": " << r.err;
+  }
+  const auto help = runTool("pcl_ls3d_deformation", "-h", s.dir.string());
+  EXPECT_EQ(help.code, 0);
+  EXPECT_NE(help.out.find("Usage"), std::string::npos);
+}

@@ -1,0 +1,346 @@
+// pcl_ls3d_deformation: robust matching of EPOCH onto REFERENCE and the map of what moved
+// (Li et al. 2001; issue 9).
+#include "tool_arguments.h"
+
+#include <pcl_ls3d/common/similarity_transform.h>
+#include <pcl_ls3d/deformation/deformation_analysis.h>
+#include <pcl_ls3d/deformation/point_residual.h>
+#include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/json_text.h>
+#include <pcl_ls3d/registration/pcl_target_surface.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/search/kdtree.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+using Cloud = pcl::PointCloud<pcl_ls3d::PointLiDAR>;
+namespace def = pcl_ls3d::deformation;
+
+namespace {
+
+void
+printHelp(const char* prog)
+{
+  print_info(
+      "Local deformation between two epochs of a surface: robust matching of EPOCH onto REFERENCE\n"
+      "(the transformation of the stable part, no control points; up to half the surface may have\n"
+      "moved), then the residual of every epoch point, its sigma, significance and the connected\n"
+      "deformed regions (Li, Xu, Chen & Tsai 2001).\n\n"
+      "Usage: %s REFERENCE EPOCH [options]\n"
+      "  REFERENCE, EPOCH     .las .pcd .ply .xyz/.txt (a gridded DEM as x y z text works too;\n"
+      "                       the reference is loaded first, the epoch uses its local origin)\n"
+      "  -estimator NAME      mm (default: LTS start + Tukey M-step, high breakdown and 95 %%\n"
+      "                       efficiency), lms (Li: LMS subsets then M), md (Li's M-D), m (Tukey on\n"
+      "                       MAD), huber, zuo, ls (plain least squares)\n"
+      "  -rule lzd|lnd        residuals along z (LHD, default) or along the surface normal\n"
+      "  -params 6|7|3        rigid (default), similarity, translation\n"
+      "  -subsets N           random subsets for lms/mm (default: lms from Li eq. 12, at least\n"
+      "                       3000 above 40 %% contamination; mm 500 FAST-LTS starts)\n"
+      "  -contamination E     share of the surface that may have moved, for eq. 12 (default 0.5)\n"
+      "  -seed S              random seed of the subsets (default 1)\n"
+      "  -k K                 significance |r| > K sigma (default 3)\n"
+      "  -lod95               significance by an M3C2-style level of detection at 95 %% instead\n"
+      "  -min_region N        smaller connected detections are noise (default 10 points)\n"
+      "  -max_dist d          maximum correspondence distance (default unlimited)\n"
+      "  -o RESIDUALS.pcd     one record per epoch point, epoch order: x y z (local coordinates,\n"
+      "                       origin in the JSON) residual sigma significant region; .xyz/.txt:\n"
+      "                       the same as text with full file coordinates\n"
+      "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
+      "                       coordinates), converged, parameters, sigmas, estimator, scale,\n"
+      "                       subsets, percent_deformed, regions\n"
+      "  -overwrite           allow replacing existing output files\n"
+      "  -h                   this help\n",
+      prog);
+}
+
+bool
+fail(const std::string& message)
+{
+  print_error("%s\n", message.c_str());
+  return false;
+}
+
+nlohmann::json
+finiteOrNull(double v)
+{
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json
+matrixJson(const Eigen::Matrix4d& T)
+{
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 4; ++r)
+    rows.push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
+  return rows;
+}
+
+nlohmann::json
+regionJson(const def::DeformationRegion& r, const Eigen::Vector3d& origin)
+{
+  const Eigen::Vector3d c = r.centroid + origin, lo = r.box_min + origin, hi = r.box_max + origin;
+  return {{"id", r.id},
+          {"sign", r.sign},
+          {"points", r.points},
+          {"area", r.area},
+          {"mean", r.mean},
+          {"max", r.max},
+          {"min", r.min},
+          {"volume", r.volume},
+          {"centroid", {c.x(), c.y(), c.z()}},
+          {"box_min", {lo.x(), lo.y(), lo.z()}},
+          {"box_max", {hi.x(), hi.y(), hi.z()}}};
+}
+
+bool
+writeResiduals(const std::string& path, const Cloud& epoch, const def::DeformationResult& r,
+               const Eigen::Vector3d& origin, std::string& error)
+{
+  const std::string ext = pcl_ls3d::io::fileExtension(path);
+  if (ext == "xyz" || ext == "txt") {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    if (!f)
+      return (error = "cannot write " + path).empty();
+    std::fprintf(f, "# x y z residual sigma significant region\n");
+    for (std::size_t i = 0; i < epoch.size(); ++i) {
+      const Eigen::Vector3d p = epoch[i].getVector3fMap().cast<double>() + origin;
+      std::fprintf(f, "%.3f %.3f %.3f %.4f %.4f %d %d\n", p.x(), p.y(), p.z(), r.field.residual[i],
+                   r.field.sigma[i], static_cast<int>(r.field.significant[i]), r.regions.region[i]);
+    }
+    if (std::fclose(f) != 0)
+      return (error = "cannot write " + path).empty();
+    return true;
+  }
+  if (ext != "pcd")
+    return (error = "-o writes .pcd, .xyz or .txt, not ." + ext).empty();
+  pcl::PointCloud<pcl_ls3d::PointResidual> out;
+  out.resize(epoch.size());
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    auto& q = out[i];
+    q.x = epoch[i].x;
+    q.y = epoch[i].y;
+    q.z = epoch[i].z;
+    q.residual = static_cast<float>(r.field.residual[i]);
+    q.sigma = static_cast<float>(r.field.sigma[i]);
+    q.significant = r.field.significant[i];
+    q.region = r.regions.region[i];
+  }
+  if (pcl::io::savePCDFileBinary(path, out) != 0)
+    return (error = "cannot write " + path).empty();
+  return true;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
+                                               "-contamination", "-seed", "-k", "-min_region",
+                                               "-max_dist", "-o", "-json"};
+  std::vector<std::string> files;
+  std::string why;
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite", "-lod95"}, files, why))
+    return fail(why), 1;
+  if (files.size() != 2)
+    return fail("expected exactly two input files, REFERENCE and EPOCH (see -h)"), 1;
+  const std::string reference_path = files[0], epoch_path = files[1];
+
+  std::string estimator_text = "mm", rule_text = "lzd", out_path, json_path;
+  int params = 6, subsets = 0, min_region = 10;
+  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0;
+  const bool overwrite = find_switch(argc, argv, "-overwrite");
+  parse_argument(argc, argv, "-estimator", estimator_text);
+  parse_argument(argc, argv, "-rule", rule_text);
+  parse_argument(argc, argv, "-o", out_path);
+  parse_argument(argc, argv, "-json", json_path);
+  using pcl_ls3d::tools::integerOption;
+  using pcl_ls3d::tools::numberOption;
+  if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
+      !integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
+      !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
+      !numberOption(argc, argv, "-seed", seed, why, 0, 4294967295.0) ||
+      !numberOption(argc, argv, "-k", k, why, 1e-6, 1e6) ||
+      !numberOption(argc, argv, "-contamination", contamination, why, 1e-6, 0.5) ||
+      !numberOption(argc, argv, "-max_dist", max_dist, why, 1e-12))
+    return fail(why), 1;
+
+  def::DeformationSettings settings;
+  pcl_ls3d::RobustMatchingSettings& m = settings.matching;
+  if (!pcl_ls3d::parseRobustMethod(estimator_text, m.method))
+    return fail("unknown -estimator " + estimator_text + " (mm, lms, md, m, huber, zuo, ls)"), 1;
+  if (!pcl_ls3d::parseConjugateRuleType(rule_text, settings.rule) ||
+      settings.rule == pcl_ls3d::ConjugateRuleType::ICP)
+    return fail("unknown -rule " + rule_text + " (lzd or lnd)"), 1;
+  switch (params) {
+  case 7: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7); break;
+  case 6: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6); break;
+  case 3: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::TRANSLATION_3); break;
+  default: return fail("-params must be 6, 7 or 3"), 1;
+  }
+  m.subsets = subsets;
+  m.contamination = contamination;
+  m.seed = static_cast<std::uint32_t>(seed);
+  if (params == 7)
+    m.sample_size = 8;
+  else if (params == 3)
+    m.sample_size = 4;
+  if (max_dist > 0.0)
+    m.adjustment.max_correspondence_distance = max_dist;
+  settings.residuals.k = k;
+  if (find_switch(argc, argv, "-lod95"))
+    settings.residuals.rule = def::DetectionRule::LOD95;
+  settings.regions.min_points = static_cast<std::size_t>(min_region);
+  if (!settings.isValid(&why))
+    return fail("invalid settings: " + why), 1;
+
+  for (const std::string& out : {out_path, json_path})
+    if (!pcl_ls3d::tools::checkOutputFile(out, {reference_path, epoch_path}, overwrite, why))
+      return fail(why), 1;
+  if (!out_path.empty() && pcl_ls3d::io::isSameFile(out_path, json_path))
+    return fail("-o and -json name the same file"), 1;
+  if (!out_path.empty()) {
+    const std::string ext = pcl_ls3d::io::fileExtension(out_path);
+    if (ext != "pcd" && ext != "xyz" && ext != "txt")
+      return fail("-o writes .pcd, .xyz or .txt, not ." + ext), 1;
+  }
+
+  // Load: reference first, the epoch in the reference's local origin.
+  TicToc tt;
+  tt.tic();
+  Cloud::Ptr reference(new Cloud), epoch(new Cloud);
+  pcl_ls3d::io::CloudInfo rinfo, einfo;
+  std::string error;
+  if (!pcl_ls3d::io::loadCloud(reference_path, *reference, rinfo, error))
+    return fail(error), 1;
+  pcl_ls3d::io::LoadOptions eopt;
+  eopt.use_origin = true;
+  eopt.origin = rinfo.origin;
+  if (!pcl_ls3d::io::loadCloud(epoch_path, *epoch, einfo, error, eopt))
+    return fail(error), 1;
+  const double t_load = tt.toc();
+  print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
+             reference_path.c_str(), reference->size(), epoch_path.c_str(), epoch->size(),
+             rinfo.origin.x(), rinfo.origin.y(), rinfo.origin.z(), t_load);
+  if (reference->size() < 3)
+    return fail("the reference has fewer than 3 points"), 1;
+
+  // Robust matching and the residual field.
+  tt.tic();
+  pcl::search::KdTree<pcl_ls3d::PointLiDAR>::Ptr tree(new pcl::search::KdTree<pcl_ls3d::PointLiDAR>);
+  tree->setInputCloud(reference);
+  const pcl_ls3d::PclTargetSurface<pcl_ls3d::PointLiDAR> surface(reference, tree);
+  const pcl_ls3d::ConjugateRule::Ptr rule = pcl_ls3d::makeConjugateRule(settings.rule);
+  if (!rule->prepare(surface, &why))
+    return fail("the reference cannot be used with rule " + rule_text + ": " + why), 1;
+  std::vector<Eigen::Vector3d> points(epoch->size());
+  for (std::size_t i = 0; i < epoch->size(); ++i)
+    points[i] = (*epoch)[i].getVector3fMap().cast<double>();
+  def::DeformationResult result;
+  {  // the library's own PCL_ERROR would be a second error line: the report's message is printed
+    const auto verbosity = getVerbosityLevel();
+    setVerbosityLevel(L_ALWAYS);
+    result = def::analyseDeformation(points, surface, *rule, settings);
+    setVerbosityLevel(verbosity);
+  }
+  const double t_run = tt.toc();
+  const pcl_ls3d::RobustMatchingReport& mr = result.matching;
+  if (!result.ok())
+    return fail(std::string("robust matching failed: ") + pcl_ls3d::terminationTypeToString(mr.termination) +
+                ": " + mr.message), 1;
+
+  const pcl_ls3d::AdjustmentReport& a = mr.adjustment;
+  const Eigen::Matrix4d T = pcl_ls3d::localToGlobal(a.transformation, rinfo.origin, rinfo.origin);
+  const bool converged = mr.termination == pcl_ls3d::TerminationType::CONVERGED;
+  print_info("%s\n", mr.brief().c_str());
+  if (!mr.message.empty())
+    print_info("  %s\n", mr.message.c_str());
+  print_info("Transformation (EPOCH -> REFERENCE, input coordinates):\n");
+  for (int i = 0; i < 4; ++i)
+    print_info("  %14.8f %14.8f %14.8f %16.6f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
+  const auto& names = pcl_ls3d::similarityParameterNames();
+  print_info("Parameters (reduced frame) and sigma:");
+  for (int i = 0; i < 7; ++i)
+    print_info(" %s %.6g (%.2g)", names[static_cast<std::size_t>(i)].c_str(), a.parameters[i], a.sigmas[i]);
+  print_info("\n");
+  const def::RegionAnalysis& reg = result.regions;
+  print_info("Robust scale %.4g; %zu of %zu epoch points observed, %zu significant; %zu regions, %zu noise "
+             "clusters; %.2f %% of the area deformed\n",
+             mr.scale, result.field.observed, epoch->size(), result.field.significant_count,
+             reg.regions.size(), reg.noise.size(), reg.percent_deformed);
+  for (std::size_t i = 0; i < std::min<std::size_t>(reg.regions.size(), 10); ++i) {
+    const auto& r = reg.regions[i];
+    print_info("  region %d: %s, %zu points, area %.4g, mean %+.4g (min %+.4g, max %+.4g), volume %+.4g\n",
+               r.id, r.sign > 0 ? "up/out" : "down/in", r.points, r.area, r.mean, r.min, r.max, r.volume);
+  }
+  print_info("Timings: load %.0f ms, matching and residuals %.0f ms\n", t_load, t_run);
+
+  if (!out_path.empty()) {
+    if (!writeResiduals(out_path, *epoch, result, rinfo.origin, error))
+      return fail(error), 1;
+    print_info("Wrote %s\n", out_path.c_str());
+  }
+  if (!json_path.empty()) {
+    nlohmann::json j;
+    j["transformation"] = matrixJson(T);
+    j["converged"] = converged;
+    j["termination"] = pcl_ls3d::terminationTypeToString(mr.termination);
+    j["message"] = mr.message;
+    nlohmann::json p, s;
+    for (std::size_t i = 0; i < 7; ++i) {
+      p[names[i]] = a.parameters[static_cast<int>(i)];
+      s[names[i]] = finiteOrNull(a.sigmas[static_cast<int>(i)]);
+    }
+    j["parameters"] = p;
+    j["parameters_note"] = "reduced frame: x_t - local_origin = t + m R (x_s - local_origin_source)";
+    j["sigmas"] = s;
+    j["estimator"] = mr.estimator;
+    j["method"] = pcl_ls3d::toString(mr.method);
+    j["rule"] = rule_text;
+    j["scale"] = mr.scale;
+    j["high_breakdown_scale"] = mr.high_breakdown_scale;
+    j["subsets"] = mr.subsets_drawn;
+    j["rounds"] = mr.rounds;
+    j["iterations"] = mr.iterations;
+    j["sigma0"] = a.sigma0;
+    j["significance"] = def::toString(settings.residuals.rule);
+    j["k"] = settings.residuals.k;
+    j["points"] = epoch->size();
+    j["points_observed"] = result.field.observed;
+    j["points_significant"] = result.field.significant_count;
+    j["percent_deformed"] = reg.percent_deformed;
+    j["area_observed"] = reg.area_observed;
+    j["area_deformed"] = reg.area_deformed;
+    j["spacing"] = reg.spacing;
+    nlohmann::json regions = nlohmann::json::array(), noise = nlohmann::json::array();
+    for (const auto& r : reg.regions)
+      regions.push_back(regionJson(r, rinfo.origin));
+    for (const auto& r : reg.noise)
+      noise.push_back(regionJson(r, rinfo.origin));
+    j["regions"] = regions;
+    j["noise"] = noise;
+    const Eigen::Vector3d o = rinfo.origin;
+    j["local_origin"] = {o.x(), o.y(), o.z()};
+    j["timings_ms"] = {{"load", t_load}, {"deformation", t_run}};
+    std::ofstream out(json_path);
+    if (!(out << pcl_ls3d::io::toJsonText(j, 2) << "\n"))
+      return fail("cannot write " + json_path), 1;
+  }
+  return 0;
+}
