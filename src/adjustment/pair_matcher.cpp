@@ -81,6 +81,16 @@ PairMatcher::match(const BlockLinearization& source_pose, const BlockLinearizati
   return set_;
 }
 
+bool
+PairMatcher::restore(State state)
+{
+  if (state.caches.size() != caches_.size() || state.missed.size() != missed_.size())
+    return false;
+  caches_ = std::move(state.caches);
+  missed_ = std::move(state.missed);
+  return true;
+}
+
 void
 PairMatcher::freeze()
 {

@@ -55,6 +55,25 @@ public:
   void
   freeze();
 
+  /// \brief What a matcher remembers between calls: the rules' per-point caches and which
+  ///        points found no correspondence. Saved and restored by a distributed strip
+  ///        adjustment, whose match jobs are separate processes, so that every iteration sees
+  ///        exactly the state a single process would.
+  struct State
+  {
+    std::vector<CorrespondenceCache> caches;
+    std::vector<unsigned char> missed;
+  };
+  State
+  state() const
+  {
+    return {caches_, missed_};
+  }
+  /// Restores a state taken from a matcher reset() on the same points; false (nothing
+  /// changed) when the sizes do not match.
+  bool
+  restore(State state);
+
   /// The observations of the last match().
   const ObservationSet&
   observations() const
