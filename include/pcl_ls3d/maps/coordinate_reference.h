@@ -1,0 +1,39 @@
+#pragma once
+/// \file coordinate_reference.h
+/// \brief The coordinate reference system (CRS) of a map as OGC WKT, taken from what LAS files
+///        declare: the WKT VLR (LASF_Projection 2112, LAS 1.4) or the GeoTIFF keys (LASF_Projection
+///        34735–34737, LAS 1.0–1.3), interpreted by GDAL/PROJ so user-defined projections and
+///        vertical datums come through as the file states them.
+
+#include <pcl_ls3d/io/cloud_io.h>
+
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace maps {
+
+/// WKT of the CRS in a LAS file's VLRs (the WKT VLR first, then the GeoTIFF keys); empty when
+/// the file declares none or it cannot be interpreted (`why` then says which).
+std::string
+crsFromLasVlrs(const std::vector<io::LasVlr>& vlrs, std::string* why = nullptr);
+
+/// WKT of a CRS given by a user: "EPSG:2154", a PROJ string or WKT; empty with `why` if invalid.
+std::string
+crsFromUserInput(const std::string& text, std::string* why = nullptr);
+
+/// A short name of a CRS ("RGF93 v1 / Lambert-93 + NGF-IGN69 height"); empty for an empty WKT.
+std::string
+crsName(const std::string& wkt);
+
+/// Metres per horizontal unit of a projected CRS (1 for metres, 0.3048 for international feet);
+/// 0 when unknown (empty WKT, geographic CRS).
+double
+crsLinearUnit(const std::string& wkt);
+
+/// True when both WKT describe the same CRS (OGRSpatialReference::IsSame).
+bool
+sameCrs(const std::string& a, const std::string& b);
+
+}  // namespace maps
+}  // namespace pcl_ls3d

@@ -1,0 +1,70 @@
+#pragma once
+/// \file map_rendering.h
+/// \brief Map and chart images a client can read without the software: a raster in colour with
+///        a title, a colour bar with labelled ticks and class boundaries, a legend, a scale bar
+///        and a north arrow; and overlaid histograms (e.g. discrepancies before / after).
+
+#include <pcl_ls3d/maps/colour_map.h>
+#include <pcl_ls3d/maps/image.h>
+#include <pcl_ls3d/maps/raster.h>
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace maps {
+
+/// \brief Text and layout of a raster map.
+struct MapStyle
+{
+  std::string title;                  ///< bold first line
+  std::vector<std::string> subtitle;  ///< lines under the title (statistics, dates)
+  std::string unit = "m";             ///< unit of the values, over the colour bar
+  std::string tick_format = "%+.2f";  ///< printf format of colour-bar labels
+  /// Label the end ticks "≤ min" / "≥ max": values beyond the ramp take its end colours.
+  bool clamp_labels = true;
+  std::vector<std::string> legend;    ///< lines under the colour bar
+  std::string footer;                 ///< last line (extent, cell, CRS)
+  std::string length_unit = "m";      ///< unit of the coordinates (scale bar); empty: no scale bar
+  Rgb no_data{200, 200, 200};         ///< colour of cells without a value
+  int max_width = 760, max_height = 640;  ///< the map area fits in this (cells scaled)
+};
+
+/// Renders the raster (north up; cells enlarged by a whole factor, or averaged down when the
+/// raster is larger than the map area).
+Image
+renderRasterMap(const Raster& raster, const ColourMap& colours, const MapStyle& style);
+
+/// \brief One distribution of a histogram chart.
+struct HistogramSeries
+{
+  std::string label;
+  std::vector<double> values;
+  Rgb colour{33, 102, 172};
+};
+
+/// \brief Axes and text of a histogram chart.
+struct HistogramStyle
+{
+  std::string title;
+  std::string x_label = "discrepancy [m]";
+  /// x range; NaN: the 0.5–99.5 % range of all values. Values outside are counted in the legend.
+  double min = std::numeric_limits<double>::quiet_NaN();
+  double max = std::numeric_limits<double>::quiet_NaN();
+  int bins = 60;
+  std::vector<double> marks;  ///< x positions of dashed reference lines (e.g. ±0.10, ±0.20)
+  int width = 760, height = 420;
+};
+
+/// Overlaid histograms, each normalised to percent of its own values per bin (so series of
+/// different sizes compare).
+Image
+renderHistogram(const std::vector<HistogramSeries>& series, const HistogramStyle& style);
+
+/// A "nice" tick step (1, 2 or 5 × 10^k) giving about `count` ticks over `range`.
+double
+niceStep(double range, int count);
+
+}  // namespace maps
+}  // namespace pcl_ls3d
