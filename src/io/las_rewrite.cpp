@@ -1,0 +1,161 @@
+/// \file las_rewrite.cpp
+/// \brief Record-by-record LAS rewrite with corrected coordinates (las_rewrite.h).
+
+#include <pcl_ls3d/io/las_rewrite.h>
+
+#include "las_format.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sys/stat.h>
+
+namespace pcl_ls3d {
+namespace io {
+
+namespace {
+
+bool
+exists(const std::string& path)
+{
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+// Quantises file coordinates with the header's scale and offset; false outside int32.
+bool
+quantise(const Eigen::Vector3d& x, const LasHeaderInfo& h, std::int32_t q[3])
+{
+  for (int k = 0; k < 3; ++k) {
+    const double v = std::round((x[k] - h.offset[k]) / h.scale[k]);
+    if (!(v >= std::numeric_limits<std::int32_t>::min() && v <= std::numeric_limits<std::int32_t>::max()))
+      return false;
+    q[k] = static_cast<std::int32_t>(v);
+  }
+  return true;
+}
+
+// Point counts (total and per return) of the records written, in the header's conventions:
+// legacy fields stay zero where the input left them zero (formats 6–10 in LAS 1.4).
+void
+writeCounts(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::size_t n,
+            const std::uint64_t by_return[15])
+{
+  using las::put;
+  const bool legacy = h.legacy_point_count != 0 || h.version_minor < 4;
+  put<std::uint32_t>(head.data() + las::kLegacyCount,
+                     legacy ? static_cast<std::uint32_t>(std::min<std::size_t>(n, 0xFFFFFFFFu)) : 0u);
+  for (int r = 0; r < 5; ++r)
+    put<std::uint32_t>(head.data() + las::kLegacyByReturn + 4 * r,
+                       legacy ? static_cast<std::uint32_t>(std::min<std::uint64_t>(by_return[r], 0xFFFFFFFFu)) : 0u);
+  if (h.version_minor >= 4 && head.size() >= las::kHeaderSize14) {
+    put<std::uint64_t>(head.data() + las::kCount64, n);
+    for (int r = 0; r < 15; ++r)
+      put<std::uint64_t>(head.data() + las::kByReturn64 + 8 * r, by_return[r]);
+  }
+}
+
+// Offsets of data after the records (1.3 waveform packets, 1.4 EVLRs) move with the record block.
+void
+shiftTailOffsets(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::uint64_t old_end,
+                 std::int64_t delta)
+{
+  auto shift = [&](std::size_t at) {
+    if (head.size() < at + 8)
+      return;
+    const std::uint64_t v = las::get<std::uint64_t>(head.data() + at);
+    if (v >= old_end)
+      las::put<std::uint64_t>(head.data() + at, static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + delta));
+  };
+  if (h.version_minor >= 3)
+    shift(las::kWaveformStart);
+  if (h.version_minor >= 4)
+    shift(las::kEvlrStart);
+}
+
+}  // namespace
+
+bool
+rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection,
+           const RecordMover& move, const std::string& path, LasRewriteSummary& summary,
+           std::string& error, bool overwrite)
+{
+  summary = LasRewriteSummary();
+  if (!overwrite && exists(path)) {
+    error = path + " exists (not overwritten)";
+    return false;
+  }
+  const LasHeaderInfo& h = in.header();
+  const std::size_t stride = h.record_length;
+  const std::size_t n = selection ? selection->size() : in.size();
+  const std::uint64_t old_end = h.offset_to_points + static_cast<std::uint64_t>(in.size()) * stride;
+
+  std::vector<std::uint8_t> records(n * stride);
+  std::int32_t lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) {
+    lo[k] = std::numeric_limits<std::int32_t>::max();
+    hi[k] = std::numeric_limits<std::int32_t>::min();
+  }
+  std::uint64_t by_return[15] = {};
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t i = selection ? (*selection)[k] : k;
+    if (i >= in.size()) {
+      error = "record index out of range";
+      return false;
+    }
+    std::uint8_t* out = records.data() + k * stride;
+    std::copy(in.record(i), in.record(i) + stride, out);
+    Eigen::Vector3d x = in.coordinates(i);
+    if (move && move(i, x)) {
+      std::int32_t q[3];
+      if (!quantise(x, h, q)) {
+        error = "a corrected coordinate does not fit the scale and offset of " + path;
+        return false;
+      }
+      for (int c = 0; c < 3; ++c)
+        las::put<std::int32_t>(out + 4 * c, q[c]);
+      ++summary.moved;
+    }
+    for (int c = 0; c < 3; ++c) {
+      const std::int32_t v = las::get<std::int32_t>(out + 4 * c);
+      lo[c] = std::min(lo[c], v);
+      hi[c] = std::max(hi[c], v);
+    }
+    const int ret = in.returnNumber(i);
+    if (ret >= 1 && ret <= 15)
+      ++by_return[ret - 1];
+  }
+
+  // Header and VLRs (and any bytes before the records) as they are, then the changed fields.
+  std::vector<std::uint8_t> head(in.data(), in.data() + h.offset_to_points);
+  for (int c = 0; c < 3; ++c) {
+    double a = 0.0, b = 0.0;
+    if (n > 0) {
+      a = lo[c] * h.scale[c] + h.offset[c];
+      b = hi[c] * h.scale[c] + h.offset[c];
+    }
+    las::put<double>(head.data() + las::kMaxX + 16 * c, std::max(a, b));
+    las::put<double>(head.data() + las::kMaxX + 16 * c + 8, std::min(a, b));
+  }
+  if (selection) {
+    writeCounts(head, h, n, by_return);
+    shiftTailOffsets(head, h, old_end,
+                     static_cast<std::int64_t>(n * stride) - static_cast<std::int64_t>(in.size() * stride));
+  }
+
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  const std::uint8_t* tail = in.data() + std::min<std::uint64_t>(old_end, in.bytes());
+  const std::size_t tail_size = in.bytes() > old_end ? static_cast<std::size_t>(in.bytes() - old_end) : 0;
+  if (!file || !file.write(reinterpret_cast<const char*>(head.data()), static_cast<std::streamsize>(head.size())) ||
+      !file.write(reinterpret_cast<const char*>(records.data()), static_cast<std::streamsize>(records.size())) ||
+      !file.write(reinterpret_cast<const char*>(tail), static_cast<std::streamsize>(tail_size)) || !file.flush()) {
+    error = "cannot write " + path;
+    return false;
+  }
+  summary.points = n;
+  return true;
+}
+
+}  // namespace io
+}  // namespace pcl_ls3d
