@@ -1,0 +1,167 @@
+#include <pcl_ls3d/adjustment/block_normal_equations.h>
+#include <pcl_ls3d/adjustment/iteration_control.h>
+#include <pcl_ls3d/strips/block_solve.h>
+#include <pcl_ls3d/strips/overlap_matcher.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pcl_ls3d {
+namespace strips {
+
+namespace {
+
+// σ_obs of the soft datum: the observations' robust scale in the first iteration.
+double
+robustScaleOf(const std::vector<OverlapContribution>& contributions)
+{
+  double s2 = 0.0;
+  std::size_t n = 0;
+  for (const OverlapContribution& c : contributions)
+    for (const DirectionCounts* d : {&c.forward, &c.backward}) {
+      s2 += d->robust_scale * d->robust_scale * static_cast<double>(d->observations);
+      n += d->observations;
+    }
+  return n ? std::sqrt(s2 / static_cast<double>(n)) : 1.0;
+}
+
+// Zuo's criterion for every strip: all angle changes below ε, translations and scale too.
+bool
+allConverged(const Eigen::VectorXd& dx, const StripAdjustmentSettings& s)
+{
+  for (Eigen::Index k = 0; k + 7 <= dx.size(); k += 7) {
+    const auto d = dx.segment<7>(k);
+    if (d.segment<3>(PHI).cwiseAbs().maxCoeff() >= s.angle_epsilon ||
+        d.head<3>().norm() >= s.translation_epsilon || std::abs(d[SCALE]) >= s.scale_epsilon)
+      return false;
+  }
+  return true;
+}
+
+BlockIterationRecord
+record(const BlockState& state, const GaussMarkovSolution& sol,
+       const std::vector<OverlapContribution>& contributions)
+{
+  BlockIterationRecord r;
+  r.iteration = state.iteration;
+  for (const OverlapContribution& c : contributions) {
+    r.observations += c.forward.observations + c.backward.observations;
+    r.used += c.forward.used + c.backward.used;
+  }
+  r.sigma0 = sol.sigma0;
+  for (Eigen::Index k = 0; k + 7 <= sol.dx.size(); k += 7) {
+    r.max_angle_change = std::max(r.max_angle_change, sol.dx.segment<3>(k + PHI).cwiseAbs().maxCoeff());
+    r.max_translation_change = std::max(r.max_translation_change, sol.dx.segment<3>(k).norm());
+    r.max_scale_change = std::max(r.max_scale_change, std::abs(sol.dx[k + SCALE]));
+  }
+  r.coarse = state.coarse;
+  r.frozen = state.frozen;
+  return r;
+}
+
+void
+stop(BlockState& state, TerminationType type, const std::string& message)
+{
+  state.termination = type;
+  state.message = message;
+  state.phase = BlockState::Phase::DONE;
+}
+
+}  // namespace
+
+std::vector<ParameterBlock>
+BlockState::blocks(const StripPlan& plan) const
+{
+  std::vector<ParameterBlock> b = plan.initialBlocks(soft_sigma_obs > 0.0 ? soft_sigma_obs : 1.0);
+  for (std::size_t k = 0; k < b.size() && k < values.size(); ++k)
+    b[k].values = values[k];
+  return b;
+}
+
+BlockState
+initialState(const StripPlan& plan)
+{
+  BlockState s;
+  s.values.assign(plan.strips.size(), identityParameters());
+  const Eigen::Index u = 7 * static_cast<Eigen::Index>(plan.strips.size());
+  s.qxx = Eigen::MatrixXd::Zero(u, u);
+  s.fixed.assign(static_cast<std::size_t>(u), false);
+  s.determinable.assign(static_cast<std::size_t>(u), false);
+  s.coarse = plan.settings.coarse_observations > 0;
+  return s;
+}
+
+MatchInput
+matchInput(const StripPlan& plan, const BlockState& state, int i, int j)
+{
+  MatchInput in;
+  in.iteration = state.iteration + 1;
+  in.coarse = state.coarse && state.phase == BlockState::Phase::ITERATE;
+  in.frozen = state.frozen;
+  in.sigma0 = state.sigma0;
+  in.scale_free = plan.settings.model == ParameterModel::SIMILARITY_7;
+  if (state.qxx.rows() == 7 * static_cast<Eigen::Index>(plan.strips.size()) && state.iteration > 0) {
+    const Eigen::Index a = 7 * i, b = 7 * j;
+    in.qxx.topLeftCorner<7, 7>() = state.qxx.block<7, 7>(a, a);
+    in.qxx.topRightCorner<7, 7>() = state.qxx.block<7, 7>(a, b);
+    in.qxx.bottomLeftCorner<7, 7>() = state.qxx.block<7, 7>(b, a);
+    in.qxx.bottomRightCorner<7, 7>() = state.qxx.block<7, 7>(b, b);
+  }
+  return in;
+}
+
+void
+solveIteration(const StripPlan& plan, const std::vector<OverlapContribution>& contributions,
+               BlockState& state)
+{
+  const StripAdjustmentSettings& s = plan.settings;
+  if (state.iteration == 0 && s.soft_datum)
+    state.soft_sigma_obs = robustScaleOf(contributions);
+  std::vector<OverlapContribution> sorted = contributions;  // sum in overlap order
+  std::sort(sorted.begin(), sorted.end(),
+            [](const OverlapContribution& a, const OverlapContribution& b) { return a.overlap < b.overlap; });
+  BlockNormalEquations ne(static_cast<int>(plan.strips.size()));
+  for (const OverlapContribution& c : sorted)
+    ne.addOverlap(c.i, c.j, c.normal);
+  const std::vector<ParameterBlock> blocks = state.blocks(plan);
+  const GaussMarkovSolution sol = solveGaussMarkov(ne, plan.problem(blocks));
+  ++state.iteration;
+  if (!sol.ok)
+    return stop(state, TerminationType::SINGULAR, sol.message);
+  if (sol.redundancy <= 0)
+    return stop(state, TerminationType::TOO_FEW_OBSERVATIONS, "no redundancy (r = n - u <= 0)");
+  for (std::size_t k = 0; k < state.values.size(); ++k) {
+    state.values[k] += sol.dx.segment<7>(7 * static_cast<Eigen::Index>(k));
+    if (!state.values[k].allFinite() || !(state.values[k][SCALE] > 0.0))
+      return stop(state, TerminationType::DIVERGED, "the estimate of strip " + plan.strips[k].name + " became non-finite");
+  }
+  state.sigma0 = sol.sigma0;
+  state.qxx = sol.qxx;
+  state.fixed = sol.fixed;
+  state.determinable = sol.determinable;
+  state.redundancy = sol.redundancy;
+  state.observations = ne.observations();
+  state.log.push_back(record(state, sol, sorted));
+  state.termination = TerminationType::MAX_ITERATIONS;
+
+  // Iteration control (iteration_control.h, for a block): coarse until the changes are below
+  // 1 σ; converged when every strip's changes are below the epsilons; frozen once they are
+  // below freeze_sigma_fraction σ (or after two thirds of the iterations).
+  const int it = state.iteration;
+  if (state.coarse)
+    state.coarse = !(3 * it >= s.max_iterations || changesBelow(sol, 1.0));
+  else if (allConverged(sol.dx, s)) {
+    state.termination = TerminationType::CONVERGED;
+    state.phase = BlockState::Phase::EVALUATE;
+    return;
+  }
+  else if (!state.frozen && (3 * it >= 2 * s.max_iterations || changesBelow(sol, s.freeze_sigma_fraction)))
+    state.frozen = true;
+  if (it >= s.max_iterations) {
+    state.phase = BlockState::Phase::EVALUATE;
+    state.message = "iteration limit reached before the changes fell below the epsilons";
+  }
+}
+
+}  // namespace strips
+}  // namespace pcl_ls3d

@@ -1,0 +1,137 @@
+// The strip adjustment report as JSON (strip_maps.h: reportJson).
+#include <pcl_ls3d/strips/report_output.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+namespace pcl_ls3d {
+namespace strips {
+
+namespace {
+
+using json = nlohmann::json;
+
+// JSON has no infinity: undeterminable σ are written as null.
+json
+number(double v)
+{
+  return std::isfinite(v) ? json(v) : json(nullptr);
+}
+
+json
+vec(const Eigen::VectorXd& v)
+{
+  json a = json::array();
+  for (Eigen::Index k = 0; k < v.size(); ++k)
+    a.push_back(number(v[k]));
+  return a;
+}
+
+json
+matrix(const Eigen::MatrixXd& m)
+{
+  json a = json::array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r)
+    a.push_back(vec(m.row(r).transpose()));
+  return a;
+}
+
+json
+stats(const DiscrepancyStatistics& s)
+{
+  return {{"count", s.count}, {"mean", s.mean}, {"rms", s.rms}, {"sigma_mad", s.sigma_mad},
+          {"percentiles", {{"5", s.p05}, {"16", s.p16}, {"50", s.p50}, {"84", s.p84}, {"95", s.p95}}}};
+}
+
+json
+strip(const StripResult& s)
+{
+  json flags_fixed = json::array(), flags_det = json::array();
+  for (int q = 0; q < 7; ++q) {
+    flags_fixed.push_back(s.fixed[static_cast<std::size_t>(q)]);
+    flags_det.push_back(s.determinable[static_cast<std::size_t>(q)]);
+  }
+  return {{"name", s.name},
+          {"point_source_id", s.point_source_id},
+          {"origin", vec(s.origin)},
+          {"points", s.points},
+          {"observable", s.observable},
+          {"excluded", {{"withheld", s.excluded.withheld}, {"synthetic", s.excluded.synthetic}}},
+          {"reference", s.reference},
+          {"adjusted", s.adjusted},
+          {"parameters", vec(s.parameters)},
+          {"sigmas", vec(s.sigmas)},
+          {"sigmas_formal", vec(s.sigmas_formal)},
+          {"fixed", flags_fixed},
+          {"determinable", flags_det},
+          {"transformation", matrix(s.transformation)},
+          {"note", s.note}};
+}
+
+json
+overlap(const OverlapResult& o, const StripAdjustmentReport& r)
+{
+  json j = {{"strips", {r.strips[static_cast<std::size_t>(o.i)].name, r.strips[static_cast<std::size_t>(o.j)].name}},
+            {"indices", {o.i, o.j}},
+            {"area", o.area},
+            {"common_cells", o.common_cells},
+            {"points", {o.points_i, o.points_j}},
+            {"used", o.used}};
+  if (!o.used) {
+    j["skip_reason"] = o.skip_reason;
+    return j;
+  }
+  j["observation_spacing"] = o.spacing;
+  j["observations"] = o.observations;
+  j["observations_used"] = o.used_observations;
+  j["observations_rejected"] = o.observations - o.used_observations;
+  j["sigma0"] = o.sigma0;
+  j["discrepancy_before"] = stats(o.before);
+  j["discrepancy_after"] = stats(o.after);
+  j["own_noise"] = {stats(o.noise_i), stats(o.noise_j)};
+  return j;
+}
+
+}  // namespace
+
+std::string
+reportJson(const StripAdjustmentReport& r, int indent)
+{
+  json j;
+  j["termination"] = terminationTypeToString(r.termination);
+  j["converged"] = r.converged();
+  j["message"] = r.message;
+  j["iterations"] = r.iterations;
+  j["sigma0"] = r.sigma0;
+  j["redundancy"] = r.redundancy;
+  j["observations"] = r.observations;
+  j["unknowns"] = r.unknowns;
+  j["rule"] = r.rule;
+  j["estimator"] = r.estimator;
+  j["model"] = r.model;
+  j["precision_model"] = r.precision_model;
+  j["parameter_order"] = {"tx", "ty", "tz", "phi", "omega", "kappa", "m"};
+  j["parameter_frame"] = "x' = origin + t + m R(phi, omega, kappa) (x - origin), per strip origin, file coordinates";
+  j["block_origin"] = vec(r.block_origin);
+  j["footprint_cell"] = r.footprint_cell;
+  j["notes"] = r.notes;
+  j["strips"] = json::array();
+  for (const StripResult& s : r.strips)
+    j["strips"].push_back(strip(s));
+  j["overlaps"] = json::array();
+  for (const OverlapResult& o : r.overlaps)
+    j["overlaps"].push_back(overlap(o, r));
+  j["log"] = json::array();
+  for (const BlockIterationRecord& l : r.log)
+    j["log"].push_back({{"iteration", l.iteration}, {"observations", l.observations}, {"used", l.used},
+                        {"sigma0", l.sigma0}, {"max_angle_change", l.max_angle_change},
+                        {"max_translation_change", l.max_translation_change},
+                        {"max_scale_change", l.max_scale_change}, {"coarse", l.coarse}, {"frozen", l.frozen}});
+  j["covariance"] = matrix(r.covariance);
+  j["timings_s"] = r.timings_s;
+  return j.dump(indent);
+}
+
+}  // namespace strips
+}  // namespace pcl_ls3d

@@ -1,0 +1,166 @@
+// The report of a strip block adjustment from the stages' results (strip_block_adjustment.h).
+#include <pcl_ls3d/estimators/robust_estimator.h>
+#include <pcl_ls3d/strips/block_precision.h>
+#include <pcl_ls3d/strips/strip_block_adjustment.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pcl_ls3d {
+namespace strips {
+
+namespace {
+
+const char* const kParameterNames[7] = {"tx", "ty", "tz", "phi", "omega", "kappa", "m"};
+
+const char*
+ruleName(ConjugateRuleType r)
+{
+  return r == ConjugateRuleType::LND ? "LND" : r == ConjugateRuleType::LZD ? "LZD" : "ICP";
+}
+
+Eigen::Matrix4d
+fileTransformation(const Eigen::Matrix4d& block, const Eigen::Vector3d& origin)
+{
+  Eigen::Matrix4d in = Eigen::Matrix4d::Identity(), out = Eigen::Matrix4d::Identity();
+  in.topRightCorner<3, 1>() = -origin;
+  out.topRightCorner<3, 1>() = origin;
+  return out * block * in;
+}
+
+// Covariance behind the σ: the spatial sandwich from the final pass, or σ0² Qxx.
+Eigen::MatrixXd
+covarianceOf(const StripPlan& plan, const BlockState& state, const std::vector<OverlapContribution>& final_pass,
+             std::string& model)
+{
+  model = "formal (eq. 14)";
+  Eigen::MatrixXd C = state.sigma0 * state.sigma0 * state.qxx;
+  bool cells = false;
+  for (const OverlapContribution& c : final_pass)
+    cells = cells || !c.cells.empty();
+  if (!plan.settings.spatial_precision || !cells || state.redundancy <= 0)
+    return C;
+  const GaussMarkovProblem problem = plan.problem(state.blocks(plan));
+  C = blockSandwichCovariance(final_pass, state.qxx, state.sigma0, problem.apriori_weights, state.determinable);
+  char buf[96];
+  std::snprintf(buf, sizeof(buf), "spatial sandwich, cell %.3g", plan.precision_cell);
+  model = buf;
+  return C;
+}
+
+StripResult
+stripResult(const StripPlan& plan, const BlockState& state, const Eigen::MatrixXd& C, std::size_t k,
+            std::string& undeterminable)
+{
+  const PlannedStrip& p = plan.strips[k];
+  StripResult r;
+  r.name = p.name;
+  r.point_source_id = p.point_source_id;
+  r.origin = plan.block_origin + p.origin;
+  r.points = p.points;
+  r.observable = p.observable;
+  r.excluded = p.excluded;
+  r.reference = p.reference;
+  r.adjusted = p.part >= 0;
+  r.parameters = state.values[k];
+  std::string flags;
+  for (int q = 0; q < 7; ++q) {
+    const Eigen::Index g = 7 * static_cast<Eigen::Index>(k) + q;
+    const std::size_t gs = static_cast<std::size_t>(g);
+    r.fixed[static_cast<std::size_t>(q)] = gs < state.fixed.size() && state.fixed[gs];
+    r.determinable[static_cast<std::size_t>(q)] = gs < state.determinable.size() && state.determinable[gs];
+    if (r.fixed[static_cast<std::size_t>(q)])
+      continue;
+    if (!r.determinable[static_cast<std::size_t>(q)]) {
+      r.sigmas[q] = r.sigmas_formal[q] = std::numeric_limits<double>::infinity();
+      flags += std::string(flags.empty() ? "" : ", ") + kParameterNames[q];
+      continue;
+    }
+    r.sigmas[q] = std::sqrt(std::max(0.0, C(g, g)));
+    r.sigmas_formal[q] = state.sigma0 * std::sqrt(std::max(0.0, state.qxx(g, g)));
+  }
+  if (!flags.empty()) {
+    r.note = "undeterminable from its overlaps (held at their start values): " + flags;
+    undeterminable += (undeterminable.empty() ? "" : "; ") + p.name + ": " + flags;
+  }
+  if (!r.adjusted)
+    r.note = "no usable overlap: left unchanged";
+  else if (r.reference)
+    r.note = "reference (fixed)";
+  std::vector<ParameterBlock> blocks = state.blocks(plan);
+  r.transformation = fileTransformation(blockTransformation(blocks[k]), plan.block_origin);
+  return r;
+}
+
+OverlapResult
+overlapResult(const Overlap& o, const OverlapContribution* c, const OverlapSamples* s)
+{
+  OverlapResult r;
+  r.i = o.i;
+  r.j = o.j;
+  r.area = o.area;
+  r.common_cells = o.common_cells;
+  r.points_i = o.points_i;
+  r.points_j = o.points_j;
+  r.used = o.used;
+  r.skip_reason = o.skip_reason;
+  if (c) {
+    r.spacing = c->spacing;
+    r.observations = c->forward.observations + c->backward.observations;
+    r.used_observations = c->forward.used + c->backward.used;
+    r.sigma0 = r.used_observations ? std::sqrt((c->forward.vtpv + c->backward.vtpv) / r.used_observations) : 0.0;
+  }
+  if (s) {
+    r.before = discrepancyStatistics(s->before.value);
+    r.after = discrepancyStatistics(s->after.value);
+    r.noise_i = discrepancyStatistics(s->noise[0].value);
+    r.noise_j = discrepancyStatistics(s->noise[1].value);
+  }
+  return r;
+}
+
+}  // namespace
+
+StripAdjustmentReport
+makeReport(const StripPlan& plan, const BlockState& state,
+           const std::vector<OverlapContribution>& final_pass,
+           const std::vector<OverlapSamples>& samples)
+{
+  StripAdjustmentReport report;
+  const StripAdjustmentSettings& s = plan.settings;
+  report.termination = state.termination;
+  report.message = state.message;
+  report.iterations = state.iteration;
+  report.sigma0 = state.sigma0;
+  report.redundancy = state.redundancy;
+  report.observations = state.observations;
+  report.unknowns = static_cast<int>(std::count(state.determinable.begin(), state.determinable.end(), true));
+  report.rule = ruleName(s.rule);
+  const RobustEstimator::Ptr estimator = parseRobustEstimator(s.estimator);
+  report.estimator = estimator ? estimator->name() : s.estimator;
+  report.model = parameterModelName(s.model);
+  report.block_origin = plan.block_origin;
+  report.footprint_cell = plan.grid.cell;
+  report.log = state.log;
+  report.notes = plan.notes;
+  report.covariance = covarianceOf(plan, state, final_pass, report.precision_model);
+  std::string undeterminable;
+  for (std::size_t k = 0; k < plan.strips.size(); ++k)
+    report.strips.push_back(stripResult(plan, state, report.covariance, k, undeterminable));
+  if (!undeterminable.empty()) {
+    report.notes.push_back("undeterminable parameters: " + undeterminable);
+    report.message += std::string(report.message.empty() ? "" : "; ") + "undeterminable parameters: " + undeterminable;
+  }
+  for (std::size_t k = 0; k < plan.overlaps.size(); ++k) {
+    const OverlapContribution* c = nullptr;
+    for (const OverlapContribution& f : final_pass)
+      if (f.overlap == static_cast<int>(k))
+        c = &f;
+    report.overlaps.push_back(overlapResult(plan.overlaps[k], c, k < samples.size() ? &samples[k] : nullptr));
+  }
+  return report;
+}
+
+}  // namespace strips
+}  // namespace pcl_ls3d
