@@ -1,0 +1,335 @@
+// pcl_ls3d_strip_adjust: simultaneous block adjustment of airborne LiDAR strips on the LS3D engine
+// (Zuo et al. 2012, §3), in one process or as the stages plan / match / solve / apply of a
+// cluster run (scripts/slurm/strip_adjust.sbatch).
+#include <pcl_ls3d/maps/coordinate_reference.h>
+#include <pcl_ls3d/strips/report_output.h>
+#include <pcl_ls3d/strips/strip_stages.h>
+
+#include "tool_arguments.h"
+
+#include <pcl/console/parse.h>
+#include <pcl/console/print.h>
+#include <pcl/console/time.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <set>
+#include <string>
+#include <vector>
+
+using namespace pcl::console;
+using namespace pcl_ls3d;
+namespace fs = std::filesystem;
+
+namespace {
+
+void
+printHelp(const char* prog)
+{
+  print_info(
+      "Strip block adjustment: corrects overlapping airborne LiDAR strips into one consistent surface.\n"
+      "Every strip gets its own similarity transform (Zuo et al. 2012), all estimated at once from\n"
+      "conjugate points between the stable surfaces of every overlap, in both directions.\n\n"
+      "Usage: %s INPUT... [options]                    adjust in this process\n"
+      "       %s plan INPUT... -work DIR [options]     cluster stages (see scripts/slurm/strip_adjust.sbatch)\n"
+      "       %s match -work DIR -job K | solve -work DIR | apply -work DIR -unit K | counts -work DIR\n\n"
+      "  INPUT...               .las (1.0-1.4) .pcd .ply .xyz; one strip per file, or see -split\n"
+      "  -split psid            one strip per LAS point-source id over all inputs (id 0: no strip,\n"
+      "                         written unchanged)\n"
+      "  -reference ID[,ID]     fixed reference strips: point-source ids with -split, else file names\n"
+      "                         without extension (default: per connected block the strip with the\n"
+      "                         largest overlap area)\n"
+      "  -soft t,angle,m        soft datum instead: every strip observed at the identity with these\n"
+      "                         a-priori sigmas (length, rad, -); no strip fixed\n"
+      "  -params 7|6|3|z        per strip: similarity, rigid (default), translation, height only\n"
+      "  -rule lnd|lzd|icp      conjugate-point rule (default lnd)\n"
+      "  -estimator E           zuo[:K] (default zuo:6), huber[:k], tukey[:c], ls\n"
+      "  -classes 2,6           stable-surface classes of classified strips (default 2,6)\n"
+      "  -spacing S             one observation per S x S cell (default: 2x the point spacing,\n"
+      "                         at most -max_obs per overlap and direction)\n"
+      "  -max_obs N             default 60000\n"
+      "  -max_dist D            farthest conjugate point (default 10, data units)\n"
+      "  -min_area A            skip overlaps with a smaller common area (default 100 footprint cells)\n"
+      "  -max_iter N            iteration limit (default 30)\n"
+      "  -o DIR                 write the corrected strips (LAS: every attribute and VLR kept, only\n"
+      "                         x, y, z and the header bounds change); never into a folder holding an input\n"
+      "  -keep_files            with -split: write each input whole under its own name\n"
+      "                         (default: NAME_psid<ID>.EXT per input and point-source id)\n"
+      "  -json REPORT           JSON report\n"
+      "  -maps DIR              discrepancy maps before/after per overlap and for the whole block\n"
+      "                         (GeoTIFF in the input's CRS + PNG), histograms\n"
+      "  -bands a,b             tolerance classes of the maps in metres (default 0.10,0.20)\n"
+      "  -overwrite             replace existing outputs (never an input)\n"
+      "  -q                     quiet: errors only\n"
+      "  -h                     this help\n",
+      prog, prog, prog);
+}
+
+int
+fail(const std::string& message)
+{
+  print_error("%s\n", message.c_str());
+  return 1;
+}
+
+const std::set<std::string> kWithValue = {"-split", "-reference", "-soft", "-params", "-rule", "-estimator",
+                                          "-classes", "-spacing", "-max_obs", "-max_dist", "-min_area",
+                                          "-max_iter", "-o", "-json", "-maps", "-bands", "-work", "-job", "-unit"};
+const std::set<std::string> kSwitches = {"-keep_files", "-overwrite", "-q"};
+
+// Options shared by the single run and the plan stage, parsed into the plan request.
+struct Options
+{
+  std::vector<std::string> inputs;
+  strips::PlanFile request;
+  std::vector<std::string> references;
+  bool overwrite = false, quiet = false;
+  std::string work;
+  int job = -1, unit = -1;
+};
+
+bool
+parseSettings(int argc, char** argv, Options& o, std::string& why)
+{
+  strips::StripAdjustmentSettings& s = o.request.plan.settings;
+  std::string text;
+  if (parse_argument(argc, argv, "-split", text) >= 0) {
+    if (text != "psid")
+      return (why = "-split takes 'psid'").empty();
+    o.request.load.split_by_point_source = true;
+  }
+  if (parse_argument(argc, argv, "-reference", text) >= 0) {
+    std::stringstream ss(text);
+    for (std::string id; std::getline(ss, id, ',');)
+      o.references.push_back(id);
+  }
+  std::vector<double> v;
+  if (parse_argument(argc, argv, "-soft", text) >= 0) {
+    if (!tools::parseNumberList(text, v) || v.size() != 3 || !(v[0] > 0 && v[1] > 0 && v[2] > 0))
+      return (why = "-soft takes three positive sigmas t,angle,m").empty();
+    s.soft_datum = true;
+    s.soft_sigmas << v[0], v[0], v[0], v[1], v[1], v[1], v[2];
+  }
+  if (parse_argument(argc, argv, "-params", text) >= 0 && !strips::parseParameterModel(text, s.model))
+    return (why = "-params takes 7, 6, 3 or z").empty();
+  if (parse_argument(argc, argv, "-rule", text) >= 0 && !parseConjugateRuleType(text, s.rule))
+    return (why = "-rule takes lnd, lzd or icp").empty();
+  parse_argument(argc, argv, "-estimator", s.estimator);
+  if (parse_argument(argc, argv, "-classes", text) >= 0) {
+    if (!tools::parseNumberList(text, v))
+      return (why = "-classes takes class codes, e.g. 2,6").empty();
+    s.stable_classes.clear();
+    for (double c : v)
+      s.stable_classes.insert(static_cast<std::uint8_t>(c));
+  }
+  parse_argument(argc, argv, "-spacing", s.observation_spacing);
+  int count = 0;
+  if (parse_argument(argc, argv, "-max_obs", count) >= 0)
+    s.max_observations = count > 0 ? static_cast<std::size_t>(count) : 0;
+  parse_argument(argc, argv, "-max_dist", s.max_distance);
+  parse_argument(argc, argv, "-min_area", s.min_overlap_area);
+  parse_argument(argc, argv, "-max_iter", s.max_iterations);
+  if (parse_argument(argc, argv, "-bands", text) >= 0) {
+    if (!tools::parseNumberList(text, v) || v.size() != 2 || !(v[0] > 0 && v[1] > v[0]))
+      return (why = "-bands takes two increasing positive limits, e.g. 0.10,0.20").empty();
+    o.request.band_inner = v[0];
+    o.request.band_outer = v[1];
+  }
+  parse_argument(argc, argv, "-o", o.request.output_dir);
+  parse_argument(argc, argv, "-json", o.request.json_path);
+  parse_argument(argc, argv, "-maps", o.request.maps_dir);
+  o.request.keep_files = find_switch(argc, argv, "-keep_files");
+  o.overwrite = find_switch(argc, argv, "-overwrite");
+  o.quiet = find_switch(argc, argv, "-q");
+  parse_argument(argc, argv, "-work", o.work);
+  parse_argument(argc, argv, "-job", o.job);
+  parse_argument(argc, argv, "-unit", o.unit);
+  return s.isValid(&why);
+}
+
+// The output folder must not hold an input (corrected strips would sit beside or replace them),
+// and existing outputs are replaced only with -overwrite.
+bool
+checkOutputs(const Options& o, std::string& why)
+{
+  const std::string& dir = o.request.output_dir;
+  for (const std::string& in : o.inputs) {
+    if (!fs::exists(in))
+      return (why = in + ": file does not exist").empty();
+    std::error_code ec;
+    if (!dir.empty() && fs::exists(dir) && fs::equivalent(fs::absolute(in).parent_path(), dir, ec))
+      return (why = "the output directory " + dir + " holds the input " + in + ": choose another -o").empty();
+    for (const std::string& out : {o.request.json_path})
+      if (!out.empty() && fs::exists(out) && fs::equivalent(in, out, ec))
+        return (why = "the report " + out + " would replace the input " + in).empty();
+  }
+  if (!o.request.json_path.empty() && fs::exists(o.request.json_path) && !o.overwrite)
+    return (why = o.request.json_path + " exists (use -overwrite)").empty();
+  return true;
+}
+
+// -reference IDs → strip indices (point-source ids with -split, else input names).
+bool
+resolveReferences(const Options& o, const strips::LoadedStrips& block, std::vector<int>& indices, std::string& why)
+{
+  for (const std::string& id : o.references) {
+    int found = -1;
+    for (std::size_t k = 0; k < block.sources.size(); ++k) {
+      const strips::StripSource& s = block.sources[k];
+      if ((s.point_source_id >= 0 && std::to_string(s.point_source_id) == id) || s.name == id)
+        found = static_cast<int>(k);
+    }
+    if (found < 0) {
+      std::string names;
+      for (const auto& s : block.sources)
+        names += (names.empty() ? "" : ", ") + (s.point_source_id >= 0 ? std::to_string(s.point_source_id) : s.name);
+      return (why = "unknown reference strip '" + id + "' (strips: " + names + ")").empty();
+    }
+    indices.push_back(found);
+  }
+  return true;
+}
+
+// Removes outputs that -overwrite allows replacing (never an input).
+void
+clearOutputs(const Options& o, const std::vector<strips::OutputUnit>& units)
+{
+  if (!o.overwrite)
+    return;
+  std::error_code ec;
+  for (const auto& u : units)
+    fs::remove(u.path, ec);
+  if (!o.request.maps_dir.empty())
+    for (const auto& e : fs::directory_iterator(o.request.maps_dir, ec))
+      if (e.path().extension() == ".tif" || e.path().extension() == ".png")
+        fs::remove(e.path(), ec);
+}
+
+std::string
+unitName(const std::string& wkt)
+{
+  const double m = maps::crsLinearUnit(wkt);
+  return m > 0.0 && std::abs(m - 0.3048) < 1e-6 ? "ft" : m > 0.0 && std::abs(m - 1.0) > 1e-9 ? "units" : "m";
+}
+
+int
+runSingle(Options& o)
+{
+  TicToc tt;
+  tt.tic();
+  strips::LoadedStrips block;
+  std::string error;
+  if (!strips::loadStrips(o.inputs, o.request.load, block, error))
+    return fail(error);
+  if (!resolveReferences(o, block, o.request.plan.settings.reference_strips, error))
+    return fail(error);
+  if (!o.quiet)
+    print_info("Loaded %zu strips from %zu files in %.1f s, block origin (%.3f, %.3f, %.3f)\n", block.strips.size(),
+               block.inputs.size(), tt.toc() / 1000.0, block.block_origin.x(), block.block_origin.y(), block.block_origin.z());
+  strips::StripBlockAdjustment adjustment;
+  adjustment.setSettings(o.request.plan.settings);
+  adjustment.setBlockOrigin(block.block_origin);
+  if (!o.quiet)
+    adjustment.setProgress([](const std::string& line) { print_info("  %s\n", line.c_str()); });
+  strips::StripAdjustmentReport report;
+  if (!adjustment.run(block.strips, report, error))
+    return fail(error);
+  report.notes.insert(report.notes.begin(), block.notes.begin(), block.notes.end());
+  if (!o.quiet)
+    print_info("\n%s\n", strips::reportSummary(report, unitName(block.crs_wkt)).c_str());
+  // Outputs: corrected strips, report, maps.
+  strips::PlanFile files = o.request;
+  files.plan = adjustment.plan();
+  files.crs_wkt = block.crs_wkt;
+  const std::vector<strips::OutputUnit> units =
+      o.request.output_dir.empty() ? std::vector<strips::OutputUnit>() : strips::outputUnits(block, o.request.output_dir, o.request.keep_files);
+  clearOutputs(o, units);
+  std::vector<Eigen::Matrix4d> corrections;
+  for (const auto& s : report.strips)
+    corrections.push_back(s.parameters == identityParameters() ? Eigen::Matrix4d::Identity() : s.transformation);
+  std::error_code ec;
+  if (!units.empty())
+    fs::create_directories(o.request.output_dir, ec);
+  for (const auto& u : units)
+    if (!strips::writeCorrected(block, u, corrections, error))
+      return fail(error);
+  std::vector<std::string> maps;
+  if (!strips::writeReportAndMaps(files, report, adjustment.samples(), maps, error))
+    return fail(error);
+  if (!o.quiet)
+    print_info("Wrote %zu corrected files, %zu map files%s in %.1f s total\n", units.size(), maps.size(),
+               o.request.json_path.empty() ? "" : (", " + o.request.json_path).c_str(), tt.toc() / 1000.0);
+  return report.termination == TerminationType::CONVERGED || report.termination == TerminationType::MAX_ITERATIONS ? 0 : 2;
+}
+
+int
+runStage(const std::string& stage, Options& o)
+{
+  if (o.work.empty())
+    return fail(stage + " needs -work DIR");
+  const strips::WorkDir work{o.work};
+  std::string error;
+  if (stage == "plan") {
+    strips::LoadedStrips probe;
+    if (!o.references.empty()) {  // resolve ids against the strips the plan will form
+      if (!strips::loadStrips(o.inputs, o.request.load, probe, error) ||
+          !resolveReferences(o, probe, o.request.plan.settings.reference_strips, error))
+        return fail(error);
+    }
+    int jobs = 0, units = 0;
+    if (!strips::stagePlan(o.inputs, o.request, work, error) || !strips::stageCounts(work, jobs, units, error))
+      return fail(error);
+    if (!o.quiet)
+      print_info("Planned %d match jobs and %d output files in %s\n", jobs, units, o.work.c_str());
+    return 0;
+  }
+  if (stage == "counts") {
+    int jobs = 0, units = 0;
+    if (!strips::stageCounts(work, jobs, units, error))
+      return fail(error);
+    print_info("%d %d\n", jobs, units);
+    return 0;
+  }
+  if (stage == "match")
+    return o.job >= 0 ? (strips::stageMatch(work, o.job, error) ? 0 : fail(error)) : fail("match needs -job K");
+  if (stage == "apply")
+    return o.unit >= 0 ? (strips::stageApply(work, o.unit, error) ? 0 : fail(error)) : fail("apply needs -unit K");
+  std::string phase;
+  if (!strips::stageSolve(work, phase, error))
+    return fail(error);
+  print_info("%s\n", phase.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  const std::set<std::string> stages = {"plan", "match", "solve", "apply", "counts"};
+  const std::string stage = argc > 1 && stages.count(argv[1]) ? argv[1] : "";
+  Options o;
+  std::string why;
+  if (!tools::splitArguments(argc, argv, stage.empty() ? 1 : 2, kWithValue, kSwitches, o.inputs, why))
+    return fail(why);
+  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help") || argc < 2) {
+    printHelp(argv[0]);
+    return argc < 2 ? 1 : 0;
+  }
+  if (!parseSettings(argc, argv, o, why))
+    return fail(why);
+  if (o.quiet)
+    setVerbosityLevel(L_ERROR);
+  if (stage.empty() || stage == "plan") {
+    if (o.inputs.size() < 2 && !o.request.load.split_by_point_source)
+      return fail(o.inputs.empty() ? "no input given (see -h)"
+                                   : "one strip only: give two or more strips, or -split psid for a file holding several");
+    if (o.inputs.empty())
+      return fail("no input given (see -h)");
+    if (!checkOutputs(o, why))
+      return fail(why);
+  }
+  else if (!o.inputs.empty())
+    return fail("the " + stage + " stage takes no input files");
+  return stage.empty() ? runSingle(o) : runStage(stage, o);
+}
