@@ -60,3 +60,80 @@ TEST(StripBlockAdjustment, ThreeStripsRecoverTheirCorrections)
     EXPECT_LT(o.after.sigma_mad, 0.065);
   }
 }
+
+namespace {
+
+// Mean |A x − B x| over every 7th point of strip k.
+double
+meanDifference(const Block& b, std::size_t k, const Eigen::Matrix4d& A, const Eigen::Matrix4d& B)
+{
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < b.strips[k].size(); i += 7, ++n)
+    sum += ((A - B) * b.strips[k].blockPoint(i).homogeneous()).head<3>().norm();
+  return sum / static_cast<double>(n);
+}
+
+}  // namespace
+
+TEST(StripBlockAdjustment, DatumOptionsGiveTheSameRelativeCorrections)
+{
+  const Block b = makeBlock(smallBlock(3, 5));
+  const auto truth = [&b](std::size_t k) -> Eigen::Matrix4d { return b.generated.strips[k].transform.matrix(); };
+  // Default datum: the strip with the largest overlap area, the middle one.
+  strips::StripAdjustmentSettings settings;
+  const strips::StripAdjustmentReport r1 = adjust(b, settings);
+  ASSERT_TRUE(r1.converged()) << r1.message;
+  EXPECT_FALSE(r1.strips[0].reference);
+  EXPECT_TRUE(r1.strips[1].reference);
+  EXPECT_FALSE(r1.strips[2].reference);
+  EXPECT_TRUE(r1.strips[1].transformation.isIdentity(0.0));
+  // The block lands in strip 2's frame: T_k ≈ T_2,true⁻¹ T_k,true.
+  for (std::size_t k : {0u, 2u})
+    EXPECT_LT(meanDifference(b, k, r1.strips[k].transformation, truth(1).inverse() * truth(k)), 0.04) << k;
+
+  // Soft datum (Zuo eqs. 9-10 per strip): no strip fixed, relative corrections as above.
+  settings.soft_datum = true;
+  const strips::StripAdjustmentReport r2 = adjust(b, settings);
+  ASSERT_TRUE(r2.converged()) << r2.message;
+  for (const auto& s : r2.strips) {
+    EXPECT_FALSE(s.reference);
+    EXPECT_TRUE(s.determinable[0] && s.determinable[5]);
+  }
+  for (std::size_t k : {1u, 2u}) {
+    const Eigen::Matrix4d relative = r2.strips[0].transformation.inverse() * r2.strips[k].transformation;
+    EXPECT_LT(meanDifference(b, k, relative, truth(0).inverse() * truth(k)), 0.05) << k;
+  }
+  // An out-of-range reference is an error, not a silent default.
+  settings.soft_datum = false;
+  settings.reference_strips = {7};
+  strips::StripBlockAdjustment adjustment;
+  adjustment.setSettings(settings);
+  strips::StripAdjustmentReport r3;
+  std::string error;
+  EXPECT_FALSE(adjustment.run(b.strips, r3, error));
+  EXPECT_FALSE(error.empty());
+}
+
+TEST(StripBlockAdjustment, StripWithoutOverlapIsReportedAndLeftUnchanged)
+{
+  Block b = makeBlock(smallBlock(3, 3));
+  // A fourth strip 5 km away: a copy of strip 3 shifted in x.
+  strips::Strip far = b.strips[2];
+  far.name = "far";
+  far.point_source_id = 99;
+  far.origin.x() += 5000.0;
+  b.strips.push_back(far);
+  strips::StripAdjustmentSettings settings;
+  settings.reference_strips = {0};
+  const strips::StripAdjustmentReport r = adjust(b, settings);
+  ASSERT_TRUE(r.converged()) << r.message;
+  ASSERT_EQ(r.strips.size(), 4u);
+  EXPECT_FALSE(r.strips[3].adjusted);
+  EXPECT_TRUE(r.strips[3].transformation.isIdentity(0.0));
+  EXPECT_FALSE(r.strips[3].note.empty());
+  for (std::size_t k = 1; k < 3; ++k) {
+    EXPECT_TRUE(r.strips[k].adjusted);
+    EXPECT_LT(meanDisplacementError(b, r, k), 0.04) << k;
+  }
+}

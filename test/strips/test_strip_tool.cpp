@@ -1,0 +1,202 @@
+// pcl_ls3d_strip_adjust on a generated LAS block: corrected LAS strips keep every byte except
+// X, Y, Z and the header bounds, their coordinates are the input's moved by the reported
+// correction, and bad input (one strip, unknown reference, a split finding one strip, no
+// overlap, LAZ, an output folder holding an input) gives one error line and a non-zero exit.
+#include "../io/tool_run.h"
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+namespace fs = std::filesystem;
+using pcl_ls3d_test::runTool;
+using pcl_ls3d_test::slurp;
+
+namespace {
+
+template <typename T>
+T
+get(const std::string& bytes, std::size_t at)
+{
+  T v;
+  std::memcpy(&v, bytes.data() + at, sizeof(T));
+  return v;
+}
+
+struct LasLayout
+{
+  std::uint32_t offset = 0;  // to the point records
+  std::uint16_t length = 0;  // of one record
+  std::uint64_t count = 0;
+  int format = 0;
+  Eigen::Vector3d scale, origin;
+
+  explicit LasLayout(const std::string& f)
+  {
+    offset = get<std::uint32_t>(f, 96);
+    format = get<std::uint8_t>(f, 104) & 0x3f;
+    length = get<std::uint16_t>(f, 105);
+    count = get<std::uint32_t>(f, 107);
+    if (count == 0 && get<std::uint8_t>(f, 25) >= 4)
+      count = get<std::uint64_t>(f, 247);
+    for (int a = 0; a < 3; ++a) {
+      scale[a] = get<double>(f, 131 + 8 * static_cast<std::size_t>(a));
+      origin[a] = get<double>(f, 155 + 8 * static_cast<std::size_t>(a));
+    }
+  }
+  std::size_t
+  record(std::uint64_t k) const
+  {
+    return offset + static_cast<std::size_t>(k) * length;
+  }
+  std::uint16_t
+  psid(const std::string& f, std::uint64_t k) const
+  {
+    return get<std::uint16_t>(f, record(k) + (format >= 6 ? 20 : 18));
+  }
+  Eigen::Vector3d
+  xyz(const std::string& f, std::uint64_t k) const
+  {
+    Eigen::Vector3d p;
+    for (int a = 0; a < 3; ++a)
+      p[a] = get<std::int32_t>(f, record(k) + 4 * static_cast<std::size_t>(a)) * scale[a] + origin[a];
+    return p;
+  }
+};
+
+class StripTool : public ::testing::Test
+{
+protected:
+  static std::string dir;
+
+  static void
+  SetUpTestSuite()
+  {
+    dir = (fs::temp_directory_path() / ("pcl_ls3d_strip_tool_" + std::to_string(::getpid()))).string();
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    // 3 strips of 240 m × 120 m, 30 % side overlap (36 m), 2 pts/m², strip 1 the identity.
+    const auto r = runTool("pcl_ls3d_synth",
+                           "strips -o '" + dir + "/in' -format las -split -strips 3 -length 240 -swath 120 "
+                           "-density 2 -seed 3 -shift_sigma 0.3 -angle_sigma 5e-4 -scale_sigma 0",
+                           dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  static void
+  TearDownTestSuite()
+  {
+    fs::remove_all(dir);
+  }
+  static std::string
+  in(const std::string& name)
+  {
+    return "'" + dir + "/in/" + name + "'";
+  }
+};
+std::string StripTool::dir;
+
+}  // namespace
+
+TEST_F(StripTool, CorrectedLasKeepsEveryByteButXyzAndBounds)
+{
+  const auto r = runTool("pcl_ls3d_strip_adjust",
+                         in("strips.las") + " -split psid -reference 1 -o '" + dir + "/out' -json '" + dir +
+                             "/report.json' -maps '" + dir + "/maps'",
+                         dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("CONVERGED"), std::string::npos) << r.out;
+  const nlohmann::json report = nlohmann::json::parse(slurp(dir + "/report.json"));
+  ASSERT_TRUE(report["converged"].get<bool>());
+  ASSERT_EQ(report["strips"].size(), 3u);
+  for (const char* map : {"mosaic_before.png", "mosaic_after.png", "mosaic_before.tif", "mosaic_after.tif",
+                          "histogram.png"})
+    EXPECT_TRUE(fs::exists(dir + "/maps/" + map)) << map;
+
+  const std::string input = slurp(dir + "/in/strips.las");
+  const LasLayout lin(input);
+  for (const auto& s : report["strips"]) {
+    const int psid = s["point_source_id"].get<int>();
+    const std::string path = dir + "/out/strips_psid" + std::to_string(psid) + ".las";
+    ASSERT_TRUE(fs::exists(path)) << path;
+    const std::string output = slurp(path);
+    const LasLayout lout(output);
+    ASSERT_EQ(lout.offset, lin.offset);
+    ASSERT_EQ(lout.length, lin.length);
+    ASSERT_EQ(lout.format, lin.format);
+    // Header and VLRs: identical except the bounds (179..226) and the point counts (a split
+    // output holds one flight line).
+    for (std::size_t b = 0; b < lin.offset; ++b) {
+      const bool bounds = b >= 179 && b < 227;
+      const bool counts = (b >= 107 && b < 131) || (b >= 247 && b < 375);
+      if (!bounds && !counts) {
+        ASSERT_EQ(output[b], input[b]) << "header byte " << b;
+      }
+    }
+    Eigen::Matrix4d T;
+    for (int a = 0; a < 4; ++a)
+      for (int c = 0; c < 4; ++c)
+        T(a, c) = s["transformation"][static_cast<std::size_t>(a)][static_cast<std::size_t>(c)].get<double>();
+    if (s["reference"].get<bool>()) {
+      EXPECT_TRUE(T.isIdentity(0.0));
+    }
+    std::uint64_t k_out = 0;
+    double worst = 0.0;
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+    for (std::uint64_t k = 0; k < lin.count; ++k) {
+      if (lin.psid(input, k) != psid)
+        continue;
+      ASSERT_LT(k_out, lout.count);
+      // Every byte after X, Y, Z is the input's, in input order.
+      ASSERT_EQ(0, std::memcmp(output.data() + lout.record(k_out) + 12, input.data() + lin.record(k) + 12,
+                               lin.length - 12u))
+          << "record " << k;
+      const Eigen::Vector3d moved = (T * lin.xyz(input, k).homogeneous()).head<3>();
+      const Eigen::Vector3d written = lout.xyz(output, k_out);
+      worst = std::max(worst, ((moved - written).array() / lin.scale.array()).abs().maxCoeff());
+      lo = lo.cwiseMin(written);
+      hi = hi.cwiseMax(written);
+      ++k_out;
+    }
+    EXPECT_EQ(k_out, lout.count);
+    EXPECT_LE(worst, 0.5 + 1e-6) << "coordinates off by more than half a LAS unit";
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_NEAR(get<double>(output, 187 + 16 * static_cast<std::size_t>(a)), lo[a], 1e-9);  // min
+      EXPECT_NEAR(get<double>(output, 179 + 16 * static_cast<std::size_t>(a)), hi[a], 1e-9);  // max
+    }
+  }
+  // Never overwrites: a second run into the same folder fails before writing anything.
+  const auto again = runTool("pcl_ls3d_strip_adjust",
+                             in("strips.las") + " -split psid -o '" + dir + "/out' -q", dir);
+  EXPECT_NE(again.code, 0);
+}
+
+TEST_F(StripTool, BadInputGivesOneErrorLine)
+{
+  // A LAZ file: the compression bit of the point-format byte set.
+  {
+    std::string las = slurp(dir + "/in/strip_1.las");
+    las[104] = static_cast<char>(las[104] | 0x80);
+    std::ofstream(dir + "/in/strip_1.laz", std::ios::binary) << las;
+  }
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {in("strip_1.las"), "one strip only"},
+      {in("strips.las") + " -split psid -reference 99", "unknown reference"},
+      {in("strip_1.las") + " -split psid", "one flight line"},
+      {in("strip_1.las") + " " + in("strip_3.las"), "no overlap"},
+      {in("strip_1.laz") + " " + in("strip_2.las"), "LAZ"},
+      {in("strip_1.las") + " " + in("strip_2.las") + " -o '" + dir + "/in'", "holds the input"},
+  };
+  for (const auto& c : cases) {
+    const auto r = runTool("pcl_ls3d_strip_adjust", c.first + " -q", dir);
+    EXPECT_NE(r.code, 0) << c.second;
+    EXPECT_EQ(pcl_ls3d_test::lineCount(r.err), 1u) << c.second << ":\n" << r.err;
+    EXPECT_TRUE(r.out.empty()) << c.second << ":\n" << r.out;
+  }
+}
