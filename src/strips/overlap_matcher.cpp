@@ -52,7 +52,66 @@ struct OverlapMatcher::Direction
     return r;
   }
   double source_scale = 1.0, target_scale = 1.0;
+  double spacing = 1.0;  // thinning cell edge of the overlap
 };
+
+namespace {
+
+// σ_u² of the observations' unit normals from neighbouring observations on the thinned grid:
+// for two neighbours on a smooth surface the normals differ by noise (and by curvature, which
+// only makes the estimate conservative); per tangent component var = median |Δu|² / (4 ln 2).
+double
+normalNoiseVariance(const PairMatcher& matcher, const ObservationSet& set, double spacing)
+{
+  std::vector<double> d2;
+  const double reach2 = 9.0 * spacing * spacing;
+  for (std::size_t k = 1; k < set.size(); ++k) {
+    const Eigen::Vector3d a = matcher.position(set[k - 1]), b = matcher.position(set[k]);
+    if ((a - b).squaredNorm() > reach2)
+      continue;
+    Eigen::Vector3d ua = set[k - 1].direction.normalized(), ub = set[k].direction.normalized();
+    if (ua.dot(ub) < 0.0)
+      ub = -ub;
+    d2.push_back((ua - ub).squaredNorm());
+  }
+  if (d2.size() < 20)
+    return 0.0;
+  auto mid = d2.begin() + static_cast<std::ptrdiff_t>(d2.size() / 2);
+  std::nth_element(d2.begin(), mid, d2.end());
+  return *mid / (4.0 * std::log(2.0));
+}
+
+}  // namespace
+
+Matrix14d
+OverlapMatcher::noiseFloor(const Direction& D, const ObservationSet& set, const Eigen::VectorXd& p)
+{
+  Matrix14d M = Matrix14d::Zero();
+  const double var = normalNoiseVariance(D.matcher, set, D.spacing);
+  if (!(var > 0.0))
+    return M;
+  const double eps = 1e-4;
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    const double w = p[static_cast<Eigen::Index>(k)];
+    if (!(w > 0.0))
+      continue;
+    const Observation& o = set[k];
+    const double len = o.direction.norm();
+    if (!(len > 0.0))
+      continue;
+    const Eigen::Vector3d u = o.direction / len;
+    const Eigen::Vector3d t1 = u.unitOrthogonal(), t2 = u.cross(t1);
+    const Row14 a = D.row(o);
+    for (const Eigen::Vector3d& t : {t1, t2}) {
+      Observation tilted = o;
+      tilted.direction = (u + eps * t).normalized() * len;
+      const Row14 da = (D.row(tilted) - a) / eps;
+      M.selfadjointView<Eigen::Upper>().rankUpdate(da.transpose(), w * var);
+    }
+  }
+  M.triangularView<Eigen::StrictlyLower>() = M.transpose();
+  return M;
+}
 
 OverlapMatcher::OverlapMatcher(const OverlapSelection& selection, const ConjugateRule& rule,
                                const RobustEstimator& estimator,
@@ -66,6 +125,7 @@ OverlapMatcher::OverlapMatcher(const OverlapSelection& selection, const Conjugat
     dir_[d] = std::make_unique<Direction>(*sel[d]);
     Direction& D = *dir_[d];
     D.forward = d == 0;
+    D.spacing = selection.spacing > 0.0 ? selection.spacing : 1.0;
     D.eiv.setSourceNoise(noise[d]);
     if (!sel[d]->surface || sel[d]->surface->size() < 3 || sel[d]->points.empty())
       continue;
@@ -145,6 +205,7 @@ OverlapMatcher::run(const ParameterBlock& block_i, const ParameterBlock& block_j
     }
     for (const PairNormalEquations& ne : part)
       out.normal += ne;
+    out.noise_floor += noiseFloor(D, set, p);
     counts.used = 0;
     for (Eigen::Index k = 0; k < p.size(); ++k)
       if (p[k] > 0.0) {

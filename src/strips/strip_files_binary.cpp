@@ -163,6 +163,7 @@ writeContribution(const std::string& path, const OverlapContribution& c, std::st
   w.putMatrix(c.normal.b);
   w.put(c.normal.ltpl);
   w.put<std::uint64_t>(c.normal.n);
+  w.putMatrix(c.noise_floor);
   for (const DirectionCounts* d : {&c.forward, &c.backward}) {
     w.put<std::uint64_t>(d->observations);
     w.put<std::uint64_t>(d->used);
@@ -199,6 +200,7 @@ readContribution(const std::string& path, OverlapContribution& c, std::string& e
   std::uint64_t n = 0;
   r.get(n);
   c.normal.n = static_cast<std::size_t>(n);
+  r.getMatrix(c.noise_floor);
   for (DirectionCounts* d : {&c.forward, &c.backward}) {
     std::uint64_t a = 0, b = 0;
     r.get(a);

@@ -137,3 +137,26 @@ TEST(StripBlockAdjustment, StripWithoutOverlapIsReportedAndLeftUnchanged)
     EXPECT_LT(meanDisplacementError(b, r, k), 0.04) << k;
   }
 }
+TEST(StripBlockAdjustment, FlatOverlapsFlagHorizontalParametersUndeterminable)
+{
+  synth::StripSettings s = smallBlock(3, 3);
+  s.relief = 0.0;
+  s.buildings = false;
+  const Block b = makeBlock(s);
+  strips::StripAdjustmentSettings settings;
+  settings.reference_strips = {0};
+  const strips::StripAdjustmentReport r = adjust(b, settings);
+  ASSERT_NE(r.termination, TerminationType::NOT_RUN);
+  for (std::size_t k = 1; k < 3; ++k) {
+    const auto& d = r.strips[k].determinable;
+    // A plane fixes height and the two tilts, never the horizontal shift or the heading.
+    EXPECT_FALSE(d[TX]) << k << " p " << r.strips[k].parameters.transpose() << " s " << r.strips[k].sigmas.transpose();
+    EXPECT_FALSE(d[TY]) << k;
+    EXPECT_FALSE(d[KAPPA]) << k;
+    EXPECT_TRUE(d[TZ]) << k;
+    EXPECT_FALSE(std::isfinite(r.strips[k].sigmas[TX])) << "no confident number for tx";
+    // What is determinable is right: the height at the strip centre.
+    const Vector7d truth = trueParameters(b, k);
+    EXPECT_LT(std::abs(r.strips[k].parameters[TZ] - truth[TZ]), 3.5 * r.strips[k].sigmas[TZ] + 0.01) << k;
+  }
+}

@@ -55,6 +55,11 @@ struct OverlapContribution
   int iteration = 0;
   double spacing = 0.0;          ///< thinning cell edge of the overlap's observations
   PairNormalEquations normal;    ///< rows [a_i | a_j], both directions summed
+  /// What noise in the conjugate surfaces' normals alone puts into normal.N: Σ p E[δa δaᵀ]
+  /// with δa the change of a row under a normal tilted by its measured noise σ_u. On a flat
+  /// overlap the horizontal parameters' information is no larger than this noise floor, so
+  /// they are undeterminable however small the rank test finds their pivots.
+  Matrix14d noise_floor = Matrix14d::Zero();
   DirectionCounts forward, backward;
   std::vector<PrecisionCell> cells;  ///< final evaluation only
 };

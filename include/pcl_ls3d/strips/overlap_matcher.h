@@ -55,6 +55,8 @@ public:
 
 private:
   struct Direction;
+  static Matrix14d
+  noiseFloor(const Direction& D, const ObservationSet& set, const Eigen::VectorXd& p);
   OverlapContribution
   run(const ParameterBlock& block_i, const ParameterBlock& block_j, const MatchInput& in,
       double cell);
