@@ -122,13 +122,18 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
     for (double c : v)
       s.stable_classes.insert(static_cast<std::uint8_t>(c));
   }
-  parse_argument(argc, argv, "-spacing", s.observation_spacing);
-  int count = 0;
-  if (parse_argument(argc, argv, "-max_obs", count) >= 0)
-    s.max_observations = count > 0 ? static_cast<std::size_t>(count) : 0;
-  parse_argument(argc, argv, "-max_dist", s.max_distance);
-  parse_argument(argc, argv, "-min_area", s.min_overlap_area);
-  parse_argument(argc, argv, "-max_iter", s.max_iterations);
+  // Numbers parsed strictly (tool_arguments.h): "6x" or "abc" is an error, not 6 or 0.
+  long long count = -1;
+  if (!tools::numberOption(argc, argv, "-spacing", s.observation_spacing, why, 0.0) ||
+      !tools::integerOption(argc, argv, "-max_obs", count, why, 0, 2147483647) ||
+      !tools::numberOption(argc, argv, "-max_dist", s.max_distance, why) ||
+      !tools::numberOption(argc, argv, "-min_area", s.min_overlap_area, why) ||
+      !tools::integerOption(argc, argv, "-max_iter", s.max_iterations, why, 0, 1000000) ||
+      !tools::integerOption(argc, argv, "-job", o.job, why, 0, 2147483647) ||
+      !tools::integerOption(argc, argv, "-unit", o.unit, why, 0, 2147483647))
+    return false;
+  if (count >= 0)
+    s.max_observations = static_cast<std::size_t>(count);
   if (parse_argument(argc, argv, "-bands", text) >= 0) {
     if (!tools::parseNumberList(text, v) || v.size() != 2 || !(v[0] > 0 && v[1] > v[0]))
       return (why = "-bands takes two increasing positive limits, e.g. 0.10,0.20").empty();
@@ -142,8 +147,6 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   o.overwrite = find_switch(argc, argv, "-overwrite");
   o.quiet = find_switch(argc, argv, "-q");
   parse_argument(argc, argv, "-work", o.work);
-  parse_argument(argc, argv, "-job", o.job);
-  parse_argument(argc, argv, "-unit", o.unit);
   return s.isValid(&why);
 }
 

@@ -96,6 +96,13 @@ TEST_F(ToolOptions, NumericOptionsAreParsedStrictly)
            {"pair -seed 1x", "-seed"}, {"pair -overlap 0.5x", "-overlap"},
            {"scene -trees abc", "-trees"}})
     expectRefusal("pcl_ls3d_synth", args + " -o " + file("synth"), expect);
+  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
+           {"-max_iter abc", "-max_iter"}, {"-max_obs 6x", "-max_obs"},
+           {"-spacing x", "-spacing"}, {"-max_dist 1e999", "-max_dist"},
+           {"-min_area 2m", "-min_area"}})
+    expectRefusal("pcl_ls3d_strip_adjust", pair + " " + args + " -o " + file("strips"), expect);
+  expectRefusal("pcl_ls3d_strip_adjust", "match -work " + file("work") + " -job 1x", "-job");
+  expectRefusal("pcl_ls3d_strip_adjust", "apply -work " + file("work") + " -unit -1", "-unit");
 }
 
 // Unwritable outputs (a missing folder, a file where the folder should be) are refused before
