@@ -67,6 +67,104 @@ formatSegmentationTable(const std::vector<SegmentationEvaluation>& evaluations)
   return os.str();
 }
 
+namespace {
+/// Indices of the classes that have objects in the first evaluation.
+std::vector<std::size_t>
+objectClassesShown(const std::vector<ObjectEvaluation>& evaluations)
+{
+  std::vector<std::size_t> shown;
+  for (std::size_t c = 0; c < evaluations.front().classes.size(); ++c)
+    if (evaluations.front().classes[c].objects > 0)
+      shown.push_back(c);
+  return shown;
+}
+
+/// "method | segments |  time s |" header line, its rule and the width of the method column.
+std::size_t
+methodWidth(const std::vector<ObjectEvaluation>& evaluations)
+{
+  std::size_t wm = 6;
+  for (const auto& e : evaluations)
+    wm = std::max(wm, e.method.size());
+  return wm;
+}
+
+std::string
+fixed(double v, const char* format)
+{
+  if (std::isnan(v))
+    return "-";
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), format, v);
+  return buf;
+}
+}  // namespace
+
+std::string
+formatObjectTable(const std::vector<ObjectEvaluation>& evaluations)
+{
+  if (evaluations.empty())
+    return "";
+  const auto shown = objectClassesShown(evaluations);
+  const auto& first = evaluations.front().classes;
+  const std::size_t wm = methodWidth(evaluations);
+  std::ostringstream os;
+  os << std::string(wm - 6, ' ') << "method | segments |  time s |";
+  for (std::size_t c : shown)
+    os << ' ' << pad(first[c].name + " P/R/F1 %", 22) << " |";
+  os << '\n' << std::string(wm, '-') << "-|----------|---------|";
+  for (std::size_t i = 0; i < shown.size(); ++i)
+    os << std::string(24, '-') << '|';
+  os << '\n';
+  for (const auto& e : evaluations) {
+    os << pad(e.method, wm) << " | " << pad(std::to_string(e.segments), 8) << " | "
+       << pad(fixed(e.seconds, "%.2f"), 7) << " |";
+    for (std::size_t c : shown) {
+      const ObjectClassScores& s = e.classes[c];
+      os << ' ' << pad(percent(s.precision) + " / " + percent(s.recall) + " / " + percent(s.f1), 22)
+         << " |";
+    }
+    os << '\n';
+  }
+  return os.str();
+}
+
+std::string
+formatFragmentationTable(const std::vector<ObjectEvaluation>& evaluations, std::size_t min_points)
+{
+  if (evaluations.empty())
+    return "";
+  const auto shown = objectClassesShown(evaluations);
+  const auto& first = evaluations.front().classes;
+  const std::size_t wm = methodWidth(evaluations);
+  std::ostringstream os;
+  os << std::string(wm - 6, ' ') << "method |";
+  for (std::size_t c : shown)
+    os << ' ' << pad(first[c].name + " rec/obj seg share", 26) << " |";
+  os << '\n' << std::string(wm, '-') << "-|";
+  for (std::size_t i = 0; i < shown.size(); ++i)
+    os << std::string(28, '-') << '|';
+  os << '\n';
+  for (const auto& e : evaluations) {
+    os << pad(e.method, wm) << " |";
+    for (std::size_t c : shown) {
+      const ObjectClassScores& s = e.classes[c];
+      os << ' '
+         << pad(std::to_string(s.recognised) + "/" + std::to_string(s.objects) + "  " +
+                    fixed(s.median_valid_segments, "%.1f") + "  " +
+                    fixed(s.median_largest_share, "%.2f"),
+                26)
+         << " |";
+    }
+    os << '\n';
+  }
+  os << "(rec/obj: recognised / reference objects; seg, share: medians over the objects of at "
+        "least "
+     << min_points << " points of valid segments per object and of the largest valid segment's "
+                      "share of the object)\n";
+  return os.str();
+}
+
 std::string
 describeConfusion(const SegmentationEvaluation& e, double min_share)
 {

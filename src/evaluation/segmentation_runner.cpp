@@ -1,4 +1,5 @@
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
+#include <pcl_ls3d/evaluation/voxel_baseline.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 
 #include <pcl/common/time.h>
@@ -36,10 +37,13 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
     seg.setNumberOfThreads(s.threads);
   if (s.min_fragment_size >= 0)
     seg.setMinFragmentSize(static_cast<std::size_t>(s.min_fragment_size));
+  const bool planes = s.level == SegmentationLevel::Planes;
+  seg.setOutputLevel(planes ? MRG::Level::Planes : MRG::Level::Objects);
 
   pcl::StopWatch watch;
   seg.extract(run.segments);
   run.seconds_segmentation = run.seconds_total = watch.getTimeSeconds();
+  run.other_level = seg.getClusters(planes ? MRG::Level::Objects : MRG::Level::Planes);
 
   run.residual_threshold = seg.getResidualThreshold();
   const auto& m = seg.getMergeReport();
@@ -101,8 +105,34 @@ runPclRegionGrowing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   rg.setSmoothnessThreshold(static_cast<float>(s.rg_smoothness_deg * kDegToRad));
   rg.setCurvatureThreshold(static_cast<float>(s.rg_curvature));
   rg.extract(run.segments);
+  // Points in no cluster (clusters under the minimum size, or never reached) form one "rest"
+  // segment: they are kept, not thrown away, so the object-based rules judge them like any
+  // other segment instead of counting them only as missed points.
+  std::vector<char> used(cloud->size(), 0);
+  for (const auto& c : run.segments)
+    for (const auto i : c.indices)
+      used[static_cast<std::size_t>(i)] = 1;
+  pcl::PointIndices rest;
+  for (std::size_t i = 0; i < used.size(); ++i)
+    if (!used[i])
+      rest.indices.push_back(static_cast<int>(i));
+  run.rest_points = rest.indices.size();
+  if (!rest.indices.empty())
+    run.segments.push_back(std::move(rest));
   run.seconds_segmentation = watch.getTimeSeconds();
   run.seconds_total = run.seconds_normals + run.seconds_segmentation;
+  run.segments_before_merge = run.segments_after_merge = run.segments.size();
+  const double nan = std::nan("");
+  run.residual_threshold = run.distance_threshold = run.similarity_threshold =
+      run.volume_threshold = run.spacing = run.growth_radius = run.volumetric_radius = nan;
+}
+void
+runVoxelGrid(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
+             const SegmentationRunSettings& s, SegmentationRun& run)
+{
+  pcl::StopWatch watch;
+  run.segments = voxelSegmentsWithCount(*cloud, s.voxel_segments, run.voxel_size);
+  run.seconds_segmentation = run.seconds_total = watch.getTimeSeconds();
   run.segments_before_merge = run.segments_after_merge = run.segments.size();
   const double nan = std::nan("");
   run.residual_threshold = run.distance_threshold = run.similarity_threshold =
@@ -116,6 +146,7 @@ toString(SegmentationMethod m)
   switch (m) {
     case SegmentationMethod::IMRG: return "imrg";
     case SegmentationMethod::MRG: return "mrg";
+    case SegmentationMethod::VoxelGrid: return "voxel";
     default: return "pcl_rg";
   }
 }
@@ -124,7 +155,7 @@ bool
 parseSegmentationMethod(const std::string& s, SegmentationMethod& m)
 {
   for (auto c : {SegmentationMethod::IMRG, SegmentationMethod::MRG,
-                 SegmentationMethod::PclRegionGrowing})
+                 SegmentationMethod::PclRegionGrowing, SegmentationMethod::VoxelGrid})
     if (s == toString(c)) {
       m = c;
       return true;
@@ -153,6 +184,8 @@ SegmentationRunSettings::isValid(std::string* why) const
     return fail("invalid pcl::RegionGrowing settings");
   if (threads < 0)
     return fail("threads must be >= 0");
+  if (method == SegmentationMethod::VoxelGrid && voxel_segments == 0)
+    return fail("the voxel baseline needs a segment count > 0");
   return true;
 }
 
@@ -170,6 +203,8 @@ runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   }
   if (settings.method == SegmentationMethod::PclRegionGrowing)
     runPclRegionGrowing(cloud, settings, run);
+  else if (settings.method == SegmentationMethod::VoxelGrid)
+    runVoxelGrid(cloud, settings, run);
   else
     runMultiRule(cloud, settings, run);
   if (run.segments.empty()) {

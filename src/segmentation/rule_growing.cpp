@@ -42,13 +42,49 @@ joins(std::size_t i, std::size_t j, const std::vector<Eigen::Vector3f>& points,
   }
 }
 
-/// IMRG §3.1: may point i (not the seed) carry the growth on?
+/// IMRG §3.1: may point i (not the seed) carry the growth on? A planar point only below the
+/// residual threshold v_t. The same idea for lines (an addition): a linear point at a junction
+/// is absorbed but does not grow, so a line stops where it meets a structure (a wire at its
+/// tower's cross arm, a pole at the ground) instead of running on into the next span.
 bool
-propagates(std::size_t i, const std::vector<PointFeatures>& features, const Rules& r)
+propagates(std::size_t i, const std::vector<PointFeatures>& features,
+           const std::vector<char>& junction, const Rules& r)
 {
-  if (!r.seed_condition || features[i].dimensionality != Dimensionality::Planar)
+  if (!r.seed_condition)
+    return true;
+  if (features[i].dimensionality == Dimensionality::Linear)
+    return !junction[i];
+  if (features[i].dimensionality != Dimensionality::Planar)
     return true;
   return features[i].residual < r.residual_threshold;
+}
+
+/// Linear points with a neighbour within the growth radius that lies off their line by more
+/// than a fifth of that radius: something other than the line itself is within reach. The
+/// test is on positions, not on the neighbour's features, because at a crossing the features
+/// of both lines mix (an arm point next to a wire takes the wire's direction). A sagging span
+/// deviates from its chord by far less over one growth radius.
+std::vector<char>
+linearJunctions(const std::vector<Eigen::Vector3f>& points,
+                const std::vector<PointFeatures>& features, const std::vector<int>& graph,
+                std::size_t k, const Rules& r)
+{
+  std::vector<char> out(points.size(), 0);
+  const double off_sq = 0.04 * r.growth_sq;  // (growth radius / 5)²
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (features[i].dimensionality != Dimensionality::Linear)
+      continue;
+    const Eigen::Vector3f& d = features[i].principal;
+    for (std::size_t c = 0; c < k && !out[i]; ++c) {
+      const int j = graph[i * k + c];
+      if (j < 0 || features[static_cast<std::size_t>(j)].dimensionality == Dimensionality::Invalid)
+        continue;
+      const Eigen::Vector3f v = points[static_cast<std::size_t>(j)] - points[i];
+      const double along = v.dot(d);
+      out[i] = v.squaredNorm() <= r.growth_sq && v.squaredNorm() - along * along > off_sq;
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -74,6 +110,7 @@ growRegions(const std::vector<Eigen::Vector3f>& points,
   r.seed_condition = settings.use_seed_condition && std::isfinite(settings.residual_threshold);
   r.residual_threshold = settings.residual_threshold;
 
+  const std::vector<char> junction = linearJunctions(points, features, graph, k, r);
   // Seeds in order of increasing residual: flat interiors first, boundaries last.
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -91,7 +128,7 @@ growRegions(const std::vector<Eigen::Vector3f>& points,
     queue.assign(1, seed);
     for (std::size_t q = 0; q < queue.size(); ++q) {
       const std::size_t i = queue[q];
-      if (i != seed && !propagates(i, features, r))
+      if (i != seed && !propagates(i, features, junction, r))
         continue;  // absorbed boundary point: does not grow further
       for (std::size_t c = 0; c < k; ++c) {
         const int j = graph[i * k + c];

@@ -22,13 +22,33 @@ Building::contains(double x, double y, double margin) const
   return std::abs(uv.x()) <= 0.5 * length + margin && std::abs(uv.y()) <= 0.5 * width + margin;
 }
 
+int
+roofPlaneCount(RoofType roof)
+{
+  return roof == RoofType::FLAT ? 1 : roof == RoofType::GABLE ? 2 : 4;
+}
+
 double
 Building::roofHeight(double x, double y) const
 {
   if (roof == RoofType::FLAT)
     return eave_z;
-  const double v = std::abs(toLocal(x, y).y());
-  return eave_z + ridge_rise * std::max(0.0, 1.0 - v / (0.5 * width));
+  const Eigen::Vector2d uv = toLocal(x, y);
+  double to_eave = 0.5 * width - std::abs(uv.y());
+  if (roof == RoofType::HIP)
+    to_eave = std::min(to_eave, 0.5 * length - std::abs(uv.x()));
+  return eave_z + ridge_rise * std::max(0.0, to_eave / (0.5 * width));
+}
+
+int
+Building::roofPlane(double x, double y) const
+{
+  if (roof == RoofType::FLAT)
+    return 0;
+  const Eigen::Vector2d uv = toLocal(x, y);
+  if (roof == RoofType::HIP && 0.5 * length - std::abs(uv.x()) < 0.5 * width - std::abs(uv.y()))
+    return uv.x() >= 0.0 ? 2 : 3;
+  return uv.y() >= 0.0 ? 0 : 1;
 }
 
 double
@@ -107,7 +127,10 @@ placeBuildings(const Terrain& terrain,
     const double r = b.radius();
     b.centre = {rng.uniform(region.min().x() + r, region.max().x() - r),
                 rng.uniform(region.min().y() + r, region.max().y() - r)};
-    b.roof = rng.uniform() < s.gable_fraction ? RoofType::GABLE : RoofType::FLAT;
+    const double kind = rng.uniform();  // one draw whatever the mix: same layouts as before hips
+    b.roof = kind < s.gable_fraction                    ? RoofType::GABLE
+             : kind < s.gable_fraction + s.hip_fraction ? RoofType::HIP
+                                                        : RoofType::FLAT;
     const double eave = rng.uniform(s.min_eave, s.max_eave);
     const double rise = rng.uniform(s.min_rise, s.max_rise);
     if (2.0 * r > region.sizes().minCoeff())
@@ -127,7 +150,7 @@ placeBuildings(const Terrain& terrain,
                                            b.centre.y() + sn * u + c * v));
       }
     b.eave_z = top + eave;
-    b.ridge_rise = b.roof == RoofType::GABLE ? rise : 0.0;
+    b.ridge_rise = b.roof == RoofType::FLAT ? 0.0 : rise;
     out.push_back(b);
   }
   return out;

@@ -14,7 +14,8 @@ namespace synth {
 const char*
 toString(ObjectType t)
 {
-  static const std::array<const char*, 6> names{"building", "tree", "shrub", "car", "tower", "wire"};
+  static const std::array<const char*, 7> names{"building", "tree", "shrub", "car",
+                                                 "tower",    "wire", "ground"};
   return names[static_cast<int>(t)];
 }
 
@@ -99,10 +100,12 @@ private:
 struct Collected
 {
   std::vector<PointLiDAR, Eigen::aligned_allocator<PointLiDAR>> points;
-  std::vector<int> ids;
+  std::vector<int> ids, planes;
   void
-  add(const Eigen::Vector3d& p, std::uint8_t cls, int id, double time, int ret = 1, int nret = 1)
+  add(const Eigen::Vector3d& p, std::uint8_t cls, int id, double time, int ret = 1, int nret = 1,
+      int plane = -1)
   {
+    planes.push_back(plane);
     PointLiDAR q = detail::makePoint(p);
     q.classification = cls;
     q.gps_time = time;
@@ -149,13 +152,16 @@ samplePulse(double x, double y, double time, Random& rng, const SceneSettings& s
               time, k + 1, total);
     }
     if (to_ground)
-      out.add(Eigen::Vector3d(x, y, ground) + rng.normal3(sig), 2, -1, time, total, total);
+      out.add(Eigen::Vector3d(x, y, ground) + rng.normal3(sig), 2, layout.ground_object, time,
+              total, total);
     return;
   }
   int b = -1;
   const double z = surface.height(x, y, &b);
   if (b >= 0) {
-    out.add(Eigen::Vector3d(x, y, z) + rng.normal3(sig), 6, layout.building_object[b], time);
+    const int plane = layout.first_plane[b] + layout.buildings[b].roofPlane(x, y);
+    out.add(Eigen::Vector3d(x, y, z) + rng.normal3(sig), 6, layout.building_object[b], time, 1, 1,
+            plane);
     return;
   }
   const int car = cars.find(x, y);
@@ -164,7 +170,7 @@ samplePulse(double x, double y, double time, Random& rng, const SceneSettings& s
             layout.car_object[car], time);
     return;
   }
-  out.add(Eigen::Vector3d(x, y, ground) + rng.normal3(sig), 2, -1, time);
+  out.add(Eigen::Vector3d(x, y, ground) + rng.normal3(sig), 2, layout.ground_object, time);
 }
 
 /// Sparse wall points: uniform on each wall face between terrain and roof edge.
@@ -181,7 +187,9 @@ sampleWalls(const SceneSettings& s, const detail::SceneLayout& layout, const Ter
                                             Eigen::Vector2d(-0.5 * b.length, 0.5 * b.width)};
     for (int e = 0; e < 4; ++e) {
       const Eigen::Vector2d a = uv[e], d = uv[(e + 1) % 4] - uv[e];
-      const double mean_h = b.eave_z + 0.5 * b.ridge_rise * (e % 2) - terrain.height(b.centre.x(), b.centre.y());
+      // Gable end walls (odd edges, across the ridge) rise to the ridge: half of it on average.
+      const double gable = b.roof == RoofType::GABLE ? 0.5 * b.ridge_rise * (e % 2) : 0.0;
+      const double mean_h = b.eave_z + gable - terrain.height(b.centre.x(), b.centre.y());
       const auto n = static_cast<std::size_t>(
           std::lround(s.wall_density_ratio * s.density * d.norm() * std::max(0.0, mean_h)));
       for (std::size_t k = 0; k < n; ++k) {
@@ -247,13 +255,18 @@ makeScene(const SceneSettings& s)
   }
 
   scene.objects = layout.objects;
+  scene.planes = layout.planes;
   for (const auto& b : blocks) {
     scene.cloud->insert(scene.cloud->end(), b.points.begin(), b.points.end());
     scene.object_id.insert(scene.object_id.end(), b.ids.begin(), b.ids.end());
+    scene.plane_id.insert(scene.plane_id.end(), b.planes.begin(), b.planes.end());
   }
   for (int id : scene.object_id)
     if (id >= 0)
       ++scene.objects[id].point_count;
+  for (int id : scene.plane_id)
+    if (id >= 0)
+      ++scene.planes[static_cast<std::size_t>(id)].point_count;
   scene.cloud->width = static_cast<std::uint32_t>(scene.cloud->size());
   scene.cloud->height = 1;
   scene.cloud->is_dense = true;

@@ -160,6 +160,9 @@ layoutScene(const SceneSettings& s, const Terrain& terrain)
           ObjectType::BUILDING, 6, {b.centre.x(), b.centre.y(), g},
           {b.length, b.width, b.eave_z + b.ridge_rise - g}, b.heading));
       out.buildings.push_back(b);
+      out.first_plane.push_back(static_cast<int>(out.planes.size()));
+      for (int k = 0; k < roofPlaneCount(b.roof); ++k)
+        out.planes.push_back({out.building_object.back(), b.roof, k, 0});
     }
 
   const double area_ha = s.size_x * s.size_y / 1e4;
@@ -218,6 +221,8 @@ layoutScene(const SceneSettings& s, const Terrain& terrain)
 
   if (cor.active)
     addPowerLine(s, terrain, rng, cor, out);
+  out.ground_object = addObject(ObjectType::GROUND, 2, {0.0, 0.0, terrain.height(0.0, 0.0)},
+                                {s.size_x, s.size_y, 0.0}, 0.0);
   return out;
 }
 

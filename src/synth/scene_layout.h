@@ -31,6 +31,9 @@ struct SceneLayout
   std::vector<SceneObject> objects;
   std::vector<Building> buildings;
   std::vector<int> building_object;
+  std::vector<int> first_plane;  ///< per building: its plane 0 in LabelledScene::planes
+  std::vector<RoofPlane> planes;
+  int ground_object = -1;
   std::vector<Crown> crowns;
   std::vector<Building> cars;  ///< oriented boxes, eave_z = car top
   std::vector<int> car_object;

@@ -146,6 +146,7 @@ TEST(MultiRuleRegionGrowing, SeedConditionStopsAtRoofWallEdge)
     s.setInputCloud(c);
     s.setNormalAngleThreshold(30.0 * M_PI / 180.0);
     s.setMergeRule(MergeRule::None);
+    s.setOutputLevel(Segmenter::Level::Planes);  // growing alone, before any join
     s.setUseSeedCondition(seed_condition);
     s.setResidualThreshold(0.01);  // 1 cm: interior residuals are ~1 mm, edge ones ≫ 1 cm
     std::vector<pcl::PointIndices> clusters;
@@ -400,6 +401,7 @@ TEST(MultiRuleRegionGrowing, InputNormalsAreUsed)
   s.setInputCloud(c);
   s.setUseSeedCondition(false);
   s.setMergeRule(MergeRule::None);
+  s.setOutputLevel(Segmenter::Level::Planes);  // the planar rule alone, before any join
   std::vector<pcl::PointIndices> clusters;
   s.extract(clusters);
   auto l = labelsOf(clusters, c->size());

@@ -3,7 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 using namespace pcl_ls3d;
 using namespace pcl_ls3d::synth;
@@ -36,16 +40,63 @@ TEST(Synth, SceneClassesAndObjects)
   for (std::size_t i = 0; i < scene.cloud->size(); ++i) {
     const int id = scene.object_id[i];
     const int cls = (*scene.cloud)[i].classification;
-    if (id < 0) {
-      ASSERT_EQ(cls, 2);
-      continue;
-    }
+    ASSERT_GE(id, 0) << "every generated point belongs to an object";
     const ObjectType t = scene.objects[id].type;
+    if (cls == 2)
+      ASSERT_EQ(t, ObjectType::GROUND);
     if (cls >= 3 && cls <= 5)
       ASSERT_TRUE(t == ObjectType::TREE || t == ObjectType::SHRUB);
     else
       ASSERT_EQ(cls, scene.objects[id].classification) << toString(t);
   }
+}
+
+// Roof plane ids: every roof point has one, nothing else does; the points of each plane lie on
+// one plane (RMS distance to their own least-squares plane within the noise), and each building
+// has the planes of its roof type (flat 1, gable 2, hip 4), all hit.
+TEST(Synth, SceneRoofPlanes)
+{
+  auto s = smallScene();
+  s.building_settings.per_hectare = 15.0;
+  const LabelledScene scene = makeScene(s);
+  ASSERT_EQ(scene.plane_id.size(), scene.cloud->size());
+  std::vector<Eigen::Vector3d> sum(scene.planes.size(), Eigen::Vector3d::Zero());
+  std::vector<Eigen::Matrix3d> sq(scene.planes.size(), Eigen::Matrix3d::Zero());
+  std::vector<std::size_t> n(scene.planes.size(), 0);
+  for (std::size_t i = 0; i < scene.cloud->size(); ++i) {
+    const int id = scene.plane_id[i];
+    const auto& p = (*scene.cloud)[i];
+    if (id < 0)
+      continue;
+    ASSERT_EQ(p.classification, 6);
+    ASSERT_EQ(scene.objects[scene.planes[id].object].type, ObjectType::BUILDING);
+    const Eigen::Vector3d x = p.getVector3fMap().cast<double>();
+    sum[id] += x;
+    sq[id] += x * x.transpose();
+    ++n[id];
+  }
+  std::map<int, int> planes_per_building, hips;
+  for (std::size_t k = 0; k < scene.planes.size(); ++k) {
+    ASSERT_GT(n[k], 20u) << "plane " << k;
+    EXPECT_EQ(n[k], scene.planes[k].point_count);
+    const Eigen::Vector3d mean = sum[k] / static_cast<double>(n[k]);
+    const Eigen::Matrix3d cov = sq[k] / static_cast<double>(n[k]) - mean * mean.transpose();
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(cov);
+    EXPECT_LT(std::sqrt(std::max(0.0, es.eigenvalues()[0])), 2.0 * s.noise_sigma) << "plane " << k;
+    ++planes_per_building[scene.planes[k].object];
+    hips[scene.planes[k].object] += scene.planes[k].roof == RoofType::HIP;
+  }
+  ASSERT_GE(planes_per_building.size(), 3u);
+  bool any_hip = false;
+  for (const auto& [object, count] : planes_per_building) {
+    const RoofType roof = scene.planes[static_cast<std::size_t>(
+        std::find_if(scene.planes.begin(), scene.planes.end(),
+                     [o = object](const RoofPlane& p) { return p.object == o; }) -
+        scene.planes.begin())].roof;
+    EXPECT_EQ(count, roofPlaneCount(roof));
+    any_hip |= roof == RoofType::HIP;
+  }
+  EXPECT_TRUE(any_hip);
 }
 
 // Geometry: ground on the terrain within noise; vegetation class matches the height above the

@@ -1,8 +1,9 @@
 #pragma once
 /// \file segmentation_runner.h
 /// \brief Runs one segmentation method on a cloud with timings and the figures a report needs:
-///        IMRG, MRG (pcl_ls3d::MultiRuleRegionGrowing) or PCL's own normals + pcl::RegionGrowing.
-///        Shared by pcl_ls3d_segment, the benchmark and the tests so all three run the same thing.
+///        IMRG, MRG (pcl_ls3d::MultiRuleRegionGrowing), PCL's own normals + pcl::RegionGrowing,
+///        or the voxel-grid baseline. Shared by pcl_ls3d_segment, the benchmark and the tests so
+///        all three run the same thing.
 
 #include <pcl/PointIndices.h>
 #include <pcl/point_cloud.h>
@@ -21,10 +22,20 @@ enum class SegmentationMethod
 {
   IMRG,             ///< MultiRuleRegionGrowing, Mode::IMRG (seed condition + 3-rule merging)
   MRG,              ///< MultiRuleRegionGrowing, Mode::MRG (no seed condition, distance merging)
-  PclRegionGrowing  ///< pcl::NormalEstimationOMP + pcl::RegionGrowing
+  PclRegionGrowing, ///< pcl::NormalEstimationOMP + pcl::RegionGrowing; points in no cluster
+                    ///< (clusters under the minimum size) form one "rest" segment
+  VoxelGrid         ///< non-empty voxels, edge chosen for voxel_segments segments
 };
 
-/// "imrg" / "mrg" / "pcl_rg" and back. parse returns false for anything else.
+/// \brief Which IMRG/MRG stage is returned: the planes of the growing stage (Table 1 of the
+///        paper, before merging) or whole objects (after merging).
+enum class SegmentationLevel
+{
+  Planes,
+  Objects
+};
+
+/// "imrg" / "mrg" / "pcl_rg" / "voxel" and back. parse returns false for anything else.
 std::string
 toString(SegmentationMethod m);
 bool
@@ -46,6 +57,8 @@ struct SegmentationRunSettings
   double volume_threshold = -1.0;         ///< V_t [-]; < 0: adaptive
   int threads = 0;                        ///< OpenMP threads; 0: default
   int min_fragment_size = -1;             ///< absorb segments under this size; < 0: class default
+  SegmentationLevel level = SegmentationLevel::Objects;  ///< IMRG/MRG output stage
+  std::size_t voxel_segments = 0;         ///< VoxelGrid: wanted number of segments (> 0)
 
   int rg_normal_k = 20;                   ///< NormalEstimationOMP k
   int rg_k = 20;                          ///< RegionGrowing k
@@ -71,6 +84,11 @@ struct SegmentationRun
   double similarity_threshold = 0.0;  ///< s_t used [m]
   double volume_threshold = 0.0;      ///< V_t used [-]
   double spacing = 0.0, growth_radius = 0.0, volumetric_radius = 0.0;  ///< [m]
+  double voxel_size = 0.0;            ///< VoxelGrid: edge used
+  std::size_t rest_points = 0;        ///< pcl_rg: points of the "rest" segment (0: none)
+  /// IMRG/MRG: segments of the other level than settings.level (planes when objects were
+  /// returned and vice versa), so one run gives both.
+  std::vector<pcl::PointIndices> other_level;
   std::size_t linear = 0, planar = 0, volumetric = 0, invalid = 0;      ///< points per class
   /// Per input point: 0 linear, 1 planar, 2 volumetric, 255 not processed (empty for pcl_rg).
   std::vector<std::uint8_t> dimensionality;
@@ -83,7 +101,8 @@ struct SegmentationRun
 };
 
 /// \brief Runs settings.method on `cloud` (finite points; local coordinates).
-/// \return false with a one-line reason (invalid settings, empty cloud, no segment found)
+/// \return false with a one-line reason (invalid settings, empty cloud, no segment found);
+///         \a run.seconds_total is set even then, so a failed baseline can still be reported
 bool
 runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
                 const SegmentationRunSettings& settings, SegmentationRun& run, std::string& error);

@@ -5,6 +5,8 @@
 
 #include <pcl_ls3d/segmentation/dimensionality_features.h>
 #include <pcl_ls3d/segmentation/fragment_absorption.h>
+#include <pcl_ls3d/segmentation/ground_filter.h>
+#include <pcl_ls3d/segmentation/object_assembly.h>
 #include <pcl_ls3d/segmentation/rule_growing.h>
 #include <pcl_ls3d/segmentation/segment_merging.h>
 
@@ -44,9 +46,19 @@ namespace pcl_ls3d {
 ///     (backward elimination, α = 0.001) then max of the rest (V_t on ∛ΔV); s_t: smallest gap
 ///     of 3 k-means centres of segment residuals. Flat or collinear segments have hull volume 0;
 ///     ΔV's denominator is floored at n_i·spacing³. See segment_merging.h and segment_hull.h.
+///  5. fragments under setMinFragmentSize() points join their most linked neighbour
+///     (fragment_absorption.h).
+///  6. object assembly (an addition, IMRG mode): a progressive morphological ground filter
+///     marks the ground, each segment gets a kind (ground, solid, wall, rough, linear) and
+///     touching segments of kinds that belong together join into whole objects: a building
+///     (roof planes, walls, edge lines, chimneys), a tree group, the ground, a wire span
+///     (object_assembly.h); fragments are absorbed once more.
+/// Two levels come out of one extract() (setOutputLevel(), getClusters()): Level::Planes, the
+/// segments of step 2–3 (the planes of the paper's Table 1: roof planes, facades, ground
+/// pieces), and Level::Objects, the result of steps 4–6 (default).
 ///
 /// Plain MRG (the paper's comparison) = setMode(Mode::MRG): no seed condition, distance-only
-/// merging. Every adaptive threshold can be overridden by its setter (a negative value restores
+/// merging, no object assembly. Every adaptive threshold can be overridden by its setter (a negative value restores
 /// the adaptive rule) and read after extract().
 template <typename PointT, typename NormalT = pcl::Normal>
 class MultiRuleRegionGrowing : public pcl::PCLBase<PointT>
@@ -73,6 +85,14 @@ public:
   {
     IMRG,
     MRG
+  };
+
+  /// \brief What extract() returns: the planes of the growing stage (the paper's Table 1,
+  ///        before merging) or whole objects (after merging). Both are kept after extract().
+  enum class Level
+  {
+    Planes,
+    Objects
   };
 
   /// \brief Defaults: k = 10..100 step 10, 16 graph neighbours, M_t = 15°, N_t = 10°, IMRG mode.
@@ -123,7 +143,8 @@ public:
   // ---- merging -----------------------------------------------------------------------------
   void setMergeRule(MergeRule rule) { merge_.rule = rule; }
   MergeRule getMergeRule() const { return merge_.rule; }
-  /// \brief Mode::IMRG: seed condition + full merge rule; Mode::MRG: neither (distance only).
+  /// \brief Mode::IMRG: seed condition, full merge rule, object assembly; Mode::MRG: none of
+  ///        them (distance-only merging).
   void setMode(Mode mode);
   /// \brief d_t [m]; negative: adaptive (Baarda snooping over nearest-segment distances).
   void setDistanceThreshold(double d) { merge_.distance_threshold = d; }
@@ -145,8 +166,21 @@ public:
   ///        no point is lost. 30 = pcl::RegionGrowing's usual minimum cluster size.
   void setMinFragmentSize(std::size_t n) { min_fragment_size_ = n; }
   std::size_t getMinFragmentSize() const { return min_fragment_size_; }
-  /// \brief Number of segments absorbed in the last extract().
+  /// \brief Number of segments absorbed in the last extract() (both absorption passes).
   std::size_t getNumberOfAbsorbedFragments() const { return absorbed_fragments_; }
+
+  // ---- object assembly (object level; see segmentation::assembleObjects) -------------------
+  /// \brief Join the merged segments into whole objects (default on; Mode::MRG turns it off).
+  void setObjectAssembly(bool on) { assemble_objects_ = on; }
+  bool getObjectAssembly() const { return assemble_objects_; }
+  /// \brief Rules of the assembly (kinds, links); see segmentation::AssemblySettings.
+  void setAssemblySettings(const segmentation::AssemblySettings& s) { assembly_ = s; }
+  const segmentation::AssemblySettings& getAssemblySettings() const { return assembly_; }
+  /// \brief Largest building width [m] the ground filter must remove (default 60).
+  void setMaxObjectWidth(double w) { ground_filter_.max_window = w; }
+  double getMaxObjectWidth() const { return ground_filter_.max_window; }
+  /// \brief Segments per kind and objects of the last extract().
+  const segmentation::AssemblyReport& getAssemblyReport() const { return assembly_report_; }
 
   /// \brief Wall time [s] of each stage of the last extract().
   struct StageTimes
@@ -156,6 +190,7 @@ public:
     double growing = 0.0;    ///< v_t and rule-based region growing
     double merging = 0.0;    ///< hulls, d_t / s_t / V_t, merge loop (§3.2)
     double absorbing = 0.0;  ///< fragment absorption
+    double assembling = 0.0; ///< ground filter, segment kinds, object assembly
     double total = 0.0;      ///< the whole extract()
   };
   const StageTimes& getStageTimes() const { return stage_times_; }
@@ -177,8 +212,16 @@ public:
   NormalPtr getInputNormals() const { return normals_; }
 
   // ---- run and results -----------------------------------------------------------------------
+  /// \brief Level returned by extract() and used by the per-point getters (default Objects).
+  void setOutputLevel(Level level) { level_ = level; }
+  Level getOutputLevel() const { return level_; }
   /// \brief Segment the cloud. On bad input logs PCL_ERROR and returns no clusters.
   void extract(std::vector<pcl::PointIndices>& clusters);
+  /// \brief Segments of either level from the last extract() (min/max cluster size applied).
+  const std::vector<pcl::PointIndices>& getClusters(Level level) const
+  {
+    return level == Level::Planes ? plane_clusters_ : object_clusters_;
+  }
   /// \brief The cluster containing the cloud point \a index (empty if none).
   void getSegmentFromPoint(pcl::index_t index, pcl::PointIndices& cluster);
   /// \brief Input cloud with one random colour per cluster; other points white.
@@ -197,7 +240,10 @@ protected:
   bool computeFeatures();
   void growSegments();
   void mergeSegments();
-  void assembleRegions();
+  void assembleObjects();
+  /// Clusters (cloud indices) of per-position \a labels, min/max cluster size applied.
+  void assembleRegions(const std::vector<int>& labels, std::vector<pcl::PointIndices>& clusters,
+                       std::vector<int>& cluster_of) const;
 
   // settings
   segmentation::NeighbourhoodSettings nbh_;
@@ -220,13 +266,20 @@ protected:
   std::vector<PointFeatures> features_;       ///< per position
   std::vector<int> graph_;                    ///< k-NN graph, graph_k positions per position
   std::vector<int> segment_of_;               ///< per position: segment id or -1
-  std::vector<pcl::PointIndices> clusters_;   ///< returned clusters (cloud indices)
-  std::vector<int> cluster_of_;               ///< per position: cluster id or -1
+  std::vector<int> plane_of_;                 ///< per position: plane-level segment or -1
+  std::vector<pcl::PointIndices> plane_clusters_;   ///< plane level (cloud indices)
+  std::vector<pcl::PointIndices> object_clusters_;  ///< object level (cloud indices)
+  std::vector<int> plane_cluster_of_, object_cluster_of_;  ///< per position: cluster or -1
+  Level level_ = Level::Objects;
   segmentation::MergeReport merge_report_;
   double spacing_ = 0.0;
   std::size_t initial_segments_ = 0;
   std::size_t min_fragment_size_ = 30;
   std::size_t absorbed_fragments_ = 0;
+  bool assemble_objects_ = true;
+  segmentation::AssemblySettings assembly_;
+  segmentation::GroundFilterSettings ground_filter_;
+  segmentation::AssemblyReport assembly_report_;
   StageTimes stage_times_;
 };
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file buildings.h
-/// \brief Rectangular buildings with flat or gable roofs, placed on a Terrain, and a grid
+/// \brief Rectangular buildings with flat, gable or hip roofs, placed on a Terrain, and a grid
 ///        index that answers "which roof is above (x, y)" in O(1).
 
 #include <pcl_ls3d/synth/terrain.h>
@@ -14,11 +14,17 @@
 namespace pcl_ls3d {
 namespace synth {
 
-enum class RoofType : std::uint8_t { FLAT = 0, GABLE = 1 };
+enum class RoofType : std::uint8_t { FLAT = 0, GABLE = 1, HIP = 2 };
 
-/// \brief An oriented rectangular block. Local axes: u along `heading` (the ridge of a gable
-///        roof), v across. Roof height: eave_z on a flat roof; eave_z + ridge_rise·(1 − |v|/(width/2))
-///        on a gable roof. Walls run from the terrain up to the eave.
+/// \brief Number of roof planes: 1 flat, 2 gable, 4 hip.
+int
+roofPlaneCount(RoofType roof);
+
+/// \brief An oriented rectangular block. Local axes: u along `heading` (the ridge), v across.
+///        Roof height: eave_z on a flat roof; eave_z + ridge_rise·(1 − |v|/(width/2)) on a gable
+///        roof; on a hip roof, with all four planes at the gable's pitch,
+///        eave_z + ridge_rise·min(width/2 − |v|, length/2 − |u|)/(width/2) (ridge length
+///        length − width). Walls run from the terrain up to the roof edge.
 struct Building
 {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< footprint centre [m]
@@ -26,7 +32,7 @@ struct Building
   double width = 10.0;        ///< footprint extent along v [m]
   double heading = 0.0;       ///< angle of u from +x [rad]
   double eave_z = 0.0;        ///< absolute height of the eave (whole flat roof) [m]
-  double ridge_rise = 0.0;    ///< ridge above eave, gable only [m]
+  double ridge_rise = 0.0;    ///< ridge above eave, gable and hip [m]
   RoofType roof = RoofType::FLAT;
 
   /// (u, v) of a horizontal position.
@@ -40,6 +46,11 @@ struct Building
   /// Roof height at (x, y) (meaningful inside the footprint).
   double
   roofHeight(double x, double y) const;
+
+  /// Roof plane under (x, y), 0..roofPlaneCount(roof)−1: gable 0 for v ≥ 0, 1 for v < 0; hip
+  /// the same on the long sides, 2 (u ≥ 0) and 3 (u < 0) on the hipped ends.
+  int
+  roofPlane(double x, double y) const;
 
   /// Radius of the circle around the footprint.
   double
@@ -55,6 +66,7 @@ struct BuildingSettings
   double min_eave = 3.0, max_eave = 9.0;        ///< eave above the highest footprint terrain [m]
   double min_rise = 2.0, max_rise = 4.0;        ///< gable ridge rise [m]
   double gable_fraction = 0.5;                  ///< share of gable roofs
+  double hip_fraction = 0.0;                    ///< share of hip roofs (the rest is flat)
   double gap = 6.0;                             ///< minimum clear distance between buildings [m]
 };
 

@@ -1,8 +1,9 @@
 #pragma once
 /// \file scene.h
-/// \brief A labelled airborne scene for segmentation: terrain, flat and gable roofed buildings
-///        (roofs + sparse walls), trees and shrubs with multiple returns, a power line (lattice
-///        towers + catenary wires) and cars, with ASPRS classes and per-point object ids.
+/// \brief A labelled airborne scene for segmentation: terrain, flat, gable and hip roofed
+///        buildings (roofs + sparse walls), trees and shrubs with multiple returns, a power line
+///        (lattice towers + catenary wires) and cars, with ASPRS classes, an object id for every
+///        point (the terrain is one object) and a plane id for every roof point.
 ///
 /// Classes (PointLiDAR::classification): 2 ground, 6 building (roofs and walls), 3 / 4 / 5 low /
 /// medium / high vegetation by the point's height above the terrain (< low_max, < medium_max,
@@ -31,9 +32,9 @@
 namespace pcl_ls3d {
 namespace synth {
 
-enum class ObjectType : std::uint8_t { BUILDING = 0, TREE, SHRUB, CAR, TOWER, WIRE };
+enum class ObjectType : std::uint8_t { BUILDING = 0, TREE, SHRUB, CAR, TOWER, WIRE, GROUND };
 
-/// "building", "tree", "shrub", "car", "tower", "wire".
+/// "building", "tree", "shrub", "car", "tower", "wire", "ground".
 const char*
 toString(ObjectType t);
 
@@ -46,6 +47,15 @@ struct SceneObject
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< footprint centre on the ground / wire start
   Eigen::Vector3d size = Eigen::Vector3d::Zero();      ///< extent (length, width, height) [m]
   double heading = 0.0;              ///< orientation of the length axis [rad]
+  std::size_t point_count = 0;
+};
+
+/// \brief One roof plane of a generated building.
+struct RoofPlane
+{
+  int object = 0;                      ///< the building's index in LabelledScene::objects
+  RoofType roof = RoofType::FLAT;
+  int index = 0;                       ///< Building::roofPlane() of its points
   std::size_t point_count = 0;
 };
 
@@ -78,6 +88,8 @@ struct SceneSettings
   {
     BuildingSettings b;
     b.per_hectare = 5.0;
+    b.gable_fraction = 1.0 / 3.0;
+    b.hip_fraction = 1.0 / 3.0;
     return b;
   }
 
@@ -90,7 +102,9 @@ struct LabelledScene
 {
   pcl::PointCloud<PointLiDAR>::Ptr cloud;
   std::vector<SceneObject> objects;
-  std::vector<int> object_id;  ///< per point: index in objects, −1 for ground
+  std::vector<int> object_id;  ///< per point: index in objects (the terrain is one GROUND object)
+  std::vector<RoofPlane> planes;  ///< roof planes of all buildings
+  std::vector<int> plane_id;   ///< per point: index in planes for roof points, −1 otherwise
   std::shared_ptr<const SurfaceModel> surface;  ///< terrain + buildings
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
 

@@ -42,6 +42,7 @@ void
 MultiRuleRegionGrowing<PointT, NormalT>::setMode(Mode mode)
 {
   grow_.use_seed_condition = (mode == Mode::IMRG);
+  assemble_objects_ = (mode == Mode::IMRG);
   merge_.rule = (mode == Mode::IMRG) ? MergeRule::DistanceSimilarityVolume
                                      : MergeRule::DistanceOnly;
 }
@@ -51,15 +52,19 @@ void
 MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>& clusters)
 {
   clusters.clear();
-  clusters_.clear();
-  cluster_of_.clear();
+  plane_clusters_.clear();
+  object_clusters_.clear();
+  plane_cluster_of_.clear();
+  object_cluster_of_.clear();
   features_.clear();
   segment_of_.clear();
+  plane_of_.clear();
   merge_report_ = segmentation::MergeReport{};
   grow_.residual_threshold = std::numeric_limits<double>::quiet_NaN();
   initial_segments_ = 0;
 
   absorbed_fragments_ = 0;
+  assembly_report_ = segmentation::AssemblyReport{};
   stage_times_ = StageTimes{};
 
   pcl::StopWatch watch;
@@ -82,6 +87,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   }
   lap(stage_times_.features);
   growSegments();
+  plane_of_ = segment_of_;
   lap(stage_times_.growing);
   mergeSegments();
   lap(stage_times_.merging);
@@ -89,14 +95,18 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
     absorbed_fragments_ = segmentation::absorbFragments(graph_, grow_.graph_k, segment_of_,
                                                         min_fragment_size_);
   lap(stage_times_.absorbing);
-  assembleRegions();
-  clusters = clusters_;
+  if (assemble_objects_)
+    assembleObjects();
+  lap(stage_times_.assembling);
+  assembleRegions(plane_of_, plane_clusters_, plane_cluster_of_);
+  assembleRegions(segment_of_, object_clusters_, object_cluster_of_);
+  clusters = getClusters(level_);
   stage_times_.total = watch.getTimeSeconds();
   PCL_DEBUG("[pcl_ls3d::%s::extract] %zu points: search %.2f s, features %.2f s, growing %.2f s, "
             "merging %.2f s, absorbing %.2f s; %zu -> %zu segments (%zu fragments absorbed).\n",
             getClassName().c_str(), points_.size(), stage_times_.search, stage_times_.features,
             stage_times_.growing, stage_times_.merging, stage_times_.absorbing,
-            initial_segments_, clusters_.size(), absorbed_fragments_);
+            initial_segments_, object_clusters_.size(), absorbed_fragments_);
   deinitCompute();
 }
 
@@ -271,21 +281,43 @@ MultiRuleRegionGrowing<PointT, NormalT>::mergeSegments()
 
 template <typename PointT, typename NormalT>
 void
-MultiRuleRegionGrowing<PointT, NormalT>::assembleRegions()
+MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
 {
-  const int n_labels =
-      segment_of_.empty() ? 0 : *std::max_element(segment_of_.begin(), segment_of_.end()) + 1;
+  // Grid cells of two spacings hold a few points each at any density.
+  segmentation::GroundFilterSettings g = ground_filter_;
+  g.cell = 2.0 * spacing_;
+  const std::vector<char> ground = segmentation::groundPoints(points_, g);
+  std::vector<float> residuals(features_.size());
+  for (std::size_t p = 0; p < features_.size(); ++p)
+    residuals[p] = features_[p].residual;
+  segmentation::AssemblySettings a = assembly_;
+  a.max_link_length = grow_.growth_radius;  // touching = as close as growth may step
+  assembly_report_ = segmentation::assembleObjects(points_, graph_, grow_.graph_k, residuals,
+                                                   ground, a, segment_of_);
+  if (min_fragment_size_ > 1)
+    absorbed_fragments_ += segmentation::absorbFragments(graph_, grow_.graph_k, segment_of_,
+                                                         min_fragment_size_);
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::assembleRegions(const std::vector<int>& labels,
+                                                         std::vector<pcl::PointIndices>& clusters,
+                                                         std::vector<int>& cluster_of) const
+{
+  const int n_labels = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
   std::vector<pcl::PointIndices> all(static_cast<std::size_t>(std::max(0, n_labels)));
-  for (std::size_t p = 0; p < segment_of_.size(); ++p)
-    if (segment_of_[p] >= 0)
-      all[segment_of_[p]].indices.push_back(valid_indices_[p]);
-  cluster_of_.assign(segment_of_.size(), -1);
+  for (std::size_t p = 0; p < labels.size(); ++p)
+    if (labels[p] >= 0)
+      all[labels[p]].indices.push_back(valid_indices_[p]);
+  clusters.clear();
+  cluster_of.assign(labels.size(), -1);
   for (auto& c : all) {
     if (c.indices.size() < min_cluster_size_ || c.indices.size() > max_cluster_size_)
       continue;
     for (const auto i : c.indices)
-      cluster_of_[position_of_[i]] = static_cast<int>(clusters_.size());
-    clusters_.push_back(std::move(c));
+      cluster_of[position_of_[i]] = static_cast<int>(clusters.size());
+    clusters.push_back(std::move(c));
   }
 }
 
@@ -298,9 +330,10 @@ MultiRuleRegionGrowing<PointT, NormalT>::getSegmentFromPoint(pcl::index_t index,
   if (index < 0 || static_cast<std::size_t>(index) >= position_of_.size())
     return;
   const int pos = position_of_[index];
-  if (pos < 0 || static_cast<std::size_t>(pos) >= cluster_of_.size() || cluster_of_[pos] < 0)
+  const auto& of = level_ == Level::Planes ? plane_cluster_of_ : object_cluster_of_;
+  if (pos < 0 || static_cast<std::size_t>(pos) >= of.size() || of[pos] < 0)
     return;
-  cluster = clusters_[cluster_of_[pos]];
+  cluster = getClusters(level_)[of[pos]];
 }
 
 template <typename PointT, typename NormalT>
@@ -308,7 +341,8 @@ pcl::PointCloud<pcl::PointXYZRGB>::Ptr
 MultiRuleRegionGrowing<PointT, NormalT>::getColoredCloud() const
 {
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr out;
-  if (!input_ || clusters_.empty())
+  const auto& clusters = getClusters(level_);
+  if (!input_ || clusters.empty())
     return out;
   out.reset(new pcl::PointCloud<pcl::PointXYZRGB>);
   out->resize(input_->size());
@@ -318,7 +352,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::getColoredCloud() const
   }
   std::mt19937 rng(12345);
   std::uniform_int_distribution<int> colour(0, 255);
-  for (const auto& c : clusters_) {
+  for (const auto& c : clusters) {
     const auto r = static_cast<std::uint8_t>(colour(rng));
     const auto g = static_cast<std::uint8_t>(colour(rng));
     const auto b = static_cast<std::uint8_t>(colour(rng));
@@ -360,8 +394,9 @@ std::vector<int>
 MultiRuleRegionGrowing<PointT, NormalT>::getPointLabels() const
 {
   std::vector<int> out(position_of_.size(), -1);
-  for (std::size_t p = 0; p < cluster_of_.size(); ++p)
-    out[valid_indices_[p]] = cluster_of_[p];
+  const auto& of = level_ == Level::Planes ? plane_cluster_of_ : object_cluster_of_;
+  for (std::size_t p = 0; p < of.size(); ++p)
+    out[valid_indices_[p]] = of[p];
   return out;
 }
 

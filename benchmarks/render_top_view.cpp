@@ -1,0 +1,157 @@
+/// \file render_top_view.cpp
+/// \brief Top-view PNG of a segmented or classified cloud, to look at a segmentation as a user
+///        would: each pixel shows the highest point's colour, and pixels whose neighbour shows
+///        another segment are darkened so segment borders (and fragmentation) are visible.
+///
+/// Usage: render_top_view INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class]
+///   INPUT  SEGMENTS.pcd of pcl_ls3d_segment (x y z rgba label), or any cloud pcl_ls3d reads
+///          (-by class colours by the LAS classification / PCD label with a fixed palette)
+///   -pixel pixel size in cloud units (default 0.25)
+///   -splat each point also paints the pixels within n of its own (default 1: 3 × 3)
+///   -by    rgb: the file's colours (default for PCD with rgba); label: a colour per label;
+///          class: ASPRS palette (ground brown, vegetation greens, building red, wire yellow)
+/// Not run by CTest: a viewing aid for docs/BENCHMARKS.md.
+
+#include <pcl_ls3d/evaluation/segmentation_labels.h>
+#include <pcl_ls3d/io/cloud_io.h>
+
+#include <pcl/console/parse.h>
+#include <pcl/io/pcd_io.h>
+#include <pcl/io/png_io.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct Sample
+{
+  float x, y, z;
+  std::uint32_t rgb;    ///< 0x00RRGGBB
+  std::uint32_t label;  ///< segment or class: borders are drawn between different labels
+};
+
+/// ASPRS classes: ground brown, low/medium/high vegetation light to dark green, building red,
+/// wire yellow, tower orange, user classes (cars: 64) blue, unclassified grey.
+std::uint32_t
+classColour(std::uint32_t c)
+{
+  switch (c) {
+    case 2: return 0xa0785a;
+    case 3: return 0x9ad07a;
+    case 4: return 0x4caf50;
+    case 5: return 0x1b5e20;
+    case 6: return 0xd03030;
+    case 14: return 0xffe000;
+    case 15: return 0xff8c00;
+    case 9: return 0x3070ff;
+    default: return c >= 64 ? 0x2040c0 : 0x909090;
+  }
+}
+
+bool
+loadSamples(const std::string& path, const std::string& by, std::vector<Sample>& out)
+{
+  if (by != "class" && pcl_ls3d::io::fileExtension(path) == "pcd") {
+    pcl::PointCloud<pcl::PointXYZRGBL> c;
+    if (pcl::io::loadPCDFile(path, c) < 0)
+      return false;
+    for (const auto& p : c.points)
+      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+        out.push_back({p.x, p.y, p.z,
+                       by == "label" ? pcl_ls3d::evaluation::segmentColour(p.label)
+                                     : (p.rgba & 0xffffffu),
+                       p.label});
+    return true;
+  }
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> c;
+  pcl_ls3d::io::CloudInfo info;
+  std::string error;
+  if (!pcl_ls3d::io::loadCloud(path, c, info, error)) {
+    std::fprintf(stderr, "%s\n", error.c_str());
+    return false;
+  }
+  for (const auto& p : c.points)
+    out.push_back({p.x, p.y, p.z, classColour(p.classification), p.classification});
+  return true;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  std::vector<int> files = pcl::console::parse_file_extension_argument(argc, argv, ".png");
+  if (argc < 3 || files.empty()) {
+    std::printf("Usage: %s INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class]\n", argv[0]);
+    return 1;
+  }
+  double pixel = 0.25;
+  int splat = 1;
+  std::string by = "rgb";
+  pcl::console::parse_argument(argc, argv, "-pixel", pixel);
+  pcl::console::parse_argument(argc, argv, "-splat", splat);
+  pcl::console::parse_argument(argc, argv, "-by", by);
+  const std::string input = argv[1], output = argv[files.front()];
+  std::vector<Sample> pts;
+  if (!(pixel > 0.0) || splat < 0 || !loadSamples(input, by, pts) || pts.empty()) {
+    std::fprintf(stderr, "render_top_view: cannot read '%s' or bad options\n", input.c_str());
+    return 1;
+  }
+  float x0 = pts[0].x, x1 = x0, y0 = pts[0].y, y1 = y0;
+  for (const auto& p : pts) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  const int w = static_cast<int>((x1 - x0) / pixel) + 1, h = static_cast<int>((y1 - y0) / pixel) + 1;
+  if (static_cast<double>(w) * h > 64e6) {
+    std::fprintf(stderr, "render_top_view: image %d x %d too large, raise -pixel\n", w, h);
+    return 1;
+  }
+  // z-buffer: highest point per pixel; a point's own pixel beats its splats at equal height.
+  std::vector<float> top(static_cast<std::size_t>(w) * h, -std::numeric_limits<float>::infinity());
+  std::vector<const Sample*> owner(top.size(), nullptr);
+  for (const auto& p : pts) {
+    const int cx = static_cast<int>((p.x - x0) / pixel), cy = h - 1 - static_cast<int>((p.y - y0) / pixel);
+    for (int dy = -splat; dy <= splat; ++dy)
+      for (int dx = -splat; dx <= splat; ++dx) {
+        const int x = cx + dx, y = cy + dy;
+        if (x < 0 || y < 0 || x >= w || y >= h)
+          continue;
+        const float z = p.z - 0.05f * static_cast<float>(std::abs(dx) + std::abs(dy));
+        const std::size_t i = static_cast<std::size_t>(y) * w + x;
+        if (z > top[i]) {
+          top[i] = z;
+          owner[i] = &p;
+        }
+      }
+  }
+  std::vector<unsigned char> rgb(top.size() * 3, 255);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * w + x;
+      const Sample* s = owner[i];
+      if (!s)
+        continue;
+      bool border = false;
+      for (const auto& [ox, oy] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        if (x + ox >= w || y + oy >= h)
+          continue;
+        const Sample* t = owner[static_cast<std::size_t>(y + oy) * w + x + ox];
+        border |= t && t->label != s->label;
+      }
+      const double f = border ? 0.35 : 1.0;
+      rgb[3 * i] = static_cast<unsigned char>(((s->rgb >> 16) & 0xff) * f);
+      rgb[3 * i + 1] = static_cast<unsigned char>(((s->rgb >> 8) & 0xff) * f);
+      rgb[3 * i + 2] = static_cast<unsigned char>((s->rgb & 0xff) * f);
+    }
+  pcl::io::saveRgbPNGFile(output, rgb.data(), w, h);
+  std::printf("Wrote %s (%d x %d pixels of %.3g, %zu points, x %.1f..%.1f, y %.1f..%.1f)\n",
+              output.c_str(), w, h, pixel, pts.size(), x0, x1, y0, y1);
+  return 0;
+}

@@ -1,0 +1,57 @@
+#pragma once
+/// \file ground_filter.h
+/// \brief The progressive morphological ground filter (Zhang et al. 2003, the algorithm of
+///        pcl::ApproximateProgressiveMorphologicalFilter) on a horizontal grid of lowest points,
+///        with separable O(1)-per-cell min/max filters so that windows wider than a building
+///        stay cheap at a million points. PCL-free; used by the object level of IMRG
+///        (object_assembly.h).
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace pcl_ls3d {
+namespace segmentation {
+
+/// \brief Lowest z per cell of a horizontal grid over the points (NaN for empty cells).
+class LowestPointGrid
+{
+public:
+  LowestPointGrid(const std::vector<Eigen::Vector3f>& points, double cell);
+
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+  double cell() const { return cell_; }
+  /// Row-major cell index of a point (clamped into the grid).
+  int cellOf(const Eigen::Vector3f& p) const;
+  /// Lowest z per cell, row-major; NaN where no point fell.
+  const std::vector<float>& lowest() const { return lowest_; }
+
+private:
+  double cell_ = 1.0;
+  Eigen::Vector2d min_ = Eigen::Vector2d::Zero();
+  int rows_ = 0, cols_ = 0;
+  std::vector<float> lowest_;
+};
+
+/// \brief Settings of groundPoints(); lengths in cloud units.
+struct GroundFilterSettings
+{
+  double cell = 1.0;              ///< grid cell
+  double max_window = 60.0;       ///< largest structuring element: wider than any building
+  double slope = 0.5;             ///< terrain slope allowed between two window sizes
+  double initial_distance = 0.3;  ///< height above the opened surface still ground (noise)
+  double max_distance = 3.0;      ///< cap of the height threshold (lowest roof height)
+};
+
+/// \brief Progressive morphological filter: windows of 3, 5, 9, 17, ... cells (up to
+///        max_window); at each, the grid of lowest points is opened (min then max filter,
+///        separable, O(1) per cell with a monotone queue) and a point higher than the opened
+///        surface by more than dh_k = min(max_distance, initial + slope · (w_k − w_{k−1}) · cell)
+///        (dh_0 = initial) is not ground. Empty cells take the values their windows give them.
+/// \return per point: 1 ground, 0 not ground
+std::vector<char>
+groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSettings& settings);
+
+}  // namespace segmentation
+}  // namespace pcl_ls3d

@@ -1,0 +1,68 @@
+#pragma once
+/// \file object_assembly.h
+/// \brief The object level of IMRG: segments after the §3.2 merging joined into whole objects
+///        (ground, a building, a tree group, a car, a wire span). An addition to Wang et al. 2021,
+///        whose merging joins fragments into segments but leaves a building as its roof planes
+///        and walls and a tree group as crowns. PCL-free.
+///
+/// Each segment gets a kind from its geometry (segment_kinds.h: ground, linear, rough, wall,
+/// solid).
+/// Segments touch through k-NN links no longer than max_link_length (at least min_links of
+/// them). Touching segments join when their kinds belong together: ground with ground; solid
+/// and wall with solid and wall (roof planes and walls: a building); rough with rough (a tree
+/// group). Then, repeated until nothing changes: a linear segment joins the non-linear,
+/// non-ground group that at least edge_share of its points touch (an edge line along its roof;
+/// a wire span touching its tower with its last points stays a span); a group whose contacts
+/// go (enclosure_share) to one building at least 1/enclosure_size_ratio times its size joins
+/// that building (a chimney, a dormer). Nothing joins the ground, and lines never join lines:
+/// two spans of a wire meet end to end at their tower.
+/// Kinds come from the segments before any join, so the joins do not depend on their order.
+
+#include <pcl_ls3d/segmentation/segment_adjacency.h>
+#include <pcl_ls3d/segmentation/segment_kinds.h>
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace segmentation {
+
+/// \brief Settings of assembleObjects(); lengths in cloud units.
+struct AssemblySettings
+{
+  KindSettings kinds;            ///< what makes a segment ground, linear, rough, wall, solid
+  std::size_t min_links = 3;     ///< weaker contacts never join
+  double max_link_length = 1.0;  ///< longer k-NN links do not make segments touch (the class
+                                 ///< sets its growth radius)
+  double edge_share = 0.25;      ///< share of a linear segment's points touching a group to
+                                 ///< join it (a wire span touches its tower with about 10 %)
+  double enclosure_share = 0.8;  ///< share of a group's contacts with one building to join it
+  double enclosure_size_ratio = 0.2;  ///< ... if at most this fraction of the building's size
+};
+
+/// \brief What assembleObjects() did.
+struct AssemblyReport
+{
+  std::size_t segments_before = 0, objects = 0;
+  std::size_t kind_count[5] = {0, 0, 0, 0, 0};  ///< segments per SegmentKind
+  double ground_residual = 0.0;  ///< median residual of the ground points (roughness unit)
+};
+
+/// \brief Joins touching segments into objects by the rules of the file comment; \a labels is
+///        relabelled densely (−1 stays −1).
+/// \param[in] points coordinates per point
+/// \param[in] graph k-NN graph, \a graph_k positions per point, −1 padded
+/// \param[in] residuals plane-fit residual per point (PointFeatures::residual)
+/// \param[in] ground per point: 1 if the ground filter keeps it
+/// \param[in,out] labels segment per point (dense 0..n−1, −1 none)
+AssemblyReport
+assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
+                int graph_k, const std::vector<float>& residuals, const std::vector<char>& ground,
+                const AssemblySettings& settings, std::vector<int>& labels);
+
+}  // namespace segmentation
+}  // namespace pcl_ls3d

@@ -1,0 +1,223 @@
+/// \file object_assembly.cpp
+/// \brief The joining of touching segments into objects.
+
+#include <pcl_ls3d/segmentation/object_assembly.h>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+
+namespace pcl_ls3d {
+namespace segmentation {
+namespace {
+
+bool
+structural(SegmentKind k)
+{
+  return k == SegmentKind::Solid || k == SegmentKind::Wall;
+}
+
+/// May two touching segments (a, b) with \a links links join symmetrically? Linear segments
+/// never do: two spans of a wire meet end to end at their tower, and joining them would make
+/// one object of two; attachLines() places lines that run along a structure.
+bool
+joinable(int a, int b, std::size_t links, const std::vector<SegmentShape>& shapes,
+         const std::vector<SegmentKind>& kind, const AssemblySettings& s)
+{
+  if (links < s.min_links)
+    return false;
+  const SegmentKind ka = kind[static_cast<std::size_t>(a)], kb = kind[static_cast<std::size_t>(b)];
+  if (ka == SegmentKind::Ground || kb == SegmentKind::Ground)
+    return ka == kb;
+  if (structural(ka) && structural(kb))
+    return true;
+  if (ka == SegmentKind::Rough && kb == SegmentKind::Rough)
+    return true;
+  return false;
+}
+
+/// The point-level contacts the attachments look at.
+struct Contacts
+{
+  const std::vector<Eigen::Vector3f>& points;
+  const std::vector<int>& graph;
+  int graph_k;
+  const std::vector<int>& labels;
+  double max_sq;
+};
+
+/// Union-find over segments.
+class Groups
+{
+public:
+  explicit Groups(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int find(int s)
+  {
+    while (parent_[static_cast<std::size_t>(s)] != s) {
+      const int up = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(s)])];
+      parent_[static_cast<std::size_t>(s)] = up;
+      s = up;
+    }
+    return s;
+  }
+  void unite(int a, int b)
+  {
+    const int ra = find(a), rb = find(b);
+    if (ra != rb)
+      parent_[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
+  }
+
+private:
+  std::vector<int> parent_;
+};
+
+std::size_t
+countRoots(Groups& groups, std::size_t n)
+{
+  std::size_t roots = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    roots += groups.find(static_cast<int>(i)) == static_cast<int>(i);
+  return roots;
+}
+
+/// Places each linear segment (lines never join each other) into the one non-linear,
+/// non-ground group that most of its points touch, if at least edge_share of its points have
+/// a neighbour there (an edge line along a roof, a branch in a crown). A wire span touches
+/// its tower only with the few points at its end and stays alone; a line between a roof and
+/// a tree joins one of them, never bridging the two.
+void
+attachLines(const Contacts& c, const std::vector<SegmentShape>& shapes,
+            const std::vector<SegmentKind>& kind, const AssemblySettings& s, Groups& groups)
+{
+  std::map<std::pair<int, int>, std::size_t> touching;  // (line, other root) -> line points
+  std::vector<int> seen;
+  for (std::size_t p = 0; p < c.labels.size(); ++p) {
+    const int line = c.labels[p];
+    if (line < 0 || kind[static_cast<std::size_t>(line)] != SegmentKind::Linear)
+      continue;
+    seen.clear();
+    for (int g = 0; g < c.graph_k; ++g) {
+      const int q = c.graph[p * static_cast<std::size_t>(c.graph_k) + static_cast<std::size_t>(g)];
+      if (q < 0 || c.labels[static_cast<std::size_t>(q)] < 0 ||
+          (c.points[p] - c.points[static_cast<std::size_t>(q)]).squaredNorm() > c.max_sq)
+        continue;
+      const int other = c.labels[static_cast<std::size_t>(q)];
+      const SegmentKind ko = kind[static_cast<std::size_t>(other)];
+      if (ko == SegmentKind::Linear || ko == SegmentKind::Ground)
+        continue;
+      const int root = groups.find(other);
+      if (std::find(seen.begin(), seen.end(), root) == seen.end()) {
+        seen.push_back(root);
+        ++touching[{line, root}];
+      }
+    }
+  }
+  std::vector<int> target(shapes.size(), -1);
+  std::vector<std::size_t> best(shapes.size(), 0);
+  for (const auto& [pair, count] : touching)
+    if (count > best[static_cast<std::size_t>(pair.first)]) {
+      best[static_cast<std::size_t>(pair.first)] = count;
+      target[static_cast<std::size_t>(pair.first)] = pair.second;
+    }
+  for (std::size_t line = 0; line < shapes.size(); ++line)
+    if (target[line] >= 0 &&
+        static_cast<double>(best[line]) >= s.edge_share * static_cast<double>(shapes[line].n))
+      groups.unite(static_cast<int>(line), target[line]);
+}
+
+/// A non-linear, non-ground group whose contacts go (enclosure_share of its links) to one
+/// building group at least 1/enclosure_size_ratio times larger sits on it and joins it: a
+/// chimney, dormer or roof window. A car on the ground or a tree beside a house has other
+/// contacts; the size ratio keeps a crown that only touches a roof out of the building.
+void
+attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<SegmentShape>& shapes,
+               const std::vector<SegmentKind>& kind, const AssemblySettings& s, Groups& groups)
+{
+  const std::size_t n = shapes.size();
+  std::vector<std::size_t> size(n, 0), total(n, 0);
+  std::vector<char> eligible(n, 1);  // roots whose members are neither ground nor linear
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto r = static_cast<std::size_t>(groups.find(static_cast<int>(i)));
+    size[r] += shapes[i].n;
+    if (kind[i] == SegmentKind::Ground || kind[i] == SegmentKind::Linear)
+      eligible[r] = 0;
+  }
+  std::map<std::pair<int, int>, std::size_t> links;  // (root, other root) -> links
+  for (const SegmentLink& l : adjacency) {
+    const int ra = groups.find(l.a), rb = groups.find(l.b);
+    if (ra == rb)
+      continue;
+    links[{ra, rb}] += l.links;
+    links[{rb, ra}] += l.links;
+    total[static_cast<std::size_t>(ra)] += l.links;
+    total[static_cast<std::size_t>(rb)] += l.links;
+  }
+  std::vector<int> target(n, -1);
+  std::vector<std::size_t> best(n, 0);
+  for (const auto& [pair, count] : links) {
+    const auto from = static_cast<std::size_t>(pair.first), to = static_cast<std::size_t>(pair.second);
+    // Only a building takes what sits on it: a roof piece enclosed by a crown stays a roof
+    // piece. A root's kind stands for its group (joins keep kind families apart).
+    if (eligible[from] && structural(kind[to]) && size[to] > 20 * size[from] && count > best[from]) {
+      best[from] = count;
+      target[from] = pair.second;
+    }
+  }
+  for (std::size_t r = 0; r < n; ++r) {
+    if (target[r] >= 0 && best[r] >= s.min_links &&
+        static_cast<double>(best[r]) >= s.enclosure_share * static_cast<double>(total[r]))
+      groups.unite(static_cast<int>(r), target[r]);
+  }
+}
+
+}  // namespace
+
+AssemblyReport
+assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
+                int graph_k, const std::vector<float>& residuals, const std::vector<char>& ground,
+                const AssemblySettings& settings, std::vector<int>& labels)
+{
+  AssemblyReport rep;
+  if (points.size() != labels.size() || ground.size() != labels.size() ||
+      residuals.size() != labels.size())
+    return rep;
+  const auto shapes = segmentShapes(points, labels, residuals, ground);
+  rep.ground_residual = groundResidual(residuals, ground);
+  std::vector<SegmentKind> kind(shapes.size());
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    kind[s] = kindOf(shapes[s], rep.ground_residual, settings.kinds);
+    ++rep.kind_count[static_cast<int>(kind[s])];
+  }
+  rep.segments_before = shapes.size();
+
+  Groups groups(shapes.size());
+  const std::vector<SegmentLink> adjacency = segmentAdjacency(points, graph, graph_k, labels, settings.max_link_length);
+  for (const SegmentLink& l : adjacency)
+    if (joinable(l.a, l.b, l.links, shapes, kind, settings))
+      groups.unite(l.a, l.b);
+  const Contacts contacts{points, graph, graph_k, labels,
+                          settings.max_link_length * settings.max_link_length};
+  // Attachments see groups, and each one can complete another (a roof takes its chimney, then
+  // the edge line along both): repeat until nothing joins.
+  for (std::size_t before = 0, after = 1; before != after;) {
+    before = countRoots(groups, shapes.size());
+    attachLines(contacts, shapes, kind, settings, groups);
+    attachEnclosed(adjacency, shapes, kind, settings, groups);
+    after = countRoots(groups, shapes.size());
+  }
+  std::vector<int> dense(shapes.size(), -1);
+  int next = 0;
+  for (int& l : labels) {
+    if (l < 0)
+      continue;
+    const int root = groups.find(l);
+    if (dense[static_cast<std::size_t>(root)] < 0)
+      dense[static_cast<std::size_t>(root)] = next++;
+    l = dense[static_cast<std::size_t>(root)];
+  }
+  rep.objects = static_cast<std::size_t>(next);
+  return rep;
+}
+
+}  // namespace segmentation
+}  // namespace pcl_ls3d

@@ -1,0 +1,190 @@
+// The object level of IMRG against constructed scenes with known parts: a gable-roofed house
+// with walls, two touching tree crowns and a crown leaning on the house, on flat ground; and a
+// wire of two spans meeting at a cross arm. Also the link counting between segments.
+#include "segmentation/scenes.h"
+
+#include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
+#include <pcl_ls3d/segmentation/segment_adjacency.h>
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+using Segmenter = pcl_ls3d::MultiRuleRegionGrowing<pcl::PointXYZ>;
+using Cloud = seg_test::Cloud;
+
+namespace {
+
+/// Part of the scene each point belongs to.
+enum Part { GROUND, ROOF_A, ROOF_B, WALL, TREE_1, TREE_2, TREE_3, SPAN_1, SPAN_2, ARM };
+
+void
+add(Cloud& c, std::vector<int>& part, std::size_t from, Part p)
+{
+  part.resize(c.size(), p);
+  for (std::size_t i = from; i < c.size(); ++i)
+    part[i] = p;
+}
+
+/// Per part: the share of its points held by the segment that holds most of them, and that
+/// segment's label.
+std::map<int, std::pair<double, int>>
+largestShares(const std::vector<int>& labels, const std::vector<int>& part)
+{
+  std::map<int, std::map<int, std::size_t>> count;
+  std::map<int, std::size_t> total;
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    ++count[part[i]][labels[i]];
+    ++total[part[i]];
+  }
+  std::map<int, std::pair<double, int>> out;
+  for (const auto& [p, by_label] : count) {
+    std::size_t best = 0;
+    int label = -1;
+    for (const auto& [l, n] : by_label)
+      if (l >= 0 && n > best) {
+        best = n;
+        label = l;
+      }
+    out[p] = {static_cast<double>(best) / static_cast<double>(total[p]), label};
+  }
+  return out;
+}
+
+std::vector<int>
+extractLabels(Segmenter& s, const Cloud::Ptr& c, Segmenter::Level level)
+{
+  s.setInputCloud(c);
+  s.setOutputLevel(level);
+  std::vector<pcl::PointIndices> clusters;
+  s.extract(clusters);
+  EXPECT_FALSE(clusters.empty());
+  return s.getPointLabels();
+}
+
+}  // namespace
+
+TEST(ObjectAssembly, HouseTreesAndGroundBecomeWholeObjects)
+{
+  std::mt19937 rng(21);
+  Cloud::Ptr c(new Cloud);
+  std::vector<int> part;
+  std::uniform_real_distribution<float> u(-0.02f, 0.02f);
+  // Ground outside the house footprint [0, 12] × [0, 8].
+  for (float x = -15.f; x <= 40.f; x += 0.3f)
+    for (float y = -12.f; y <= 20.f; y += 0.3f)
+      if (!(x > -0.1f && x < 12.1f && y > -0.1f && y < 8.1f))
+        c->push_back(pcl::PointXYZ(x, y, u(rng)));
+  add(*c, part, 0, GROUND);
+  // Gable roof: eave 5 m at y = 0 and y = 8, ridge 7 m at y = 4 (27° pitch).
+  std::size_t from = c->size();
+  for (float x = 0.f; x <= 12.f; x += 0.25f)
+    for (float y = 0.f; y < 4.f; y += 0.25f)
+      c->push_back(pcl::PointXYZ(x, y, 5.f + 0.5f * y + u(rng)));
+  add(*c, part, from, ROOF_A);
+  from = c->size();
+  for (float x = 0.f; x <= 12.f; x += 0.25f)
+    for (float y = 4.f; y <= 8.f; y += 0.25f)
+      c->push_back(pcl::PointXYZ(x, y, 5.f + 0.5f * (8.f - y) + u(rng)));
+  add(*c, part, from, ROOF_B);
+  // Sparse walls (0.5 m grid) on the four sides, up to the eave.
+  from = c->size();
+  seg_test::addWall(*c, 12.f, 0.f, 8.f, 0.3f, 4.8f, 0.5f, 0.02f, rng);
+  seg_test::addWall(*c, 0.f, 0.f, 8.f, 0.3f, 4.8f, 0.5f, 0.02f, rng);
+  for (float x = 0.f; x <= 12.f; x += 0.5f)
+    for (float z = 0.3f; z <= 4.8f; z += 0.5f) {
+      c->push_back(pcl::PointXYZ(x, 0.f + u(rng), z));
+      c->push_back(pcl::PointXYZ(x, 8.f + u(rng), z));
+    }
+  add(*c, part, from, WALL);
+  // Two touching crowns beside the house and a crown leaning on its far wall.
+  from = c->size();
+  seg_test::addBlob(*c, 25.f, 2.f, 6.f, 3.f, 2500, rng);
+  add(*c, part, from, TREE_1);
+  from = c->size();
+  seg_test::addBlob(*c, 25.f, 7.5f, 6.f, 3.f, 2500, rng);
+  add(*c, part, from, TREE_2);
+  from = c->size();
+  seg_test::addBlob(*c, 15.f, 4.f, 6.f, 2.8f, 2000, rng);
+  add(*c, part, from, TREE_3);
+
+  Segmenter s;
+  auto shares = largestShares(extractLabels(s, c, Segmenter::Level::Objects), part);
+  const auto& kinds = s.getAssemblyReport().kind_count;
+  EXPECT_GT(kinds[static_cast<int>(pcl_ls3d::segmentation::SegmentKind::Rough)], 0u);
+  // The house (both roof planes and the walls) is one object; so is the ground.
+  EXPECT_GE(shares[ROOF_A].first, 0.95);
+  EXPECT_EQ(shares[ROOF_A].second, shares[ROOF_B].second);
+  EXPECT_GE(shares[ROOF_B].first, 0.95);
+  EXPECT_EQ(shares[WALL].second, shares[ROOF_A].second);
+  EXPECT_GE(shares[WALL].first, 0.6);  // wall feet join the ground
+  EXPECT_GE(shares[GROUND].first, 0.98);
+  // Touching crowns form one group, apart from the house and from the ground.
+  EXPECT_GE(shares[TREE_1].first, 0.9);
+  EXPECT_EQ(shares[TREE_1].second, shares[TREE_2].second);
+  EXPECT_NE(shares[TREE_1].second, shares[ROOF_A].second);
+  EXPECT_NE(shares[TREE_1].second, shares[GROUND].second);
+  // The crown leaning on the house stays a tree: it never joins the roof.
+  EXPECT_GE(shares[TREE_3].first, 0.8);
+  EXPECT_NE(shares[TREE_3].second, shares[ROOF_A].second);
+
+  // Plane level: the gable is two planes.
+  Segmenter planes;
+  shares = largestShares(extractLabels(planes, c, Segmenter::Level::Planes), part);
+  EXPECT_GE(shares[ROOF_A].first, 0.8);
+  EXPECT_GE(shares[ROOF_B].first, 0.8);
+  EXPECT_NE(shares[ROOF_A].second, shares[ROOF_B].second);
+}
+
+TEST(ObjectAssembly, WireSpansStaySeparateAtTheirCrossArm)
+{
+  std::mt19937 rng(22);
+  Cloud::Ptr c(new Cloud);
+  std::vector<int> part;
+  std::uniform_real_distribution<float> u(-0.02f, 0.02f);
+  seg_test::addPlane(*c, -5.f, 65.f, -8.f, 8.f, 0.f, 0.5f, 0.02f, rng);
+  add(*c, part, 0, GROUND);
+  // Two spans of one conductor along x, sagging 0.9 m, hanging 0.5 m below a 6 m cross arm.
+  const auto span = [&](float x0) {
+    for (float t = 0.f; t <= 30.f; t += 0.3f) {
+      const float sag = 0.9f * (1.f - (2.f * t / 30.f - 1.f) * (2.f * t / 30.f - 1.f));
+      c->push_back(pcl::PointXYZ(x0 + t, u(rng), 12.f - sag + u(rng)));
+    }
+  };
+  std::size_t from = c->size();
+  span(0.f);
+  add(*c, part, from, SPAN_1);
+  from = c->size();
+  span(30.3f);
+  add(*c, part, from, SPAN_2);
+  from = c->size();
+  for (float y = -3.f; y <= 3.f; y += 0.3f)
+    c->push_back(pcl::PointXYZ(30.15f + u(rng), y, 12.5f + u(rng)));
+  add(*c, part, from, ARM);
+
+  Segmenter s;
+  const auto shares = largestShares(extractLabels(s, c, Segmenter::Level::Objects), part);
+  EXPECT_GE(shares.at(SPAN_1).first, 0.9);
+  EXPECT_GE(shares.at(SPAN_2).first, 0.9);
+  EXPECT_NE(shares.at(SPAN_1).second, shares.at(SPAN_2).second);
+}
+
+TEST(ObjectAssembly, SegmentAdjacencyCountsShortLinksOnly)
+{
+  // Points 0,1 in segment 0; 2 in segment 1; 3 in segment 2 far away; 4 unlabelled.
+  const std::vector<Eigen::Vector3f> pts{{0, 0, 0}, {1, 0, 0}, {1.5f, 0, 0}, {9, 0, 0}, {2, 0, 0}};
+  const std::vector<int> labels{0, 0, 1, 2, -1};
+  // k = 2: 0 -> {1, 2}, 1 -> {2, 0}, 2 -> {1, 4}, 3 -> {2, -1}, 4 -> {2, 1}.
+  const std::vector<int> graph{1, 2, 2, 0, 1, 4, 2, -1, 2, 1};
+  auto links = pcl_ls3d::segmentation::segmentAdjacency(pts, graph, 2, labels, 10.0);
+  ASSERT_EQ(links.size(), 2u);
+  EXPECT_EQ(links[0].a, 0);
+  EXPECT_EQ(links[0].b, 1);
+  EXPECT_EQ(links[0].links, 3u);  // 0->2, 1->2, 2->1
+  EXPECT_EQ(links[1].a, 1);
+  EXPECT_EQ(links[1].b, 2);
+  EXPECT_EQ(links[1].links, 1u);  // 3->2, 7.5 long
+  links = pcl_ls3d::segmentation::segmentAdjacency(pts, graph, 2, labels, 1.0);
+  ASSERT_EQ(links.size(), 1u);
+  EXPECT_EQ(links[0].links, 2u);  // 0->2 is 1.5 long: only 1->2 and 2->1 remain
+}
