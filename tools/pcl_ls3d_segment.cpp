@@ -2,17 +2,21 @@
 /// \brief Multi-factor segmentation of a point cloud (IMRG, MRG or PCL region growing), with an
 ///        optional evaluation of all three against the reference labels of the input.
 ///
-/// Output SEGMENTS.pcd (pcl::PointXYZRGBL): the loaded points in input order (readers drop
-/// non-finite points; the count dropped is printed), local coordinates (origin printed and
-/// written to the JSON report), label = segment id (0 = in no segment), rgb per segment.
+/// Output SEGMENTS.pcd (segments_file.h): every input point in input order, x y z float in the
+/// local frame (origin in a "# pcl_ls3d origin" header line and the JSON report), label =
+/// segment id + 1 (0 = in no segment, and every non-finite input point), rgba per segment, so
+/// that pcl::io::loadPCDFile into pcl::PointXYZRGBL reads it.
 
 #include "tool_arguments.h"
 
+#include <pcl_ls3d/evaluation/object_metrics.h>
+#include <pcl_ls3d/evaluation/reference_objects.h>
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_metrics.h>
 #include <pcl_ls3d/evaluation/segmentation_report.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
+#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/json_text.h>
 
@@ -24,6 +28,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <cstdlib>
@@ -42,7 +47,8 @@ namespace {
 
 const std::set<std::string> kValueOptions{"-o", "-mode", "-json", "-k", "-Nt", "-Mt", "-vt",
                                           "-dt", "-st", "-Vt", "-classes", "-threads",
-                                          "-eval_min_size", "-min_fragment"};
+                                          "-eval_min_size", "-min_fragment", "-level",
+                                          "-object_radius"};
 const std::set<std::string> kFlagOptions{"-evaluate", "-overwrite", "-h", "--help", "-help"};
 
 void
@@ -51,19 +57,29 @@ printHelp(const char* prog)
   print_info("Multi-factor segmentation by improved multi-rule region growing (Wang et al. 2021).\n\n"
              "Syntax: %s INPUT [options]\n"
              "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference)\n"
-             "  -o SEGMENTS.pcd    write points (input order, input coordinates; double when\n"
-             "                     georeferenced) with label = segment id\n"
-             "                     (0 = none) and an rgb per segment\n"
+             "  -o SEGMENTS.pcd    every input point in input order: x y z float, local frame\n"
+             "                     (file coordinate = x + origin; origin in the header line\n"
+             "                     '# pcl_ls3d origin X Y Z' and the JSON), label = segment + 1\n"
+             "                     (0 = none, also for non-finite input points), rgba per\n"
+             "                     segment; pcl::io::loadPCDFile into pcl::PointXYZRGBL reads it\n"
              "  -mode imrg|mrg|pcl_rg   method for -o and the JSON report (default imrg)\n"
+             "  -level objects|planes   IMRG/MRG output: whole objects (default) or the planes\n"
+             "                     before merging (the paper's building-plane level)\n"
              "  -json REPORT.json  thresholds, dimensionality counts, segment counts, timings\n"
              "  -k kmin,kmax       optimal-neighbourhood range (default: class default 10,100)\n"
              "  -Nt deg, -Mt deg   normal / principal-direction angle thresholds\n"
              "  -vt m, -dt m, -st m, -Vt v   seed residual, merge distance, similarity and volume\n"
              "                     thresholds; negative or absent = adaptive (median, Baarda, k-means)\n"
-             "  -evaluate          run IMRG, MRG and normals + pcl::RegionGrowing on the same cloud\n"
-             "                     and print per-class P/R/F1 against the reference labels\n"
+             "  -evaluate          run IMRG, MRG, normals + pcl::RegionGrowing (clusters under\n"
+             "                     its minimum size kept as one rest segment) and a voxel grid\n"
+             "                     with IMRG's segment count on the same cloud; print the\n"
+             "                     object-based P/R/F1 of Wang et al. 2021 sec. 4.1, valid segments\n"
+             "                     per object and largest-segment share, and per-point P/R/F1 by\n"
+             "                     majority mapping, against the reference labels\n"
              "  -classes SPEC      class groups, default ground=2,building=6,vegetation=3-5,wire=14\n"
-             "                     (codes 0 and 1 are excluded from the evaluation)\n"
+             "                     (codes 0 and 1 are excluded unless a group names them)\n"
+             "  -object_radius m   reference objects = connected components per class group at\n"
+             "                     this radius (default: max(1, 2.5 x median point spacing))\n"
              "  -eval_min_size n   evaluate segments under n points as no segment (default 0);\n"
              "                     majority mapping rewards fragments, n = 30 matches pcl_rg's minimum\n"
              "  -min_fragment n    IMRG/MRG: segments under n points join the adjacent segment with\n"
@@ -118,6 +134,16 @@ parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string
   parse_argument(argc, argv, "-mode", mode);
   if (!ev::parseSegmentationMethod(mode, s.method)) {
     error = "unknown -mode '" + mode + "' (imrg, mrg or pcl_rg)";
+    return false;
+  }
+  std::string level = "objects";
+  parse_argument(argc, argv, "-level", level);
+  if (level == "objects")
+    s.level = ev::SegmentationLevel::Objects;
+  else if (level == "planes")
+    s.level = ev::SegmentationLevel::Planes;
+  else {
+    error = "unknown -level '" + level + "' (objects or planes)";
     return false;
   }
   std::string k;
@@ -193,6 +219,9 @@ runToJson(const ev::SegmentationRun& r)
   j["dimensionality"] = {{"linear", r.linear}, {"planar", r.planar},
                          {"volumetric", r.volumetric}, {"invalid", r.invalid}};
   j["fragments_absorbed"] = r.fragments_absorbed;
+  // Segments whose convex hull is degenerate (decided before qhull, which runs silently).
+  j["segment_hulls"] = {{"tiny", r.hulls_tiny}, {"collinear", r.hulls_collinear},
+                        {"flat", r.hulls_flat}, {"solid", r.hulls_solid}};
   j["seconds"] = {{"total", r.seconds_total}, {"normals", r.seconds_normals},
                   {"segmentation", r.seconds_segmentation}, {"search", r.seconds_search},
                   {"features", r.seconds_features}, {"growing", r.seconds_growing},
@@ -218,63 +247,26 @@ evaluationToJson(const ev::SegmentationEvaluation& e)
   return j;
 }
 
-/// SEGMENTS.pcd: input points in input order, rgba per segment, label = segment id (0 none).
-/// Coordinates are the input's: x_local + origin, FLOAT64 when the origin is non-zero (a float
-/// cannot hold UTM coordinates to the centimetre), FLOAT32 otherwise.
-bool
-saveSegments(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, const std::vector<pcl::PointIndices>& segments,
-             std::string& error)
+json
+objectEvaluationToJson(const ev::ObjectEvaluation& e)
 {
-  const auto labels = ev::labelsFromSegments(segments, cloud.size());
-  const bool shifted = !origin.isZero();
-  const std::uint8_t xyz_type =
-      shifted ? pcl::PCLPointField::FLOAT64 : pcl::PCLPointField::FLOAT32;
-  const std::uint32_t xyz_size = shifted ? 8 : 4;
-  pcl::PCLPointCloud2 out;
-  std::uint32_t offset = 0;
-  const auto add = [&](const char* name, std::uint8_t type, std::uint32_t size) {
-    pcl::PCLPointField f;
-    f.name = name;
-    f.offset = offset;
-    f.datatype = type;
-    f.count = 1;
-    out.fields.push_back(f);
-    offset += size;
-  };
-  add("x", xyz_type, xyz_size);
-  add("y", xyz_type, xyz_size);
-  add("z", xyz_type, xyz_size);
-  add("rgba", pcl::PCLPointField::UINT32, 4);
-  add("label", pcl::PCLPointField::UINT32, 4);
-  out.point_step = offset;
-  out.width = static_cast<std::uint32_t>(cloud.size());
-  out.height = 1;
-  out.row_step = out.point_step * out.width;
-  out.is_dense = true;
-  out.data.resize(static_cast<std::size_t>(out.row_step));
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    std::uint8_t* p = out.data.data() + i * out.point_step;
-    const double xyz[3] = {cloud[i].x + origin.x(), cloud[i].y + origin.y(),
-                           cloud[i].z + origin.z()};
-    for (int k = 0; k < 3; ++k) {
-      if (shifted) {
-        std::memcpy(p + 8 * k, &xyz[k], 8);
-      } else {
-        const float v = (&cloud[i].x)[k];
-        std::memcpy(p + 4 * k, &v, 4);
-      }
-    }
-    const std::uint32_t rgba = ev::segmentColour(labels[i]);
-    const std::uint32_t label = labels[i];
-    std::memcpy(p + 3 * xyz_size, &rgba, 4);
-    std::memcpy(p + 3 * xyz_size + 4, &label, 4);
+  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  json j;
+  j["method"] = e.method;
+  j["seconds"] = e.seconds;
+  j["segments"] = e.segments;
+  if (!e.failure.empty()) {
+    j["failure"] = e.failure;
+    return j;
   }
-  if (pcl::PCDWriter().writeBinary(path, out) < 0) {
-    error = "cannot write '" + path + "'";
-    return false;
-  }
-  return true;
+  for (const auto& c : e.classes)
+    j["classes"][c.name] = {{"precision", num(c.precision)}, {"recall", num(c.recall)},
+                            {"f1", num(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn},
+                            {"objects", c.objects}, {"recognised", c.recognised},
+                            {"large_objects", c.large_objects},
+                            {"median_valid_segments", num(c.median_valid_segments)},
+                            {"median_largest_share", num(c.median_largest_share)}};
+  return j;
 }
 
 int
@@ -311,6 +303,11 @@ main(int argc, char** argv)
   if (min_size < 0 || min_size != std::floor(min_size))
     return fail("-eval_min_size must be a non-negative integer");
   eval_settings.min_segment_size = static_cast<std::size_t>(min_size);
+  double object_radius = -1.0;
+  if (!parseNumber(argc, argv, "-object_radius", object_radius, error))
+    return fail(error);
+  if (object_radius == 0.0 || object_radius > 1e6)
+    return fail("-object_radius must be positive (metres), or negative for automatic");
   if (parse_argument(argc, argv, "-classes", class_spec) >= 0 &&
       !ev::parseClassGroups(class_spec, eval_settings.groups, error))
     return fail("-classes: " + error);
@@ -356,36 +353,92 @@ main(int argc, char** argv)
       return fail("-evaluate: no point of '" + input + "' carries a label of the evaluated classes");
   }
 
-  // ---- segment (one method, or all three for -evaluate) ---------------------------------
+  // ---- segment (one method, or all four for -evaluate) ----------------------------------
   std::vector<ev::SegmentationMethod> methods{settings.method};
-  if (evaluate)
+  if (evaluate) {
     methods = {ev::SegmentationMethod::IMRG, ev::SegmentationMethod::MRG,
-               ev::SegmentationMethod::PclRegionGrowing};
+               ev::SegmentationMethod::PclRegionGrowing, ev::SegmentationMethod::VoxelGrid};
+    // The selected method first, so that the voxel grid can match IMRG's count either way.
+    std::stable_partition(methods.begin(), methods.end(),
+                          [&](ev::SegmentationMethod m) { return m == settings.method; });
+  }
   json report;
   report["input"] = input;
   report["points"] = cloud.size();
+  report["points_in_file"] = info.points_in_file;
   report["points_dropped_nonfinite"] = info.points_dropped_nonfinite;
   report["origin"] = {info.origin.x(), info.origin.y(), info.origin.z()};
+  report["level"] = settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
   report["seconds_load"] = t_load;
+  ev::ReferenceObjects objects;
+  if (evaluate) {
+    ev::ReferenceObjectSettings ro;
+    ro.groups = eval_settings.groups;
+    ro.excluded_codes = eval_settings.excluded_codes;
+    ro.radius = object_radius;
+    tt.tic();
+    if (!ev::referenceObjectsFromLabels(*xyz, reference, ro, objects, error))
+      return fail("-evaluate: " + error);
+    print_info("Reference objects: %zu (connected components per class group, radius %.2f m) "
+               "in %.3f s\n", objects.objects(), objects.radius, tt.toc() / 1000.0);
+    report["reference_objects"] = {{"objects", objects.objects()}, {"radius_m", objects.radius}};
+  }
   std::vector<ev::SegmentationEvaluation> evaluations;
+  std::vector<ev::ObjectEvaluation> object_evaluations;
   std::vector<pcl::PointIndices> selected;
+  std::size_t imrg_segments = 0;
   for (auto m : methods) {
     ev::SegmentationRunSettings s = settings;
     s.method = m;
+    s.voxel_segments = imrg_segments;
     ev::SegmentationRun run;
     tt.tic();
-    if (!ev::runSegmentation(xyz, s, run, error))
-      return fail(error);
+    const bool ok = (m != ev::SegmentationMethod::VoxelGrid || imrg_segments > 0)
+                        ? ev::runSegmentation(xyz, s, run, error)
+                        : (error = "no IMRG segment count to match", false);
+    if (!ok) {
+      // The selected method's failure ends the run; a baseline's is a row of the tables.
+      if (m == settings.method)
+        return fail(error);
+      print_warn("%s failed: %s\n", ev::toString(m).c_str(), error.c_str());
+      json j;
+      j["method"] = ev::toString(m);
+      j["failure"] = error;
+      report["runs"].push_back(j);
+      ev::SegmentationEvaluation e;
+      e.method = ev::toString(m);
+      e.seconds = run.seconds_total;
+      e.failure = error;
+      evaluations.push_back(e);
+      ev::ObjectEvaluation o;
+      o.method = e.method;
+      o.seconds = e.seconds;
+      o.failure = error;
+      object_evaluations.push_back(o);
+      report["evaluation"].push_back({{"method", e.method}, {"failure", error}});
+      report["object_evaluation"].push_back(objectEvaluationToJson(o));
+      continue;
+    }
+    if (m == ev::SegmentationMethod::IMRG)
+      imrg_segments = run.segments.size();
     print_info("%s: %zu segments (%zu before merging) in %.3f s", ev::toString(m).c_str(),
                run.segments.size(), run.segments_before_merge, tt.toc() / 1000.0);
-    if (m != ev::SegmentationMethod::PclRegionGrowing)
+    if (m == ev::SegmentationMethod::IMRG || m == ev::SegmentationMethod::MRG)
       print_info("; v_t %.4f m, d_t %.4f m, s_t %.4f m, V_t %.3f; linear/planar/volumetric "
                  "%zu/%zu/%zu\n",
                  run.residual_threshold, run.distance_threshold, run.similarity_threshold,
                  run.volume_threshold, run.linear, run.planar, run.volumetric);
+    else if (m == ev::SegmentationMethod::PclRegionGrowing)
+      print_info(" (normals %.3f s; %zu points in the rest segment)\n", run.seconds_normals,
+                 run.rest_points);
     else
-      print_info(" (normals %.3f s)\n", run.seconds_normals);
-    report["runs"].push_back(runToJson(run));
+      print_info(" (voxel edge %.3f m)\n", run.voxel_size);
+    json rj = runToJson(run);
+    if (m == ev::SegmentationMethod::VoxelGrid)
+      rj["voxel_size_m"] = run.voxel_size;
+    if (m == ev::SegmentationMethod::PclRegionGrowing)
+      rj["rest_points"] = run.rest_points;
+    report["runs"].push_back(rj);
     if (m == settings.method)
       selected = run.segments;
     if (evaluate) {
@@ -396,30 +449,62 @@ main(int argc, char** argv)
         return fail(error);
       report["evaluation"].push_back(evaluationToJson(e));
       evaluations.push_back(e);
+      ev::ObjectEvaluation o;
+      o.method = e.method;
+      o.seconds = e.seconds;
+      if (!ev::evaluateObjects(run.segments, objects, {}, o, error))
+        return fail(error);
+      report["object_evaluation"].push_back(objectEvaluationToJson(o));
+      object_evaluations.push_back(o);
     }
   }
   if (evaluate) {
-    print_info("\nPer-class precision / recall / F1 (%%); segments mapped to their majority class;\n"
-               "points in no segment%s count as false negatives; codes 0/1 excluded.\n%s",
+    const std::string excluded =
+        ev::describeExcludedCodes(eval_settings.groups, eval_settings.excluded_codes);
+    print_info("\nObject-based precision / recall / F1 (%%), Wang et al. 2021 sec. 4.1: a segment "
+               "is valid for the\nreference object holding more than half of its labelled "
+               "points; an object is recognised when\nits valid segments hold more than half of "
+               "it; %s.\n%s",
+               excluded.c_str(), ev::formatObjectTable(object_evaluations).c_str());
+    const ev::ObjectEvaluationSettings object_settings;
+    print_info("\nFragmentation: recognised / objects, and over objects of at least %zu points "
+               "the median number of\nvalid segments per object and the median share of the "
+               "object in its largest valid segment.\n%s",
+               object_settings.min_object_points,
+               ev::formatFragmentationTable(object_evaluations, object_settings.min_object_points)
+                   .c_str());
+    print_info("\nPer-point precision / recall / F1 (%%); segments mapped to their majority class;\n"
+               "points in no segment%s count as false negatives; %s.\n%s",
                eval_settings.min_segment_size > 0
                    ? (" (or in one under " + std::to_string(eval_settings.min_segment_size) +
                       " points)").c_str()
                    : "",
-               ev::formatSegmentationTable(evaluations).c_str());
+               excluded.c_str(), ev::formatSegmentationTable(evaluations).c_str());
     for (const auto& e : evaluations)
-      print_info("%s confusion:\n%s", e.method.c_str(), ev::describeConfusion(e).c_str());
+      if (e.failure.empty())
+        print_info("%s confusion:\n%s", e.method.c_str(), ev::describeConfusion(e).c_str());
   }
 
   // ---- write -----------------------------------------------------------------------------
   if (!out_pcd.empty()) {
     tt.tic();
-    if (!saveSegments(out_pcd, cloud, info.origin, selected, error))
+    ev::InputLayout layout;
+    layout.points_in_file = info.points_in_file;
+    layout.nonfinite = info.nonfinite_indices;
+    layout.origin = info.origin;
+    if (!ev::saveSegmentsPcd(out_pcd, *xyz, selected, layout, error))
       return fail(error);
     const double t_write = tt.toc() / 1000.0;
     report["seconds_write"] = t_write;
-    print_info("Wrote %s (%zu points, %zu segments, input coordinates%s) in %.3f s\n",
-               out_pcd.c_str(), cloud.size(), selected.size(),
-               info.origin.isZero() ? "" : ", x y z in double", t_write);
+    report["segments_file"] = {{"path", out_pcd},
+                               {"points", std::max(info.points_in_file, cloud.size())},
+                               {"coordinates", "float32, local: file coordinate = x + origin"},
+                               {"origin", {info.origin.x(), info.origin.y(), info.origin.z()}},
+                               {"label", "segment id + 1; 0 = no segment or non-finite input"}};
+    print_info("Wrote %s (%zu points in input order, %zu segments; local float coordinates, "
+               "origin (%.3f, %.3f, %.3f) in its header) in %.3f s\n",
+               out_pcd.c_str(), std::max(info.points_in_file, cloud.size()), selected.size(),
+               info.origin.x(), info.origin.y(), info.origin.z(), t_write);
   }
   if (!out_json.empty()) {
     std::ofstream f(out_json);

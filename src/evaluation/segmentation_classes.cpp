@@ -52,6 +52,28 @@ defaultExcludedCodes()
   return {0, 1};
 }
 
+std::vector<int>
+effectiveExcludedCodes(const std::vector<ClassGroup>& groups, const std::vector<int>& excluded)
+{
+  std::set<int> out(excluded.begin(), excluded.end());
+  for (const auto& g : groups)
+    for (int c : g.codes)
+      out.erase(c);
+  return {out.begin(), out.end()};
+}
+
+std::string
+describeExcludedCodes(const std::vector<ClassGroup>& groups, const std::vector<int>& excluded)
+{
+  const std::vector<int> codes = effectiveExcludedCodes(groups, excluded);
+  if (codes.empty())
+    return "no code excluded";
+  std::string list;
+  for (int c : codes)
+    list += (list.empty() ? "" : "/") + std::to_string(c);
+  return (codes.size() == 1 ? "code " : "codes ") + list + " excluded";
+}
+
 bool
 parseClassGroups(const std::string& spec, std::vector<ClassGroup>& groups, std::string& error)
 {

@@ -24,6 +24,17 @@ pad(const std::string& s, std::size_t w)
 {
   return s.size() >= w ? s : std::string(w - s.size(), ' ') + s;
 }
+
+/// The first evaluation that did not fail (its classes name the columns), or the first.
+template <typename Evaluation>
+const Evaluation&
+columnSource(const std::vector<Evaluation>& evaluations)
+{
+  for (const auto& e : evaluations)
+    if (e.failure.empty())
+      return e;
+  return evaluations.front();
+}
 }  // namespace
 
 std::string
@@ -31,7 +42,7 @@ formatSegmentationTable(const std::vector<SegmentationEvaluation>& evaluations)
 {
   if (evaluations.empty())
     return "";
-  const auto& first = evaluations.front().classes;
+  const auto& first = columnSource(evaluations).classes;
   std::vector<std::size_t> shown;
   for (std::size_t c = 0; c < first.size(); ++c) {
     bool any = false;
@@ -57,6 +68,10 @@ formatSegmentationTable(const std::vector<SegmentationEvaluation>& evaluations)
     char t[32];
     std::snprintf(t, sizeof(t), "%7.2f", e.seconds);
     os << pad(e.method, wm) << " | " << pad(std::to_string(e.segments), 8) << " | " << t << " |";
+    if (!e.failure.empty()) {
+      os << " failed: " << e.failure << '\n';
+      continue;
+    }
     for (std::size_t c : shown) {
       const ClassScores& s = e.classes[c];
       os << ' ' << pad(percent(s.precision) + " / " + percent(s.recall) + " / " + percent(s.f1), 22)
@@ -73,8 +88,9 @@ std::vector<std::size_t>
 objectClassesShown(const std::vector<ObjectEvaluation>& evaluations)
 {
   std::vector<std::size_t> shown;
-  for (std::size_t c = 0; c < evaluations.front().classes.size(); ++c)
-    if (evaluations.front().classes[c].objects > 0)
+  const auto& first = columnSource(evaluations).classes;
+  for (std::size_t c = 0; c < first.size(); ++c)
+    if (first[c].objects > 0)
       shown.push_back(c);
   return shown;
 }
@@ -106,7 +122,7 @@ formatObjectTable(const std::vector<ObjectEvaluation>& evaluations)
   if (evaluations.empty())
     return "";
   const auto shown = objectClassesShown(evaluations);
-  const auto& first = evaluations.front().classes;
+  const auto& first = columnSource(evaluations).classes;
   const std::size_t wm = methodWidth(evaluations);
   std::ostringstream os;
   os << std::string(wm - 6, ' ') << "method | segments |  time s |";
@@ -119,6 +135,10 @@ formatObjectTable(const std::vector<ObjectEvaluation>& evaluations)
   for (const auto& e : evaluations) {
     os << pad(e.method, wm) << " | " << pad(std::to_string(e.segments), 8) << " | "
        << pad(fixed(e.seconds, "%.2f"), 7) << " |";
+    if (!e.failure.empty()) {
+      os << " failed: " << e.failure << '\n';
+      continue;
+    }
     for (std::size_t c : shown) {
       const ObjectClassScores& s = e.classes[c];
       os << ' ' << pad(percent(s.precision) + " / " + percent(s.recall) + " / " + percent(s.f1), 22)
@@ -135,7 +155,7 @@ formatFragmentationTable(const std::vector<ObjectEvaluation>& evaluations, std::
   if (evaluations.empty())
     return "";
   const auto shown = objectClassesShown(evaluations);
-  const auto& first = evaluations.front().classes;
+  const auto& first = columnSource(evaluations).classes;
   const std::size_t wm = methodWidth(evaluations);
   std::ostringstream os;
   os << std::string(wm - 6, ' ') << "method |";
@@ -147,6 +167,10 @@ formatFragmentationTable(const std::vector<ObjectEvaluation>& evaluations, std::
   os << '\n';
   for (const auto& e : evaluations) {
     os << pad(e.method, wm) << " |";
+    if (!e.failure.empty()) {
+      os << " failed: " << e.failure << '\n';
+      continue;
+    }
     for (std::size_t c : shown) {
       const ObjectClassScores& s = e.classes[c];
       os << ' '

@@ -53,6 +53,10 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   run.segments_before_merge = seg.getNumberOfInitialSegments();
   run.segments_after_merge = m.segments_after;
   run.merges = m.merges;
+  run.hulls_tiny = m.hulls_tiny;
+  run.hulls_collinear = m.hulls_collinear;
+  run.hulls_flat = m.hulls_flat;
+  run.hulls_solid = m.hulls_solid;
   run.fragments_absorbed = seg.getNumberOfAbsorbedFragments();
   const auto& t = seg.getStageTimes();
   run.seconds_search = t.search;

@@ -53,8 +53,10 @@ applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cl
   keep.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Eigen::Vector3d p(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
-    if (!p.allFinite())
+    if (!p.allFinite()) {
+      info.nonfinite_indices.push_back(i);
       continue;
+    }
     lo = lo.cwiseMin(p);
     hi = hi.cwiseMax(p);
     keep.push_back(i);

@@ -146,6 +146,7 @@ buildState(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& l
   }
   st.planes.assign(n_segments, {});
   for (int s = 0; s < n_segments; ++s) {
+    ++st.hull_kinds[static_cast<int>(hulls[s].kind)];
     st.volume[s] = hulls[s].volume;
     st.planes[s] = std::move(hulls[s].planes);
     for (const int c : hulls[s].contour) {

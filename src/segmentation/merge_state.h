@@ -34,6 +34,7 @@ struct MergeState
   std::vector<Eigen::Vector3f> contour_xyz;  ///< all initial contour points
   std::vector<int> contour_owner;         ///< initial segment of each contour point
   std::vector<char> contour_active;       ///< still a hull vertex of its (merged) segment
+  std::size_t hull_kinds[5] = {0, 0, 0, 0, 0};  ///< initial hulls per HullKind
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
 
   int find(int s)

@@ -1,90 +1,71 @@
 /// \file segment_hull.cpp
-/// \brief Convex-hull contour and volume of a segment, degenerate cases handled first.
+/// \brief Convex-hull contour and volume of a segment, degenerate cases handled first; qhull
+///        (libqhull_r, as in pcl::ConvexHull) runs silently.
 
 #include <pcl_ls3d/segmentation/segment_hull.h>
 
-#include <pcl/point_types.h>
-#include <pcl/surface/convex_hull.h>
+#include <pcl/surface/qhull.h>
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 namespace pcl_ls3d {
 namespace segmentation {
 namespace {
 
-/// Volume of a closed convex triangulated hull: sum of tetrahedra from its centroid.
-double
-hullVolume(const pcl::PointCloud<pcl::PointXYZ>& hull,
-           const std::vector<pcl::Vertices>& polygons)
+/// qhull's messages go here, not to stderr: a degenerate set is an expected case that the
+/// caller handles (QH6154 "initial simplex is flat" used to print ~40 lines on a real tile).
+FILE*
+quietSink()
 {
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& p : hull.points)
-    c += p.getVector3fMap().cast<double>();
-  c /= static_cast<double>(std::max<std::size_t>(1, hull.size()));
-  double v = 0.0;
-  for (const auto& poly : polygons) {
-    if (poly.vertices.size() < 3)
-      continue;
-    const Eigen::Vector3d a = hull[poly.vertices[0]].getVector3fMap().cast<double>() - c;
-    for (std::size_t t = 1; t + 1 < poly.vertices.size(); ++t) {
-      const Eigen::Vector3d b = hull[poly.vertices[t]].getVector3fMap().cast<double>() - c;
-      const Eigen::Vector3d d = hull[poly.vertices[t + 1]].getVector3fMap().cast<double>() - c;
-      v += std::abs(a.dot(b.cross(d))) / 6.0;
+  static FILE* sink = std::fopen("/dev/null", "w");  // thread-safe initialisation
+  return sink;
+}
+
+/// Convex hull of \a coords (\a dim = 2 or 3 coordinates per point, centred) by libqhull_r
+/// with option Qt, as pcl::ConvexHull runs it, but silent. Fills contour (vertex ids) and, in
+/// 3-D, the volume and the outward facet planes (n·(x − centre) + offset ≤ 0 inside).
+bool
+runQhull(std::vector<coordT>& coords, int dim, const Eigen::Vector3d& centre, SegmentHull& out)
+{
+  const int n = static_cast<int>(coords.size()) / dim;
+  FILE* sink = quietSink();
+  qhT qh_qh;
+  qhT* qh = &qh_qh;
+  qh_zero(qh, sink);
+  char flags[] = "qhull Qt";
+  const int exitcode = qh_new_qhull(qh, dim, n, coords.data(), False, flags, nullptr, sink);
+  bool ok = exitcode == 0 && qh->num_vertices > 0;
+  if (ok) {
+    out.contour.clear();
+    vertexT* vertex;
+    FORALLvertices
+      out.contour.push_back(qh_pointid(qh, vertex->point));
+    std::sort(out.contour.begin(), out.contour.end());
+    out.volume = 0.0;
+    out.planes.clear();
+    if (dim == 3) {
+      qh_getarea(qh, qh->facet_list);
+      out.volume = std::abs(qh->totvol);
+      facetT* facet;
+      FORALLfacets
+      {
+        const Eigen::Vector3d nrm(facet->normal[0], facet->normal[1], facet->normal[2]);
+        if (!(nrm.norm() > 0.0))
+          continue;
+        out.planes.emplace_back(nrm.x(), nrm.y(), nrm.z(),
+                                facet->offset - nrm.dot(centre));
+      }
     }
   }
-  return v;
-}
-
-/// Outward facet planes of a closed convex triangulated hull.
-std::vector<Eigen::Vector4d>
-hullPlanes(const pcl::PointCloud<pcl::PointXYZ>& hull, const std::vector<pcl::Vertices>& polygons)
-{
-  Eigen::Vector3d c = Eigen::Vector3d::Zero();
-  for (const auto& p : hull.points)
-    c += p.getVector3fMap().cast<double>();
-  c /= static_cast<double>(std::max<std::size_t>(1, hull.size()));
-  std::vector<Eigen::Vector4d> planes;
-  planes.reserve(polygons.size());
-  for (const auto& poly : polygons) {
-    if (poly.vertices.size() < 3)
-      continue;
-    const Eigen::Vector3d a = hull[poly.vertices[0]].getVector3fMap().cast<double>();
-    const Eigen::Vector3d b = hull[poly.vertices[1]].getVector3fMap().cast<double>();
-    const Eigen::Vector3d d = hull[poly.vertices[2]].getVector3fMap().cast<double>();
-    Eigen::Vector3d n = (b - a).cross(d - a);
-    if (!(n.norm() > 0.0))
-      continue;
-    n.normalize();
-    if (n.dot(c - a) > 0.0)
-      n = -n;  // outward: the centroid is on the inner side
-    planes.emplace_back(n.x(), n.y(), n.z(), -n.dot(a));
-  }
-  return planes;
-}
-
-/// Run pcl::ConvexHull in \a dim dimensions; false if qhull produced nothing.
-bool
-runQhull(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud, int dim, SegmentHull& out)
-{
-  pcl::ConvexHull<pcl::PointXYZ> hull;
-  hull.setInputCloud(cloud);
-  hull.setDimension(dim);
-  pcl::PointCloud<pcl::PointXYZ> vertices;
-  std::vector<pcl::Vertices> polygons;
-  hull.reconstruct(vertices, polygons);
-  pcl::PointIndices idx;
-  hull.getHullPointIndices(idx);
-  if (vertices.empty() || idx.indices.empty())
-    return false;
-  out.contour.assign(idx.indices.begin(), idx.indices.end());
-  out.volume = (dim == 3) ? hullVolume(vertices, polygons) : 0.0;
-  if (dim == 3)
-    out.planes = hullPlanes(vertices, polygons);
-  return true;
+  qh_freeqhull(qh, !qh_ALL);
+  int curlong = 0, totlong = 0;
+  qh_memfreeshort(qh, &curlong, &totlong);
+  return ok && !out.contour.empty();
 }
 
 }  // namespace
@@ -129,16 +110,26 @@ computeSegmentHull(const std::vector<Eigen::Vector3f>& points)
     out.contour = {static_cast<int>(mm.first - t.begin()), static_cast<int>(mm.second - t.begin())};
     return out;
   }
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    (*cloud)[i].getVector3fMap() = points[i];
   const bool flat = lambda[0] <= kHullDegeneracyTolerance * lambda[2];
-  if (!flat && runQhull(cloud, 3, out)) {
-    out.kind = HullKind::Solid;
-    return out;
+  if (!flat) {
+    std::vector<coordT> coords(3 * n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k)
+        coords[3 * i + k] = static_cast<double>(points[i][k]) - mean[k];
+    if (runQhull(coords, 3, mean, out)) {
+      out.kind = HullKind::Solid;
+      return out;
+    }
   }
-  if (runQhull(cloud, 2, out)) {
+  // 2-D hull in the best-fit plane (the two largest principal directions).
+  std::vector<coordT> coords(2 * n);
+  const Eigen::Vector3d u = es.eigenvectors().col(2), v = es.eigenvectors().col(1);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Eigen::Vector3d d = points[i].cast<double>() - mean;
+    coords[2 * i] = u.dot(d);
+    coords[2 * i + 1] = v.dot(d);
+  }
+  if (runQhull(coords, 2, mean, out)) {
     out.planes.clear();
     out.kind = HullKind::Flat;
     out.volume = 0.0;

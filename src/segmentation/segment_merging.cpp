@@ -49,6 +49,10 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
   pcl::StopWatch watch;
   detail::buildState(points, labels, residuals, n_segments, threads, st);
   const double t_hulls = watch.getTimeSeconds();
+  rep.hulls_tiny = st.hull_kinds[static_cast<int>(HullKind::Tiny)];
+  rep.hulls_collinear = st.hull_kinds[static_cast<int>(HullKind::Collinear)];
+  rep.hulls_flat = st.hull_kinds[static_cast<int>(HullKind::Flat)];
+  rep.hulls_solid = st.hull_kinds[static_cast<int>(HullKind::Solid)];
 
   // Nearest neighbour segment of every segment: the sample D (§3.2.2, 1).
   std::vector<std::pair<int, double>> nearest(n_segments);

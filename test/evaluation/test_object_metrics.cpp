@@ -102,6 +102,41 @@ TEST(ObjectMetrics, PaperRulesByHand)
   EXPECT_NE(err.find("99"), std::string::npos);
 }
 
+TEST(ObjectMetrics, FailedMethodIsATableRow)
+{
+  // Issue 11 defect 3: a method that failed is printed as a row with its reason; the columns
+  // come from the first method that did not fail.
+  std::vector<int> of(10, 0);
+  const ReferenceObjects ref = objects(of, {0});
+  ObjectEvaluation failed, good;
+  failed.method = "pcl_rg";
+  failed.failure = "no segment found";
+  good.method = "imrg";
+  std::string err;
+  ASSERT_TRUE(evaluateObjects({seg({0, 1, 2, 3, 4, 5, 6, 7, 8, 9})}, ref, {1}, good, err));
+  const std::string table = formatObjectTable({failed, good});
+  EXPECT_NE(table.find("pcl_rg |"), std::string::npos) << table;
+  EXPECT_NE(table.find("failed: no segment found"), std::string::npos) << table;
+  EXPECT_NE(table.find("ground"), std::string::npos) << table;
+  EXPECT_NE(table.find("100.0"), std::string::npos) << table;
+  const std::string frag = formatFragmentationTable({failed, good}, 1);
+  EXPECT_NE(frag.find("failed: no segment found"), std::string::npos) << frag;
+}
+
+TEST(SegmentationClasses, ExcludedCodesNamedByGroupsAreScored)
+{
+  // Issue 11 defect 6: a group naming code 1 takes it out of the excluded codes.
+  const std::vector<int> excluded = defaultExcludedCodes();
+  EXPECT_EQ(describeExcludedCodes(defaultClassGroups(), excluded), "codes 0/1 excluded");
+  std::vector<ClassGroup> groups;
+  std::string err;
+  ASSERT_TRUE(parseClassGroups("ground=2,unclassified=1", groups, err)) << err;
+  EXPECT_EQ(effectiveExcludedCodes(groups, excluded), std::vector<int>{0});
+  EXPECT_EQ(describeExcludedCodes(groups, excluded), "code 0 excluded");
+  ASSERT_TRUE(parseClassGroups("a=0,b=1", groups, err)) << err;
+  EXPECT_EQ(describeExcludedCodes(groups, excluded), "no code excluded");
+}
+
 TEST(ObjectMetrics, OneSegmentForEverythingRecognisesOnlyTheLargestObject)
 {
   std::vector<int> of(100, 0);

@@ -5,6 +5,7 @@
 
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
+#include <pcl_ls3d/evaluation/segments_file.h>
 
 #include <pcl/io/pcd_io.h>
 
@@ -14,7 +15,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -129,6 +133,13 @@ TEST_F(SegmentTool, WritesEveryPointInOrderWithConsistentLabels)
                 d["volumetric"].get<std::size_t>() + d["invalid"].get<std::size_t>(),
             scene_.size());
   EXPECT_GE(run0["segments_before_merging"].get<std::size_t>(), segments);
+  // Issue 11 defect 4: hull kinds of the segments before merging are reported (they add up to
+  // the segments before merging) and qhull prints nothing.
+  const auto& hulls = run0["segment_hulls"];
+  EXPECT_EQ(hulls["tiny"].get<std::size_t>() + hulls["collinear"].get<std::size_t>() +
+                hulls["flat"].get<std::size_t>() + hulls["solid"].get<std::size_t>(),
+            run0["segments_before_merging"].get<std::size_t>());
+  EXPECT_EQ(r.err.find("QH"), std::string::npos) << r.err;
 
   // The labels are exactly the segments the library returns for the same points (the method is
   // deterministic: same input, same segments).
@@ -152,7 +163,7 @@ TEST_F(SegmentTool, WritesEveryPointInOrderWithConsistentLabels)
   EXPECT_EQ(run(input_.string() + " -o " + out.string() + " -overwrite -mode mrg").code, 0);
 }
 
-TEST_F(SegmentTool, EvaluatePrintsOneTableForThreeMethods)
+TEST_F(SegmentTool, EvaluatePrintsPointTableForFourMethods)
 {
   const fs::path js = dir_ / "eval.json";
   const ToolResult r = run(input_.string() + " -evaluate -json " + js.string());
@@ -160,7 +171,7 @@ TEST_F(SegmentTool, EvaluatePrintsOneTableForThreeMethods)
   for (const char* m : {"imrg |", "mrg |", "pcl_rg |", "ground P/R/F1"})
     EXPECT_NE(r.out.find(m), std::string::npos) << m << "\n" << r.out;
   const auto report = nlohmann::json::parse(slurp(js));
-  ASSERT_EQ(report["evaluation"].size(), 3u);
+  ASSERT_EQ(report["evaluation"].size(), 4u);
   // The 30 unclassified points are excluded from every evaluation.
   EXPECT_EQ(report["evaluation"][0]["points_evaluated"].get<std::size_t>(), scene_.size() - 30);
 }
@@ -201,32 +212,192 @@ TEST_F(SegmentTool, BadInputExitsNonZeroWithOneErrorLine)
   EXPECT_EQ(run("-h").code, 0);
 }
 
-TEST_F(SegmentTool, GeoreferencedInputKeepsInputCoordinatesInDouble)
+TEST_F(SegmentTool, GeoreferencedInputLoadsInPlainPcl)
 {
-  // The same scene shifted to UTM-like coordinates, as ASCII XYZ (read in double): the reader
-  // picks a local origin, and SEGMENTS.pcd must give the input coordinates back, x y z FLOAT64.
+  // Issue 11 defect 1: the same scene shifted to UTM-like coordinates, as ASCII XYZ (read in
+  // double). SEGMENTS.pcd must load with plain pcl::io::loadPCDFile into pcl::PointXYZRGBL
+  // (float x y z in the local frame) and the origin line of its header must give the input
+  // coordinates back.
   const double ox = 512345.678, oy = 5432109.876, oz = 250.0;
-  const fs::path xyz = dir_ / "utm.xyz", out = dir_ / "utm_segments.pcd";
+  const fs::path xyz = dir_ / "utm.xyz", out = dir_ / "utm_segments.pcd", js = dir_ / "r.json";
   {
     std::ofstream f(xyz);
     f.precision(12);
     for (const auto& p : scene_.points)
       f << (p.x + ox) << ' ' << (p.y + oy) << ' ' << (p.z + oz) << '\n';
   }
-  const ToolResult r = run(xyz.string() + " -o " + out.string());
+  const ToolResult r = run(xyz.string() + " -o " + out.string() + " -json " + js.string());
   ASSERT_EQ(r.code, 0) << r.err;
   pcl::PCLPointCloud2 blob;
   ASSERT_EQ(pcl::io::loadPCDFile(out.string(), blob), 0);
-  ASSERT_EQ(blob.width * blob.height, scene_.size());
-  ASSERT_GE(blob.fields.size(), 3u);
-  for (int k = 0; k < 3; ++k)
-    EXPECT_EQ(blob.fields[k].datatype, pcl::PCLPointField::FLOAT64) << blob.fields[k].name;
-  for (std::size_t i = 0; i < scene_.size(); i += 97) {
-    double x = 0.0, y = 0.0;
-    std::memcpy(&x, blob.data.data() + i * blob.point_step + blob.fields[0].offset, 8);
-    std::memcpy(&y, blob.data.data() + i * blob.point_step + blob.fields[1].offset, 8);
-    // Float local coordinates (< 100 m) carry ~1e-5 m; the file wrote 12 digits (1e-6 m).
-    EXPECT_NEAR(x, scene_[i].x + ox, 1e-4) << i;
-    EXPECT_NEAR(y, scene_[i].y + oy, 1e-4) << i;
+  for (const auto& f : blob.fields) {
+    if (f.name == "x" || f.name == "y" || f.name == "z") {
+      EXPECT_EQ(f.datatype, pcl::PCLPointField::FLOAT32) << f.name;
+    }
   }
+  pcl::PointCloud<pcl::PointXYZRGBL> seg;
+  ASSERT_EQ(pcl::io::loadPCDFile(out.string(), seg), 0);
+  ASSERT_EQ(seg.size(), scene_.size());
+  Eigen::Vector3d origin;
+  ASSERT_TRUE(pcl_ls3d::evaluation::readSegmentsOrigin(out.string(), origin));
+  const auto report = nlohmann::json::parse(slurp(js));
+  for (int k = 0; k < 3; ++k)
+    EXPECT_EQ(report["origin"][k].get<double>(), origin[k]);  // %.17g: exact
+  EXPECT_NE(origin.x(), 0.0);
+  std::size_t at_zero = 0;
+  for (std::size_t i = 0; i < scene_.size(); ++i) {
+    at_zero += seg[i].x == 0.f && seg[i].y == 0.f && seg[i].z == 0.f;
+    // Local floats of < 100 m carry ~1e-5 m; the XYZ file has 12 digits (1e-6 m).
+    ASSERT_NEAR(seg[i].x + origin.x(), scene_[i].x + ox, 1e-4) << i;
+    ASSERT_NEAR(seg[i].y + origin.y(), scene_[i].y + oy, 1e-4) << i;
+    ASSERT_NEAR(seg[i].z + origin.z(), scene_[i].z + oz, 1e-4) << i;
+  }
+  EXPECT_EQ(at_zero, 0u);
+}
+
+TEST_F(SegmentTool, NonFinitePointsKeepTheirPlaceWithLabelZero)
+{
+  // Issue 11 defect 2: NaN input points stay in SEGMENTS.pcd at their input index, label 0, so
+  // the file lines up with the input point for point.
+  pcl::PointCloud<pcl::PointXYZL> with_nan = scene_;
+  std::set<std::size_t> bad;
+  for (std::size_t i = 5; i < with_nan.size(); i += 11) {
+    with_nan[i].x = std::numeric_limits<float>::quiet_NaN();
+    bad.insert(i);
+  }
+  with_nan[0].z = std::numeric_limits<float>::infinity();
+  bad.insert(0);
+  with_nan.is_dense = false;
+  const fs::path in = dir_ / "nan_scene.pcd", out = dir_ / "seg.pcd";
+  ASSERT_EQ(pcl::io::savePCDFileBinary(in.string(), with_nan), 0);
+  const ToolResult r = run(in.string() + " -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  pcl::PointCloud<pcl::PointXYZRGBL> seg;
+  ASSERT_EQ(pcl::io::loadPCDFile(out.string(), seg), 0);
+  ASSERT_EQ(seg.size(), with_nan.size());
+  std::size_t labelled = 0;
+  for (std::size_t i = 0; i < seg.size(); ++i) {
+    if (bad.count(i)) {
+      EXPECT_FALSE(std::isfinite(seg[i].x)) << i;
+      EXPECT_EQ(seg[i].label, 0u) << i;
+      continue;
+    }
+    ASSERT_EQ(seg[i].x, with_nan[i].x) << i;  // origin 0: exact
+    ASSERT_EQ(seg[i].z, with_nan[i].z) << i;
+    labelled += seg[i].label > 0;
+  }
+  EXPECT_GT(labelled, (seg.size() - bad.size()) / 2);
+}
+
+TEST_F(SegmentTool, EvaluatePrintsObjectTablesForFourMethods)
+{
+  const fs::path js = dir_ / "eval.json";
+  const ToolResult r =
+      run(input_.string() + " -evaluate -object_radius 3 -json " + js.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* m : {"Object-based", "Fragmentation", "voxel |", "codes 0/1 excluded"})
+    EXPECT_NE(r.out.find(m), std::string::npos) << m << "\n" << r.out;
+  const auto report = nlohmann::json::parse(slurp(js));
+  ASSERT_EQ(report["object_evaluation"].size(), 4u);
+  // The scene holds one building (roof and sparse walls, within 3 m of each other), two tree
+  // crowns 18 m apart and one ground piece: the reference objects come from the labels.
+  EXPECT_EQ(report["reference_objects"]["radius_m"].get<double>(), 3.0);
+  const auto& imrg = report["object_evaluation"][0];
+  EXPECT_EQ(imrg["method"], "imrg");
+  EXPECT_EQ(imrg["classes"]["building"]["objects"].get<int>(), 1);
+  EXPECT_EQ(imrg["classes"]["vegetation"]["objects"].get<int>(), 2);
+  EXPECT_EQ(imrg["classes"]["ground"]["objects"].get<int>(), 1);
+  // The voxel grid was given IMRG's segment count (within the 1 % of its bisection, or the
+  // nearest count a grid can give).
+  const double n_imrg = report["runs"][0]["segments"].get<double>();
+  const double n_voxel = report["runs"][3]["segments"].get<double>();
+  EXPECT_NEAR(n_voxel, n_imrg, std::max(2.0, 0.1 * n_imrg));
+}
+
+TEST_F(SegmentTool, ScoredCodeOneIsNotCalledExcluded)
+{
+  // Issue 11 defect 6: with -classes naming code 1 the header must not claim it is excluded.
+  const ToolResult r =
+      run(input_.string() + " -evaluate -classes ground=2,building=6,vegetation=5,other=1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.find("0/1 excluded"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("code 0 excluded"), std::string::npos) << r.out;
+}
+
+TEST_F(SegmentTool, FailedBaselineIsARowNotTheRunsFailure)
+{
+  // Issue 11 defect 3: 4 points; pcl_rg (selected) keeps them as its rest segment, while the
+  // multi-rule methods find no segment in fewer points than their smallest neighbourhood. Their failure is a row of
+  // the tables; the selected method's result is still written, exit 0.
+  pcl::PointCloud<pcl::PointXYZL> line;
+  for (int i = 0; i < 4; ++i) {
+    pcl::PointXYZL p;
+    p.x = 0.5f * static_cast<float>(i);
+    p.y = i == 3 ? 0.5f : 0.f;
+    p.z = 0.f;
+    p.label = 2;
+    line.push_back(p);
+  }
+  const fs::path in = dir_ / "line.pcd", out = dir_ / "line_seg.pcd", js = dir_ / "line.json";
+  ASSERT_EQ(pcl::io::savePCDFileBinary(in.string(), line), 0);
+  const ToolResult r = run(in.string() + " -mode pcl_rg -evaluate -o " + out.string() +
+                           " -json " + js.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("failed:"), std::string::npos) << r.out;
+  const auto report = nlohmann::json::parse(slurp(js));
+  std::size_t failures = 0;
+  for (const auto& e : report["object_evaluation"])
+    failures += e.contains("failure");
+  EXPECT_GE(failures, 1u);
+  EXPECT_LT(failures, report["object_evaluation"].size());
+  pcl::PointCloud<pcl::PointXYZRGBL> seg;
+  ASSERT_EQ(pcl::io::loadPCDFile(out.string(), seg), 0);
+  EXPECT_EQ(seg.size(), line.size());
+}
+
+TEST_F(SegmentTool, PlaneLevelGivesThePlanesBeforeMerging)
+{
+  // -level planes writes the segments before merging: the same as the library's plane level,
+  // and the objects are (up to 1 % of the points) unions of whole planes.
+  const fs::path out = dir_ / "planes.pcd";
+  const ToolResult r = run(input_.string() + " -level planes -o " + out.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  pcl::PointCloud<pcl::PointXYZRGBL> seg;
+  ASSERT_EQ(pcl::io::loadPCDFile(out.string(), seg), 0);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz(new pcl::PointCloud<pcl::PointXYZ>);
+  for (const auto& p : scene_.points)
+    xyz->push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  pcl_ls3d::evaluation::SegmentationRunSettings s;
+  s.level = pcl_ls3d::evaluation::SegmentationLevel::Planes;
+  pcl_ls3d::evaluation::SegmentationRun planes;
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::evaluation::runSegmentation(xyz, s, planes, error)) << error;
+  const auto expected = pcl_ls3d::evaluation::labelsFromSegments(planes.segments, xyz->size());
+  ASSERT_EQ(seg.size(), expected.size());
+  std::size_t mismatches = 0;
+  for (std::size_t i = 0; i < seg.size(); ++i)
+    mismatches += seg[i].label != expected[i];
+  EXPECT_EQ(mismatches, 0u);
+  const auto objects = pcl_ls3d::evaluation::labelsFromSegments(planes.other_level, xyz->size());
+  EXPECT_GT(planes.segments.size(), planes.other_level.size());
+  // Points outside their plane's majority object: object assembly decides ground per point,
+  // so a few plane points may go elsewhere; nearly all stay with their plane.
+  std::map<std::uint32_t, std::map<std::uint32_t, std::size_t>> objects_of_plane;
+  std::size_t counted = 0;
+  for (std::size_t i = 0; i < seg.size(); ++i)
+    if (expected[i] > 0 && objects[i] > 0) {
+      ++objects_of_plane[expected[i]][objects[i]];
+      ++counted;
+    }
+  std::size_t outside = 0;
+  for (const auto& [plane, hist] : objects_of_plane) {
+    std::size_t total = 0, best = 0;
+    for (const auto& [object, n] : hist) {
+      total += n;
+      best = std::max(best, n);
+    }
+    outside += total - best;
+  }
+  EXPECT_LE(static_cast<double>(outside), 0.01 * static_cast<double>(counted));
+  EXPECT_NE(run(input_.string() + " -level walls").code, 0);
 }

@@ -7,7 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
+#include <string>
 
 using namespace pcl_ls3d::segmentation;
 
@@ -56,6 +58,64 @@ TEST(SegmentHull, DegenerateSets)
   const std::vector<Eigen::Vector3f> same(10, Eigen::Vector3f(3, 3, 3));
   EXPECT_EQ(computeSegmentHull(same).kind, HullKind::Tiny);
   EXPECT_EQ(computeSegmentHull({}).kind, HullKind::Empty);
+}
+
+// Issue 11 defect 4: nearly flat and nearly collinear sets at every scale between the PCA
+// tolerance and float resolution, with duplicated points (LAS quantisation), give a hull of a
+// valid kind and print nothing: qhull runs silently and its refusals are fallbacks.
+TEST(SegmentHull, NearDegenerateSetsAreSilent)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> u(-1.f, 1.f);
+  ::testing::internal::CaptureStderr();
+  std::size_t solid = 0, flat = 0, other = 0;
+  for (int e = 2; e <= 9; ++e) {
+    const float t = std::pow(10.f, -static_cast<float>(e));  // thickness relative to 10 m
+    std::vector<Eigen::Vector3f> sheet, strip;
+    for (int i = 0; i < 200; ++i) {
+      const Eigen::Vector3f p(500.f + 10.f * u(rng), 300.f + 10.f * u(rng), 40.f + 10.f * t * u(rng));
+      sheet.push_back(p);
+      sheet.push_back(p);  // duplicates
+      strip.emplace_back(500.f + 10.f * u(rng), 300.f + 10.f * t * u(rng), 40.f);
+    }
+    for (const auto* set : {&sheet, &strip}) {
+      const SegmentHull h = computeSegmentHull(*set);
+      ASSERT_NE(h.kind, HullKind::Empty);
+      ASSERT_FALSE(h.contour.empty());
+      for (int c : h.contour)
+        ASSERT_TRUE(c >= 0 && c < static_cast<int>(set->size()));
+      EXPECT_GE(h.volume, 0.0);
+      solid += h.kind == HullKind::Solid;
+      flat += h.kind == HullKind::Flat;
+      other += h.kind != HullKind::Solid && h.kind != HullKind::Flat;
+    }
+  }
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_TRUE(err.empty()) << err.substr(0, 400);
+  EXPECT_GT(solid, 0u);
+  EXPECT_GT(flat + other, 0u);
+}
+
+// A box of known size with random interior points: qhull's volume and outward facet planes
+// (every point inside, a point beyond a face outside).
+TEST(SegmentHull, BoxVolumeAndPlanes)
+{
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::vector<Eigen::Vector3f> pts;
+  for (int cx = 0; cx < 2; ++cx)
+    for (int cy = 0; cy < 2; ++cy)
+      for (int cz = 0; cz < 2; ++cz)
+        pts.emplace_back(100.f + 4.f * cx, 50.f + 2.f * cy, 10.f + 3.f * cz);
+  for (int i = 0; i < 300; ++i)
+    pts.emplace_back(100.f + 4.f * u(rng), 50.f + 2.f * u(rng), 10.f + 3.f * u(rng));
+  const SegmentHull h = computeSegmentHull(pts);
+  ASSERT_EQ(h.kind, HullKind::Solid);
+  EXPECT_NEAR(h.volume, 24.0, 1e-4);
+  EXPECT_EQ(h.contour.size(), 8u);
+  EXPECT_TRUE(insideHull(h, pts, 1e-4));
+  EXPECT_FALSE(insideHull(h, {Eigen::Vector3f(102.f, 51.f, 13.1f)}, 1e-4));
+  EXPECT_FALSE(insideHull(h, {Eigen::Vector3f(99.9f, 51.f, 11.f)}, 1e-4));
 }
 
 // Features of ideal neighbourhoods: a line, a plane, an isotropic cloud.

@@ -59,6 +59,7 @@ struct ObjectEvaluation
 {
   std::string method;   ///< free text set by the caller
   double seconds = 0.0; ///< set by the caller
+  std::string failure;  ///< set by the caller when the method failed: shown as a table row
   std::size_t segments = 0;
   std::vector<ObjectClassScores> classes;  ///< one per class group, in group order
   std::vector<ObjectResult> objects;       ///< one per reference object

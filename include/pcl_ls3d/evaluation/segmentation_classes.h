@@ -24,6 +24,15 @@ defaultClassGroups();
 std::vector<int>
 defaultExcludedCodes();
 
+/// \brief The codes actually left out: \a excluded minus any code named in a group (a group
+///        that names code 1 scores it), ascending.
+std::vector<int>
+effectiveExcludedCodes(const std::vector<ClassGroup>& groups, const std::vector<int>& excluded);
+
+/// \brief "codes 0/1 excluded", "code 0 excluded" or "no code excluded" for table headers.
+std::string
+describeExcludedCodes(const std::vector<ClassGroup>& groups, const std::vector<int>& excluded);
+
 /// \brief Parses "ground=2,building=6,vegetation=3-5,wire=14,car=64" ('+' also joins codes:
 ///        "veg=3+4+5"). Names must be unique and non-empty, codes 0..255, no code in two groups.
 /// \return false with a one-line reason in `error`

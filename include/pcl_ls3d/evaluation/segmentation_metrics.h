@@ -55,6 +55,7 @@ struct SegmentationEvaluation
 {
   std::string method;                   ///< free text set by the caller ("IMRG", ...)
   double seconds = 0.0;                 ///< wall time of the method, set by the caller
+  std::string failure;                  ///< set by the caller when the method failed: a table row
   std::vector<ClassScores> classes;
   ClassScores other;                    ///< pseudo-class "other" (codes in no group)
   std::size_t segments = 0;             ///< segments given

@@ -95,6 +95,8 @@ struct SegmentationRun
   std::size_t segments_before_merge = 0, segments_after_merge = 0, merges = 0;
   std::size_t distance_samples = 0, volume_samples = 0;  ///< |D| and |ΔV| fed to the snooping
   std::size_t fragments_absorbed = 0;  ///< IMRG/MRG: segments absorbed after merging
+  /// IMRG/MRG: segments before merging by hull kind (degenerate: tiny, collinear, flat).
+  std::size_t hulls_tiny = 0, hulls_collinear = 0, hulls_flat = 0, hulls_solid = 0;
   /// IMRG/MRG wall time per stage [s]: search structure, features, growing, merging, absorbing.
   double seconds_search = 0.0, seconds_features = 0.0, seconds_growing = 0.0,
          seconds_merging = 0.0, seconds_absorbing = 0.0;

@@ -102,6 +102,7 @@ struct CloudInfo
   std::string format;                                ///< "las", "pcd", "ply", "xyz"
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< local origin subtracted from every point (double)
   std::size_t points_in_file = 0, points_loaded = 0, points_dropped_nonfinite = 0;
+  std::vector<std::size_t> nonfinite_indices;        ///< file indices of the dropped points, ascending
   Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units
   Eigen::Vector3d max_file = Eigen::Vector3d::Zero();
   std::vector<std::string> fields;                   ///< point fields mapped into PointLiDAR

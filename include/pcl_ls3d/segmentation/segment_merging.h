@@ -44,6 +44,9 @@ struct MergeReport
   std::size_t merges = 0;
   std::size_t distance_samples = 0;   ///< |D| fed to the snooping
   std::size_t volume_samples = 0;     ///< |ΔV| fed to the snooping
+  /// Hulls of the segments before merging by kind (segment_hull.h): degenerate segments
+  /// (tiny, collinear, flat) are decided before qhull runs, and qhull runs silently.
+  std::size_t hulls_tiny = 0, hulls_collinear = 0, hulls_flat = 0, hulls_solid = 0;
 };
 
 /// \brief Merge segments following Fig. 8.

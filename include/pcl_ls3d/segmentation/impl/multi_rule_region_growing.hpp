@@ -88,6 +88,10 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   lap(stage_times_.features);
   growSegments();
   plane_of_ = segment_of_;
+  // The plane level keeps the grown planes; points that the seed condition left in fragments
+  // (residual above v_t: they join a plane but do not grow it) join their most-linked plane.
+  if (min_fragment_size_ > 1)
+    segmentation::absorbFragments(graph_, grow_.graph_k, plane_of_, min_fragment_size_);
   lap(stage_times_.growing);
   mergeSegments();
   lap(stage_times_.merging);

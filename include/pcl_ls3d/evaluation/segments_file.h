@@ -1,0 +1,56 @@
+#pragma once
+/// \file segments_file.h
+/// \brief SEGMENTS.pcd, the output of pcl_ls3d_segment, in the form plain PCL code reads:
+///        `pcl::io::loadPCDFile(path, cloud)` with `pcl::PointCloud<pcl::PointXYZRGBL>` gives
+///        every input point, in input order, with its segment label and colour.
+///
+/// Layout (binary PCD v0.7): fields x y z (FLOAT32, local coordinates), rgba (UINT32, a colour
+/// per segment, pcl::PointXYZRGBL's layout), label (UINT32, segment id + 1, 0 = in no segment).
+/// Coordinates are local: file coordinate = x + origin. A float cannot hold a UTM or Lambert-93
+/// coordinate to the centimetre, and PCL's point types have float x, y, z only (a FLOAT64 x is
+/// not found by loadPCDFile into PointXYZRGBL: every point would load as (0, 0, 0)). The origin
+/// is written in the header as a comment line that PCL skips:
+///   # pcl_ls3d origin X Y Z
+/// (%.17g, so the double comes back exactly) and readSegmentsOrigin() parses it back. Points
+/// whose input coordinates were not finite keep their place with NaN coordinates and label 0,
+/// so that the file lines up with the input point for point (is_dense false then).
+
+#include <pcl/PointIndices.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+/// \brief Where the loaded points sit in the input file.
+struct InputLayout
+{
+  std::size_t points_in_file = 0;            ///< input points, finite or not
+  std::vector<std::size_t> nonfinite;        ///< file indices of the dropped points, ascending
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< file coordinate = local + origin
+};
+
+/// \brief Writes SEGMENTS.pcd.
+/// \param[in] path output file
+/// \param[in] cloud the finite input points in input order (local coordinates), as loaded
+/// \param[in] segments indices into \a cloud
+/// \param[in] layout where \a cloud's points sit in the input file
+/// \return false with a one-line reason (counts that do not add up, write failure)
+bool
+saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
+                std::string& error);
+
+/// \brief The origin from the "# pcl_ls3d origin" header line of \a path; false if the file has
+///        none (or cannot be read).
+bool
+readSegmentsOrigin(const std::string& path, Eigen::Vector3d& origin);
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d

@@ -1,0 +1,130 @@
+/// \file segments_file.cpp
+/// \brief SEGMENTS.pcd writer and origin reader.
+
+#include <pcl_ls3d/evaluation/segments_file.h>
+#include <pcl_ls3d/evaluation/segmentation_labels.h>
+
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/io/pcd_io.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+namespace pcl_ls3d {
+namespace evaluation {
+namespace {
+
+/// The input points back in file order: loaded points in their places, NaN where the input
+/// point was not finite, segment labels and colours.
+bool
+fileOrderCloud(const pcl::PointCloud<pcl::PointXYZ>& cloud,
+               const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
+               pcl::PointCloud<pcl::PointXYZRGBL>& out, std::string& error)
+{
+  const std::size_t total = std::max(layout.points_in_file, cloud.size());
+  if (cloud.size() + layout.nonfinite.size() != total) {
+    error = "segments file: " + std::to_string(cloud.size()) + " loaded + " +
+            std::to_string(layout.nonfinite.size()) + " non-finite points do not make the " +
+            std::to_string(total) + " input points";
+    return false;
+  }
+  const std::vector<std::uint32_t> labels = labelsFromSegments(segments, cloud.size());
+  out.resize(total);
+  out.is_dense = layout.nonfinite.empty();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::size_t next_bad = 0, loaded = 0;
+  for (std::size_t i = 0; i < total; ++i) {
+    pcl::PointXYZRGBL& p = out[i];
+    if (next_bad < layout.nonfinite.size() && layout.nonfinite[next_bad] == i) {
+      ++next_bad;
+      p.x = p.y = p.z = nan;
+      p.label = 0;
+    }
+    else {
+      p.getVector3fMap() = cloud[loaded].getVector3fMap();
+      p.label = labels[loaded++];
+    }
+    p.rgba = segmentColour(p.label);
+  }
+  return true;
+}
+
+}  // namespace
+
+bool
+saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& cloud,
+                const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
+                std::string& error)
+{
+  pcl::PointCloud<pcl::PointXYZRGBL> out;
+  if (!fileOrderCloud(cloud, segments, layout, out, error))
+    return false;
+  // Packed fields (no padding), read by name into pcl::PointXYZRGBL.
+  pcl::PCLPointCloud2 blob;
+  std::uint32_t offset = 0;
+  for (const char* name : {"x", "y", "z", "rgba", "label"}) {
+    pcl::PCLPointField field;
+    field.name = name;
+    field.offset = offset;
+    field.datatype = offset < 12 ? pcl::PCLPointField::FLOAT32 : pcl::PCLPointField::UINT32;
+    field.count = 1;
+    blob.fields.push_back(field);
+    offset += 4;
+  }
+  blob.point_step = offset;
+  blob.width = static_cast<std::uint32_t>(out.size());
+  blob.height = 1;
+  blob.row_step = blob.point_step * blob.width;
+  blob.is_dense = out.is_dense;
+  blob.data.resize(static_cast<std::size_t>(blob.row_step));
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    std::uint8_t* d = blob.data.data() + i * blob.point_step;
+    std::memcpy(d, &out[i].x, 12);
+    std::memcpy(d + 12, &out[i].rgba, 4);
+    std::memcpy(d + 16, &out[i].label, 4);
+  }
+  // PCDWriter has no way to add a comment line: write its header with ours after the first line.
+  std::string header = pcl::PCDWriter().generateHeaderBinary(blob, Eigen::Vector4f::Zero(),
+                                                              Eigen::Quaternionf::Identity());
+  char line[160];
+  std::snprintf(line, sizeof(line), "# pcl_ls3d origin %.17g %.17g %.17g\n", layout.origin.x(),
+                layout.origin.y(), layout.origin.z());
+  const std::size_t first = header.find('\n');
+  header.insert(first == std::string::npos ? 0 : first + 1, line);
+  header += "DATA binary\n";  // generateHeaderBinary() stops before it, as writeBinary() adds it
+  std::ofstream f(path, std::ios::binary | std::ios::trunc);
+  f << header;
+  f.write(reinterpret_cast<const char*>(blob.data.data()),
+          static_cast<std::streamsize>(blob.data.size()));
+  if (!f) {
+    error = "cannot write '" + path + "'";
+    return false;
+  }
+  return true;
+}
+
+bool
+readSegmentsOrigin(const std::string& path, Eigen::Vector3d& origin)
+{
+  std::ifstream f(path, std::ios::binary);
+  std::string line;
+  while (std::getline(f, line) && line.rfind("DATA", 0) != 0) {
+    std::istringstream is(line);
+    std::string hash, tag, key;
+    double x = 0, y = 0, z = 0;
+    if (is >> hash >> tag >> key >> x >> y >> z && hash == "#" && tag == "pcl_ls3d" &&
+        key == "origin") {
+      origin = Eigen::Vector3d(x, y, z);
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d
