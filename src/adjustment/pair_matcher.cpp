@@ -26,6 +26,19 @@ PairMatcher::reset(const std::vector<Eigen::Vector3d>& source, const TargetSurfa
 }
 
 void
+PairMatcher::keepOnly(const std::vector<char>& keep)
+{
+  std::vector<Observation>& items = set_.items();
+  if (keep.size() != items.size())
+    return;
+  std::size_t n = 0;
+  for (std::size_t j = 0; j < items.size(); ++j)
+    if (keep[j])
+      items[n++] = items[j];
+  items.resize(n);
+}
+
+void
 PairMatcher::matchPoint(std::size_t p, const BlockLinearization& source_pose,
                         const BlockLinearization& target_pose, std::vector<Observation>& out)
 {

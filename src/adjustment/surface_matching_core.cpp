@@ -163,6 +163,17 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     // Stage 2: conjugate points of the sampled source points under the current pose (§2.2).
     const ObservationSet& obs = matcher_.match(BlockLinearization(pair.setup.source), target_pose,
                                                {control.stride(), control.skipMissed(it)});
+    if (hooks_.filter) {  // e.g. PCL's correspondence rejectors
+      std::vector<char> keep(obs.size(), 1);
+      hooks_.filter(pair.setup.source.matrix(), obs, keep);
+      const bool had_some = !obs.empty();
+      matcher_.keepOnly(keep);
+      if (had_some && obs.empty()) {
+        report.iterations = it - 1;
+        return fail(report, TerminationType::TOO_FEW_OBSERVATIONS,
+                    "the observation filter (e.g. PCL's correspondence rejectors) left none");
+      }
+    }
     report.correspondences = obs.size();
     if (tooFewObservations(obs.size(), it, settings, report))
       return report;
@@ -186,7 +197,9 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     report.log.push_back(rec);
     if (next.freeze)
       matcher_.freeze();
-    if (next.converged) {
+    const bool stop = hooks_.after_iteration &&
+                      hooks_.after_iteration(rec, pair.setup.source.matrix(), obs);
+    if (next.converged || stop) {
       report.termination = TerminationType::CONVERGED;
       break;
     }

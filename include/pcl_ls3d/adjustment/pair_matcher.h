@@ -74,6 +74,11 @@ public:
   bool
   restore(State state);
 
+  /// Drops the observations of the last match() whose keep flag is 0 (keep has one flag per
+  /// observation; e.g. a wrapper's correspondence rejectors). Order is preserved.
+  void
+  keepOnly(const std::vector<char>& keep);
+
   /// The observations of the last match().
   const ObservationSet&
   observations() const

@@ -14,6 +14,8 @@
 #include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
+#include <functional>
+#include <utility>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -22,6 +24,22 @@ namespace pcl_ls3d {
 ///        met). step ≤ 0 returns every index.
 std::vector<int>
 thinByVoxel(const std::vector<Eigen::Vector3d>& points, double step);
+
+/// \brief Optional per-iteration hooks of a wrapper (the PCL class uses them for PCL's
+///        correspondence rejectors, euclidean fitness epsilon and visualisation callback).
+///        `pose` is the current source → target 4×4 (cloud coordinates).
+struct IterationHooks
+{
+  /// After stage 2: set keep[j] = 0 to drop observation j before weighting (keep starts all 1).
+  std::function<void(const Eigen::Matrix4d& pose, const ObservationSet& observations,
+                     std::vector<char>& keep)>
+      filter;
+  /// After each update, with the pose after it and the observations it used; returning true
+  /// ends the adjustment as CONVERGED.
+  std::function<bool(const IterationRecord& record, const Eigen::Matrix4d& pose,
+                     const ObservationSet& observations)>
+      after_iteration;
+};
 
 /// \brief Runs LS3D pair adjustments. Not thread-safe itself; parallel inside (OpenMP). Buffers
 ///        persist across runs.
@@ -41,7 +59,15 @@ public:
       const AdjustmentSettings& settings,
       const Eigen::Matrix4d& guess);
 
+  /// Hooks for the following runs (empty functions: none).
+  void
+  setHooks(IterationHooks hooks)
+  {
+    hooks_ = std::move(hooks);
+  }
+
 private:
+  IterationHooks hooks_;
   std::vector<Eigen::Vector3d> reduced_;  ///< source points minus the source block's origin
   PairMatcher matcher_;
   ObservationWeighting weighting_;
