@@ -11,6 +11,8 @@
 #include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
+#include <pcl/PCLPointCloud2.h>
+#include <pcl/correspondence.h>
 #include <pcl/registration/registration.h>
 
 #include <memory>
@@ -43,6 +45,30 @@ namespace pcl_ls3d {
 /// setTransformationEpsilon() (a squared translation, as in ICP: its square root replaces the
 /// translation epsilon when > 0), setSearchMethodTarget() (the kd-tree is reused across
 /// iterations and across align() calls on the same target).
+/// Also honoured as in pcl::IterativeClosestPoint (PCL 1.13.1):
+/// - setTransformationRotationEpsilon(): a cosine; acos of it replaces the angle epsilon.
+/// - setEuclideanFitnessEpsilon(): DefaultConvergenceCriteria's relative-MSE test, on the mean
+///   squared observation l² of consecutive iterations (an epsilon > 1 stops after one, as ICP).
+/// - addCorrespondenceRejector(): the rejectors run on every iteration's observations, in order,
+///   with the blobs ICP gives them (target once, transformed source per iteration); each observed
+///   source point is one pcl::Correspondence (index_query = its cloud index, index_match = the
+///   target point nearest its conjugate point, distance = their squared distance) and the
+///   observations of rejected points are dropped before weighting.
+/// - registerVisualizationCallback(): called after every iteration with the transformed source,
+///   the observed source indices and their target points.
+/// - nr_iterations_: reset by computeTransformation() and counted per iteration; align() itself
+///   does not reset it (nor converged_ when initCompute() fails), exactly as for ICP.
+/// Ignored: setTransformationEstimation() (the Gauss–Markov adjustment is the estimation; choose
+/// the conjugate rule, LND for point-to-plane) and setCorrespondenceEstimation() (the rule finds
+/// correspondences) — each warns once; setRANSACOutlierRejectionThreshold() (ICP 1.13.1 reads
+/// inlier_threshold_ nowhere either), setUseReciprocalCorrespondences(), setSearchMethodSource().
+/// Tiny clouds (< 20 target and < 20 source points, e.g. PCL's five-point ICP_translated) use
+/// point-to-point observations (point_to_point_rule.h) and a minimum of 7 observations.
+/// With an unlimited correspondence distance, a guess under which no source point lies over the
+/// target's box but whose centre is within two cloud diagonals of the target's (the source moved
+/// by about its own size) is not refused as NO_OVERLAP: the
+/// adjustment starts with the centroids made to coincide (PCL_WARN), where ICP would pair every
+/// point anyway.
 template <typename PointSource, typename PointTarget, typename Scalar = float>
 class LeastSquaresSurfaceMatching : public pcl::Registration<PointSource, PointTarget, Scalar>
 {
@@ -64,6 +90,9 @@ public:
 
   using Base::converged_;
   using Base::corr_dist_threshold_;
+  using Base::correspondence_estimation_;
+  using Base::correspondence_rejectors_;
+  using Base::euclidean_fitness_epsilon_;
   using Base::final_transformation_;
   using Base::getClassName;
   using Base::indices_;
@@ -75,7 +104,10 @@ public:
   using Base::target_;
   using Base::transformation_;
   using Base::transformation_epsilon_;
+  using Base::transformation_estimation_;
+  using Base::transformation_rotation_epsilon_;
   using Base::tree_;
+  using Base::update_visualizer_;
 
   LeastSquaresSurfaceMatching();
   ~LeastSquaresSurfaceMatching() override = default;
@@ -181,10 +213,48 @@ private:
                       std::vector<int>& index_of) const;
   /// Why the inputs cannot be adjusted (empty string when they can); prepares the rule.
   std::string
-  checkInputs(const std::vector<Eigen::Vector3d>& points, const TargetSurface& surface) const;
+  checkInputs(const std::vector<Eigen::Vector3d>& points, const TargetSurface& surface,
+              ConjugateRule& rule) const;
+  /// Below this many finite target points the local-surface rules cannot work.
+  static constexpr std::size_t kTinyCloud = 20;
+  /// rule_, or for tiny clouds a point-to-point rule (settings.min_observations lowered to fit).
+  ConjugateRule::Ptr
+  ruleForSize(std::size_t source_points, AdjustmentSettings& settings) const;
+  /// True when some source point under `guess` falls into the target's box (10 % margin), or
+  /// when the source lies so far away (centres > 2 box diagonals apart) that it is no overlap.
+  /// False: the source lies just beside the target, start at the centroids.
+  bool
+  overlapsTarget(const std::vector<Eigen::Vector3d>& points, const Eigen::Matrix4d& guess) const;
+  /// `guess` followed by the translation that moves the source centroid onto the target's.
+  Eigen::Matrix4d
+  centroidStart(const std::vector<Eigen::Vector3d>& points, const Eigen::Matrix4d& guess) const;
   /// PCL's members (final transformation, convergence, iterations) from report_.
   void
   adoptReport();
+  /// PCL_WARN once per object for each pcl::Registration strategy that LS3D does not use.
+  void
+  warnIgnoredStrategies();
+  /// The engine hooks that carry out PCL's rejectors, fitness epsilon and visualiser callback
+  /// over the source points `index_of` (cloud indices) on `surface`.
+  IterationHooks
+  pclHooks(const std::vector<int>& index_of, const TargetSurface& surface);
+  /// The whole input cloud under `pose` (normals rotated too when the type has them), as
+  /// ICP's input_transformed.
+  void
+  transformInput(const Eigen::Matrix4d& pose, PointCloudSource& out) const;
+  /// One pcl::Correspondence per observed source point: index_query = its cloud index,
+  /// index_match = the target point nearest its conjugate point, distance = squared distance
+  /// of the two under `pose` (CorrespondenceEstimation's meaning). first_obs[k] = the first
+  /// observation of correspondence k.
+  void
+  observationCorrespondences(const Eigen::Matrix4d& pose, const ObservationSet& obs,
+                             const std::vector<int>& index_of, const TargetSurface& surface,
+                             pcl::Correspondences& corr, std::vector<std::size_t>& first_obs) const;
+  /// Runs getCorrespondenceRejectors() in order on the observations (as ICP does per iteration).
+  void
+  rejectObservations(const Eigen::Matrix4d& pose, const ObservationSet& obs,
+                     const std::vector<int>& index_of, const TargetSurface& surface,
+                     std::vector<char>& keep);
 
   AdjustmentSettings settings_;
   ConjugateRule::Ptr rule_;
@@ -192,6 +262,11 @@ private:
   AdjustmentReport report_;
   SurfaceMatchingCore core_;
   bool failure_after_max_iter_ = false;
+  /// The correspondence estimation pcl::Registration made; another one was set by the user.
+  typename Base::CorrespondenceEstimationPtr default_correspondence_estimation_;
+  pcl::PCLPointCloud2::Ptr target_blob_;  ///< target for rejectors needing points / normals
+  double previous_mse_ = 0.0;             ///< fitness epsilon: the last iteration's MSE
+  bool warned_estimation_ = false, warned_correspondence_ = false;
 };
 
 }  // namespace pcl_ls3d

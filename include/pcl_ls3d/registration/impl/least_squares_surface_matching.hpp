@@ -2,11 +2,20 @@
 
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
+#include <pcl_ls3d/registration/point_to_point_rule.h>
 
+#include <pcl/common/io.h>
 #include <pcl/common/transforms.h>
 #include <pcl/console/print.h>
+#include <pcl/conversions.h>
+#include <pcl/point_types.h>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <type_traits>
 
 namespace pcl_ls3d {
 
@@ -17,6 +26,7 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::LeastSquaresSurfa
 {
   reg_name_ = "LeastSquaresSurfaceMatching";
   max_iterations_ = settings_.max_iterations;
+  default_correspondence_estimation_ = correspondence_estimation_;
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
@@ -78,6 +88,9 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::getAdjustmentSett
   s.max_correspondence_distance = corr_dist_threshold_;
   if (transformation_epsilon_ > 0.0)  // PCL's epsilon is a squared translation
     s.translation_epsilon = std::sqrt(transformation_epsilon_);
+  // PCL's rotation epsilon is the cosine of the largest rotation change still "converged".
+  if (transformation_rotation_epsilon_ > 0.0 && transformation_rotation_epsilon_ < 1.0)
+    s.angle_epsilon = std::acos(transformation_rotation_epsilon_);
   return s;
 }
 
@@ -112,7 +125,8 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::collectSourcePoin
 template <typename PointSource, typename PointTarget, typename Scalar>
 std::string
 LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::checkInputs(
-    const std::vector<Eigen::Vector3d>& points, const TargetSurface& surface) const
+    const std::vector<Eigen::Vector3d>& points, const TargetSurface& surface,
+    ConjugateRule& rule) const
 {
   if (points.empty())
     return "the source cloud has no finite point";
@@ -122,9 +136,78 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::checkInputs(
   if (finite_target < 3)
     return "the target cloud has fewer than 3 finite points";
   std::string why;
-  if (!rule_->prepare(surface, &why))
-    return "rule " + rule_->name() + " could not prepare: " + why;
+  if (!rule.prepare(surface, &why))
+    return "rule " + rule.name() + " could not prepare: " + why;
   return "";
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+bool
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::overlapsTarget(
+    const std::vector<Eigen::Vector3d>& points, const Eigen::Matrix4d& guess) const
+{
+  Eigen::AlignedBox3d box, moved;
+  for (const auto& p : *target_)
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
+      box.extend(Eigen::Vector3d(p.x, p.y, p.z));
+  const double margin = 0.1 * box.diagonal().norm();  // the engine's margin (setUpPair)
+  Eigen::AlignedBox3d grown = box;
+  grown.min().array() -= margin;
+  grown.max().array() += margin;
+  for (const auto& p : points) {
+    const Eigen::Vector3d x = (guess * p.homogeneous()).template head<3>();
+    if (grown.contains(x))
+      return true;
+    moved.extend(x);
+  }
+  // Beside the target by less than the clouds' own size (the bunny moved by 0.2 m): worth a
+  // start at the centroids. Farther (a tile 10 km away) stays a refusal (NO_OVERLAP).
+  const double gap = (moved.center() - box.center()).norm();
+  return gap > 2.0 * std::max(box.diagonal().norm(), moved.diagonal().norm());
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+Eigen::Matrix4d
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::centroidStart(
+    const std::vector<Eigen::Vector3d>& points, const Eigen::Matrix4d& guess) const
+{
+  Eigen::Vector3d cs = Eigen::Vector3d::Zero(), ct = Eigen::Vector3d::Zero();
+  for (const auto& p : points)
+    cs += (guess * p.homogeneous()).template head<3>();
+  cs /= static_cast<double>(points.size());
+  std::size_t n = 0;
+  for (const auto& p : *target_)
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) {
+      ct += Eigen::Vector3d(p.x, p.y, p.z);
+      ++n;
+    }
+  ct /= static_cast<double>(std::max<std::size_t>(n, 1));
+  Eigen::Matrix4d start = guess;
+  start.template topRightCorner<3, 1>() += ct - cs;
+  return start;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+ConjugateRule::Ptr
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::ruleForSize(
+    std::size_t source_points, AdjustmentSettings& settings) const
+{
+  std::size_t finite_target = 0;
+  for (const auto& p : *target_)
+    finite_target += std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  const auto min_obs = static_cast<std::size_t>(std::max(0, settings.min_observations));
+  // Only when both clouds are tiny: a big source on a handful of target points stays refused.
+  if (finite_target >= kTinyCloud || source_points >= std::max(min_obs, kTinyCloud))
+    return rule_;
+  // Too few points for a local surface (LND/LZD fit 20 neighbours) or for the minimum number of
+  // observations: point-to-point observations (three per source point, as ICP's), and a minimum
+  // that a tiny cloud can meet (ICP needs 3 correspondences; here 6 parameters + 1 redundancy).
+  settings.min_observations = static_cast<int>(std::min<std::size_t>(min_obs, 7));
+  PCL_WARN("[pcl_ls3d::%s::align] tiny clouds (%zu source / %zu target points): point-to-point "
+           "observations instead of rule %s, minimum %d observations\n",
+           getClassName().c_str(), source_points, finite_target, rule_->name().c_str(),
+           settings.min_observations);
+  return std::make_shared<PointToPointRule>();
 }
 
 template <typename PointSource, typename PointTarget, typename Scalar>
@@ -149,6 +232,161 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::adoptReport()
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::warnIgnoredStrategies()
+{
+  if (transformation_estimation_ && !warned_estimation_) {
+    PCL_WARN("[pcl_ls3d::%s::align] setTransformationEstimation() is ignored: LS3D estimates the "
+             "transformation by its own Gauss-Markov adjustment (choose the conjugate rule "
+             "instead, e.g. LND for point-to-plane)\n",
+             getClassName().c_str());
+    warned_estimation_ = true;
+  }
+  if (correspondence_estimation_ != default_correspondence_estimation_ &&
+      !warned_correspondence_) {
+    PCL_WARN("[pcl_ls3d::%s::align] setCorrespondenceEstimation() is ignored: the conjugate "
+             "rule (setConjugateRule) finds the correspondences\n",
+             getClassName().c_str());
+    warned_correspondence_ = true;
+  }
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::transformInput(
+    const Eigen::Matrix4d& pose, PointCloudSource& out) const
+{
+  const Matrix4 t = pose.template cast<Scalar>();
+  if constexpr (pcl::traits::has_normal_v<PointSource>)
+    pcl::transformPointCloudWithNormals(*input_, out, t);
+  else
+    pcl::transformPointCloud(*input_, out, t);
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::observationCorrespondences(
+    const Eigen::Matrix4d& pose, const ObservationSet& obs, const std::vector<int>& index_of,
+    const TargetSurface& surface, pcl::Correspondences& corr,
+    std::vector<std::size_t>& first_obs) const
+{
+  corr.clear();
+  first_obs.clear();
+  std::vector<int> nn(1);
+  std::vector<float> d2(1);
+  for (std::size_t j = 0; j < obs.size(); ++j) {
+    const Observation& o = obs[j];
+    if (j > 0 && obs[j - 1].point == o.point)
+      continue;  // one correspondence per source point (ICP's three axes share it)
+    if (surface.nearestKSearch(o.foot, 1, nn, d2) < 1)
+      continue;
+    const int source_index = index_of[static_cast<std::size_t>(o.point)];
+    const PointSource& p = (*input_)[static_cast<std::size_t>(source_index)];
+    const Eigen::Vector3d x = (pose * Eigen::Vector4d(p.x, p.y, p.z, 1.0)).template head<3>();
+    const float dist2 = static_cast<float>((x - surface.point(nn[0])).squaredNorm());
+    corr.emplace_back(source_index, nn[0], dist2);
+    first_obs.push_back(j);
+  }
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::rejectObservations(
+    const Eigen::Matrix4d& pose, const ObservationSet& obs, const std::vector<int>& index_of,
+    const TargetSurface& surface, std::vector<char>& keep)
+{
+  auto all = std::make_shared<pcl::Correspondences>();
+  std::vector<std::size_t> first_obs;
+  observationCorrespondences(pose, obs, index_of, surface, *all, first_obs);
+  // As IterativeClosestPoint::computeTransformation: the transformed input as a blob for the
+  // rejectors that need source points or normals, then each rejector on the previous survivors.
+  pcl::PCLPointCloud2::Ptr source_blob;
+  for (const auto& rej : correspondence_rejectors_)
+    if (rej->requiresSourcePoints() || rej->requiresSourceNormals()) {
+      PointCloudSource moved;
+      transformInput(pose, moved);
+      source_blob.reset(new pcl::PCLPointCloud2);
+      pcl::toPCLPointCloud2(moved, *source_blob);
+      break;
+    }
+  auto current = std::make_shared<pcl::Correspondences>(*all);
+  pcl::Correspondences survivors;
+  for (const auto& rej : correspondence_rejectors_) {
+    if (rej->requiresSourcePoints())
+      rej->setSourcePoints(source_blob);
+    if (rej->requiresSourceNormals() && pcl::traits::has_normal_v<PointSource>)
+      rej->setSourceNormals(source_blob);
+    rej->setInputCorrespondences(current);
+    rej->getCorrespondences(survivors);
+    *current = survivors;
+  }
+  // Observations of source points whose correspondence survived are kept.
+  std::vector<char> point_kept(index_of.size(), 0);
+  std::vector<int> position(input_->size(), -1);
+  for (std::size_t k = 0; k < all->size(); ++k)
+    position[static_cast<std::size_t>((*all)[k].index_query)] =
+        obs[first_obs[k]].point;
+  for (const auto& c : *current)
+    if (c.index_query >= 0 && static_cast<std::size_t>(c.index_query) < position.size() &&
+        position[static_cast<std::size_t>(c.index_query)] >= 0)
+      point_kept[static_cast<std::size_t>(position[static_cast<std::size_t>(c.index_query)])] = 1;
+  for (std::size_t j = 0; j < obs.size(); ++j)
+    keep[j] = point_kept[static_cast<std::size_t>(obs[j].point)];
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+IterationHooks
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::pclHooks(
+    const std::vector<int>& index_of, const TargetSurface& surface)
+{
+  IterationHooks hooks;
+  if (!correspondence_rejectors_.empty()) {
+    target_blob_.reset(new pcl::PCLPointCloud2);
+    pcl::toPCLPointCloud2(*target_, *target_blob_);
+    for (const auto& rej : correspondence_rejectors_) {
+      if (rej->requiresTargetPoints())
+        rej->setTargetPoints(target_blob_);
+      if (rej->requiresTargetNormals() && pcl::traits::has_normal_v<PointTarget>)
+        rej->setTargetNormals(target_blob_);
+    }
+    hooks.filter = [this, &index_of, &surface](const Eigen::Matrix4d& pose,
+                                               const ObservationSet& obs,
+                                               std::vector<char>& keep) {
+      rejectObservations(pose, obs, index_of, surface, keep);
+    };
+  }
+  previous_mse_ = std::numeric_limits<double>::max();
+  hooks.after_iteration = [this, &index_of, &surface](const IterationRecord& rec,
+                                                      const Eigen::Matrix4d& pose,
+                                                      const ObservationSet& obs) {
+    nr_iterations_ = rec.iteration;  // as ICP: counted while iterating
+    if (update_visualizer_) {
+      pcl::Correspondences corr;
+      std::vector<std::size_t> first_obs;
+      observationCorrespondences(pose, obs, index_of, surface, corr, first_obs);
+      pcl::Indices source_good, target_good;
+      for (const auto& c : corr) {
+        source_good.push_back(c.index_query);
+        target_good.push_back(c.index_match);
+      }
+      PointCloudSource moved;
+      transformInput(pose, moved);
+      update_visualizer_(moved, source_good, *target_, target_good);
+    }
+    // pcl::registration::DefaultConvergenceCriteria's relative MSE test (euclidean fitness
+    // epsilon), on the mean squared observation l² of this iteration.
+    double mse = 0.0;
+    for (const auto& o : obs)
+      mse += o.distance * o.distance;
+    mse = obs.empty() ? 0.0 : mse / static_cast<double>(obs.size());
+    const bool similar = std::abs(mse - previous_mse_) / previous_mse_ < euclidean_fitness_epsilon_;
+    previous_mse_ = mse;
+    return similar;
+  };
+  return hooks;
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void
 LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransformation(
     PointCloudSource& output, const Matrix4& guess)
 {
@@ -159,26 +397,39 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransforma
   report_.rule_name = rule_->name();
   report_.estimator_name = estimator_->name();
 
-  const AdjustmentSettings settings = getAdjustmentSettings();
+  AdjustmentSettings settings = getAdjustmentSettings();
   std::vector<Eigen::Vector3d> points;
   std::vector<int> index_of;
   collectSourcePoints(settings.source_thinning, points, index_of);
   const PclTargetSurface<PointTarget> surface(target_, tree_);
-  const std::string invalid = checkInputs(points, surface);
+  const ConjugateRule::Ptr rule = ruleForSize(points.size(), settings);
+  const std::string invalid = checkInputs(points, surface, *rule);
   if (!invalid.empty()) {
     report_.termination = TerminationType::INVALID_INPUT;
     report_.message = invalid;
     PCL_ERROR("[pcl_ls3d::%s::computeTransformation] %s\n", getClassName().c_str(), invalid.c_str());
   }
   else {
-    report_ = core_.run(points, index_of, surface, *rule_, *estimator_, settings,
-                        guess.template cast<double>());
+    warnIgnoredStrategies();
+    core_.setHooks(pclHooks(index_of, surface));
+    Eigen::Matrix4d start = guess.template cast<double>();
+    // Unlimited: pcl::Registration's default √DBL_MAX or more.
+    if (!(settings.max_correspondence_distance < 1.3407807929942596e154) &&
+        !overlapsTarget(points, start)) {
+      // The source lies beside the target (e.g. moved beyond its own size): ICP would still pair
+      // every point; LS3D starts with the centroids made to coincide instead of no observation.
+      PCL_WARN("[pcl_ls3d::%s::computeTransformation] no source point over the target under the "
+               "guess; starting with the centroids made to coincide\n",
+               getClassName().c_str());
+      start = centroidStart(points, start);
+    }
+    report_ = core_.run(points, index_of, surface, *rule, *estimator_, settings, start);
+    core_.setHooks(IterationHooks());
     adoptReport();
   }
   transformation_ = final_transformation_;
   previous_transformation_ = final_transformation_;
-  output = *input_;
-  pcl::transformPointCloud(*input_, output, final_transformation_);
+  transformInput(final_transformation_.template cast<double>(), output);  // as ICP: normals too
 }
 
 }  // namespace pcl_ls3d
