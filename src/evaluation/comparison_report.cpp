@@ -48,8 +48,8 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth)
 {
   std::string out;
   char buf[256];
-  std::snprintf(buf, sizeof(buf), "%-10s %5s %8s %8s %5s %8s %8s", "method", "iter", "time[s]",
-                "cpu[s]", "conv", "RMS[m]", "s0[m]");
+  std::snprintf(buf, sizeof(buf), "%-10s %5s %8s %8s %5s %-10s %5s %8s %8s", "method", "iter",
+                "time[s]", "cpu[s]", "conv", "stop", "trust", "RMS[m]", "s0[m]");
   out += buf;
   if (with_truth) {
     std::snprintf(buf, sizeof(buf), " %9s %9s %9s | %8s %8s %8s %8s %8s %8s %8s", "mean[mm]",
@@ -59,8 +59,9 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth)
   }
   out += "\n";
   for (const auto& r : runs) {
-    std::snprintf(buf, sizeof(buf), "%-10s %5d %8.3f %8.3f %5s", r.name.c_str(), r.iterations,
-                  r.time_s, r.cpu_s, !r.ran ? "FAIL" : (r.converged ? "yes" : "no"));
+    std::snprintf(buf, sizeof(buf), "%-10s %5d %8.3f %8.3f %5s %-10.10s %5s", r.name.c_str(),
+                  r.iterations, r.time_s, r.cpu_s, !r.ran ? "FAIL" : (r.converged ? "yes" : "no"),
+                  r.stop.empty() ? "-" : r.stop.c_str(), r.pcl_converged ? "yes" : "no");
     out += buf;
     out += " " + cell(r.rms, 8, 4) + " " + cell(r.sigma0, 8, 4);
     if (with_truth) {
@@ -108,6 +109,8 @@ comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext
               {"normals_time_s", num(r.normals_time_s)},
               {"cpu_s", num(r.cpu_s)},
               {"converged", r.converged},
+              {"hit_iteration_limit", r.hit_limit},
+              {"stop", r.stop},
               {"pcl_has_converged", r.pcl_converged},
               {"rms", num(r.rms)},
               {"rms_points", r.rms_points},

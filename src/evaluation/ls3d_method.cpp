@@ -23,11 +23,23 @@ ls3dMethodName(ConjugateRuleType rule)
 std::string
 Ls3dMethodSettings::describe() const
 {
-  char buf[256];
+  char corr[64], iter[32];
+  if (max_correspondence_distance > 0.0)
+    std::snprintf(corr, sizeof(corr), "%g m", max_correspondence_distance);
+  else
+    std::snprintf(corr, sizeof(corr), "default (automatic reach)");
+  if (max_iterations > 0)
+    std::snprintf(iter, sizeof(iter), "%d", max_iterations);
+  else
+    std::snprintf(iter, sizeof(iter), "default");
+  char buf[320];
   std::snprintf(buf, sizeof(buf),
-                "max_corr=%g m, max_iter=%d, thinning=%g m, angle_eps=1e-6 rad, trans_eps=1e-5 m, "
-                "7 parameters, Zuo 0/1 weight at 6 sigma0",
-                max_correspondence_distance, max_iterations, source_thinning);
+                "max_corr=%s, max_iter=%s, thinning=%g m, angle_eps=1e-6 rad, trans_eps=1e-5 m, "
+                "%s, Zuo 0/1 weight at 6 sigma0, quality gate on",
+                corr, iter, source_thinning,
+                model == ParameterModel::SIMILARITY_7 ? "7 parameters (similarity)"
+                : model == ParameterModel::RIGID_6    ? "6 parameters (rigid)"
+                                                      : "reduced parameter model");
   return buf;
 }
 
@@ -47,8 +59,11 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     const double cpu0 = processCpuSeconds();
     LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ> ls3d;
     ls3d.setConjugateRule(rule);
-    ls3d.setMaxCorrespondenceDistance(settings.max_correspondence_distance);
-    ls3d.setMaximumIterations(settings.max_iterations);
+    ls3d.setParameterModel(settings.model);
+    if (settings.max_correspondence_distance > 0.0)
+      ls3d.setMaxCorrespondenceDistance(settings.max_correspondence_distance);
+    if (settings.max_iterations > 0)
+      ls3d.setMaximumIterations(settings.max_iterations);
     ls3d.setSourceThinning(settings.source_thinning);
     ls3d.setInputSource(source);
     ls3d.setInputTarget(target);
@@ -62,8 +77,11 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     run.iterations = report.iterations;
     run.pcl_converged = ls3d.hasConverged();
     run.converged = report.termination == TerminationType::CONVERGED;
+    run.hit_limit = report.termination == TerminationType::MAX_ITERATIONS;
+    run.stop = terminationTypeToString(report.termination);
     run.sigma0 = report.sigma0;
-    run.transformation = report.isSolutionUsable()
+    // An estimate the quality gate refused is still shown (the row says it is not trusted).
+    run.transformation = report.isSolutionUsable() || report.hasEstimate()
                              ? report.transformation
                              : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
     run.message = terminationTypeToString(report.termination);

@@ -5,6 +5,7 @@
 #include <pcl/registration/gicp.h>
 #include <pcl/registration/icp.h>
 #include <pcl/registration/ndt.h>
+#include <pcl/registration/transformation_estimation_svd_scale.h>
 
 #include <cstdio>
 #include <exception>
@@ -37,20 +38,26 @@ alignAndCollect(Reg& reg, CloudT& output, const PclMethodSettings& s, Registrati
   reg.align(output);
   run.iterations = reg.iterations();
   run.pcl_converged = reg.hasConverged();
-  run.converged = run.pcl_converged && run.iterations < s.max_iterations;
+  run.hit_limit = run.iterations >= s.max_iterations;
+  run.converged = run.pcl_converged && !run.hit_limit;
   run.transformation = reg.getFinalTransformation().template cast<double>();
   run.ran = true;
   run.message = run.converged ? "converged"
-                              : (run.pcl_converged ? "iteration limit" : "not converged");
+                              : (run.hit_limit ? "iteration limit" : "not converged");
+  run.stop = run.converged ? "conv" : (run.hit_limit ? "LIMIT" : "noconv");
 }
 
 void
 runIcp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
-       const PclMethodSettings& s, RegistrationRun& run)
+       const PclMethodSettings& s, bool with_scale, RegistrationRun& run)
 {
   pcl::StopWatch watch;
   const double cpu0 = processCpuSeconds();
   Counted<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> icp;
+  if (with_scale)
+    icp.setTransformationEstimation(
+        pcl::make_shared<pcl::registration::TransformationEstimationSVDScale<pcl::PointXYZ,
+                                                                            pcl::PointXYZ>>());
   icp.setMaxCorrespondenceDistance(s.max_correspondence_distance);
   icp.setMaximumIterations(s.max_iterations);
   icp.setTransformationEpsilon(s.transformation_epsilon);
@@ -149,6 +156,7 @@ pclMethodName(PclMethod method)
   case PclMethod::ICP_NORMALS: return "PCL-ICP-N";
   case PclMethod::GICP: return "PCL-GICP";
   case PclMethod::NDT: return "PCL-NDT";
+  case PclMethod::ICP_SCALE: return "PCL-ICP-S";
   }
   return "PCL-?";
 }
@@ -190,7 +198,8 @@ runPclMethod(PclMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& s
   }
   try {
     switch (method) {
-    case PclMethod::ICP: runIcp(source, target, settings, run); break;
+    case PclMethod::ICP: runIcp(source, target, settings, false, run); break;
+    case PclMethod::ICP_SCALE: runIcp(source, target, settings, true, run); break;
     case PclMethod::ICP_NORMALS: runIcpNormals(source, target, settings, run); break;
     case PclMethod::GICP: runGicp(source, target, settings, run); break;
     case PclMethod::NDT: runNdt(source, target, settings, run); break;

@@ -26,7 +26,8 @@ struct ComparisonContext
 };
 
 /// \brief Fixed-width text table, one row per run. Columns: method, iterations, wall time [s],
-///        CPU time [s] (all threads), converged, RMS of NN distances [m], σ0 [m]; with truth also mean / max displacement
+///        CPU time [s] (all threads), converged, how it stopped (RegistrationRun::stop, cut to
+///        10 characters), trusted (the method's hasConverged()), RMS of NN distances [m], σ0 [m]; with truth also mean / max displacement
 ///        error over the source points [mm], max over the source bbox corners [mm], and the
 ///        parameter errors (tx, ty, tz [mm], φ, ω, κ [µrad], m [ppm]).
 std::string

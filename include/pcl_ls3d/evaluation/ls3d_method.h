@@ -3,6 +3,7 @@
 /// \brief Runs pcl_ls3d::LeastSquaresSurfaceMatching with one conjugate-point rule on the same
 ///        input and with the same timing and result row as the PCL methods (pcl_methods.h).
 
+#include <pcl_ls3d/adjustment/parameter_block.h>
 #include <pcl_ls3d/evaluation/registration_run.h>
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
@@ -19,12 +20,16 @@ std::string
 ls3dMethodName(ConjugateRuleType rule);
 
 /// \brief Settings handed to LS3D; everything else keeps the class defaults (Zuo's 0/1 weight at
-///        6σ0, 7 free parameters, angle ε 1e-6 rad, translation ε 1e-5).
+///        6σ0, angle ε 1e-6 rad, translation ε 1e-5, quality gate on).
 struct Ls3dMethodSettings
 {
-  double max_correspondence_distance = 2.0;  ///< [m] same as the PCL methods
-  int max_iterations = 30;                   ///< LS3D default
+  /// [m] same as the PCL methods; <= 0 = the class default (unlimited with the automatic,
+  /// data-derived reach), i.e. what a user who sets nothing gets.
+  double max_correspondence_distance = 2.0;
+  int max_iterations = 30;                   ///< LS3D default; <= 0 = the class default
   double source_thinning = 0.0;              ///< [m] voxel edge, 0 = every source point
+  /// RIGID_6 is the class default (like the ICP it replaces); SIMILARITY_7 frees the scale.
+  ParameterModel model = ParameterModel::RIGID_6;
 
   /// One line listing every value, for tables and docs.
   std::string

@@ -30,14 +30,17 @@ enum class PclMethod {
   ICP,          ///< pcl::IterativeClosestPoint (point-to-point, SVD)
   ICP_NORMALS,  ///< pcl::IterativeClosestPointWithNormals (point-to-plane, linear LS)
   GICP,         ///< pcl::GeneralizedIterativeClosestPoint (plane-to-plane)
-  NDT           ///< pcl::NormalDistributionsTransform
+  NDT,          ///< pcl::NormalDistributionsTransform
+  /// pcl::IterativeClosestPoint with pcl::registration::TransformationEstimationSVDScale (Umeyama
+  /// with scale): PCL's similarity-capable ICP, the fair row against LS3D with 7 parameters.
+  ICP_SCALE
 };
 
-/// "PCL-ICP", "PCL-ICP-N", "PCL-GICP", "PCL-NDT".
+/// "PCL-ICP", "PCL-ICP-N", "PCL-GICP", "PCL-NDT", "PCL-ICP-S".
 std::string
 pclMethodName(PclMethod method);
 
-/// All four, in table order.
+/// The four rigid methods, in table order (ICP_SCALE is asked for explicitly).
 const std::vector<PclMethod>&
 allPclMethods();
 

@@ -37,6 +37,12 @@ struct RegistrationRun
   /// is also true when ICP/GICP/NDT merely hit the limit; that value is kept in pcl_converged.
   bool converged = false;
   bool pcl_converged = false;       ///< the method's hasConverged()
+  /// Stopped because it reached its iteration limit (PCL: nr_iterations_ == max; LS3D:
+  /// MAX_ITERATIONS). A method that hit the limit did not converge by its own criterion.
+  bool hit_limit = false;
+  /// How it stopped, one word for tables: "conv", "LIMIT", "noconv" (PCL) or LS3D's termination
+  /// ("CONVERGED", "MAX_ITERATIONS", "STALLED", "UNRELIABLE", "IMPLAUSIBLE_SCALE", ...).
+  std::string stop;
   /// RMS of the nearest-neighbour distances source→target after alignment, over the source
   /// points whose neighbour is within RunEvaluation::rms_max_distance (same for every method).
   double rms = std::numeric_limits<double>::quiet_NaN();
