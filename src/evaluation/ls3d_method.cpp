@@ -80,8 +80,7 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     run.hit_limit = report.termination == TerminationType::MAX_ITERATIONS;
     run.stop = terminationTypeToString(report.termination);
     run.sigma0 = report.sigma0;
-    // An estimate the quality gate refused is still shown (the row says it is not trusted).
-    run.transformation = report.isSolutionUsable() || report.hasEstimate()
+    run.transformation = report.isSolutionUsable()
                              ? report.transformation
                              : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
     run.message = terminationTypeToString(report.termination);
