@@ -17,8 +17,19 @@
 
 #include <nlohmann/json.hpp>
 
+#if __has_include(<pcl_ls3d/maps/map_rendering.h>)
+#include <pcl_ls3d/maps/coordinate_reference.h>
+#include <pcl_ls3d/maps/geotiff_io.h>
+#include <pcl_ls3d/maps/map_rendering.h>
+#include <pcl_ls3d/maps/png_io.h>
+#define PCL_LS3D_DEFORMATION_MAPS 1
+#endif
+
+#include <algorithm>
+
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <string>
@@ -54,12 +65,18 @@ printHelp(const char* prog)
       "  -lod95               significance by an M3C2-style level of detection at 95 %% instead\n"
       "  -min_region N        smaller connected detections are noise (default 10 points)\n"
       "  -max_dist d          maximum correspondence distance (default unlimited)\n"
+      "  -matching_points N   match on at most N evenly spread epoch points (default 50000; 0:\n"
+      "                       all); residuals are computed for every point\n"
       "  -o RESIDUALS.pcd     one record per epoch point, epoch order: x y z (local coordinates,\n"
       "                       origin in the JSON) residual sigma significant region; .xyz/.txt:\n"
       "                       the same as text with full file coordinates\n"
       "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
       "                       coordinates), converged, parameters, sigmas, estimator, scale,\n"
       "                       subsets, percent_deformed, regions\n"
+      "  -map PREFIX          PREFIX.png (residual map, diverging colour bar, significant regions\n"
+      "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals)\n"
+      "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
+      "                       PROJ string or WKT; default: the reference's LAS CRS, if any)\n"
       "  -overwrite           allow replacing existing output files\n"
       "  -h                   this help\n",
       prog);
@@ -142,6 +159,103 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
   return true;
 }
 
+#ifdef PCL_LS3D_DEFORMATION_MAPS
+/// PREFIX.png (residuals on a diverging colour bar, region cells outlined) and PREFIX.tif
+/// (float32 residual raster, NaN no data, the input's CRS when known).
+bool
+writeMaps(const std::string& prefix, const Cloud& epoch, const def::DeformationResult& r,
+          const Eigen::Vector3d& origin, const std::string& crs_wkt, const std::string& title,
+          double k, bool overwrite, std::string& error)
+{
+  namespace maps = pcl_ls3d::maps;
+  const int a = (r.regions.plane_axis + 1) % 3, b = (r.regions.plane_axis + 2) % 3;
+  Eigen::Vector2d lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
+  Eigen::Vector2d hi = -lo;
+  std::vector<double> magnitudes;
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    if (!std::isfinite(r.field.residual[i]))
+      continue;
+    const Eigen::Vector3d p = epoch[i].getVector3fMap().cast<double>() + origin;
+    lo = lo.cwiseMin(Eigen::Vector2d(p[a], p[b]));
+    hi = hi.cwiseMax(Eigen::Vector2d(p[a], p[b]));
+    magnitudes.push_back(std::abs(r.field.residual[i]));
+  }
+  if (magnitudes.empty())
+    return (error = "no residual to map").empty();
+  // Cells of 1.5 point spacings: most cells hold a point or more.
+  const double cell = std::max(1.5 * r.regions.spacing, 1e-9);
+  const maps::GridGeometry grid = maps::GridGeometry::covering(lo, hi, cell);
+  maps::RasterAccumulator residual(grid, maps::RasterAccumulator::Mode::MEAN),
+      region(grid, maps::RasterAccumulator::Mode::MAX_ABS);
+  for (std::size_t i = 0; i < epoch.size(); ++i) {
+    if (!std::isfinite(r.field.residual[i]))
+      continue;
+    const Eigen::Vector3d p = epoch[i].getVector3fMap().cast<double>() + origin;
+    residual.add(p[a], p[b], r.field.residual[i]);
+    region.add(p[a], p[b], r.regions.region[i] > 0 ? 1.0 : 0.0);
+  }
+  maps::Raster raster = residual.result();
+  const maps::Raster in_region = region.result();
+  if (!maps::writeGeoTiff(prefix + ".tif", raster, crs_wkt, error, overwrite))
+    return false;
+  // Colour range: the 98th percentile of |r|, at least 2 k σ̂; a nice number.
+  std::nth_element(magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() * 98 / 100),
+                   magnitudes.end());
+  double limit = std::max(magnitudes[magnitudes.size() * 98 / 100], 2.0 * k * r.field.scale);
+  const double step = maps::niceStep(limit, 2);
+  limit = std::ceil(limit / step) * step;
+  maps::ColourMap colours = maps::ColourMap::diverging(limit);
+  maps::MapStyle style;
+  style.title = title;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%s, robust scale %.3g, %.1f %% of the area in %zu deformed regions (outlined)",
+                r.matching.estimator.c_str(), r.matching.scale, r.regions.percent_deformed,
+                r.regions.regions.size());
+  style.subtitle.push_back(line);
+  style.unit = "residual";
+  style.tick_format = limit >= 10 ? "%+.0f" : limit >= 1 ? "%+.1f" : "%+.2f";
+  style.legend = {"epoch minus reference", "outline: significant region"};
+  style.length_unit = "";
+  std::snprintf(line, sizeof(line), "cell %.3g, %d x %d cells%s%s", cell, grid.cols, grid.rows,
+                crs_wkt.empty() ? "" : ", ", crs_wkt.empty() ? "" : maps::crsName(crs_wkt).c_str());
+  style.footer = line;
+  maps::Image img = maps::renderRasterMap(raster, colours, style);
+  if (img.empty())
+    return (error = "cannot render the map").empty();
+  // Outline of the region cells: the same map with those cells left empty differs from this
+  // one exactly at their pixels (the layout depends on the grid and the style only); the
+  // pixels of that set next to one outside it are drawn dark, two pixels wide.
+  maps::Raster shown = raster;
+  for (std::size_t i = 0; i < shown.values.size(); ++i)
+    if (in_region.values[i] > 0.5f && std::isfinite(shown.values[i]))
+      shown.values[i] = std::numeric_limits<float>::quiet_NaN();
+  const maps::Image marked = maps::renderRasterMap(shown, colours, style);
+  if (marked.width() == img.width() && marked.height() == img.height()) {
+    const int w = img.width(), h = img.height();
+    std::vector<std::uint8_t> inside(static_cast<std::size_t>(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        inside[static_cast<std::size_t>(y) * w + x] = marked.get(x, y) != img.get(x, y);
+    auto in = [&](int x, int y) {
+      return x >= 0 && y >= 0 && x < w && y < h && inside[static_cast<std::size_t>(y) * w + x];
+    };
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) {
+        if (!in(x, y))
+          continue;
+        bool border = false;
+        for (int d = 1; d <= 2 && !border; ++d)
+          border = !in(x - d, y) || !in(x + d, y) || !in(x, y - d) || !in(x, y + d);
+        if (border)
+          img.set(x, y, {20, 20, 20});
+      }
+  }
+  if (!maps::writePng(prefix + ".png", img, error))
+    return false;
+  return true;
+}
+#endif
+
 }  // namespace
 
 int
@@ -153,7 +267,8 @@ main(int argc, char** argv)
   }
   static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
                                                "-contamination", "-seed", "-k", "-min_region",
-                                               "-max_dist", "-o", "-json"};
+                                               "-max_dist", "-matching_points", "-o", "-json",
+                                               "-map", "-crs"};
   std::vector<std::string> files;
   std::string why;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite", "-lod95"}, files, why))
@@ -162,19 +277,23 @@ main(int argc, char** argv)
     return fail("expected exactly two input files, REFERENCE and EPOCH (see -h)"), 1;
   const std::string reference_path = files[0], epoch_path = files[1];
 
-  std::string estimator_text = "mm", rule_text = "lzd", out_path, json_path;
+  std::string estimator_text = "mm", rule_text = "lzd", out_path, json_path, map_prefix, crs_text;
   int params = 6, subsets = 0, min_region = 10;
+  long long matching_points = 50000;
   double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0;
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   parse_argument(argc, argv, "-estimator", estimator_text);
   parse_argument(argc, argv, "-rule", rule_text);
   parse_argument(argc, argv, "-o", out_path);
   parse_argument(argc, argv, "-json", json_path);
+  parse_argument(argc, argv, "-map", map_prefix);
+  parse_argument(argc, argv, "-crs", crs_text);
   using pcl_ls3d::tools::integerOption;
   using pcl_ls3d::tools::numberOption;
   if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
       !integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
       !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
+      !integerOption(argc, argv, "-matching_points", matching_points, why, 0, 1000000000000LL) ||
       !numberOption(argc, argv, "-seed", seed, why, 0, 4294967295.0) ||
       !numberOption(argc, argv, "-k", k, why, 1e-6, 1e6) ||
       !numberOption(argc, argv, "-contamination", contamination, why, 1e-6, 0.5) ||
@@ -207,10 +326,22 @@ main(int argc, char** argv)
   if (find_switch(argc, argv, "-lod95"))
     settings.residuals.rule = def::DetectionRule::LOD95;
   settings.regions.min_points = static_cast<std::size_t>(min_region);
+  settings.matching_points = static_cast<std::size_t>(matching_points);
   if (!settings.isValid(&why))
     return fail("invalid settings: " + why), 1;
 
-  for (const std::string& out : {out_path, json_path})
+#ifndef PCL_LS3D_DEFORMATION_MAPS
+  if (!map_prefix.empty() || !crs_text.empty())
+    return fail("-map and -crs need the maps library, which this build does not have"), 1;
+  const std::string png_path, tif_path;
+#else
+  std::string crs_wkt;
+  if (!crs_text.empty() && (crs_wkt = pcl_ls3d::maps::crsFromUserInput(crs_text, &why)).empty())
+    return fail("invalid -crs " + crs_text + ": " + why), 1;
+  const std::string png_path = map_prefix.empty() ? "" : map_prefix + ".png";
+  const std::string tif_path = map_prefix.empty() ? "" : map_prefix + ".tif";
+#endif
+  for (const std::string& out : {out_path, json_path, png_path, tif_path})
     if (!pcl_ls3d::tools::checkOutputFile(out, {reference_path, epoch_path}, overwrite, why))
       return fail(why), 1;
   if (!out_path.empty() && pcl_ls3d::io::isSameFile(out_path, json_path))
@@ -274,6 +405,19 @@ main(int argc, char** argv)
   print_info("Transformation (EPOCH -> REFERENCE, input coordinates):\n");
   for (int i = 0; i < 4; ++i)
     print_info("  %14.8f %14.8f %14.8f %16.6f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
+  // What the transformation does where the data are: the shift of the epoch's centroid.
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  std::size_t finite = 0;
+  for (const Eigen::Vector3d& p : points)
+    if (p.allFinite()) {
+      centroid += p;
+      ++finite;
+    }
+  centroid /= static_cast<double>(std::max<std::size_t>(finite, 1));
+  const Eigen::Vector3d shift = (a.transformation * centroid.homogeneous()).head<3>() - centroid;
+  const Eigen::Vector3d centroid_in = centroid + rinfo.origin;
+  print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)\n", centroid_in.x(),
+             centroid_in.y(), centroid_in.z(), shift.x(), shift.y(), shift.z());
   const auto& names = pcl_ls3d::similarityParameterNames();
   print_info("Parameters (reduced frame) and sigma:");
   for (int i = 0; i < 7; ++i)
@@ -296,6 +440,19 @@ main(int argc, char** argv)
       return fail(error), 1;
     print_info("Wrote %s\n", out_path.c_str());
   }
+#ifdef PCL_LS3D_DEFORMATION_MAPS
+  if (!map_prefix.empty()) {
+    if (crs_wkt.empty() && rinfo.format == "las")
+      crs_wkt = pcl_ls3d::maps::crsFromLasVlrs(rinfo.las.vlrs);
+    const std::string title = "Deformation: " + std::filesystem::path(epoch_path).filename().string() +
+                              " against " + std::filesystem::path(reference_path).filename().string();
+    if (!writeMaps(map_prefix, *epoch, result, rinfo.origin, crs_wkt, title, settings.residuals.k, overwrite,
+                   error))
+      return fail(error), 1;
+    print_info("Wrote %s and %s%s\n", png_path.c_str(), tif_path.c_str(),
+               crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");
+  }
+#endif
   if (!json_path.empty()) {
     nlohmann::json j;
     j["transformation"] = matrixJson(T);
@@ -324,7 +481,10 @@ main(int argc, char** argv)
     j["points"] = epoch->size();
     j["points_observed"] = result.field.observed;
     j["points_significant"] = result.field.significant_count;
+    j["epoch_centroid"] = {centroid_in.x(), centroid_in.y(), centroid_in.z()};
+    j["centroid_shift"] = {shift.x(), shift.y(), shift.z()};
     j["percent_deformed"] = reg.percent_deformed;
+    j["matching_points"] = a.source_points;
     j["area_observed"] = reg.area_observed;
     j["area_deformed"] = reg.area_deformed;
     j["spacing"] = reg.spacing;

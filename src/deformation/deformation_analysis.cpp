@@ -20,7 +20,31 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
     out.matching.message = "invalid settings: " + why;
     return out;
   }
-  out.matching = robustMatching(epoch, {}, reference, rule, settings.matching, guess);
+  std::size_t finite = 0;
+  for (const Eigen::Vector3d& p : epoch)
+    finite += p.allFinite();
+  if (settings.matching_points > 0 && finite > settings.matching_points) {
+    // Every k-th finite point (k ≥ 1 real-valued, so exactly matching_points are taken).
+    std::vector<Eigen::Vector3d> sample;
+    std::vector<int> index;
+    sample.reserve(settings.matching_points);
+    const double step = static_cast<double>(finite) / static_cast<double>(settings.matching_points);
+    double next = 0.0;
+    std::size_t rank = 0;
+    for (std::size_t i = 0; i < epoch.size(); ++i) {
+      if (!epoch[i].allFinite())
+        continue;
+      if (static_cast<double>(rank) >= next && sample.size() < settings.matching_points) {
+        sample.push_back(epoch[i]);
+        index.push_back(static_cast<int>(i));
+        next += step;
+      }
+      ++rank;
+    }
+    out.matching = robustMatching(sample, index, reference, rule, settings.matching, guess);
+  }
+  else
+    out.matching = robustMatching(epoch, {}, reference, rule, settings.matching, guess);
   if (!out.matching.isSolutionUsable())
     return out;
   ResidualSettings rs = settings.residuals;
