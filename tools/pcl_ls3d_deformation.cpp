@@ -17,7 +17,10 @@
 
 #include <nlohmann/json.hpp>
 
-#if __has_include(<pcl_ls3d/maps/map_rendering.h>)
+// The map output uses the maps library (include/pcl_ls3d/maps, issue 8), not on main when this
+// was written: it is compiled only with -DPCL_LS3D_WITH_DEFORMATION_MAPS and has not been built
+// yet. Until then -map and -crs answer that this build has no maps.
+#if defined(PCL_LS3D_WITH_DEFORMATION_MAPS) && __has_include(<pcl_ls3d/maps/map_rendering.h>)
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/geotiff_io.h>
 #include <pcl_ls3d/maps/map_rendering.h>
@@ -74,7 +77,8 @@ printHelp(const char* prog)
       "                       coordinates), converged, parameters, sigmas, estimator, scale,\n"
       "                       subsets, percent_deformed, regions\n"
       "  -map PREFIX          PREFIX.png (residual map, diverging colour bar, significant regions\n"
-      "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals)\n"
+      "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals);\n"
+      "                       needs a build with the maps library\n"
       "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
       "                       PROJ string or WKT; default: the reference's LAS CRS, if any)\n"
       "  -overwrite           allow replacing existing output files\n"
@@ -168,7 +172,7 @@ writeMaps(const std::string& prefix, const Cloud& epoch, const def::DeformationR
           double k, bool overwrite, std::string& error)
 {
   namespace maps = pcl_ls3d::maps;
-  const int a = (r.regions.plane_axis + 1) % 3, b = (r.regions.plane_axis + 2) % 3;
+  const int a = (r.regions.plane_normal_axis + 1) % 3, b = (r.regions.plane_normal_axis + 2) % 3;
   Eigen::Vector2d lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
   Eigen::Vector2d hi = -lo;
   std::vector<double> magnitudes;
