@@ -35,7 +35,7 @@ printHelp(const char* prog)
              "                       the target's local origin)\n"
              "  -o ALIGNED           write the transformed source (input coordinates)\n"
              "  -rule lnd|lzd|icp    conjugate-point rule (default lnd)\n"
-             "  -params 7|6|3|1      similarity, rigid (m fixed), translation, height only (default 7)\n"
+             "  -params 7|6|3|1      similarity, rigid (m fixed), translation, height only (default 6)\n"
              "  -fix tx,ty,...       also fix these parameters (tx ty tz phi omega kappa m)\n"
              "  -max_iter N          iteration limit (default 30)\n"
              "  -K k                 reject residuals beyond k*sigma0 (Zuo eq. 15; default 6)\n"
@@ -165,6 +165,14 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
     formal[names[i]] = finiteOrNull(r.sigmas_formal[static_cast<int>(i)]);
   j["sigmas_formal"] = formal;
   j["source_noise"] = r.source_noise;
+  j["quality"] = {{"trustworthy", r.quality.trustworthy},
+                  {"expected_noise", r.quality.expected_noise},
+                  {"source_noise", r.quality.source_noise},
+                  {"target_noise", r.quality.target_noise},
+                  {"sigma0_ratio", r.quality.sigma0_ratio},
+                  {"coverage", r.quality.coverage},
+                  {"rejected_fraction", r.quality.rejected_fraction},
+                  {"movement", r.quality.movement}};
   nlohmann::json log = nlohmann::json::array();
   for (const auto& it : r.log)
     log.push_back({{"iteration", it.iteration},
@@ -209,7 +217,7 @@ main(int argc, char** argv)
   const std::string source_path = files[0], target_path = files[1];
 
   std::string out_path, rule_text = "lnd", fix_text, json_path, truth_path;
-  int params = 7, max_iter = 30;
+  int params = 6, max_iter = 30;
   double K = 6.0, thin = 0.0, max_dist = -1.0;
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   parse_argument(argc, argv, "-o", out_path);
@@ -298,9 +306,11 @@ main(int argc, char** argv)
   }
   const double t_align = tt.toc();
   const pcl_ls3d::AdjustmentReport& r = ls3d.getReport();
-  if (!r.isSolutionUsable())
+  if (!r.hasEstimate())
     return fail(std::string("registration failed: ") + pcl_ls3d::terminationTypeToString(r.termination) +
                 ": " + r.message), 1;
+  // An estimate that failed the quality gate is shown (and in the JSON) but not written out.
+  const bool trusted = r.isSolutionUsable();
 
   // Report: the local transform re-expressed in input coordinates (both clouds share the origin).
   const Eigen::Matrix4d T_input = pcl_ls3d::localToGlobal(r.transformation, tinfo.origin, tinfo.origin);
@@ -323,7 +333,7 @@ main(int argc, char** argv)
                         {"max_displacement_bbox", e.max_bbox}};
   }
 
-  if (!out_path.empty()) {
+  if (!out_path.empty() && trusted) {
     tt.tic();
     pcl_ls3d::io::SaveOptions so;
     so.overwrite = overwrite;
@@ -336,5 +346,9 @@ main(int argc, char** argv)
     if (!(out << pcl_ls3d::io::toJsonText(j, 2) << "\n"))
       return fail("cannot write " + json_path), 1;
   }
+  if (!trusted)
+    return fail(std::string("registration not trustworthy: ") +
+                pcl_ls3d::terminationTypeToString(r.termination) + ": " + r.message +
+                (out_path.empty() ? "" : " (" + out_path + " not written)")), 3;
   return 0;
 }

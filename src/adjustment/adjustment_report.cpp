@@ -18,8 +18,20 @@ terminationTypeToString(TerminationType type)
   case TerminationType::TOO_FEW_OBSERVATIONS: return "TOO_FEW_OBSERVATIONS";
   case TerminationType::SINGULAR: return "SINGULAR";
   case TerminationType::DIVERGED: return "DIVERGED";
+  case TerminationType::STALLED: return "STALLED";
+  case TerminationType::UNRELIABLE: return "UNRELIABLE";
+  case TerminationType::IMPLAUSIBLE_SCALE: return "IMPLAUSIBLE_SCALE";
   }
   return "UNKNOWN";
+}
+
+bool
+AdjustmentReport::hasEstimate() const
+{
+  return (isSolutionUsable() || termination == TerminationType::STALLED ||
+          termination == TerminationType::UNRELIABLE ||
+          termination == TerminationType::IMPLAUSIBLE_SCALE) &&
+         parameters.allFinite();
 }
 
 bool
@@ -57,6 +69,12 @@ AdjustmentReport::fullReport() const
   os << "LS3D adjustment (" << rule_name << ", " << estimator_name << "): " << brief() << "\n";
   if (!message.empty())
     os << "  message: " << message << "\n";
+  if (quality.expected_noise > 0.0 || quality.coverage > 0.0)
+    os << format("  quality: sigma0 = %.3g x the surfaces' own noise (%.3g)", quality.sigma0_ratio,
+                 quality.expected_noise)
+       << format(", coverage %.3f, rejected %.3f", quality.coverage, quality.rejected_fraction)
+       << format(", moved %.4g: ", quality.movement)
+       << (quality.trustworthy ? "trustworthy\n" : "NOT TRUSTWORTHY\n");
   os << format("  local origin (source) = (%.4f, %.4f, %.4f)\n", local_origin_source.x(),
                local_origin_source.y(), local_origin_source.z());
   os << format("  local origin (target) = (%.4f, %.4f, %.4f)\n", local_origin_target.x(),

@@ -95,6 +95,13 @@ AdjustmentSettings::isValid(std::string* why) const
     return fail("freeze_sigma_fraction must be >= 0 and finite");
   if (min_observations < 1)
     return fail("min_observations must be >= 1");
+  if (!(max_scale_deviation > 0.0) || !(max_sigma0_ratio > 0.0) || !(max_median_gradient >= 1.0) ||
+      !(max_scale_growth >= 1.0))
+    return fail("max_scale_deviation, max_sigma0_ratio must be > 0, max_median_gradient and max_scale_growth >= 1 "
+                "(+inf switches a test off)");
+  if (!(min_coverage >= 0.0 && min_coverage <= 1.0) ||
+      !(max_rejected_fraction >= 0.0 && max_rejected_fraction <= 1.0))
+    return fail("min_coverage and max_rejected_fraction must be in [0, 1]");
   if (!(determinability_threshold > 0.0) || determinability_threshold >= 1.0)
     return fail("determinability_threshold must be in (0, 1)");
   return true;

@@ -1,6 +1,8 @@
 #include <pcl_ls3d/adjustment/iteration_control.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pcl_ls3d {
 
@@ -35,6 +37,15 @@ IterationControl::skipMissed(int it) const
 {
   return !culling_ && !frozen_ && !coarse_ && settings_.recheck_interval > 1 &&
          it % settings_.recheck_interval != 0;
+}
+
+double
+IterationControl::reach(double sigma0, double spacing) const
+{
+  const double fixed = settings_.max_correspondence_distance;
+  if (!isUnlimitedDistance(fixed) || !settings_.automatic_reach || !(sigma0 > 0.0) || !(spacing > 0.0))
+    return fixed;
+  return std::max(4.0 * spacing, 6.0 * sigma0 + 2.0 * spacing);
 }
 
 IterationControl::Decision

@@ -1,6 +1,6 @@
 #include "matching_steps.h"
 
-#include <pcl_ls3d/adjustment/errors_in_variables.h>
+#include <pcl_ls3d/adjustment/surface_noise.h>
 
 #include <algorithm>
 #include <cmath>
@@ -122,6 +122,16 @@ fillPrecision(AdjustmentReport& report, const GaussMarkovSolution& sol)
     }
   }
   return undetermined;
+}
+
+std::vector<Eigen::Vector3d>
+conjugatePoints(const ObservationSet& set, std::size_t most)
+{
+  std::vector<Eigen::Vector3d> feet;
+  const std::size_t step = std::max<std::size_t>(1, set.size() / std::max<std::size_t>(1, most));
+  for (std::size_t j = 0; j < set.size() && feet.size() < most; j += step)
+    feet.push_back(set[j].foot);
+  return feet;
 }
 
 std::array<bool, 7>

@@ -67,6 +67,11 @@ precisionCell(const AdjustmentSettings& settings, const PairSetup& setup, std::s
 std::string
 fillPrecision(AdjustmentReport& report, const GaussMarkovSolution& sol);
 
+/// Up to `most` conjugate points spread over an observation set (target coordinates), e.g. as
+/// seeds of the target's noise estimate.
+std::vector<Eigen::Vector3d>
+conjugatePoints(const ObservationSet& set, std::size_t most = 256);
+
 /// The 7 flags of a one-block solution as the report's array.
 std::array<bool, 7>
 flags7(const std::vector<bool>& flags);

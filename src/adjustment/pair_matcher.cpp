@@ -23,6 +23,20 @@ PairMatcher::reset(const std::vector<Eigen::Vector3d>& source, const TargetSurfa
   missed_.assign(source.size(), 0);
   chunks_.resize((source.size() + kChunk - 1) / kChunk);
   grid_.build(target, max_distance);
+  grid_reach_ = max_distance;
+}
+
+void
+PairMatcher::setReach(double max_distance)
+{
+  if (max_distance == max_distance_)
+    return;
+  max_distance_ = max_distance;
+  // The grid stays conservative for any smaller reach; rebuild when it culls much less than it could.
+  if (max_distance > grid_reach_ || max_distance < 0.75 * grid_reach_ || !grid_.built()) {
+    grid_.build(*target_, max_distance);
+    grid_reach_ = max_distance;
+  }
 }
 
 void

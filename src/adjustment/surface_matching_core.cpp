@@ -1,6 +1,8 @@
 #include <pcl_ls3d/adjustment/gauss_markov.h>
 #include <pcl_ls3d/adjustment/iteration_control.h>
+#include <pcl_ls3d/adjustment/quality_gate.h>
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
+#include <pcl_ls3d/adjustment/surface_noise.h>
 
 #include "matching_steps.h"
 
@@ -44,6 +46,10 @@ struct PairRun
   GaussMarkovProblem problem;      // a-priori observations and the rank-test scaling
   ScaleColumnCorrection eiv;       // errors in variables of the scale column
   GaussMarkovSolution sol;         // the last solve
+  Vector7d start;                  // the parameters at the initial guess
+  double source_noise = 0.0;       // σ_s, the source's own roughness
+  double start_scale = 0.0;        // 1.4826 · median |l| at the initial guess
+  double spacing = 0.0;            // the target's point spacing (nearest-neighbour median)
 
   void
   prepare(const AdjustmentSettings& settings, const std::vector<Eigen::Vector3d>& reduced)
@@ -52,8 +58,10 @@ struct PairRun
     problem.apriori_weights = setup.source.apriori_weights;
     problem.determinability_threshold = settings.determinability_threshold;
     problem.scaling = rankTestScaling(setup.radius);
+    start = setup.source.values;
+    source_noise = sourceNoise(reduced, setup);
     if (settings.correct_source_noise)
-      eiv.setSourceNoise(sourceNoise(reduced, setup));
+      eiv.setSourceNoise(source_noise);
     sol.qxx = Matrix7d::Zero();
   }
 };
@@ -105,12 +113,39 @@ solveAndUpdate(PairRun& run, const NormalEquations& ne, int it, const Adjustment
   return true;
 }
 
+// The quality gate on a finished adjustment (quality_gate.h).
+void
+assess(const PairRun& run, const ObservationSet& obs, const TargetSurface& target,
+       const AdjustmentSettings& settings, AdjustmentReport& report)
+{
+  QualityInputs in;
+  in.sigma0 = run.sol.sigma0;
+  in.source_noise = run.source_noise;
+  in.target_noise = estimateSurfaceNoise(target, conjugatePoints(obs));
+  in.spacing = run.spacing;
+  in.candidates = run.setup.inside.size();
+  in.correspondences = obs.size();
+  in.used = report.observations_used;
+  in.start_scale = run.start_scale;
+  in.start = run.start;
+  in.estimate = run.setup.source.values;
+  in.source_box = run.setup.source_box;
+  report.quality = measureQuality(in, obs);
+  if (report.termination != TerminationType::CONVERGED &&
+      report.termination != TerminationType::MAX_ITERATIONS)
+    return;
+  const bool scale_estimated = run.sol.determinable[SCALE];
+  report.termination = applyQualityGate(report.quality, in, scale_estimated, settings,
+                                        report.termination, report.message);
+}
+
 // Estimate, precision (eq. 14 / spatial sandwich) and reliability of the last iteration.
 void
 finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights,
-       const AdjustmentSettings& settings, std::size_t target_size,
+       const AdjustmentSettings& settings, const TargetSurface& target,
        const std::vector<int>& source_indices, AdjustmentReport& report)
 {
+  const std::size_t target_size = target.size();
   const GaussMarkovSolution& sol = run.sol;
   report.parameters = run.setup.source.values;
   report.transformation = run.setup.source.matrix();
@@ -130,6 +165,7 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
                       "iteration limit reached before the changes fell below the epsilons";
   if (settings.store_observations)
     storeObservations(report, sol, row, weights, source_indices);
+  assess(run, row.set, target, settings, report);
 }
 
 }  // namespace
@@ -155,11 +191,16 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
   report.local_origin_source = pair.setup.source.input_origin;
   report.local_origin_target = pair.setup.source.output_origin;
   pair.prepare(settings, reduced_);
+  pair.spacing = estimatePointSpacing(target);
   const BlockLinearization target_pose(pair.setup.target);
   matcher_.reset(reduced_, target, rule, settings.max_correspondence_distance);
   IterationControl control(settings, reduced_.size(), matcher_.culling());
 
   for (int it = 1; it <= settings.max_iterations; ++it) {
+    if (it > 1) {  // the reach follows the fit (automatic_reach)
+      matcher_.setReach(control.reach(pair.sol.sigma0, pair.spacing));
+      control.setCulling(matcher_.culling());
+    }
     // Stage 2: conjugate points of the sampled source points under the current pose (§2.2).
     const ObservationSet& obs = matcher_.match(BlockLinearization(pair.setup.source), target_pose,
                                                {control.stride(), control.skipMissed(it)});
@@ -177,6 +218,8 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     report.correspondences = obs.size();
     if (tooFewObservations(obs.size(), it, settings, report))
       return report;
+    if (it == 1)
+      pair.start_scale = robustScale(obs.distances());
     pair.eiv.update(pair.setup.source.values[SCALE], pair.sol.sigma0, meanSquaredGradient(obs));
     const SourceRows row{matcher_, obs, pair.eiv};
     // Stages 3–4: robust weights (eq. 15), normal equations (eq. 8), solve (eqs. 9–11).
@@ -205,7 +248,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     }
   }
   finish(pair, SourceRows{matcher_, matcher_.observations(), pair.eiv}, weighting_.weights(),
-         settings, target.size(), source_indices, report);
+         settings, target, source_indices, report);
   return report;
 }
 

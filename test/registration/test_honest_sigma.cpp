@@ -43,6 +43,7 @@ runDraws(double sigma_source, double sigma_target)
     for (auto& p : *tgt)
       p.getVector3fMap() += static_cast<float>(sigma_target) * Eigen::Vector3f(z(rng), z(rng), z(rng));
     LS3D ls3d;
+    ls3d.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7);  // the truth has a scale
     ls3d.setInputSource(src);
     ls3d.setInputTarget(tgt);
     Cloud aligned;

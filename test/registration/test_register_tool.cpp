@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -38,7 +39,8 @@ runTool(const std::string& args, bool stderr_only = false)
   char buf[512];
   while (fgets(buf, sizeof(buf), p))
     r.output += buf;
-  r.code = pclose(p);
+  const int status = pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
 }
 
@@ -172,12 +174,16 @@ TEST_F(RegisterTool, NanOnlyAndNoOverlapGiveOneErrorLine)
 }
 
 // -params 6 fixes m and -fix tz fixes tz exactly at the guess (identity); the report carries
-// Qxx, the covariance behind the σ_i, the formal σ and one log record per iteration.
+// Qxx, the covariance behind the σ_i, the formal σ and one log record per iteration. The truth
+// has a height offset, so holding tz at 0 leaves a misfit (σ0 ≈ 6 × the surfaces' noise): the
+// quality gate says so with exit 3 and no -o cloud, and the JSON report is still complete.
 TEST_F(RegisterTool, ParamsAndFixAreHonouredAndReportComplete)
 {
   const ToolRun r = runTool(path("source.pcd") + " " + path("target.pcd") + " -params 6 -fix tz -json " +
-                            path("fixed.json"));
-  ASSERT_EQ(r.code, 0) << r.output;
+                            path("fixed.json") + " -o " + path("fixed_aligned.pcd"));
+  ASSERT_EQ(r.code, 3) << r.output;
+  EXPECT_NE(r.output.find("registration not trustworthy"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::ifstream(path("fixed_aligned.pcd")).good());
   std::ifstream in(path("fixed.json"));
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_EQ(j["parameters"]["m"].get<double>(), 1.0);
@@ -192,6 +198,8 @@ TEST_F(RegisterTool, ParamsAndFixAreHonouredAndReportComplete)
   const double var_tx = j["covariance"][0][0].get<double>();
   EXPECT_NEAR(var_tx, std::pow(j["sigmas"]["tx"].get<double>(), 2), 1e-12 * var_tx);
   EXPECT_EQ(j["log"].size(), j["iterations"].get<std::size_t>());
-  EXPECT_EQ(j["termination"].get<std::string>(), "CONVERGED");
+  EXPECT_EQ(j["termination"].get<std::string>(), "UNRELIABLE");
+  EXPECT_FALSE(j["quality"]["trustworthy"].get<bool>());
+  EXPECT_GT(j["quality"]["sigma0_ratio"].get<double>(), 3.0);
   EXPECT_EQ(j["redundancy"].get<long>(), j["observations_used"].get<long>() - 5);
 }

@@ -49,6 +49,8 @@ TEST_P(RuleAccuracy, RecoversKnownSimilarity)
   ASSERT_GT(pair.source->size(), 1000u);
 
   LS3D ls3d;
+
+  ls3d.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7);  // the truth has a scale
   ls3d.setConjugateRule(rule);
   ls3d.setInputSource(pair.source);
   ls3d.setInputTarget(pair.target);

@@ -22,7 +22,10 @@ enum class TerminationType {
   NO_OVERLAP,                ///< no source observation lies over the target surface
   TOO_FEW_OBSERVATIONS,      ///< fewer usable observations than settings.min_observations
   SINGULAR,                  ///< no free parameter could be determined / solve failed
-  DIVERGED                   ///< estimate became non-finite
+  DIVERGED,                  ///< estimate became non-finite
+  STALLED,                   ///< stopped at the initial guess with a fit the data contradict (quality_gate.h)
+  UNRELIABLE,                ///< stopped, but the fit fails the quality gate: not trustworthy (quality_gate.h)
+  IMPLAUSIBLE_SCALE          ///< the estimated scale is beyond settings.max_scale_deviation
 };
 
 /// "CONVERGED", "MAX_ITERATIONS", ...
@@ -41,6 +44,29 @@ struct IterationRecord
   double scale_change = 0.0;              ///< |dm|
   Vector7d parameters = Vector7d::Zero(); ///< estimate after this iteration (reduced frame)
   bool extrapolated = false;              ///< the step was extrapolated (settings.accelerate)
+};
+
+/// \brief How far the result can be trusted: the figures of the quality gate (quality_gate.h).
+struct QualityFigures
+{
+  /// √(σ_s² + σ_t²): the noise the two surfaces carry (local quadric roughness of each; 0: unknown).
+  double expected_noise = 0.0;
+  double source_noise = 0.0;          ///< σ_s of the source (its own local roughness)
+  double target_noise = 0.0;          ///< σ_t of the target near the conjugate points
+  double sigma0_ratio = 0.0;          ///< σ0 / expected_noise (≈ 1 for a good fit; 0: unknown)
+  /// Source points over the target's extent that have an observation, as a fraction of them.
+  double coverage = 0.0;
+  double rejected_fraction = 0.0;     ///< correspondences the estimator gave weight 0, as a fraction
+  /// Median |u| of the observations' gradients: 1 for distance rules (LND, ICP); for LZD
+  /// 1 / cos(slope), so above √2 most observations lie on surfaces steeper than 45°, where a
+  /// vertical difference is no surface distance.
+  double median_gradient = 1.0;
+  double movement = 0.0;              ///< largest displacement of the estimate from the initial guess over the source's extent
+  /// 1.4826 · median |l| of the correspondences at the initial guess and at the end: a fit that
+  /// ends worse than it started moved away from the data.
+  double start_scale = 0.0;
+  double final_scale = 0.0;
+  bool trustworthy = false;           ///< every figure within the settings' limits
 };
 
 /// \brief Everything one adjustment produced. Parameter order: tx, ty, tz, φ, ω, κ, m.
@@ -86,6 +112,8 @@ struct AdjustmentReport
   std::vector<double> weights;
   std::vector<double> redundancy_numbers;
 
+  QualityFigures quality;                  ///< the quality gate's figures (after a run that produced an estimate)
+
   std::vector<IterationRecord> log;        ///< one record per iteration
   std::string rule_name;                   ///< conjugate-point rule used
   std::string estimator_name;              ///< robust estimator used
@@ -96,9 +124,14 @@ struct AdjustmentReport
   {
     return SimilarityTransform(parameters);
   }
-  /// True when the estimate can be used (converged or hit the iteration limit with finite values).
+  /// True when the estimate can be used: converged (or hit the iteration limit) with finite
+  /// values and passed the quality gate.
   bool
   isSolutionUsable() const;
+  /// True when an estimate exists even though it may not be trusted (STALLED, UNRELIABLE,
+  /// IMPLAUSIBLE_SCALE keep it in `parameters` / `transformation` for inspection).
+  bool
+  hasEstimate() const;
   /// One line: termination, iterations, σ0, observations.
   std::string
   brief() const;

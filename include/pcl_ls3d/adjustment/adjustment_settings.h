@@ -11,6 +11,14 @@
 
 namespace pcl_ls3d {
 
+/// True for a correspondence distance that means "unlimited": pcl::Registration's default
+/// √DBL_MAX and anything larger (infinity, DBL_MAX).
+inline bool
+isUnlimitedDistance(double distance)
+{
+  return !(distance < 1.3407807929942596e154);  // √DBL_MAX
+}
+
 /// \brief Settings of the adjustment. Units: lengths in the unit of the data, angles [rad].
 ///
 /// A-priori parameter observations (Zuo et al. 2012, eq. 9): V_e = X − L_e with weight P_e.
@@ -24,8 +32,10 @@ namespace pcl_ls3d {
 struct AdjustmentSettings
 {
   // --- a-priori parameter observations (eq. 9) ---------------------------------------------
-  /// P_e per parameter: 0 free, +inf fixed, otherwise a soft constraint.
-  Vector7d apriori_weights = Vector7d::Zero();
+  /// P_e per parameter: 0 free, +inf fixed, otherwise a soft constraint. Default: rigid (the
+  /// scale fixed at the guess's), as the ICP this class replaces; setParameterModel(SIMILARITY_7)
+  /// or -params 7 frees it.
+  Vector7d apriori_weights = parameterModelWeights(ParameterModel::RIGID_6);
   /// L_e per parameter (reduced frame). Used when apriori_from_guess is false.
   Vector7d apriori_values = (Vector7d() << 0, 0, 0, 0, 0, 0, 1).finished();
   /// When true (default), L_e is the initial guess expressed in the reduced frame, so fixed
@@ -63,8 +73,14 @@ struct AdjustmentSettings
 
   // --- observations --------------------------------------------------------------------------
   /// Conjugate points farther than this (|signed distance| and nearest target point) are no
-  /// correspondence. Default: unlimited, as in pcl::Registration.
+  /// correspondence. Default: unlimited, as in pcl::Registration — but see automatic_reach.
   double max_correspondence_distance = std::numeric_limits<double>::max();
+  /// With an unlimited max_correspondence_distance, derive the reach from the data: unlimited
+  /// in the first iteration, then max(4 s, 6 σ0 + 2 s) with s the target's point spacing and σ0
+  /// of the previous iteration. Far points (below a bridge, across a river, beyond the overlap)
+  /// then stop pulling once the estimate has settled, and the overlap grid culls them. False:
+  /// truly unlimited.
+  bool automatic_reach = true;
   /// Regular thinning of the source observations: one source point per voxel of this edge
   /// [length]; 0 = use every source point.
   double source_thinning = 0.0;
@@ -91,6 +107,27 @@ struct AdjustmentSettings
   /// (Gauss–Helmert linearisation point), x − c l R⁻¹u/m, which removes the correlation; the
   /// source noise σ_s is estimated from the source's own local quadric residuals.
   bool correct_source_noise = true;
+
+  // --- quality gate (quality_gate.h): when a result is not to be trusted -------------------------
+  /// With the scale estimated, |m − 1| beyond this fails the adjustment (IMPLAUSIBLE_SCALE).
+  /// 0.5 % = 5 mm per metre: scans and strips differ by ppm, a collapsing scale by far more.
+  double max_scale_deviation = 0.005;
+  /// σ0 beyond this multiple of the noise both surfaces carry (their own local roughness)
+  /// marks the result not trustworthy; good fits end at 0.2–2.6 on the real pairs measured
+  /// (docs/ARCHITECTURE.md, "Quality gate").
+  double max_sigma0_ratio = 3.0;
+  /// Fewer source points over the target's extent with an observation than this fraction of
+  /// them marks the result not trustworthy (a fit held by a small part of the overlap).
+  double min_coverage = 0.1;
+  /// More correspondences rejected by the robust estimator than this fraction marks the
+  /// result not trustworthy (good fits reject a few per cent; a collapsed σ0 far more).
+  double max_rejected_fraction = 0.25;
+  /// A median observation gradient |u| above this marks the rule unsuitable for the surface
+  /// (1.3 = 1/cos 40°: LZD, a vertical difference, on mostly steep surfaces).
+  double max_median_gradient = 1.3;
+  /// The robust scale of the residuals (1.4826 · median |l|) at the end above this multiple of
+  /// the one at the initial guess: the adjustment moved away from the data.
+  double max_scale_growth = 1.25;
 
   // --- results ----------------------------------------------------------------------------------
   /// Keep per-observation residuals, weights and redundancy numbers r_i in the report

@@ -8,20 +8,13 @@
 ///        a_m' = a_m − c l with c = m σ_s² |u|² / var(l), var(l) = m² σ_s² |u|² + σ_t²,
 ///        removes the correlation. See docs/LS3D_PRECISION.md.
 
+#include <pcl_ls3d/adjustment/surface_noise.h>
+
 #include <Eigen/Core>
 
-#include <vector>
+#include <algorithm>
 
 namespace pcl_ls3d {
-
-/// \brief Robust estimate of the isotropic noise σ of a sampled smooth surface: local quadrics
-///        fitted to the points within `radius` of up to max_seeds seed points (spread over
-///        `seeds`), pooled as the median of RSS/(k − 6) corrected to a mean. Returns 0 when no
-///        seed has enough neighbours. Surface roughness (vegetation, edges) counts as noise, so
-///        it is an upper bound on rough ground.
-double
-estimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& seeds,
-                     double radius, std::size_t max_seeds = 256);
 
 /// \brief The per-iteration factor of the scale-column correction.
 class ScaleColumnCorrection

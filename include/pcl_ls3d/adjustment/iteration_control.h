@@ -37,10 +37,23 @@ public:
   {
     return coarse_ ? coarse_stride_ : 1;
   }
+  /// Whether the matcher culls points outside the overlap (it may start to once the reach is finite).
+  void
+  setCulling(bool culling)
+  {
+    culling_ = culling;
+  }
+
   /// Skip points that found no correspondence last time (in all but every recheck-th iteration,
   /// while correspondences are searched afresh and no grid culls the non-overlap).
   bool
   skipMissed(int iteration) const;
+
+  /// The correspondence reach for the next iteration: settings.max_correspondence_distance, or
+  /// with settings.automatic_reach and an unlimited distance, max(4 s, 6 σ0 + 2 s) once σ0 of a
+  /// previous solve is known (spacing s of the target).
+  double
+  reach(double sigma0, double spacing) const;
 
   /// What to do after the solve of iteration `it` (dx already applied).
   struct Decision

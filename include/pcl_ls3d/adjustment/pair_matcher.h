@@ -50,6 +50,16 @@ public:
   match(const BlockLinearization& source_pose, const BlockLinearization& target_pose,
         const Sampling& sampling);
 
+  /// Changes the maximum correspondence distance for the next match() (the overlap grid is
+  /// rebuilt when the reach changed by more than a quarter).
+  void
+  setReach(double max_distance);
+  double
+  reach() const
+  {
+    return max_distance_;
+  }
+
   /// From now on every rule reuses exactly its cached element (the observation set stays
   /// fixed, so the last iterations converge instead of cycling between neighbouring elements).
   void
@@ -116,6 +126,7 @@ private:
   const TargetSurface* target_ = nullptr;
   const ConjugateRule* rule_ = nullptr;
   double max_distance_ = 0.0;
+  double grid_reach_ = 0.0;  ///< the reach the overlap grid was built for
   OverlapGrid grid_;
   std::vector<CorrespondenceCache> caches_;
   std::vector<unsigned char> missed_;  ///< no correspondence at the point's last search

@@ -215,11 +215,14 @@ void
 LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::adoptReport()
 {
   nr_iterations_ = report_.iterations;
-  if (report_.isSolutionUsable()) {
+  // An estimate that failed the quality gate stays readable (for inspection) but is not converged.
+  if (report_.hasEstimate())
     final_transformation_ = report_.transformation.template cast<Scalar>();
-    // As pcl::DefaultConvergenceCriteria: reaching the iteration limit counts as converged
-    // unless failure_after_max_iter is set; report_.termination tells them apart.
-    converged_ = report_.termination == TerminationType::CONVERGED || !failure_after_max_iter_;
+  // As pcl::DefaultConvergenceCriteria: reaching the iteration limit counts as converged
+  // unless failure_after_max_iter is set; report_.termination tells them apart.
+  converged_ = report_.isSolutionUsable() &&
+               (report_.termination == TerminationType::CONVERGED || !failure_after_max_iter_);
+  if (report_.isSolutionUsable()) {
     if (!report_.message.empty())
       PCL_WARN("[pcl_ls3d::%s::computeTransformation] %s\n", getClassName().c_str(),
                report_.message.c_str());

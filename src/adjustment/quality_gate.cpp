@@ -1,0 +1,127 @@
+#include <pcl_ls3d/adjustment/quality_gate.h>
+#include <pcl_ls3d/adjustment/observation_weighting.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+namespace pcl_ls3d {
+
+namespace {
+
+// Largest |T_estimate(c) − T_start(c)| over the corners of the source's box.
+double
+movementOverBox(const Vector7d& start, const Vector7d& estimate, const Eigen::AlignedBox3d& box)
+{
+  if (box.isEmpty())
+    return 0.0;
+  const SimilarityTransform a(start), b(estimate);
+  double largest = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+    largest = std::max(largest, (b.apply(corner) - a.apply(corner)).norm());
+  }
+  return largest;
+}
+
+std::size_t
+distinctPoints(const ObservationSet& set)
+{
+  std::size_t n = 0;
+  int last = -1;
+  for (const Observation& o : set)
+    if (o.point != last) {
+      ++n;
+      last = o.point;
+    }
+  return n;
+}
+
+double
+medianGradient(const ObservationSet& set)
+{
+  if (set.empty())
+    return 1.0;
+  std::vector<double> g;
+  g.reserve(set.size());
+  for (const Observation& o : set)
+    g.push_back(o.direction.norm());
+  auto mid = g.begin() + static_cast<std::ptrdiff_t>(g.size() / 2);
+  std::nth_element(g.begin(), mid, g.end());
+  return *mid;
+}
+
+std::string
+figure(const char* text, double value, double limit)
+{
+  char buf[160];
+  std::snprintf(buf, sizeof(buf), text, value, limit);
+  return buf;
+}
+
+}  // namespace
+
+QualityFigures
+measureQuality(const QualityInputs& in, const ObservationSet& observations)
+{
+  QualityFigures q;
+  q.source_noise = in.source_noise;
+  q.target_noise = in.target_noise;
+  q.expected_noise = std::sqrt(in.source_noise * in.source_noise + in.target_noise * in.target_noise);
+  const double floor = std::max(q.expected_noise, 1e-3 * in.spacing);
+  q.sigma0_ratio = floor > 0.0 ? in.sigma0 / floor : 0.0;
+  q.coverage = in.candidates > 0 ? static_cast<double>(distinctPoints(observations)) /
+                                       static_cast<double>(in.candidates)
+                                 : 0.0;
+  q.rejected_fraction = in.correspondences > 0
+                            ? static_cast<double>(in.correspondences - in.used) /
+                                  static_cast<double>(in.correspondences)
+                            : 0.0;
+  q.movement = movementOverBox(in.start, in.estimate, in.source_box);
+  q.median_gradient = medianGradient(observations);
+  q.start_scale = in.start_scale;
+  q.final_scale = robustScale(observations.distances());
+  return q;
+}
+
+TerminationType
+applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimated,
+                 const AdjustmentSettings& s, TerminationType termination, std::string& why)
+{
+  std::string reasons;
+  auto add = [&reasons](const std::string& r) { reasons += (reasons.empty() ? "" : "; ") + r; };
+  const double scale_change = std::abs(in.estimate[SCALE] / in.start[SCALE] - 1.0);
+  if (scale_estimated && scale_change > s.max_scale_deviation) {
+    q.trustworthy = false;
+    why += std::string(why.empty() ? "" : "; ") +
+           figure("implausible scale: |m - m0| / m0 = %.4g exceeds %.4g (fix the scale, -params 6)",
+                  scale_change, s.max_scale_deviation);
+    return TerminationType::IMPLAUSIBLE_SCALE;
+  }
+  if (q.sigma0_ratio > s.max_sigma0_ratio)
+    add(figure("sigma0 is %.3g x the surfaces' own noise (limit %.3g)", q.sigma0_ratio, s.max_sigma0_ratio));
+  if (q.coverage < s.min_coverage)
+    add(figure("only %.3g of the source points over the target have an observation (limit %.3g)",
+               q.coverage, s.min_coverage));
+  if (q.rejected_fraction > s.max_rejected_fraction)
+    add(figure("%.3g of the correspondences were rejected (limit %.3g)", q.rejected_fraction,
+               s.max_rejected_fraction));
+  if (q.start_scale > 0.0 && q.final_scale > s.max_scale_growth * q.start_scale)
+    add(figure("the residuals ended %.3g x larger than at the initial guess (limit %.3g): the "
+               "adjustment moved away from the data",
+               q.final_scale / q.start_scale, s.max_scale_growth));
+  if (q.median_gradient > s.max_median_gradient)
+    add(figure("most observations lie on surfaces steeper than the rule measures (median gradient "
+               "%.3g, limit %.3g): use a normal-distance rule (LND)",
+               q.median_gradient, s.max_median_gradient));
+  q.trustworthy = reasons.empty();
+  if (q.trustworthy)
+    return termination;
+  const bool stalled = q.movement <= std::max(q.expected_noise, 1e-9);
+  why += std::string(why.empty() ? "" : "; ") + "NOT TRUSTWORTHY: " + reasons +
+         (stalled ? " (the estimate did not move from the initial guess)" : "");
+  return stalled ? TerminationType::STALLED : TerminationType::UNRELIABLE;
+}
+
+}  // namespace pcl_ls3d
