@@ -93,6 +93,8 @@ AdjustmentReport::fullReport() const
       os << "  (fixed)";
     else if (!determinable[s])
       os << "  (UNDETERMINABLE: held, geometry gives no information)";
+    else if (std::isnan(sigmas[i]))
+      os << "  +- not estimable (exact fit)";
     else
       os << format("  +- %.3e  (formal %.3e)", sigmas[i], sigmas_formal[i]);
     os << "\n";

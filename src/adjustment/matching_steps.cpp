@@ -105,6 +105,11 @@ std::string
 fillPrecision(AdjustmentReport& report, const GaussMarkovSolution& sol)
 {
   std::string undetermined;
+  // σ0 = 0: every residual vanished (a cloud matched to itself or to a superset of itself).
+  // The data say nothing about the spread then; σ = 0 would claim a perfect instrument.
+  const bool exact_fit = !(sol.sigma0 > 1e-10);  // rounding of identical coordinates: ~1e-16
+  if (exact_fit)
+    report.precision_model = "not estimable: exact fit, every residual is 0";
   for (int i = 0; i < 7; ++i) {
     const std::size_t s = static_cast<std::size_t>(i);
     report.sigmas_formal[i] = sol.sigma0 * std::sqrt(sol.qxx(i, i));
@@ -114,6 +119,8 @@ fillPrecision(AdjustmentReport& report, const GaussMarkovSolution& sol)
       report.sigmas[i] = report.sigmas_formal[i] = std::numeric_limits<double>::infinity();
       undetermined += (undetermined.empty() ? "" : ", ") + similarityParameterNames()[s];
     }
+    else if (exact_fit)
+      report.sigmas[i] = report.sigmas_formal[i] = std::numeric_limits<double>::quiet_NaN();
     else
       report.sigmas[i] = std::sqrt(std::max(0.0, report.covariance(i, i)));
     for (int j = 0; j < 7; ++j) {

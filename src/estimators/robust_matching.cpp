@@ -183,8 +183,15 @@ RobustMatchingReport::brief() const
 RobustMatchingReport
 robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector<int>& all_indices,
                const TargetSurface& reference, const ConjugateRule& rule,
-               const RobustMatchingSettings& s, const Eigen::Matrix4d& guess)
+               const RobustMatchingSettings& settings, const Eigen::Matrix4d& guess)
 {
+  // Deformation analysis needs the residual of every epoch point: no automatic reach cutting
+  // the moved part out of the observations.
+  RobustMatchingSettings s = settings;
+  s.adjustment.automatic_reach = false;
+  // Rejecting the moved part is the method: up to the estimators' breakdown point, not the
+  // few per cent a good least-squares fit rejects.
+  s.adjustment.max_rejected_fraction = std::max(s.adjustment.max_rejected_fraction, 0.5);
   // Non-finite points are no observations (as PCL drops them); indices keep the caller's.
   std::vector<Eigen::Vector3d> points;
   std::vector<int> point_indices;
@@ -209,7 +216,9 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
   if (s.least_squares_start || s.method == RobustMethod::LEAST_SQUARES) {
     report.start = core.run(points, point_indices, reference, rule, ls, s.adjustment, guess);
     report.iterations = report.start.iterations;
-    if (!report.start.isSolutionUsable()) {
+    // The start only brings the surfaces close: with much of the surface moved the quality gate
+    // rightly calls it untrustworthy, but its estimate is what the robust stages start from.
+    if (!report.start.hasEstimate()) {
       report.adjustment = report.start;
       return fail(report, report.start.termination, "least-squares start: " + report.start.message);
     }

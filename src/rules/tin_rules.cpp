@@ -37,11 +37,30 @@ constexpr double kMaxCentroidOffset = 0.7;
 // 0.11), and the point is dropped if that fails too.
 constexpr double kMaxHeightVariance = 0.7;
 
+// A query closer than this fraction of its neighbourhood radius to a target sample IS that
+// sample (float rounding of the same coordinates is ~1e-7 of them).
+constexpr double kCoincidentFraction = 1e-4;
+
 Scratch&
 scratch()
 {
   thread_local Scratch s;
   return s;
+}
+
+// A query that is one of the target's own samples (a cloud matched to itself, or to a cloud that
+// contains it) lies on the surface the target measures: the local plane passes through that
+// sample. The fitted surface's offset there is the sample's own noise, not a discrepancy, and
+// taking it as one moves a cloud matched to itself off the identity by up to ~2 σ.
+bool
+coincidentSample(const Eigen::Vector3d& query, const TargetSurface& target, Eigen::Vector3d& sample)
+{
+  const Scratch& s = scratch();
+  if (s.indices.empty())
+    return false;
+  const double radius2 = static_cast<double>(s.sq_dists.back());
+  sample = target.point(s.indices.front());
+  return (sample - query).squaredNorm() <= kCoincidentFraction * kCoincidentFraction * radius2;
 }
 
 // Barycentric test of p's projection along `dir` onto triangle (a, b, c).
@@ -291,6 +310,9 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
         c = query + h * n;
         n = (n - g.x() * e1 - g.y() * e2).normalized();
       }
+      Eigen::Vector3d sample;
+      if (coincidentSample(query, target, sample))
+        c = sample;
       anchor(cache, query);
       cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
                       static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
@@ -349,6 +371,9 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
         cache.vertices = {{-1, -1, -1}};
         return false;
       }
+      Eigen::Vector3d sample;
+      if (coincidentSample(query, target, sample))
+        c = sample;
       anchor(cache, query);
       cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
                       static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};

@@ -78,7 +78,9 @@ TEST(RobustMatching, LmsAndMmRecoverTruthWith40PercentDeformed)
   const synth::LiSurface li = liSurface(40.0, 25.0, synth::DeformationPosition::UPPER_RIGHT);
   const LiRun run(li);
   const RobustMatchingReport ls = run(RobustMethod::LEAST_SQUARES);
-  ASSERT_TRUE(ls.isSolutionUsable()) << ls.message;
+  // Least squares ends far off, and the quality gate says so (σ0 ≈ 9 × the surfaces' noise).
+  ASSERT_TRUE(ls.adjustment.hasEstimate()) << ls.message;
+  EXPECT_FALSE(ls.adjustment.quality.trustworthy);
   EXPECT_GT(run.errorSigma(ls.adjustment.transformation), 5.0);
   for (const RobustMethod m : {RobustMethod::LMS, RobustMethod::MM}) {
     const RobustMatchingReport r = run(m);

@@ -37,8 +37,10 @@ Eigen::Matrix4d
 lhdStart(const synth::LiSurface& li)
 {
   LeastSquaresSurfaceMatching<PointLiDAR, PointLiDAR> lhd;
+  AdjustmentSettings all_points = AdjustmentSettings::rigid6();
+  all_points.automatic_reach = false;  // all points, deformed ones too, as in Li's first step
+  lhd.setAdjustmentSettings(all_points);
   lhd.setConjugateRule(ConjugateRuleType::LZD);
-  lhd.setParameterModel(ParameterModel::RIGID_6);
   lhd.setRobustEstimator(std::make_shared<LeastSquaresEstimator>());
   lhd.setInputSource(li.mate);
   lhd.setInputTarget(li.reference);

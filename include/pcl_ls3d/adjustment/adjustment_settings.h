@@ -123,8 +123,11 @@ struct AdjustmentSettings
   /// result not trustworthy (good fits reject a few per cent; a collapsed σ0 far more).
   double max_rejected_fraction = 0.25;
   /// A median observation gradient |u| above this marks the rule unsuitable for the surface
-  /// (1.3 = 1/cos 40°: LZD, a vertical difference, on mostly steep surfaces).
-  double max_median_gradient = 1.3;
+  /// (LZD, a vertical difference, on mostly steep surfaces). Off by default: LHD on a steep
+  /// height field is valid (Li's surface: median 1.7, exact), while LZD on a closed object
+  /// (bun0 → bun4: median 1.38) fails; the slope does not tell them apart. Set e.g. 1.3 when
+  /// LZD is used on objects rather than terrain.
+  double max_median_gradient = std::numeric_limits<double>::infinity();
   /// The robust scale of the residuals (1.4826 · median |l|) at the end above this multiple of
   /// the one at the initial guess: the adjustment moved away from the data.
   double max_scale_growth = 1.25;

@@ -38,6 +38,7 @@ SampleConsensusModelSurfaceMatching<PointT>::setUp(const PointCloudConstPtr& ref
   model_size_ = 7;
   rule_ = makeConjugateRule(ConjugateRuleType::LZD);
   settings_ = AdjustmentSettings::rigid6();
+  settings_.automatic_reach = false;  // every epoch point keeps its residual (deformation)
   lin_ = std::make_shared<LinearizedMatching>();
   reference_ = reference;
   requested_ = indices_ ? *indices_ : pcl::Indices();
@@ -74,6 +75,7 @@ SampleConsensusModelSurfaceMatching<PointT>::setMatching(const ConjugateRule::Pt
   }
   rule_ = rule;
   settings_ = settings;
+  settings_.automatic_reach = false;  // every epoch point keeps its residual (deformation)
   return linearize(start_);
 }
 
