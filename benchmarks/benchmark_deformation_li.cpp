@@ -5,8 +5,9 @@
 //       Table 2 / Table 4 analogue: 9 % deformed by N(200, 20) at the upper-left corner; Table 2
 //       with a small transform (t = 30, −20, 15; angles ~1e-3 rad), Table 4 with 5° rotations
 //       and 500-unit shifts. Prints each estimator's parameters against the truth.
+//   (methods: ls, zuo, huber, m, md, lms, mm, and the LMS M-step variants lms_s0, lms_mad)
 //   benchmark_deformation_li -grid [-methods m,md,lms,mm] [-percents 4,9,...] [-mags 3,3.5,...]
-//       [-positions upper_left,upper,middle,...|all] [-seeds N] [-full]
+//       [-positions upper_left,upper,middle,...|all] [-seeds N] [-first_seed S] [-full]
 //       Tables 3 and 5 analogues: a trial succeeds when the recovered transform moves no grid
 //       node by more than 0.5 σ from the truth. Per estimator and % column the magnitudes are
 //       tried in increasing order until one reaches ≥ 90 % success (all of them with -full);
@@ -35,6 +36,8 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <tuple>
+#include <utility>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -44,6 +47,24 @@ using namespace pcl_ls3d;
 namespace {
 
 constexpr double kSigma = 20.0;
+double g_grow_k = 2.0;  ///< hysteresis threshold of the second detection score (-grow_k)
+
+/// Precision and recall of a region labelling against the planted patch, over observed nodes.
+std::pair<double, double>
+detection(const synth::LiSurface& li, const deformation::ResidualField& field, const std::vector<int>& region)
+{
+  std::size_t tp = 0, fp = 0, fn = 0;
+  for (std::size_t i = 0; i < li.deformed.size(); ++i) {
+    if (!std::isfinite(field.residual[i]))
+      continue;  // no conjugate (LZD: nodes on the border): not observable
+    const bool found = region[i] > 0;
+    tp += found && li.deformed[i];
+    fp += found && !li.deformed[i];
+    fn += !found && li.deformed[i];
+  }
+  return {tp + fp ? static_cast<double>(tp) / static_cast<double>(tp + fp) : 1.0,
+          tp + fn ? static_cast<double>(tp) / static_cast<double>(tp + fn) : 1.0};
+}
 
 std::vector<std::string>
 splitList(const std::string& text)
@@ -71,13 +92,33 @@ struct Trial
   bool usable = false;
   double error_sigma = 0.0;  ///< worst grid-node displacement against the truth [σ]
   double precision = 1.0, recall = 1.0;
+  double grown_precision = 1.0, grown_recall = 1.0;  ///< the same with hysteresis (-grow_k)
   double scale = 0.0;
   double ms = 0.0;
   deformation::DeformationResult result;
 };
 
+/// A method name of robustMatching, or an LMS variant by the scale of its M-step: lms (σ* of
+/// the LMS fit, default), lms_s0 (s0 of the LMS fit), lms_mad (eq. 7 on all residuals).
+struct Method
+{
+  RobustMethod method = RobustMethod::LMS;
+  LmsScale lms_scale = LmsScale::FINAL;
+};
+
+bool
+parseMethod(const std::string& name, Method& m)
+{
+  m = Method();
+  if (name == "lms_s0" || name == "lms_mad") {
+    m.lms_scale = name == "lms_s0" ? LmsScale::PRELIMINARY : LmsScale::MAD;
+    return true;
+  }
+  return parseRobustMethod(name, m.method);
+}
+
 Trial
-runTrial(const synth::LiSurface& li, RobustMethod method)
+runTrial(const synth::LiSurface& li, const Method& method)
 {
   std::vector<Eigen::Vector3d> pts;
   Eigen::Matrix3Xd eval(3, static_cast<Eigen::Index>(li.mate->size()));
@@ -92,7 +133,8 @@ runTrial(const synth::LiSurface& li, RobustMethod method)
   std::string why;
   rule->prepare(surface, &why);
   deformation::DeformationSettings s;
-  s.matching.method = method;
+  s.matching.method = method.method;
+  s.matching.lms_scale = method.lms_scale;
   Trial t;
   pcl::console::TicToc tt;
   tt.tic();
@@ -106,17 +148,12 @@ runTrial(const synth::LiSurface& li, RobustMethod method)
   t.scale = t.result.matching.scale;
   t.error_sigma = evaluation::computeTransformError(t.result.matching.adjustment.transformation,
                                                     li.truth.matrix(), eval).max / kSigma;
-  std::size_t tp = 0, fp = 0, fn = 0;
-  for (std::size_t i = 0; i < li.deformed.size(); ++i) {
-    if (!std::isfinite(t.result.field.residual[i]))
-      continue;  // no conjugate (LZD: nodes on the border): not observable
-    const bool found = t.result.regions.region[i] > 0;
-    tp += found && li.deformed[i];
-    fp += found && !li.deformed[i];
-    fn += !found && li.deformed[i];
-  }
-  t.precision = tp + fp ? static_cast<double>(tp) / static_cast<double>(tp + fp) : 1.0;
-  t.recall = tp + fn ? static_cast<double>(tp) / static_cast<double>(tp + fn) : 1.0;
+  std::tie(t.precision, t.recall) = detection(li, t.result.field, t.result.regions.region);
+  deformation::RegionSettings grown = s.regions;
+  grown.grow_k = g_grow_k;
+  grown.plane_axis = t.result.regions.plane_normal_axis;
+  const deformation::RegionAnalysis g = deformation::analyseRegions(pts, t.result.field, grown);
+  std::tie(t.grown_precision, t.grown_recall) = detection(li, t.result.field, g.region);
   return t;
 }
 
@@ -142,8 +179,8 @@ tableCase(int table, const std::vector<std::string>& methods)
   std::printf("%-6s %9.2f %9.2f %9.2f %10.5f %10.5f %10.5f\n", "truth", truth[0], truth[1], truth[2],
               truth[3] * d, truth[4] * d, truth[5] * d);
   for (const auto& name : methods) {
-    RobustMethod m;
-    if (!parseRobustMethod(name, m)) {
+    Method m;
+    if (!parseMethod(name, m)) {
       std::fprintf(stderr, "unknown method %s\n", name.c_str());
       return 1;
     }
@@ -165,13 +202,13 @@ tableCase(int table, const std::vector<std::string>& methods)
 int
 grid(const std::vector<std::string>& methods, const std::vector<double>& percents,
      const std::vector<double>& mags, const std::vector<synth::DeformationPosition>& positions, int seeds,
-     bool full)
+     int first_seed, bool full)
 {
-  std::printf("Grid: %zu positions x %d seeds per cell; success = max grid-node error <= 0.5 sigma\n",
-              positions.size(), seeds);
+  std::printf("Grid: %zu positions x %d seeds (from %d) per cell; success = max grid-node error <= 0.5 sigma\n",
+              positions.size(), seeds, first_seed);
   for (const auto& name : methods) {
-    RobustMethod m;
-    if (!parseRobustMethod(name, m)) {
+    Method m;
+    if (!parseMethod(name, m)) {
       std::fprintf(stderr, "unknown method %s\n", name.c_str());
       return 1;
     }
@@ -179,16 +216,17 @@ grid(const std::vector<std::string>& methods, const std::vector<double>& percent
     tt.tic();
     std::map<double, double> smallest;  // percent -> smallest magnitude with >= 90 %
     std::printf("\n== %s ==\n", name.c_str());
-    std::printf("%5s %6s %6s %6s %6s  per position\n", "%", "c", "succ", "prec", "rec");
+    std::printf("%5s %6s %6s %6s %6s %6s %6s  per position (gprec, grec: regions grown by hysteresis at %g sigma)\n",
+                "%", "c", "succ", "prec", "rec", "gprec", "grec", g_grow_k);
     for (const double percent : percents) {
       smallest[percent] = NAN;
       for (const double c : mags) {
         int ok = 0, n = 0;
-        double prec = 0.0, rec = 0.0;
+        double prec = 0.0, rec = 0.0, gprec = 0.0, grec = 0.0;
         int det_n = 0;
         std::vector<int> pos_ok(positions.size(), 0);
         for (std::size_t pi = 0; pi < positions.size(); ++pi)
-          for (int seed = 1; seed <= seeds; ++seed) {
+          for (int seed = first_seed; seed < first_seed + seeds; ++seed) {
             synth::LiSurfaceSettings ls;
             ls.deformation_percent = percent;
             ls.deformation_c = c;
@@ -202,12 +240,14 @@ grid(const std::vector<std::string>& methods, const std::vector<double>& percent
               ++pos_ok[pi];
               prec += t.precision;
               rec += t.recall;
+              gprec += t.grown_precision;
+              grec += t.grown_recall;
               ++det_n;
             }
           }
         const double rate = static_cast<double>(ok) / n;
-        std::printf("%5.0f %6.1f %6.2f %6.3f %6.3f ", percent, c, rate, det_n ? prec / det_n : NAN,
-                    det_n ? rec / det_n : NAN);
+        std::printf("%5.0f %6.1f %6.2f %6.3f %6.3f %6.3f %6.3f ", percent, c, rate, det_n ? prec / det_n : NAN,
+                    det_n ? rec / det_n : NAN, det_n ? gprec / det_n : NAN, det_n ? grec / det_n : NAN);
         for (std::size_t pi = 0; pi < positions.size(); ++pi)
           std::printf(" %s %d/%d", synth::toString(positions[pi]), pos_ok[pi], seeds);
         std::printf("\n");
@@ -307,6 +347,16 @@ pipeline(int n)
               "max error %.2f sigma, %.1f %% deformed (planted %.1f %%), %s\n",
               n, n, pts.size(), ms / 1000.0, ru.ru_maxrss / 1024.0, err, r.regions.percent_deformed, li.percent,
               r.matching.brief().c_str());
+  // Which nodes have a residual (a conjugate on the reference), inside and outside the patch.
+  std::size_t in = 0, in_observed = 0, out = 0, out_observed = 0;
+  for (std::size_t i = 0; i < li.deformed.size() && r.ok(); ++i) {
+    const bool observed = std::isfinite(r.field.residual[i]);
+    (li.deformed[i] ? in : out) += 1;
+    (li.deformed[i] ? in_observed : out_observed) += observed;
+  }
+  std::printf("observed: %zu of %zu deformed nodes (%.1f %%), %zu of %zu stable nodes (%.1f %%)\n", in_observed, in,
+              100.0 * static_cast<double>(in_observed) / static_cast<double>(std::max<std::size_t>(in, 1)),
+              out_observed, out, 100.0 * static_cast<double>(out_observed) / static_cast<double>(std::max<std::size_t>(out, 1)));
   return 0;
 }
 
@@ -317,13 +367,15 @@ main(int argc, char** argv)
 {
   std::string methods = "ls,m,md,lms,mm", percents = "4,9,16,20,22,25,30,36,42,46,49",
               mags = "3,3.5,4,4.5,5,7,10,15,25,50,100", positions = "upper_left,upper,middle";
-  int table = 0, seeds = 10;
+  int table = 0, seeds = 10, first_seed = 1;
   pcl::console::parse_argument(argc, argv, "-table", table);
   pcl::console::parse_argument(argc, argv, "-methods", methods);
   pcl::console::parse_argument(argc, argv, "-percents", percents);
   pcl::console::parse_argument(argc, argv, "-mags", mags);
   pcl::console::parse_argument(argc, argv, "-positions", positions);
   pcl::console::parse_argument(argc, argv, "-seeds", seeds);
+  pcl::console::parse_argument(argc, argv, "-first_seed", first_seed);
+  pcl::console::parse_argument(argc, argv, "-grow_k", g_grow_k);
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   int pipeline_n = 0;
   pcl::console::parse_argument(argc, argv, "-pipeline", pipeline_n);
@@ -345,7 +397,7 @@ main(int argc, char** argv)
       }
       pos.push_back(dp);
     }
-    return grid(splitList(methods), numberList(percents), numberList(mags), pos, seeds,
+    return grid(splitList(methods), numberList(percents), numberList(mags), pos, seeds, first_seed,
                 pcl::console::find_switch(argc, argv, "-full"));
   }
   std::fprintf(stderr, "usage: %s -table 2|4 [-methods ...] | -grid [-methods ...] [-percents ...] "

@@ -2,12 +2,14 @@
 /// \brief Registers SOURCE to TARGET with LS3D (LND, LZD, ICP rules) and PCL's ICP, point-to-plane
 ///        ICP, GICP and NDT on the same input, and prints one table (iterations, wall time, RMS /
 ///        σ0, converged; with -truth the displacement and parameter errors). -json writes the same.
+///        On request also the robust estimators of issue 9 (-methods robust).
 
 #include "tool_arguments.h"
 
 #include <pcl_ls3d/evaluation/comparison_report.h>
 #include <pcl_ls3d/evaluation/ls3d_method.h>
 #include <pcl_ls3d/evaluation/pcl_methods.h>
+#include <pcl_ls3d/evaluation/robust_method.h>
 #include <pcl_ls3d/io/cloud_io.h>
 
 #include <pcl/console/parse.h>
@@ -37,6 +39,8 @@ const std::set<std::string> kValueOptions = {"-truth", "-json",    "-methods", "
 const std::set<std::string> kSwitches = {"-overwrite", "-h", "--help"};
 const std::vector<std::string> kAllMethods = {"ls3d-lnd", "ls3d-lzd", "ls3d-icp", "icp",
                                               "icpn",     "gicp",     "ndt"};
+// Robust matching (issue 9; Li et al. 2001): selected by name or "robust", not part of "all".
+const std::vector<std::string> kRobustMethods = {"robust-m", "robust-md", "robust-lms", "robust-mm"};
 
 void
 printHelp(const char* name)
@@ -51,7 +55,10 @@ printHelp(const char* name)
       "                  7 parameter errors (in the common local frame)\n"
       "  -json FILE    : also write the results as JSON\n"
       "  -methods LIST : comma-separated subset of ls3d-lnd,ls3d-lzd,ls3d-icp,icp,icpn,gicp,ndt\n"
-      "                  (also: all, ls3d, pcl; default all)\n"
+      "                  (also: all, ls3d, pcl; default all), and the robust estimators of\n"
+      "                  pcl_ls3d_deformation robust-m,robust-md,robust-lms,robust-mm (also:\n"
+      "                  robust; LZD rule, 6 parameters, their own defaults: -max_corr and\n"
+      "                  -iter do not apply; the sigma0 column is their robust scale)\n"
       "  -max_corr D   : max correspondence distance [m] for every method (default 2)\n"
       "  -iter N       : max iterations: LS3D (default 30) and PCL (default 50) both set to N\n"
       "  -ndt_res R    : NDT voxel edge [m] (default 2)\n"
@@ -76,16 +83,20 @@ parseMethods(const std::string& text, std::vector<std::string>& out, std::string
       chosen.insert({"ls3d-lnd", "ls3d-lzd", "ls3d-icp"});
     else if (item == "pcl")
       chosen.insert({"icp", "icpn", "gicp", "ndt"});
-    else if (std::find(kAllMethods.begin(), kAllMethods.end(), item) != kAllMethods.end())
+    else if (item == "robust")
+      chosen.insert(kRobustMethods.begin(), kRobustMethods.end());
+    else if (std::find(kAllMethods.begin(), kAllMethods.end(), item) != kAllMethods.end() ||
+             std::find(kRobustMethods.begin(), kRobustMethods.end(), item) != kRobustMethods.end())
       chosen.insert(item);
     else {
       why = "unknown method '" + item + "' in -methods";
       return false;
     }
   }
-  for (const auto& m : kAllMethods)  // table order
-    if (chosen.count(m))
-      out.push_back(m);
+  for (const auto& list : {kAllMethods, kRobustMethods})  // table order
+    for (const auto& m : list)
+      if (chosen.count(m))
+        out.push_back(m);
   if (out.empty())
     why = "-methods selects nothing";
   return !out.empty();
@@ -136,6 +147,9 @@ runMethod(const std::string& m, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     return runLs3d(ConjugateRuleType::LZD, source, target, ls);
   if (m == "ls3d-icp")
     return runLs3d(ConjugateRuleType::ICP, source, target, ls);
+  pcl_ls3d::RobustMethod robust;
+  if (m.rfind("robust-", 0) == 0 && pcl_ls3d::parseRobustMethod(m.substr(7), robust))
+    return runRobust(robust, source, target);
   if (m == "icp")
     return runPclMethod(PclMethod::ICP, source, target, ps);
   if (m == "icpn")

@@ -4,9 +4,11 @@
 
 #include <pcl_ls3d/common/similarity_transform.h>
 #include <pcl_ls3d/deformation/deformation_analysis.h>
+#include <pcl_ls3d/deformation/deformation_map.h>
 #include <pcl_ls3d/deformation/point_residual.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/json_text.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 
 #include <pcl/console/parse.h>
@@ -17,16 +19,6 @@
 
 #include <nlohmann/json.hpp>
 
-// The map output uses the maps library (include/pcl_ls3d/maps, issue 8), not on main when this
-// was written: it is compiled only with -DPCL_LS3D_WITH_DEFORMATION_MAPS and has not been built
-// yet. Until then -map and -crs answer that this build has no maps.
-#if defined(PCL_LS3D_WITH_DEFORMATION_MAPS) && __has_include(<pcl_ls3d/maps/map_rendering.h>)
-#include <pcl_ls3d/maps/coordinate_reference.h>
-#include <pcl_ls3d/maps/geotiff_io.h>
-#include <pcl_ls3d/maps/map_rendering.h>
-#include <pcl_ls3d/maps/png_io.h>
-#define PCL_LS3D_DEFORMATION_MAPS 1
-#endif
 
 #include <algorithm>
 
@@ -77,8 +69,10 @@ printHelp(const char* prog)
       "                       coordinates), converged, parameters, sigmas, estimator, scale,\n"
       "                       subsets, percent_deformed, regions\n"
       "  -map PREFIX          PREFIX.png (residual map, diverging colour bar, significant regions\n"
-      "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals);\n"
-      "                       needs a build with the maps library\n"
+      "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals, NaN\n"
+      "                       where no point has one, with the CRS of -crs or the reference's LAS)\n"
+      "  -map_cell C          map cell edge (default 1.5 point spacings; irregular airborne data:\n"
+      "                       about 2.5 spacings, so that most cells hold points)\n"
       "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
       "                       PROJ string or WKT; default: the reference's LAS CRS, if any)\n"
       "  -overwrite           allow replacing existing output files\n"
@@ -163,102 +157,22 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
   return true;
 }
 
-#ifdef PCL_LS3D_DEFORMATION_MAPS
-/// PREFIX.png (residuals on a diverging colour bar, region cells outlined) and PREFIX.tif
-/// (float32 residual raster, NaN no data, the input's CRS when known).
+
+/// PREFIX.png and PREFIX.tif of the residuals (deformation/deformation_map.h).
 bool
-writeMaps(const std::string& prefix, const Cloud& epoch, const def::DeformationResult& r,
-          const Eigen::Vector3d& origin, const std::string& crs_wkt, const std::string& title,
-          double k, bool overwrite, std::string& error)
+writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, const def::DeformationResult& r,
+         const Eigen::Vector3d& origin, const std::string& crs_wkt, const std::string& reference_path,
+         const std::string& epoch_path, double k, double cell, bool overwrite, std::string& error)
 {
-  namespace maps = pcl_ls3d::maps;
-  const int a = (r.regions.plane_normal_axis + 1) % 3, b = (r.regions.plane_normal_axis + 2) % 3;
-  Eigen::Vector2d lo(std::numeric_limits<double>::max(), std::numeric_limits<double>::max());
-  Eigen::Vector2d hi = -lo;
-  std::vector<double> magnitudes;
-  for (std::size_t i = 0; i < epoch.size(); ++i) {
-    if (!std::isfinite(r.field.residual[i]))
-      continue;
-    const Eigen::Vector3d p = epoch[i].getVector3fMap().cast<double>() + origin;
-    lo = lo.cwiseMin(Eigen::Vector2d(p[a], p[b]));
-    hi = hi.cwiseMax(Eigen::Vector2d(p[a], p[b]));
-    magnitudes.push_back(std::abs(r.field.residual[i]));
-  }
-  if (magnitudes.empty())
-    return (error = "no residual to map").empty();
-  // Cells of 1.5 point spacings: most cells hold a point or more.
-  const double cell = std::max(1.5 * r.regions.spacing, 1e-9);
-  const maps::GridGeometry grid = maps::GridGeometry::covering(lo, hi, cell);
-  maps::RasterAccumulator residual(grid, maps::RasterAccumulator::Mode::MEAN),
-      region(grid, maps::RasterAccumulator::Mode::MAX_ABS);
-  for (std::size_t i = 0; i < epoch.size(); ++i) {
-    if (!std::isfinite(r.field.residual[i]))
-      continue;
-    const Eigen::Vector3d p = epoch[i].getVector3fMap().cast<double>() + origin;
-    residual.add(p[a], p[b], r.field.residual[i]);
-    region.add(p[a], p[b], r.regions.region[i] > 0 ? 1.0 : 0.0);
-  }
-  maps::Raster raster = residual.result();
-  const maps::Raster in_region = region.result();
-  if (!maps::writeGeoTiff(prefix + ".tif", raster, crs_wkt, error, overwrite))
-    return false;
-  // Colour range: the 98th percentile of |r|, at least 2 k σ̂; a nice number.
-  std::nth_element(magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(magnitudes.size() * 98 / 100),
-                   magnitudes.end());
-  double limit = std::max(magnitudes[magnitudes.size() * 98 / 100], 2.0 * k * r.field.scale);
-  const double step = maps::niceStep(limit, 2);
-  limit = std::ceil(limit / step) * step;
-  maps::ColourMap colours = maps::ColourMap::diverging(limit);
-  maps::MapStyle style;
-  style.title = title;
-  char line[256];
-  std::snprintf(line, sizeof(line), "%s, robust scale %.3g, %.1f %% of the area in %zu deformed regions (outlined)",
-                r.matching.estimator.c_str(), r.matching.scale, r.regions.percent_deformed,
-                r.regions.regions.size());
-  style.subtitle.push_back(line);
-  style.unit = "residual";
-  style.tick_format = limit >= 10 ? "%+.0f" : limit >= 1 ? "%+.1f" : "%+.2f";
-  style.legend = {"epoch minus reference", "outline: significant region"};
-  style.length_unit = "";
-  std::snprintf(line, sizeof(line), "cell %.3g, %d x %d cells%s%s", cell, grid.cols, grid.rows,
-                crs_wkt.empty() ? "" : ", ", crs_wkt.empty() ? "" : maps::crsName(crs_wkt).c_str());
-  style.footer = line;
-  maps::Image img = maps::renderRasterMap(raster, colours, style);
-  if (img.empty())
-    return (error = "cannot render the map").empty();
-  // Outline of the region cells: the same map with those cells left empty differs from this
-  // one exactly at their pixels (the layout depends on the grid and the style only); the
-  // pixels of that set next to one outside it are drawn dark, two pixels wide.
-  maps::Raster shown = raster;
-  for (std::size_t i = 0; i < shown.values.size(); ++i)
-    if (in_region.values[i] > 0.5f && std::isfinite(shown.values[i]))
-      shown.values[i] = std::numeric_limits<float>::quiet_NaN();
-  const maps::Image marked = maps::renderRasterMap(shown, colours, style);
-  if (marked.width() == img.width() && marked.height() == img.height()) {
-    const int w = img.width(), h = img.height();
-    std::vector<std::uint8_t> inside(static_cast<std::size_t>(w) * h, 0);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x)
-        inside[static_cast<std::size_t>(y) * w + x] = marked.get(x, y) != img.get(x, y);
-    auto in = [&](int x, int y) {
-      return x >= 0 && y >= 0 && x < w && y < h && inside[static_cast<std::size_t>(y) * w + x];
-    };
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) {
-        if (!in(x, y))
-          continue;
-        bool border = false;
-        for (int d = 1; d <= 2 && !border; ++d)
-          border = !in(x - d, y) || !in(x + d, y) || !in(x, y - d) || !in(x, y + d);
-        if (border)
-          img.set(x, y, {20, 20, 20});
-      }
-  }
-  if (!maps::writePng(prefix + ".png", img, error))
-    return false;
-  return true;
+  def::DeformationMapSettings ms;
+  ms.title = "Deformation: " + std::filesystem::path(epoch_path).filename().string() + " against " +
+             std::filesystem::path(reference_path).filename().string();
+  ms.origin = origin;
+  ms.crs_wkt = crs_wkt;
+  ms.k = k;
+  ms.cell = cell;
+  return def::writeDeformationMap(prefix, def::makeDeformationMap(points, r, ms), crs_wkt, overwrite, error);
 }
-#endif
 
 }  // namespace
 
@@ -272,7 +186,7 @@ main(int argc, char** argv)
   static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
                                                "-contamination", "-seed", "-k", "-min_region",
                                                "-max_dist", "-matching_points", "-o", "-json",
-                                               "-map", "-crs"};
+                                               "-map", "-crs", "-map_cell"};
   std::vector<std::string> files;
   std::string why;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite", "-lod95"}, files, why))
@@ -284,7 +198,7 @@ main(int argc, char** argv)
   std::string estimator_text = "mm", rule_text = "lzd", out_path, json_path, map_prefix, crs_text;
   int params = 6, subsets = 0, min_region = 10;
   long long matching_points = 50000;
-  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0;
+  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, map_cell = 0.0;
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   parse_argument(argc, argv, "-estimator", estimator_text);
   parse_argument(argc, argv, "-rule", rule_text);
@@ -301,7 +215,8 @@ main(int argc, char** argv)
       !numberOption(argc, argv, "-seed", seed, why, 0, 4294967295.0) ||
       !numberOption(argc, argv, "-k", k, why, 1e-6, 1e6) ||
       !numberOption(argc, argv, "-contamination", contamination, why, 1e-6, 0.5) ||
-      !numberOption(argc, argv, "-max_dist", max_dist, why, 1e-12))
+      !numberOption(argc, argv, "-max_dist", max_dist, why, 1e-12) ||
+      !numberOption(argc, argv, "-map_cell", map_cell, why, 1e-12))
     return fail(why), 1;
 
   def::DeformationSettings settings;
@@ -334,17 +249,11 @@ main(int argc, char** argv)
   if (!settings.isValid(&why))
     return fail("invalid settings: " + why), 1;
 
-#ifndef PCL_LS3D_DEFORMATION_MAPS
-  if (!map_prefix.empty() || !crs_text.empty())
-    return fail("-map and -crs need the maps library, which this build does not have"), 1;
-  const std::string png_path, tif_path;
-#else
   std::string crs_wkt;
   if (!crs_text.empty() && (crs_wkt = pcl_ls3d::maps::crsFromUserInput(crs_text, &why)).empty())
     return fail("invalid -crs " + crs_text + ": " + why), 1;
   const std::string png_path = map_prefix.empty() ? "" : map_prefix + ".png";
   const std::string tif_path = map_prefix.empty() ? "" : map_prefix + ".tif";
-#endif
   for (const std::string& out : {out_path, json_path, png_path, tif_path})
     if (!pcl_ls3d::tools::checkOutputFile(out, {reference_path, epoch_path}, overwrite, why))
       return fail(why), 1;
@@ -444,19 +353,15 @@ main(int argc, char** argv)
       return fail(error), 1;
     print_info("Wrote %s\n", out_path.c_str());
   }
-#ifdef PCL_LS3D_DEFORMATION_MAPS
   if (!map_prefix.empty()) {
     if (crs_wkt.empty() && rinfo.format == "las")
       crs_wkt = pcl_ls3d::maps::crsFromLasVlrs(rinfo.las.vlrs);
-    const std::string title = "Deformation: " + std::filesystem::path(epoch_path).filename().string() +
-                              " against " + std::filesystem::path(reference_path).filename().string();
-    if (!writeMaps(map_prefix, *epoch, result, rinfo.origin, crs_wkt, title, settings.residuals.k, overwrite,
-                   error))
+    if (!writeMap(map_prefix, points, result, rinfo.origin, crs_wkt, reference_path, epoch_path,
+                  settings.residuals.k, map_cell, overwrite, error))
       return fail(error), 1;
     print_info("Wrote %s and %s%s\n", png_path.c_str(), tif_path.c_str(),
                crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");
   }
-#endif
   if (!json_path.empty()) {
     nlohmann::json j;
     j["transformation"] = matrixJson(T);

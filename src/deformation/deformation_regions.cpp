@@ -78,6 +78,35 @@ describe(const std::vector<int>& members, const std::vector<Eigen::Vector3d>& po
   return r;
 }
 
+/// Hysteresis: each kept region takes in, breadth first, the points within `adjacency` of one of
+/// its points that are not significant, have the region's sign and |r| > grow_k σ_i; a point
+/// joins the first region that reaches it.
+void
+growRegions(std::vector<std::vector<int>>& kept, const std::vector<Eigen::Vector3d>& points,
+            const ResidualField& field, double adjacency, double grow_k)
+{
+  const std::size_t n = points.size();
+  std::vector<Eigen::Vector3d> weak(n, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  for (std::size_t i = 0; i < n; ++i)
+    if (!field.significant[i] && std::isfinite(field.residual[i]) && std::abs(field.residual[i]) > grow_k * field.sigma[i])
+      weak[i] = points[i];
+  const VoxelIndex index(weak, std::max(adjacency, 1e-9));
+  std::vector<int> near;
+  for (std::vector<int>& members : kept) {
+    const bool up = field.residual[static_cast<std::size_t>(members.front())] > 0.0;
+    for (std::size_t head = 0; head < members.size(); ++head) {
+      index.radiusSearch(points[static_cast<std::size_t>(members[head])], adjacency, near);
+      for (const int j : near) {
+        Eigen::Vector3d& w = weak[static_cast<std::size_t>(j)];
+        if (!w.allFinite() || (field.residual[static_cast<std::size_t>(j)] > 0.0) != up)
+          continue;
+        w = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());  // taken
+        members.push_back(j);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 bool
@@ -94,6 +123,8 @@ RegionSettings::isValid(std::string* why) const
     return bad("plane_axis must be -1, 0, 1 or 2");
   if (!(adjacency >= 0.0) || !(cell >= 0.0) || !std::isfinite(adjacency) || !std::isfinite(cell))
     return bad("adjacency and cell must be finite and >= 0");
+  if (!(grow_k >= 0.0) || !std::isfinite(grow_k))
+    return bad("grow_k must be finite and >= 0 (0: no hysteresis)");
   return true;
 }
 
@@ -152,6 +183,8 @@ analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& 
       out.noise.push_back(r);
     }
   }
+  if (s.grow_k > 0.0)
+    growRegions(kept, points, field, out.adjacency, s.grow_k);
   for (const auto& members : kept)
     out.regions.push_back(describe(members, points, field, sp.normal_axis, out.cell));
   // Ids by decreasing area (ties: more points, then the smallest first index) — deterministic.

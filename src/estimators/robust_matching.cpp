@@ -31,8 +31,11 @@ weightFunction(RobustMethod method, double constant, double fixed_scale)
   case RobustMethod::LEAST_SQUARES: return std::make_shared<LeastSquaresEstimator>();
   case RobustMethod::ZUO: return std::make_shared<ZuoEstimator>(given ? constant : 6.0);
   case RobustMethod::HUBER: return std::make_shared<HuberEstimator>(given ? constant : kHuber95);
-  case RobustMethod::M:
-  case RobustMethod::LMS: return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
+  case RobustMethod::M: return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
+  case RobustMethod::LMS:
+    if (!(fixed_scale > 0.0))  // LmsScale::MAD: eq. 7 on all residuals, every iteration
+      return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
+    return std::make_shared<TukeyEstimator>(given ? constant : kTukey95, ScaleRule::FIXED, fixed_scale);
   case RobustMethod::MD: return std::make_shared<MdEstimator>(given ? constant : kTukey95);
   case RobustMethod::MM:
     return std::make_shared<TukeyEstimator>(given ? constant : kTukey95, ScaleRule::FIXED, fixed_scale);
@@ -64,6 +67,24 @@ maxDisplacement(const LinearizedMatching& lin, const Vector7d& a, const Vector7d
     d = std::max(d, (Ta * x - Tb * x).head<3>().norm());
   }
   return d;
+}
+
+/// The scale the M-step keeps fixed, from the high-breakdown fit X (its residuals v over all
+/// matched observations): LMS s0 (recomputed at X, which may be an earlier round's) and σ*;
+/// MM the LTS scale reweighted, or the S-scale.
+double
+fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchingSettings& s, double search_scale)
+{
+  Eigen::VectorXd v;
+  lin.residuals(X, v);
+  double fixed = 0.0;
+  if (s.method == RobustMethod::LMS) {
+    const double s0 = lmsScale(lmsCriterion(lin, X), lin.size(), lin.freeParameters());
+    fixed = s.lms_scale == LmsScale::PRELIMINARY ? s0 : lmsFinalScale(v, s0, lin.freeParameters());
+    return fixed > 0.0 ? fixed : s0;
+  }
+  fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, search_scale) : reweightedScale(v, search_scale);
+  return fixed > 0.0 ? fixed : search_scale;
 }
 
 /// The high-breakdown stage: rounds of subset searches, re-linearised at the last estimate
@@ -103,14 +124,7 @@ highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, Ro
       break;
   }
   report.high_breakdown_transformation = lin.matrixOf(X);
-  report.high_breakdown_scale = report.search.scale;
-  if (s.method == RobustMethod::MM) {  // the scale the M-step keeps fixed
-    Eigen::VectorXd v;
-    lin.residuals(X, v);
-    const double s0 = report.search.scale;
-    const double fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, s0) : reweightedScale(v, s0);
-    report.high_breakdown_scale = fixed > 0.0 ? fixed : s0;
-  }
+  report.high_breakdown_scale = fixedScale(lin, X, s, report.search.scale);
   return true;
 }
 
@@ -240,7 +254,8 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
       return fail(report, TerminationType::SINGULAR,
                   "no subset of " + std::to_string(s.sample_size) + " points determined the parameters");
     from = report.high_breakdown_transformation;
-    fixed_scale = report.high_breakdown_scale;
+    if (!(s.method == RobustMethod::LMS && s.lms_scale == LmsScale::MAD))
+      fixed_scale = report.high_breakdown_scale;
   }
 
   // 3. The final adjustment: IRLS with the method's weight function (none for LS).

@@ -104,6 +104,23 @@ lmsScale(double median_squared, std::size_t n, int p)
 }
 
 double
+lmsFinalScale(const Eigen::Ref<const Eigen::VectorXd>& v, double s0, int p)
+{
+  if (!(s0 > 0.0))
+    return 0.0;
+  const double limit = 2.5 * s0;
+  double ss = 0.0;
+  std::size_t inside = 0;
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    if (std::abs(v[i]) <= limit) {
+      ss += v[i] * v[i];
+      ++inside;
+    }
+  const double dof = static_cast<double>(inside) - static_cast<double>(p);
+  return dof > 0.0 ? std::sqrt(ss / dof) : 0.0;
+}
+
+double
 ltsScale(double trimmed_mean_squared, double alpha)
 {
   alpha = std::min(1.0, std::max(1e-6, alpha));

@@ -5,6 +5,9 @@
 
 #include <pcl_ls3d/deformation/point_residual.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
+#include <pcl_ls3d/maps/geotiff_io.h>
+#include <pcl_ls3d/maps/png_io.h>
 #include <pcl_ls3d/synth/li_surface.h>
 
 #include <pcl/io/pcd_io.h>
@@ -62,7 +65,8 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
 
   const auto run = runTool("pcl_ls3d_deformation",
                            s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -o " + s.file("res.pcd") +
-                               " -json " + s.file("report.json"),
+                               " -json " + s.file("report.json") + " -map " + s.file("map") +
+                               " -crs EPSG:26917",
                            s.dir.string());
   ASSERT_EQ(run.code, 0) << run.err << run.out;
   std::ifstream in(s.file("report.json"));
@@ -99,6 +103,18 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
   }
   EXPECT_GE(static_cast<double>(tp) / static_cast<double>(tp + fp), 0.95);
   EXPECT_GE(static_cast<double>(tp) / static_cast<double>(tp + fn), 0.9);
+
+  // The map: a PNG and a GeoTIFF with the CRS given (deformation/test_deformation_map.cpp checks
+  // their content).
+  maps::Image png;
+  std::string error;
+  EXPECT_TRUE(maps::readPng(s.file("map.png"), png, error)) << error;
+  EXPECT_GT(png.width(), 100);
+  maps::Raster tif;
+  std::string crs;
+  ASSERT_TRUE(maps::readGeoTiff(s.file("map.tif"), tif, crs, error)) << error;
+  EXPECT_TRUE(maps::sameCrs(crs, maps::crsFromUserInput("EPSG:26917")));
+  EXPECT_GT(tif.validCells(), 1000u);
 
   // Never overwrites an input or an existing output.
   const auto clobber = runTool("pcl_ls3d_deformation",
@@ -137,6 +153,7 @@ TEST(DeformationTool, BadInputGivesOneErrorLine)
       {a + " -contamination 0.8", "-contamination"},
       {a + " -o " + s.file("out.las"), ".pcd, .xyz or .txt"},
       {a + " -bogus", "Unknown option"},
+      {a + " -map " + s.file("m") + " -crs EPSG:99999999", "invalid -crs"},
       {s.file("missing.pcd") + " " + s.file("ref.pcd"), ""},
       {s.file("ref.pcd") + " " + s.file("few.pcd"), "failed"},
   };

@@ -7,6 +7,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <vector>
+
 #include <Eigen/Dense>
 
 #include <cmath>
@@ -109,6 +112,20 @@ TEST(WeightFunctions, ScaleEstimators)
   for (Eigen::Index i = 0; i < 9000; ++i)
     c[i] += 10.0;
   EXPECT_NEAR(reweightedScale(c, 2.5), 1.0, 0.05);
+  // LMS's final σ* (Rousseeuw & Leroy p. 202): by hand, four residuals ±1 inside 2.5 s0 = 2.5,
+  // one at 100 outside, p = 2: √(4 / (4 − 2)); none inside beyond p: 0.
+  Eigen::VectorXd h(5);
+  h << -1.0, 1.0, -1.0, 1.0, 100.0;
+  EXPECT_NEAR(lmsFinalScale(h, 1.0, 2), std::sqrt(2.0), 1e-12);
+  EXPECT_EQ(lmsFinalScale(h, 1.0, 4), 0.0);
+  // On the 45 % contaminated sample: s0 (inflated by the shifted part) → σ* ≈ the clean σ.
+  std::vector<double> sq(static_cast<std::size_t>(c.size()));
+  for (Eigen::Index i = 0; i < c.size(); ++i)
+    sq[static_cast<std::size_t>(i)] = c[i] * c[i];
+  std::nth_element(sq.begin(), sq.begin() + static_cast<std::ptrdiff_t>(sq.size() / 2), sq.end());
+  const double s0 = lmsScale(sq[sq.size() / 2], sq.size(), 7);
+  EXPECT_GT(s0, 2.0);
+  EXPECT_NEAR(lmsFinalScale(c, s0, 7), 1.0, 0.1);
   const double s = mScale(c);
   EXPECT_GT(s, 2.0);
   EXPECT_LT(s, 20.0);

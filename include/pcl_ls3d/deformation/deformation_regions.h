@@ -24,6 +24,11 @@ namespace deformation {
 struct RegionSettings
 {
   std::size_t min_points = 10;  ///< smaller connected sets are noise
+  /// Hysteresis (Canny 1986): a region grows into adjacent points of its sign with
+  /// |r| > grow_k σ_i (weaker than the significance test), from point to point, so a deformed
+  /// patch is not cut at its low tail. 0: off. Only points next to a region of ≥ min_points
+  /// significant points join; an isolated weak point never does.
+  double grow_k = 0.0;
   double adjacency = 0.0;       ///< link distance; 0: 2.5 × the point spacing
   double cell = 0.0;            ///< area cell edge; 0: the point spacing
   /// Normal axis of the plane areas are counted on (0 x, 1 y, 2 z); −1: the largest projection
@@ -60,7 +65,8 @@ struct RegionAnalysis
   int plane_normal_axis = 2;               ///< 0 x, 1 y, 2 z (the plane areas are counted on)
 };
 
-/// Connected regions of field.significant (per sign), their statistics and the area shares.
+/// Connected regions of field.significant (per sign), grown by hysteresis when grow_k > 0, their
+/// statistics and the area shares.
 RegionAnalysis
 analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& field,
                const RegionSettings& settings);

@@ -8,7 +8,8 @@
 ///   2. for a weight-function estimator (Zuo, Huber, Tukey "M", "M-D"): IRLS from there in the
 ///      engine's Gauss–Markoff loop;
 ///      for LMS: m random p-subsets (eq. 12), the one minimising med v² (eq. 11), re-linearised
-///      and searched again while the estimate moves; then Li's M-estimator (Tukey, MAD scale);
+///      and searched again while the estimate moves; then Li's M-estimator (Tukey c = 4.685)
+///      with its scale fixed from the LMS fit (Rousseeuw & Leroy's σ*, see LmsScale);
 ///      for MM (beyond the paper): FAST-LTS starts with C-steps, a scale fixed from the LTS fit
 ///      (reweighted, or the 50 %-breakdown S-scale), then a Tukey M-step at 95 % efficiency;
 ///   3. the report of the last adjustment: parameters with the engine's σ (spatial sandwich),
@@ -52,6 +53,22 @@ enum class MmScale {
   S_SCALE      ///< the textbook choice: M-scale of the LTS residuals (c = 1.5476, b = 0.5)
 };
 
+/// \brief The scale LMS's M-step (Li: "an M-estimator is finally applied to improve the
+///        precision of the LMS estimates") standardises its residuals with.
+///
+/// Li et al. give one scale for M-estimators, eq. 7, 1.4826 · MAD of the residuals of the
+/// current fit, stated for the M-estimator on its own. Used after LMS it is recomputed from
+/// all residuals each iteration, and the deformed part (up to half of them) inflates it: at
+/// 36 % deformed by 5 σ the MAD is ≈ 2 σ, Tukey's c = 4.685 then keeps weight up to ≈ 9 σ and
+/// the deformation pulls the M-step away from the LMS fit. Rousseeuw & Leroy (1987, p. 202)
+/// take the scale of the LMS fit instead: s0 = 1.4826 (1 + 5/(n − p)) √med v², then σ* from the
+/// residuals within 2.5 s0 (lmsFinalScale()), fixed for the reweighted step.
+enum class LmsScale {
+  FINAL,        ///< σ* of the LMS fit (Rousseeuw & Leroy's reweighted scale; default)
+  PRELIMINARY,  ///< s0 of the LMS fit (inflated when much of the surface moved)
+  MAD           ///< eq. 7 on all residuals, every iteration (the reading before issue 9 pt 2)
+};
+
 /// \brief Settings of robustMatching().
 struct RobustMatchingSettings
 {
@@ -69,6 +86,7 @@ struct RobustMatchingSettings
   std::uint32_t seed = 1;
   int max_rounds = 3;                ///< search rounds (re-linearised at the last estimate)
   MmScale mm_scale = MmScale::REWEIGHTED;
+  LmsScale lms_scale = LmsScale::FINAL;
   /// When false the guess is taken as the all-points least-squares start (already computed by
   /// the caller) and stage 1 is skipped; report.start then stays NOT_RUN.
   bool least_squares_start = true;
@@ -105,7 +123,7 @@ struct RobustMatchingReport
   int rounds = 0;                     ///< search rounds (re-linearisations + 1)
   int subsets_drawn = 0;              ///< over all rounds
   Eigen::Matrix4d high_breakdown_transformation = Eigen::Matrix4d::Identity();
-  double high_breakdown_scale = 0.0;  ///< LMS: 1.4826 (1 + 5/(n − p)) √med v²; MM: the fixed M-step scale
+  double high_breakdown_scale = 0.0;  ///< the scale the M-step keeps fixed (LMS: σ* or s0, MM: see MmScale)
   int iterations = 0;                 ///< adjustment iterations over all stages
 
   /// Usable estimate (the final adjustment converged or hit its iteration limit).

@@ -51,6 +51,13 @@ mScale(const Eigen::Ref<const Eigen::VectorXd>& v, double c = kTukeyS50, double 
 double
 lmsScale(double median_squared, std::size_t n, int p);
 
+/// \brief The final scale of LMS (Rousseeuw & Leroy 1987, p. 202, eqs. 1.5.11–1.5.12): with the
+///        preliminary s0 = lmsScale() of the LMS fit, weights w_i = 1 when |v_i| ≤ 2.5 s0 and 0
+///        otherwise, σ* = √(Σ w_i v_i² / (Σ w_i − p)). One step, as the book defines it. 0 when
+///        no more than p residuals lie inside.
+double
+lmsFinalScale(const Eigen::Ref<const Eigen::VectorXd>& v, double s0, int p);
+
 /// \brief LTS scale: σ̂ = √(Σ_{i≤h} v²_(i) / h) / √(1 − 2 q φ(q) / α), with α = h / n and
 ///        q = Φ⁻¹((1 + α)/2), the consistency factor of the α-trimmed normal (Rousseeuw & Van
 ///        Driessen 2006). α = 0.5: σ̂ = 2.648 √(mean of the smaller half of v²).

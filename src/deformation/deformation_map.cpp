@@ -1,0 +1,149 @@
+#include <pcl_ls3d/deformation/deformation_map.h>
+
+#include <pcl_ls3d/maps/colour_map.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
+#include <pcl_ls3d/maps/geotiff_io.h>
+#include <pcl_ls3d/maps/map_rendering.h>
+#include <pcl_ls3d/maps/png_io.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+
+namespace pcl_ls3d {
+namespace deformation {
+
+namespace {
+
+/// The two coordinates of a point on the plane the regions were counted on (x, y for z).
+Eigen::Vector2d
+planar(const Eigen::Vector3d& p, int normal_axis)
+{
+  return {p[(normal_axis + 1) % 3], p[(normal_axis + 2) % 3]};
+}
+
+/// The symmetric colour range: the 98th percentile of |r|, at least 2 k σ̂, rounded up to a
+/// nice step.
+double
+colourLimit(std::vector<double> magnitudes, double k, double scale)
+{
+  const std::size_t q = magnitudes.size() * 98 / 100;
+  std::nth_element(magnitudes.begin(), magnitudes.begin() + static_cast<std::ptrdiff_t>(q), magnitudes.end());
+  double limit = std::max(magnitudes[q], 2.0 * k * scale);
+  if (!(limit > 0.0))
+    limit = 1.0;
+  const double step = maps::niceStep(limit, 2);
+  return std::ceil(limit / step) * step;
+}
+
+maps::MapStyle
+mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps::GridGeometry& grid,
+         double limit)
+{
+  maps::MapStyle style;
+  style.title = s.title;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%s, robust scale %.3g, %zu of %zu points significant (|r| > %g sigma)",
+                r.matching.estimator.c_str(), r.matching.scale, r.field.significant_count, r.field.observed, s.k);
+  style.subtitle.push_back(line);
+  std::snprintf(line, sizeof(line), "%.1f %% of the area in %zu deformed regions (outlined), %zu noise clusters",
+                r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size());
+  style.subtitle.push_back(line);
+  style.unit = "residual";
+  style.tick_format = limit >= 10 ? "%+.0f" : limit >= 1 ? "%+.1f" : "%+.2f";
+  style.legend = {"epoch minus reference", "(mean per cell)", "outline: deformed region"};
+  style.length_unit = s.crs_wkt.empty() ? "" : "m";
+  std::snprintf(line, sizeof(line), "cell %.3g, %d x %d cells%s%s", grid.cell, grid.cols, grid.rows,
+                s.crs_wkt.empty() ? "" : ", ", s.crs_wkt.empty() ? "" : maps::crsName(s.crs_wkt).c_str());
+  style.footer = line;
+  return style;
+}
+
+/// Outlines the region cells on `image`: the map rendered with those cells left empty differs
+/// from `image` exactly at their pixels (the layout depends on the grid and the style only);
+/// pixels of that set next to one outside it are drawn dark.
+void
+outlineRegions(maps::Image& image, const maps::Raster& residual, const maps::Raster& in_region,
+               const maps::ColourMap& colours, const maps::MapStyle& style)
+{
+  maps::Raster shown = residual;
+  for (std::size_t i = 0; i < shown.values.size(); ++i)
+    if (in_region.values[i] > 0.5f && std::isfinite(shown.values[i]))
+      shown.values[i] = std::numeric_limits<float>::quiet_NaN();
+  const maps::Image marked = maps::renderRasterMap(shown, colours, style);
+  const int w = image.width(), h = image.height();
+  if (marked.width() != w || marked.height() != h)
+    return;
+  std::vector<std::uint8_t> inside(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      inside[static_cast<std::size_t>(y) * w + x] = marked.get(x, y) != image.get(x, y);
+  auto in = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < w && y < h && inside[static_cast<std::size_t>(y) * w + x];
+  };
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      if (in(x, y) && (!in(x - 1, y) || !in(x + 1, y) || !in(x, y - 1) || !in(x, y + 1)))
+        image.set(x, y, {20, 20, 20});
+    }
+}
+
+}  // namespace
+
+DeformationMap
+makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationResult& r,
+                   const DeformationMapSettings& s)
+{
+  DeformationMap out;
+  const int axis = r.regions.plane_normal_axis;
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::max()), hi = -lo;
+  std::vector<double> magnitudes;
+  for (std::size_t i = 0; i < epoch.size() && i < r.field.residual.size(); ++i)
+    if (std::isfinite(r.field.residual[i]) && epoch[i].allFinite()) {
+      const Eigen::Vector2d q = planar(epoch[i] + s.origin, axis);
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+      magnitudes.push_back(std::abs(r.field.residual[i]));
+    }
+  if (magnitudes.empty())
+    return out;
+  const double cell = s.cell > 0.0 ? s.cell : std::max(1.5 * r.regions.spacing, 1e-9);
+  const maps::GridGeometry grid = maps::GridGeometry::covering(lo, hi, cell);
+  maps::RasterAccumulator residual(grid, maps::RasterAccumulator::Mode::MEAN);
+  maps::RasterAccumulator region(grid, maps::RasterAccumulator::Mode::MAX_ABS);
+  for (std::size_t i = 0; i < epoch.size() && i < r.field.residual.size(); ++i)
+    if (std::isfinite(r.field.residual[i]) && epoch[i].allFinite()) {
+      const Eigen::Vector2d q = planar(epoch[i] + s.origin, axis);
+      residual.add(q.x(), q.y(), r.field.residual[i]);
+      region.add(q.x(), q.y(), i < r.regions.region.size() && r.regions.region[i] > 0 ? 1.0 : 0.0);
+    }
+  out.residual = residual.result();
+  out.in_region = region.result();
+  out.limit = colourLimit(std::move(magnitudes), s.k, r.matching.scale);
+  const maps::ColourMap colours = maps::ColourMap::diverging(out.limit);
+  const maps::MapStyle style = mapStyle(r, s, grid, out.limit);
+  out.image = maps::renderRasterMap(out.residual, colours, style);
+  if (!out.image.empty())
+    outlineRegions(out.image, out.residual, out.in_region, colours, style);
+  return out;
+}
+
+bool
+writeDeformationMap(const std::string& prefix, const DeformationMap& map, const std::string& crs_wkt,
+                    bool overwrite, std::string& error)
+{
+  if (map.image.empty())
+    return (error = "no residual to map").empty();
+  const std::string png = prefix + ".png", tif = prefix + ".tif";
+  if (!overwrite && std::filesystem::exists(png))
+    return (error = png + " exists (not overwritten)").empty();
+  if (!maps::writeGeoTiff(tif, map.residual, crs_wkt, error, overwrite))
+    return false;
+  return maps::writePng(png, map.image, error);
+}
+
+}  // namespace deformation
+}  // namespace pcl_ls3d

@@ -1,0 +1,75 @@
+#include <pcl_ls3d/evaluation/robust_method.h>
+
+#include <pcl_ls3d/registration/pcl_target_surface.h>
+
+#include <pcl/common/time.h>
+#include <pcl/search/kdtree.h>
+
+#include <algorithm>
+#include <cctype>
+#include <exception>
+
+namespace pcl_ls3d {
+namespace evaluation {
+
+std::string
+robustMethodName(RobustMethod method)
+{
+  std::string name = toString(method);
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return "ROBUST-" + name;
+}
+
+RegistrationRun
+runRobust(RobustMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
+          const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target)
+{
+  RegistrationRun run;
+  run.name = robustMethodName(method);
+  if (!source || !target || source->empty() || target->empty()) {
+    run.message = "empty source or target";
+    return run;
+  }
+  try {
+    pcl::StopWatch watch;
+    const double cpu0 = processCpuSeconds();
+    pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+    tree->setInputCloud(target);
+    const PclTargetSurface<pcl::PointXYZ> surface(target, tree);
+    const ConjugateRule::Ptr rule = makeConjugateRule(ConjugateRuleType::LZD);
+    std::string why;
+    if (!rule->prepare(surface, &why)) {
+      run.message = "LZD rule: " + why;
+      return run;
+    }
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(source->size());
+    for (const auto& p : *source)
+      points.push_back(p.getVector3fMap().cast<double>());
+    RobustMatchingSettings settings;
+    settings.method = method;
+    const RobustMatchingReport r = robustMatching(points, {}, surface, *rule, settings, Eigen::Matrix4d::Identity());
+    run.time_s = watch.getTimeSeconds();
+    run.cpu_s = processCpuSeconds() - cpu0;
+    run.ran = true;
+    run.iterations = r.adjustment.iterations;
+    run.converged = r.termination == TerminationType::CONVERGED;
+    run.pcl_converged = run.converged;
+    run.hit_limit = r.termination == TerminationType::MAX_ITERATIONS;
+    run.stop = terminationTypeToString(r.termination);
+    run.sigma0 = r.scale;
+    if (r.isSolutionUsable())
+      run.transformation = r.adjustment.transformation;
+    run.message = r.estimator + ": " + terminationTypeToString(r.termination);
+    if (!r.message.empty())
+      run.message += ": " + r.message;
+  }
+  catch (const std::exception& e) {
+    run.ran = false;
+    run.message = std::string("exception: ") + e.what();
+  }
+  return run;
+}
+
+}  // namespace evaluation
+}  // namespace pcl_ls3d
