@@ -56,10 +56,25 @@ referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud,
     const int g = lookup.groupOf(labels[i]);
     key[i] = g == ClassLookup::kExcluded ? -1 : g >= 0 ? g : 1000 + labels[i];
   }
+  // Plan-connected groups are searched with z flattened; joins need equal keys, so the
+  // flattened points never connect to another group.
+  std::vector<char> in_plan(settings.groups.size(), 0);
+  for (std::size_t g = 0; g < settings.groups.size(); ++g)
+    in_plan[g] = std::find(settings.plan_connected_groups.begin(),
+                           settings.plan_connected_groups.end(),
+                           settings.groups[g].name) != settings.plan_connected_groups.end();
   pcl::PointCloud<pcl::PointXYZ>::Ptr all(new pcl::PointCloud<pcl::PointXYZ>(cloud));
   pcl::search::KdTree<pcl::PointXYZ> tree;
   tree.setInputCloud(all);
   out.radius = settings.radius > 0.0 ? settings.radius : automaticRadius(all, tree);
+  bool flattened = false;
+  for (std::size_t i = 0; i < n; ++i)
+    if (key[i] >= 0 && key[i] < 1000 && in_plan[static_cast<std::size_t>(key[i])]) {
+      (*all)[i].z = 0.f;
+      flattened = true;
+    }
+  if (flattened)
+    tree.setInputCloud(all);
 
   out.object_of.assign(n, ReferenceObjects::kUnlabelled);
   std::vector<int> queue;

@@ -204,6 +204,44 @@ TEST(ReferenceObjects, ConnectedComponentsPerClassGroup)
   EXPECT_FALSE(referenceObjectsFromLabels(c, labels, s, r, err));
 }
 
+TEST(ReferenceObjects, BuildingIsOneObjectAcrossARoofStep)
+{
+  // A house whose annex roof lies 3 m below the main roof, 0.5 m beside it in plan, with no
+  // wall points between: in 3-D the two roofs are 3 m apart, in plan 0.5 m. A tree of the same
+  // shape stays two objects (vegetation is connected in 3-D: a shrub under a crown is not the
+  // crown).
+  pcl::PointCloud<pcl::PointXYZ> c;
+  std::vector<int> labels;
+  for (int code : {6, 5}) {
+    const float y0 = code == 6 ? 0.f : 20.f;
+    for (float x = 0.f; x <= 4.f; x += 0.5f)
+      for (float y = y0; y <= y0 + 4.f; y += 0.5f) {
+        c.push_back(pcl::PointXYZ(x, y, 8.f));
+        labels.push_back(code);
+        c.push_back(pcl::PointXYZ(x + 4.5f, y, 5.f));
+        labels.push_back(code);
+      }
+  }
+  ReferenceObjectSettings s;
+  s.radius = 1.0;
+  ReferenceObjects r;
+  std::string err;
+  ASSERT_TRUE(referenceObjectsFromLabels(c, labels, s, r, err)) << err;
+  std::set<int> building, vegetation;
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    (labels[i] == 6 ? building : vegetation).insert(r.object_of[i]);
+  EXPECT_EQ(building.size(), 1u);
+  EXPECT_EQ(vegetation.size(), 2u);
+  // Without plan connectivity the building is cut at its roof step.
+  s.plan_connected_groups.clear();
+  ASSERT_TRUE(referenceObjectsFromLabels(c, labels, s, r, err)) << err;
+  building.clear();
+  for (std::size_t i = 0; i < labels.size(); ++i)
+    if (labels[i] == 6)
+      building.insert(r.object_of[i]);
+  EXPECT_EQ(building.size(), 2u);
+}
+
 TEST(ReferenceObjects, FromIdsTakeTheMajorityGroup)
 {
   // id 7: 3 vegetation points + 1 ground point -> vegetation; id −1 and code 1 unlabelled.

@@ -16,7 +16,7 @@ using Cloud = seg_test::Cloud;
 namespace {
 
 /// Part of the scene each point belongs to.
-enum Part { GROUND, ROOF_A, ROOF_B, WALL, TREE_1, TREE_2, TREE_3, SPAN_1, SPAN_2, ARM };
+enum Part { GROUND, ROOF_A, ROOF_B, WALL, TREE_1, TREE_2, TREE_3, SPAN_1, SPAN_2, ARM, CHIMNEY };
 
 void
 add(Cloud& c, std::vector<int>& part, std::size_t from, Part p)
@@ -134,6 +134,46 @@ TEST(ObjectAssembly, HouseTreesAndGroundBecomeWholeObjects)
   EXPECT_GE(shares[ROOF_A].first, 0.8);
   EXPECT_GE(shares[ROOF_B].first, 0.8);
   EXPECT_NE(shares[ROOF_A].second, shares[ROOF_B].second);
+}
+
+TEST(ObjectAssembly, RoofStepAndChimneyJoinTheirBuilding)
+{
+  // A house whose annex roof lies 3 m below the main roof, 0.4 m beside it in plan, with no
+  // wall points between the levels (too far apart for any k-NN link); a dense chimney 1.5 m
+  // above the main roof whose nearest neighbours are all its own points; a tree beside the
+  // annex. The house (both roofs and the chimney) is one object, the tree another.
+  std::mt19937 rng(23);
+  Cloud::Ptr c(new Cloud);
+  std::vector<int> part;
+  std::uniform_real_distribution<float> u(-0.02f, 0.02f);  // roofs as smooth as the ground
+  for (float x = -10.f; x <= 35.f; x += 0.3f)
+    for (float y = -10.f; y <= 20.f; y += 0.3f)
+      if (!(x > -0.1f && x < 16.1f && y > -0.1f && y < 10.1f))
+        c->push_back(pcl::PointXYZ(x, y, u(rng)));
+  add(*c, part, 0, GROUND);
+  std::size_t from = c->size();
+  seg_test::addPlane(*c, 0.f, 10.f, 0.f, 10.f, 8.f, 0.3f, 0.02f, rng);
+  add(*c, part, from, ROOF_A);
+  from = c->size();
+  seg_test::addPlane(*c, 10.4f, 16.f, 0.f, 10.f, 5.f, 0.3f, 0.02f, rng);
+  add(*c, part, from, ROOF_B);
+  from = c->size();
+  seg_test::addBlob(*c, 3.f, 3.f, 9.5f, 0.4f, 200, rng);
+  add(*c, part, from, CHIMNEY);
+  from = c->size();
+  seg_test::addBlob(*c, 24.f, 5.f, 5.f, 3.f, 2500, rng);
+  add(*c, part, from, TREE_1);
+
+  Segmenter s;
+  auto shares = largestShares(extractLabels(s, c, Segmenter::Level::Objects), part);
+  EXPECT_GE(shares[ROOF_A].first, 0.95);
+  EXPECT_GE(shares[ROOF_B].first, 0.95);
+  EXPECT_EQ(shares[ROOF_B].second, shares[ROOF_A].second);
+  EXPECT_GE(shares[CHIMNEY].first, 0.9);
+  EXPECT_EQ(shares[CHIMNEY].second, shares[ROOF_A].second);
+  EXPECT_GE(shares[TREE_1].first, 0.9);
+  EXPECT_NE(shares[TREE_1].second, shares[ROOF_A].second);
+  EXPECT_NE(shares[GROUND].second, shares[ROOF_A].second);
 }
 
 TEST(ObjectAssembly, WireSpansStaySeparateAtTheirCrossArm)

@@ -47,10 +47,15 @@ struct ReferenceObjectSettings
   /// airborne tiles of ≥ 2 points/m² (the "1 m Euclidean clusters"), wider on sparse
   /// tiles so that a building of 0.3 points/m² is not cut into single points.
   double radius = -1.0;
+  /// Groups connected in plan (x, y only): a building is one object over its whole footprint.
+  /// Airborne scans hold few wall points, so in 3-D a roof step or a facade a storey below the
+  /// eaves is more than the radius away from the roof above it and would be a separate object.
+  std::vector<std::string> plan_connected_groups{"building"};
 };
 
-/// \brief Connected components per class group (Euclidean clusters of the given radius): each
-///        group's points (codes of "other" form their own components too) become objects.
+/// \brief Connected components per class group (Euclidean clusters of the given radius, in plan
+///        for plan_connected_groups): each group's points (codes of "other" form their own
+///        components too) become objects.
 /// \return false with a one-line reason (sizes differ, empty cloud)
 bool
 referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud,

@@ -14,7 +14,9 @@
 /// non-ground group that at least edge_share of its points touch (an edge line along its roof;
 /// a wire span touching its tower with its last points stays a span); a group whose contacts
 /// go (enclosure_share) to one building at least 1/enclosure_size_ratio times its size joins
-/// that building (a chimney, a dormer). Nothing joins the ground, and lines never join lines:
+/// that building (a chimney, a dormer); a group lying in plan (footprint_share of its points) on
+/// or under one building's roof, widened by footprint_margin, joins it (a chimney whose k-NN
+/// links never leave it, a facade with balconies under the eaves). Nothing joins the ground, and lines never join lines:
 /// two spans of a wire meet end to end at their tower.
 /// Kinds come from the segments before any join, so the joins do not depend on their order.
 
@@ -42,6 +44,10 @@ struct AssemblySettings
                                  ///< join it (a wire span touches its tower with about 10 %)
   double enclosure_share = 0.8;  ///< share of a group's contacts with one building to join it
   double enclosure_size_ratio = 0.2;  ///< ... if at most this fraction of the building's size
+  double footprint_share = 0.8;  ///< share of a group's points on or under one building's roof
+                                 ///< (in plan) to join it, if at most enclosure_size_ratio of it
+  double footprint_margin = 0.75; ///< the roof's plan reaches this far past its points (eaves,
+                                 ///< balconies)
 };
 
 /// \brief What assembleObjects() did.
