@@ -186,3 +186,35 @@ TEST(DeformationAnalysis, BadInput)
   EXPECT_EQ(some.regions.region[1275], 0);
   EXPECT_EQ(some.field.observed, all.field.observed - 1);
 }
+
+// Hysteresis (RegionSettings::grow_k): a patch raised by only N(5σ, σ) loses its low tail to
+// the 3σ test; grown from the significant regions into adjacent points beyond 2σ, the regions
+// take back most of it, and only points next to a region join (precision stays, isolated
+// weak points stay out: the no-deformation surface gains nothing).
+TEST(DeformationAnalysis, HysteresisRecoversTheLowTail)
+{
+  const synth::LiSurface li = liSurface(16.0, 5.0, synth::DeformationPosition::MIDDLE, 4);
+  const LiPair pair(li);
+  const DeformationResult r = pair.run(DeformationSettings());
+  ASSERT_TRUE(r.ok()) << r.matching.message;
+  ASSERT_LT(pair.errorSigma(r.matching.adjustment.transformation), 0.5);
+  const Detection plain = score(r, li);
+  RegionSettings grow;
+  grow.grow_k = 2.0;
+  grow.plane_axis = r.regions.plane_normal_axis;  // as analyseDeformation() set it (LZD: xy)
+  DeformationResult grown = r;
+  grown.regions = analyseRegions(pair.points, r.field, grow);
+  const Detection g = score(grown, li);
+  EXPECT_GT(g.recall, plain.recall + 0.05);
+  EXPECT_GE(g.precision, 0.95);
+  EXPECT_EQ(grown.regions.regions.size(), r.regions.regions.size());  // grown, not new regions
+
+  const synth::LiSurface flat = liSurface(0.0, 0.0, synth::DeformationPosition::MIDDLE, 2);
+  const LiPair none(flat);
+  const DeformationResult n = none.run(DeformationSettings());
+  ASSERT_TRUE(n.ok());
+  EXPECT_TRUE(analyseRegions(none.points, n.field, grow).regions.empty());
+  RegionSettings bad;
+  bad.grow_k = -1.0;
+  EXPECT_FALSE(bad.isValid());
+}
