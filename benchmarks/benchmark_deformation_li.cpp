@@ -347,9 +347,13 @@ pipeline(int n)
               "max error %.2f sigma, %.1f %% deformed (planted %.1f %%), %s\n",
               n, n, pts.size(), ms / 1000.0, ru.ru_maxrss / 1024.0, err, r.regions.percent_deformed, li.percent,
               r.matching.brief().c_str());
+  if (!r.ok()) {
+    std::printf("no usable estimate: %s\n", r.matching.message.c_str());
+    return 1;
+  }
   // Which nodes have a residual (a conjugate on the reference), inside and outside the patch.
   std::size_t in = 0, in_observed = 0, out = 0, out_observed = 0;
-  for (std::size_t i = 0; i < li.deformed.size() && r.ok(); ++i) {
+  for (std::size_t i = 0; i < li.deformed.size(); ++i) {
     const bool observed = std::isfinite(r.field.residual[i]);
     (li.deformed[i] ? in : out) += 1;
     (li.deformed[i] ? in_observed : out_observed) += observed;
