@@ -37,9 +37,9 @@ constexpr double kMaxCentroidOffset = 0.7;
 // 0.11), and the point is dropped if that fails too.
 constexpr double kMaxHeightVariance = 0.7;
 
-// A query closer than this fraction of its neighbourhood radius to a target sample IS that
-// sample (float rounding of the same coordinates is ~1e-7 of them).
-constexpr double kCoincidentFraction = 1e-4;
+// Within this fraction of the neighbourhood radius of a target sample (about an eighth of the
+// point spacing) the local surface is drawn towards that sample; see towardsNearestSample().
+constexpr double kSnapFraction = 0.05;
 
 Scratch&
 scratch()
@@ -48,19 +48,23 @@ scratch()
   return s;
 }
 
-// A query that is one of the target's own samples (a cloud matched to itself, or to a cloud that
-// contains it) lies on the surface the target measures: the local plane passes through that
-// sample. The fitted surface's offset there is the sample's own noise, not a discrepancy, and
-// taking it as one moves a cloud matched to itself off the identity by up to ~2 σ.
-bool
-coincidentSample(const Eigen::Vector3d& query, const TargetSurface& target, Eigen::Vector3d& sample)
+// The fitted local surface smooths the samples; at a sample itself the measurement is the best
+// evidence of the surface. Near the query's nearest sample the element's point is therefore
+// drawn towards that sample, linearly from nothing at the snap radius to the sample itself when
+// they coincide. A cloud matched to itself or to an exact copy then has zero residuals at the
+// exact answer (the fitted quadric's misfit at each sample would otherwise pull it off by up to
+// ~2 σ), while on independent scans only the few per cent of queries that fall that close to a
+// sample get a little of its noise. Continuous in the query, so the iteration sees one surface.
+Eigen::Vector3d
+towardsNearestSample(const Eigen::Vector3d& query, const TargetSurface& target,
+                     const CorrespondenceCache& cache, const Eigen::Vector3d& element_point)
 {
-  const Scratch& s = scratch();
-  if (s.indices.empty())
-    return false;
-  const double radius2 = static_cast<double>(s.sq_dists.back());
-  sample = target.point(s.indices.front());
-  return (sample - query).squaredNorm() <= kCoincidentFraction * kCoincidentFraction * radius2;
+  if (cache.nearest_sample < 0 || !(cache.snap_radius > 0.f))
+    return element_point;
+  const Eigen::Vector3d sample = target.point(cache.nearest_sample);
+  const double weight = 1.0 - (sample - query).norm() / static_cast<double>(cache.snap_radius);
+  return weight > 0.0 ? Eigen::Vector3d(element_point + weight * (sample - element_point))
+                      : element_point;
 }
 
 // Barycentric test of p's projection along `dir` onto triangle (a, b, c).
@@ -109,6 +113,10 @@ anchor(CorrespondenceCache& cache, const Eigen::Vector3d& query)
   const Scratch& s = scratch();
   cache.anchor = {{static_cast<float>(query.x()), static_cast<float>(query.y()), static_cast<float>(query.z())}};
   cache.reuse_radius = s.sq_dists.empty() ? 0.f : 0.05f * std::sqrt(s.sq_dists.back());
+  cache.nearest_sample = s.indices.empty() ? -1 : static_cast<std::int32_t>(s.indices.front());
+  cache.snap_radius = s.sq_dists.empty()
+                          ? 0.f
+                          : static_cast<float>(kSnapFraction * std::sqrt(s.sq_dists.back()));
 }
 
 bool
@@ -310,15 +318,13 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
         c = query + h * n;
         n = (n - g.x() * e1 - g.y() * e2).normalized();
       }
-      Eigen::Vector3d sample;
-      if (coincidentSample(query, target, sample))
-        c = sample;
       anchor(cache, query);
       cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
                       static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
     }
     const Eigen::Vector3d n(cache.plane[0], cache.plane[1], cache.plane[2]);
-    const Eigen::Vector3d c(cache.plane[3], cache.plane[4], cache.plane[5]);
+    const Eigen::Vector3d c = towardsNearestSample(
+        query, target, cache, Eigen::Vector3d(cache.plane[3], cache.plane[4], cache.plane[5]));
     return planeObservation(query, n.normalized(), c, max_distance, cache.variance, out);
   }
   bool have = cached && cache.frozen;
@@ -371,15 +377,13 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
         cache.vertices = {{-1, -1, -1}};
         return false;
       }
-      Eigen::Vector3d sample;
-      if (coincidentSample(query, target, sample))
-        c = sample;
       anchor(cache, query);
       cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
                       static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
     }
     n = Eigen::Vector3d(cache.plane[0], cache.plane[1], cache.plane[2]);
-    p = Eigen::Vector3d(cache.plane[3], cache.plane[4], cache.plane[5]);
+    p = towardsNearestSample(query, target, cache,
+                             Eigen::Vector3d(cache.plane[3], cache.plane[4], cache.plane[5]));
   }
   else {
     const bool have = cached && (cache.frozen || (reusable(cache, query) &&

@@ -53,6 +53,12 @@ public:
     tree_->setInputCloud(cloud_);
     surface_ = std::make_unique<pcl_ls3d::PclTargetSurface<pcl::PointXYZ>>(cloud_, tree_);
   }
+  const pcl::search::KdTree<pcl::PointXYZ>&
+  tree() const
+  {
+    return *tree_;
+  }
+
   const pcl_ls3d::TargetSurface&
   surface() const
   {

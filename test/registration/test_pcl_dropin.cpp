@@ -255,12 +255,11 @@ sampleRandomTransform(Eigen::Affine3f& trans, float max_angle, float max_trans)
 
 // PCL's rejector case: a median-distance and a sample-consensus rejector added with
 // addCorrespondenceRejector filter LS3D's observations every iteration.
-// DISABLED: not passing yet. The rejectors are honoured (test_pcl_settings), but here source and
-// target are the same 397 points (a cloud matched to itself, 5 cm apart) and LS3D-LND ends at the
-// iteration limit 2.5-3.0 cm off in translation (PCL: 1 cm), and takes ~25 s under load; the
-// self-registration bias of issue 10 point 5 is the suspected cause. Note that PCL's
+// Source and target are the same 397 points 10 m from the origin, so PCL's 1 cm translation
+// tolerance allows ~1e-3 rad of rotation: LND reaches the exact answer (4e-7 m) because near a
+// target sample its local surface passes through that sample (tin_rules.cpp). Note that PCL's
 // sampleRandomTransform() re-seeds with srand(0), so its ten "random" cases are one case.
-TEST(PclDropin, DISABLED_IterativeClosestPointWithRejectors)
+TEST(PclDropin, IterativeClosestPointWithRejectors)
 {
   REQUIRE_BUNNIES();
   pcl_ls3d::LeastSquaresSurfaceMatching<PointXYZ, PointXYZ> reg;
@@ -489,11 +488,7 @@ TEST(PclDropin, ShiftedBeyondItsSizeIsNotRefused)
 
 // The exact answer given as the initial guess stays: bun0 onto a rigidly moved copy of itself
 // (30° about an oblique axis, 1 m away), guess = truth.
-// DISABLED: with LND on a cloud matched to itself the estimate still moves 0.32° / 0.22 mm from
-// the exact guess (the local quadric of 20 neighbours on the 397-point bunny is biased where it
-// is curved); this is issue 10 point 5 (self-registration bias), being fixed in the LND rule by
-// the engine owner. Enable once that lands.
-TEST(PclDropin, DISABLED_ExactGuessStays)
+TEST(PclDropin, ExactGuessStays)
 {
   REQUIRE_BUNNIES();
   const Eigen::Affine3f truth = Eigen::Translation3f(0.4f, -0.7f, 0.6f) *

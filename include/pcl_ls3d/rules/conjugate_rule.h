@@ -64,6 +64,8 @@ struct CorrespondenceCache
   std::array<float, 3> anchor{{0, 0, 0}};  ///< query position the element was built for
   float reuse_radius = 0.f;                ///< reuse the element while the query stays this close
   float variance = std::numeric_limits<float>::quiet_NaN();  ///< the element's surface variance
+  std::int32_t nearest_sample = -1;  ///< the target sample nearest to `anchor` (−1: none)
+  float snap_radius = 0.f;           ///< within this of nearest_sample the surface meets it
   /// Set by the engine once the estimate has settled: a rule should then reuse exactly what it
   /// cached (and give no correspondence where it cached none), so the observation set and its
   /// surface elements stay fixed and the iteration converges instead of cycling.
