@@ -210,7 +210,10 @@ OverlapMatcher::run(const ParameterBlock& block_i, const ParameterBlock& block_j
     for (Eigen::Index k = 0; k < p.size(); ++k)
       if (p[k] > 0.0) {
         ++counts.used;
-        counts.vtpv += p[k] * set[static_cast<std::size_t>(k)].distance * set[static_cast<std::size_t>(k)].distance;
+        const Observation& o = set[static_cast<std::size_t>(k)];
+        counts.vtpv += p[k] * o.distance * o.distance;
+        if (std::isfinite(o.surface_variance))
+          counts.surface_variance += p[k] * o.surface_variance;
       }
     if (!(cell > 0.0))
       continue;

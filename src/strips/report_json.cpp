@@ -87,6 +87,7 @@ overlap(const OverlapResult& o, const StripAdjustmentReport& r)
   j["observations_used"] = o.used_observations;
   j["observations_rejected"] = o.observations - o.used_observations;
   j["sigma0"] = o.sigma0;
+  j["sigma_surface"] = o.sigma_surface;
   j["discrepancy_before"] = stats(o.before);
   j["discrepancy_after"] = stats(o.after);
   j["own_noise"] = {stats(o.noise_i), stats(o.noise_j)};

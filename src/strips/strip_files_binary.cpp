@@ -11,7 +11,7 @@ namespace strips {
 
 namespace {
 
-constexpr std::uint32_t kVersion = 1;
+constexpr std::uint32_t kVersion = 2;  // 2: DirectionCounts::surface_variance
 
 class Writer
 {
@@ -169,6 +169,7 @@ writeContribution(const std::string& path, const OverlapContribution& c, std::st
     w.put<std::uint64_t>(d->used);
     w.put(d->vtpv);
     w.put(d->robust_scale);
+    w.put(d->surface_variance);
   }
   w.put<std::uint64_t>(c.cells.size());
   for (const PrecisionCell& pc : c.cells) {
@@ -209,6 +210,7 @@ readContribution(const std::string& path, OverlapContribution& c, std::string& e
     d->used = static_cast<std::size_t>(b);
     r.get(d->vtpv);
     r.get(d->robust_scale);
+    r.get(d->surface_variance);
   }
   std::uint64_t cells = 0;
   r.get(cells);

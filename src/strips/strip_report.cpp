@@ -110,6 +110,9 @@ overlapResult(const Overlap& o, const OverlapContribution* c, const OverlapSampl
     r.observations = c->forward.observations + c->backward.observations;
     r.used_observations = c->forward.used + c->backward.used;
     r.sigma0 = r.used_observations ? std::sqrt((c->forward.vtpv + c->backward.vtpv) / r.used_observations) : 0.0;
+    r.sigma_surface = r.used_observations ? std::sqrt((c->forward.surface_variance + c->backward.surface_variance) /
+                                                      static_cast<double>(r.used_observations))
+                                          : 0.0;
   }
   if (s) {
     r.before = discrepancyStatistics(s->before.value);

@@ -161,3 +161,116 @@ TEST(Synth, StripInvalid)
   s.transforms.resize(2);  // wrong size
   EXPECT_FALSE(s.isValid());
 }
+
+// Cross strips: flown across the row, spanning every parallel strip, with their own ids, counts
+// and truths, after the parallel strips in the cloud; the parallel strips are unchanged.
+TEST(Synth, CrossStrips)
+{
+  auto s = smallStrips();
+  const StripBlock plain = makeStripBlock(s);
+  s.cross_strips = 2;
+  const StripBlock block = makeStripBlock(s);
+  ASSERT_EQ(block.strips.size(), 5u);
+  for (std::size_t i = 0; i < plain.cloud->size(); i += 11)
+    ASSERT_EQ((*plain.cloud)[i].z, (*block.cloud)[i].z);  // parallel strips as without cross strips
+  const double across = 2 * s.swath_width * (1.0 - s.side_overlap) + s.swath_width;
+  const Eigen::Vector2d a(-block.direction.y(), block.direction.x());
+  for (std::size_t k = 3; k < 5; ++k) {
+    const StripTruth& st = block.strips[k];
+    EXPECT_TRUE(st.cross);
+    EXPECT_EQ(st.point_source_id, 1 + k);
+    EXPECT_EQ(st.first_index, block.strips[k - 1].first_index + block.strips[k - 1].point_count);
+    EXPECT_NEAR(static_cast<double>(st.point_count), s.density * across * s.swath_width,
+                0.005 * s.density * across * s.swath_width);
+    // Its first and last scan lines lie at the two outer edges of the row (true frame).
+    const auto first = (*block.cloud)[st.first_index], last = (*block.cloud)[st.first_index + st.point_count - 1];
+    const Eigen::Vector3d p0 = st.transform.apply(first.getVector3fMap().cast<double>());
+    const Eigen::Vector3d p1 = st.transform.apply(last.getVector3fMap().cast<double>());
+    EXPECT_NEAR(a.dot(p1.head<2>() - p0.head<2>()), across, 2.0);
+    EXPECT_NEAR(block.direction.dot(st.centre.head<2>()), (k == 3 ? -0.25 : 0.25) * s.strip_length, 1e-9);
+  }
+  EXPECT_EQ(block.cloud->size(), block.strips[4].first_index + block.strips[4].point_count);
+}
+
+// Explicit errors act about each strip's centre: t_centre is the error's translation.
+TEST(Synth, StripErrorsAboutTheCentre)
+{
+  auto s = smallStrips();
+  s.fix_first = false;
+  Vector7d e;
+  e << 1.0, -2.0, 3.0, 1e-4, -2e-4, 3e-4, 1.00005;
+  s.errors = {e, e, e};
+  const StripBlock block = makeStripBlock(s);
+  for (const StripTruth& st : block.strips) {
+    EXPECT_LT((st.t_centre - e.head<3>()).norm(), 1e-9);
+    EXPECT_NEAR(st.transform.m, e[SCALE], 1e-15);
+  }
+  s.errors.resize(2);
+  EXPECT_FALSE(s.isValid());
+}
+
+// Zuo-like scenes: the urban one has roofs, tree crowns (class 5) and roads free of buildings; the
+// mountainous one has terraces (flat treads) and scarps, and far more relief.
+TEST(Synth, UrbanAndMountainScenes)
+{
+  auto s = smallStrips();
+  s.noise_sigma = 0.0;
+  setScene(s, LandscapeType::URBAN);
+  const StripBlock urban = makeStripBlock(s);
+  std::map<int, std::size_t> classes;
+  for (const auto& p : *urban.cloud)
+    ++classes[p.classification];
+  EXPECT_GT(classes[6], urban.cloud->size() / 20);
+  EXPECT_GT(classes[5], urban.cloud->size() / 100);
+  EXPECT_GT(classes[2], urban.cloud->size() / 4);
+  ASSERT_TRUE(urban.landscape);
+  EXPECT_GT(urban.landscape->treeCount(), 10u);
+  for (const auto& b : urban.surface->buildings().buildings())
+    EXPECT_FALSE(urban.landscape->onRoad(b.centre.x(), b.centre.y(), b.radius()));
+
+  setScene(s, LandscapeType::MOUNTAIN);
+  const StripBlock mountain = makeStripBlock(s);
+  const Landscape& m = *mountain.landscape;
+  // Terraces: the ground is flat (within 1 mm over 1 m) on most of the area, and it spans tens of m.
+  int flat = 0, n = 0;
+  double lo = 1e300, hi = -1e300;
+  for (double x = -90.0; x <= 90.0; x += 3.0)
+    for (double y = -90.0; y <= 90.0; y += 3.0, ++n) {
+      const double h = m.groundHeight(x, y);
+      lo = std::min(lo, h);
+      hi = std::max(hi, h);
+      flat += std::abs(m.groundHeight(x + 1.0, y) - h) < 1e-3 && std::abs(m.groundHeight(x, y + 1.0) - h) < 1e-3;
+    }
+  EXPECT_GT(flat, n / 3);
+  EXPECT_GT(hi - lo, 20.0);
+  EXPECT_EQ(m.ground().scarps().size(), 4u);
+}
+
+// Landforms on a flat terrain: a scarp raises its positive side by its height over its width,
+// continuously; terraces turn a slope into flat treads and steep risers of the step height.
+TEST(Synth, ScarpsAndTerraces)
+{
+  LandformSettings f;
+  f.scarps = 1;
+  const Eigen::AlignedBox2d region(Eigen::Vector2d(-100, -100), Eigen::Vector2d(100, 100));
+  const Ground flat(Terrain(1, 0.0), f, region, 7);
+  const Scarp& sc = flat.scarps().at(0);
+  const Eigen::Vector2d lo = sc.point - 2.0 * sc.normal, mid = sc.point, hi = sc.point + 2.0 * sc.normal;
+  EXPECT_NEAR(flat.height(lo.x(), lo.y()), 0.0, 1e-12);
+  EXPECT_NEAR(flat.height(mid.x(), mid.y()), 0.5 * sc.height, 1e-9);
+  EXPECT_NEAR(flat.height(hi.x(), hi.y()), sc.height, 1e-12);
+  EXPECT_GE(sc.height, f.min_scarp_height);
+  EXPECT_LE(sc.height, f.max_scarp_height);
+
+  LandformSettings t;
+  t.terrace_step = 2.0;
+  t.terrace_riser = 0.25;
+  const Ground terraced(Terrain(3, 40.0, 200.0), t, region, 7);
+  int on_step = 0, n = 0;
+  for (double x = -80.0; x <= 80.0; x += 0.7)
+    for (double y = -80.0; y <= 80.0; y += 5.3, ++n) {
+      const double h = terraced.height(x, y);
+      on_step += std::abs(h / 2.0 - std::round(h / 2.0)) < 1e-9;
+    }
+  EXPECT_GT(on_step, n / 2);  // treads: (1 − riser share) of the slope, at multiples of the step
+}

@@ -45,6 +45,10 @@ struct DirectionCounts
   std::size_t used = 0;          ///< with weight > 0
   double vtpv = 0.0;             ///< Σ p l² at the poses of the match
   double robust_scale = 0.0;     ///< 1.4826 · median |l| of the observations
+  /// Σ p σ²_surface over the used observations: the variance of the conjugate surface at the
+  /// query (the rule's local fit, e.g. LND's quadric height), which σ0 contains besides the
+  /// observed point's own noise.
+  double surface_variance = 0.0;
 };
 
 /// \brief One overlap's contribution to one iteration.

@@ -44,6 +44,9 @@ struct OverlapResult
   double spacing = 0.0;               ///< thinning cell edge
   std::size_t observations = 0, used_observations = 0;  ///< final pass, both directions
   double sigma0 = 0.0;                ///< √(Σ p v² / used) in the final pass
+  /// √(Σ p σ²_surface / used): the conjugate surfaces' own σ at the query points (LND: the
+  /// local quadric's height σ). For points with noise σ_n, E[σ0²] ≈ σ_n² + sigma_surface².
+  double sigma_surface = 0.0;
   DiscrepancyStatistics before, after;
   DiscrepancyStatistics noise_i, noise_j;  ///< the strips' own noise on the same surfaces
 };

@@ -4,6 +4,9 @@
 ///        own known 7-parameter similarity (the errors a strip adjustment must remove).
 ///
 /// Geometry (block-local frame, the TRUE frame; metres, seconds):
+///  - Cross strips (optional) come after the N parallel ones: flown along a, across the whole
+///    block (length (N−1)·spacing + swath), centred at along = ((c + ½)/C − ½)·length for
+///    c = 0..C−1, with the same swath, density and scan pattern.
 ///  - Flight direction d = (cos heading, sin heading), across a = (−sin heading, cos heading).
 ///    Strip s (0-based) flies along the line through c_s = (s − (N−1)/2)·spacing·a, with
 ///    spacing = swath_width·(1 − side_overlap), from −length/2 to +length/2 along d. So
@@ -14,16 +17,20 @@
 ///    lines for ZIGZAG) and along = −length/2 + (k + (j + ½)/n_c)·da: the aircraft advances
 ///    while the mirror sweeps, which draws the zig-zag (oscillating mirror) or the parallel slanted
 ///    lines (rotating polygon) on the ground.
-///  - True point: that (x, y), z = true surface (terrain + roofs), plus isotropic noise.
+///  - True point: that (x, y), z = what a pulse from above hits there (landscape.h: terrain and
+///    roofs; urban and mountainous scenes add trees, roads, terraces, scarps), plus isotropic
+///    noise.
 ///    OBSERVED point (what the cloud holds) = truth[s].transform.inverse() applied to it, so
 ///    truth[s].transform maps strip s's observed coordinates onto the true frame.
 ///  - gps_time = start_time + s·(length/speed + turn_time) + (k + (j + ½)/n_c)·da/speed.
-///    point_source_id = first_source_id + s. Classification 2 ground / 6 roof; return 1 of 1.
+///    point_source_id = first_source_id + s. Classification 2 ground / 6 roof / 5 tree crown;
+///    return 1 of 1.
 ///  - Clouds hold local coordinates; written coordinates = local + origin.
 
 #include <pcl_ls3d/common/similarity_transform.h>
 #include <pcl_ls3d/point_types.h>
 #include <pcl_ls3d/synth/buildings.h>
+#include <pcl_ls3d/synth/landscape.h>
 
 #include <pcl/point_cloud.h>
 
@@ -42,7 +49,8 @@ enum class ScanPattern : std::uint8_t { ZIGZAG = 0, PARALLEL = 1 };
 struct StripSettings
 {
   std::uint32_t seed = 1;
-  int num_strips = 3;
+  int num_strips = 3;              ///< parallel strips
+  int cross_strips = 0;            ///< strips across them (after the parallel ones)
   double heading = 0.0;            ///< flight direction from +x [rad]
   double strip_length = 600.0;     ///< [m]
   double swath_width = 300.0;      ///< [m]
@@ -57,24 +65,43 @@ struct StripSettings
   double wavelength = 60.0;        ///< Terrain wavelength [m]
   bool buildings = true;
   BuildingSettings building_settings;
+  LandscapeSettings landscape;     ///< trees, roads, terraces, scarps (ROLLING: none)
   std::uint16_t first_source_id = 1;
   /// Strip 1 is the fixed reference (identity truth).
   bool fix_first = true;
   /// Random per-strip errors (when `transforms` is empty), drawn about the strip centre:
   /// shift per axis N(0, shift_sigma) [m], angles N(0, angle_sigma) [rad], m − 1 ~ N(0, scale_sigma).
   double shift_sigma = 0.15, angle_sigma = 3e-4, scale_sigma = 5e-5;
-  /// Explicit per-strip truths (block-local frame, observed → true); size num_strips or empty.
+  /// Explicit per-strip errors about each strip's centre, as the random ones (tx ty tz [m],
+  /// φ ω κ [rad], m); one per strip (parallel, then cross) or empty. A fixed first strip keeps
+  /// the identity.
+  std::vector<Vector7d> errors;
+  /// Explicit per-strip truths (block-local frame, observed → true); one per strip or empty.
+  /// Takes precedence over `errors`.
   std::vector<SimilarityTransform> transforms;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< georeference offset
 
+  int
+  totalStrips() const
+  {
+    return num_strips + cross_strips;
+  }
   bool
   isValid(std::string* why = nullptr) const;
 };
+
+/// Sets the scene of a Zuo et al. (2012) Table 1-like block: URBAN (Hebei: 4 m relief, dense
+/// flat/gable/hip buildings, trees, a road grid) or MOUNTAIN (Henan: 60 m relief, 2.5 m
+/// terraces, four 4–10 m scarps, isolated trees, a few low buildings); ROLLING: the defaults.
+/// Strip geometry, density, noise and errors are left as they are.
+void
+setScene(StripSettings& settings, LandscapeType type);
 
 /// \brief What is known about one strip.
 struct StripTruth
 {
   std::uint16_t point_source_id = 0;
+  bool cross = false;                 ///< a cross strip
   bool fixed = false;                 ///< the reference strip (identity)
   SimilarityTransform transform;      ///< observed → true, block-local frame (rotation about 0)
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< strip centre c_s (true frame, z = 0)
@@ -92,7 +119,8 @@ struct StripBlock
   pcl::PointCloud<PointLiDAR>::Ptr cloud;
   std::vector<StripTruth> strips;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  std::shared_ptr<const SurfaceModel> surface;  ///< the true surface
+  std::shared_ptr<const SurfaceModel> surface;  ///< terrain + roofs (ROLLING: the true surface)
+  std::shared_ptr<const Landscape> landscape;   ///< the true scene
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  ///< d
   double strip_spacing = 0.0;                   ///< distance between neighbouring centre lines [m]
 
