@@ -63,13 +63,22 @@ namespace {
 double
 normalNoiseVariance(const PairMatcher& matcher, const ObservationSet& set, double spacing)
 {
+  // Only the first observation of each point (its surface normal): ICP's tangent axes are
+  // perpendicular to it by construction, not by noise.
   std::vector<double> d2;
   const double reach2 = 9.0 * spacing * spacing;
-  for (std::size_t k = 1; k < set.size(); ++k) {
-    const Eigen::Vector3d a = matcher.position(set[k - 1]), b = matcher.position(set[k]);
+  std::size_t prev = set.size();
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    if (set[k].component != 0)
+      continue;
+    const std::size_t last = prev;
+    prev = k;
+    if (last == set.size())
+      continue;
+    const Eigen::Vector3d a = matcher.position(set[last]), b = matcher.position(set[k]);
     if ((a - b).squaredNorm() > reach2)
       continue;
-    Eigen::Vector3d ua = set[k - 1].direction.normalized(), ub = set[k].direction.normalized();
+    Eigen::Vector3d ua = set[last].direction.normalized(), ub = set[k].direction.normalized();
     if (ua.dot(ub) < 0.0)
       ub = -ub;
     d2.push_back((ua - ub).squaredNorm());
