@@ -137,7 +137,11 @@ runScene(synth::LandscapeType type, double scale, std::uint32_t seed, const std:
                 kv.second.worst_error, kv.second.within_3sigma ? "yes" : "no");
   if (results.count("lnd") && results.count("lzd") && results.count("icp")) {
     const RuleResult &l = results["lnd"], &z = results["lzd"], &i = results["icp"];
-    const bool sigma_lower = l.run.report.sigma0 < z.run.report.sigma0 && l.run.report.sigma0 < i.run.report.sigma0;
+    // A run that did not converge has no usable σ0 (it may be 0): it counts as worse.
+    const auto sigma0 = [](const RuleResult& x) {
+      return x.run.ok && x.run.report.converged() ? x.run.report.sigma0 : HUGE_VAL;
+    };
+    const bool sigma_lower = sigma0(l) < sigma0(z) && sigma0(l) < sigma0(i);
     const bool error_lower = l.worst_error < z.worst_error && l.worst_error < i.worst_error;
     std::printf("   LND sigma0 lower than LZD and ICP: %s; LND error lower than LZD and ICP: %s\n",
                 sigma_lower ? "PASS" : "FAIL", error_lower ? "PASS" : "FAIL");
