@@ -24,10 +24,11 @@ structural(SegmentKind k)
 /// never do: two spans of a wire meet end to end at their tower, and joining them would make
 /// one object of two; attachLines() places lines that run along a structure.
 bool
-joinable(int a, int b, std::size_t links, const std::vector<SegmentShape>& shapes,
-         const std::vector<SegmentKind>& kind, const AssemblySettings& s)
+joinable(int a, int b, std::size_t links, const std::vector<SegmentKind>& kind,
+         const std::vector<char>& on_terrain, const AssemblySettings& s)
 {
-  if (links < s.min_links)
+  if (links < s.min_links || on_terrain[static_cast<std::size_t>(a)] ||
+      on_terrain[static_cast<std::size_t>(b)])
     return false;
   const SegmentKind ka = kind[static_cast<std::size_t>(a)], kb = kind[static_cast<std::size_t>(b)];
   if (ka == SegmentKind::Ground || kb == SegmentKind::Ground)
@@ -73,6 +74,29 @@ public:
 private:
   std::vector<int> parent_;
 };
+
+/// A piece detached from the ground (detachRaisedPoints) joins the one non-ground group it has
+/// most links with (the hedge above its foot, the wall above its foot), or stays alone (low
+/// vegetation in a lawn). It never joins two groups: a strip of low points along a wall must not
+/// bridge the wall and the hedge beside it.
+void
+attachTerrainPieces(const std::vector<SegmentLink>& adjacency, const std::vector<SegmentKind>& kind,
+                    const std::vector<char>& on_terrain, const AssemblySettings& s, Groups& groups)
+{
+  std::vector<int> target(kind.size(), -1);
+  std::vector<std::size_t> best(kind.size(), 0);
+  for (const SegmentLink& l : adjacency)
+    for (const auto& [piece, other] : {std::pair{l.a, l.b}, std::pair{l.b, l.a}}) {
+      const auto p = static_cast<std::size_t>(piece), o = static_cast<std::size_t>(other);
+      if (on_terrain[p] && !on_terrain[o] && kind[o] != SegmentKind::Ground && l.links > best[p]) {
+        best[p] = l.links;
+        target[p] = other;
+      }
+    }
+  for (std::size_t p = 0; p < kind.size(); ++p)
+    if (target[p] >= 0 && best[p] >= s.min_links)
+      groups.unite(static_cast<int>(p), target[p]);
+}
 
 std::size_t
 countRoots(Groups& groups, std::size_t n)
@@ -131,10 +155,13 @@ attachLines(const Contacts& c, const std::vector<SegmentShape>& shapes,
 /// A non-linear, non-ground group whose contacts go (enclosure_share of its links) to one
 /// building group at least 1/enclosure_size_ratio times larger sits on it and joins it: a
 /// chimney, dormer or roof window. A car on the ground or a tree beside a house has other
-/// contacts; the size ratio keeps a crown that only touches a roof out of the building.
+/// contacts; the size ratio keeps a crown that only touches a roof out of the building. A group
+/// holding a piece detached from the ground stands on the terrain and never sits on a roof;
+/// links to such pieces are contacts with the terrain, whatever group the piece has joined.
 void
 attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<SegmentShape>& shapes,
-               const std::vector<SegmentKind>& kind, const AssemblySettings& s, Groups& groups)
+               const std::vector<SegmentKind>& kind, const std::vector<char>& on_terrain,
+               const AssemblySettings& s, Groups& groups)
 {
   const std::size_t n = shapes.size();
   std::vector<std::size_t> size(n, 0), total(n, 0);
@@ -142,7 +169,7 @@ attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<Segm
   for (std::size_t i = 0; i < n; ++i) {
     const auto r = static_cast<std::size_t>(groups.find(static_cast<int>(i)));
     size[r] += shapes[i].n;
-    if (kind[i] == SegmentKind::Ground || kind[i] == SegmentKind::Linear)
+    if (kind[i] == SegmentKind::Ground || kind[i] == SegmentKind::Linear || on_terrain[i])
       eligible[r] = 0;
   }
   std::map<std::pair<int, int>, std::size_t> links;  // (root, other root) -> links
@@ -150,10 +177,12 @@ attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<Segm
     const int ra = groups.find(l.a), rb = groups.find(l.b);
     if (ra == rb)
       continue;
-    links[{ra, rb}] += l.links;
-    links[{rb, ra}] += l.links;
     total[static_cast<std::size_t>(ra)] += l.links;
     total[static_cast<std::size_t>(rb)] += l.links;
+    if (on_terrain[static_cast<std::size_t>(l.a)] || on_terrain[static_cast<std::size_t>(l.b)])
+      continue;
+    links[{ra, rb}] += l.links;
+    links[{rb, ra}] += l.links;
   }
   std::vector<int> target(n, -1);
   std::vector<std::size_t> best(n, 0);
@@ -293,6 +322,56 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
   }
 }
 
+/// Points of a ground segment that the ground filter rejects (higher above the opened terrain
+/// than its noise allowance) are not ground: the foot of a hedge, low vegetation, a wall's foot
+/// that the planar growth carried along the terrain. They leave the segment as new segments, one
+/// per connected component of such points (k-NN links no longer than \a max_length), and are
+/// assembled like any other segment. \a labels stays dense.
+/// \return points detached
+std::size_t
+detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
+                   int graph_k, const std::vector<char>& ground,
+                   const std::vector<SegmentKind>& kind, double max_length,
+                   std::vector<int>& labels)
+{
+  const double max_sq = max_length * max_length;
+  const auto raised = [&](std::size_t p) {
+    return labels[p] >= 0 && !ground[p] &&
+           kind[static_cast<std::size_t>(labels[p])] == SegmentKind::Ground;
+  };
+  int next = static_cast<int>(kind.size());
+  std::size_t detached = 0;
+  std::vector<int> stack;
+  std::vector<int> fresh(labels.size(), -1);
+  for (std::size_t p = 0; p < labels.size(); ++p) {
+    if (!raised(p) || fresh[p] >= 0)
+      continue;
+    const int from = labels[p];
+    fresh[p] = next;
+    stack.assign(1, static_cast<int>(p));
+    while (!stack.empty()) {
+      const auto i = static_cast<std::size_t>(stack.back());
+      stack.pop_back();
+      for (int g = 0; g < graph_k; ++g) {
+        const int q = graph[i * static_cast<std::size_t>(graph_k) + static_cast<std::size_t>(g)];
+        if (q < 0 || fresh[static_cast<std::size_t>(q)] >= 0 || !raised(static_cast<std::size_t>(q)) ||
+            labels[static_cast<std::size_t>(q)] != from ||
+            (points[i] - points[static_cast<std::size_t>(q)]).squaredNorm() > max_sq)
+          continue;
+        fresh[static_cast<std::size_t>(q)] = next;
+        stack.push_back(q);
+      }
+    }
+    ++next;
+  }
+  for (std::size_t p = 0; p < labels.size(); ++p)
+    if (fresh[p] >= 0) {
+      labels[p] = fresh[p];
+      ++detached;
+    }
+  return detached;
+}
+
 }  // namespace
 
 AssemblyReport
@@ -304,20 +383,38 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   if (points.size() != labels.size() || ground.size() != labels.size() ||
       residuals.size() != labels.size())
     return rep;
-  const auto shapes = segmentShapes(points, labels, residuals, ground);
   rep.ground_residual = groundResidual(residuals, ground);
-  std::vector<SegmentKind> kind(shapes.size());
-  for (std::size_t s = 0; s < shapes.size(); ++s) {
-    kind[s] = kindOf(shapes[s], rep.ground_residual, settings.kinds);
-    ++rep.kind_count[static_cast<int>(kind[s])];
-  }
+  const auto kindsOf = [&](const std::vector<SegmentShape>& shapes) {
+    std::vector<SegmentKind> kind(shapes.size());
+    for (std::size_t s = 0; s < shapes.size(); ++s)
+      kind[s] = kindOf(shapes[s], rep.ground_residual, settings.kinds);
+    return kind;
+  };
+  auto shapes = segmentShapes(points, labels, residuals, ground);
   rep.segments_before = shapes.size();
+  std::vector<SegmentKind> kind = kindsOf(shapes);
+  if (settings.detach_raised_points) {
+    rep.detached_points = detachRaisedPoints(points, graph, graph_k, ground, kind,
+                                             settings.max_link_length, labels);
+    if (rep.detached_points > 0) {
+      shapes = segmentShapes(points, labels, residuals, ground);
+      kind = kindsOf(shapes);
+    }
+  }
+  for (const SegmentKind k : kind)
+    ++rep.kind_count[static_cast<int>(k)];
 
+  // Segments detached from the ground stand on the terrain: neither they nor a group holding
+  // them sits on a roof (a hedge and its foot, a crown whose trunk reaches the ground).
+  std::vector<char> on_terrain(shapes.size(), 0);
+  for (std::size_t i = rep.segments_before; i < shapes.size(); ++i)
+    on_terrain[i] = 1;
   Groups groups(shapes.size());
   const std::vector<SegmentLink> adjacency = segmentAdjacency(points, graph, graph_k, labels, settings.max_link_length);
   for (const SegmentLink& l : adjacency)
-    if (joinable(l.a, l.b, l.links, shapes, kind, settings))
+    if (joinable(l.a, l.b, l.links, kind, on_terrain, settings))
       groups.unite(l.a, l.b);
+  attachTerrainPieces(adjacency, kind, on_terrain, settings, groups);
   const Contacts contacts{points, graph, graph_k, labels,
                           settings.max_link_length * settings.max_link_length};
   // Attachments see groups, and each one can complete another (a roof takes its chimney, then
@@ -325,7 +422,7 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   for (std::size_t before = 0, after = 1; before != after;) {
     before = countRoots(groups, shapes.size());
     attachLines(contacts, shapes, kind, settings, groups);
-    attachEnclosed(adjacency, shapes, kind, settings, groups);
+    attachEnclosed(adjacency, shapes, kind, on_terrain, settings, groups);
     attachUnderRoofs(contacts, kind, settings, groups);
     after = countRoots(groups, shapes.size());
   }

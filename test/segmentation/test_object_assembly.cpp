@@ -3,11 +3,16 @@
 // wire of two spans meeting at a cross arm. Also the link counting between segments.
 #include "segmentation/scenes.h"
 
+#include <pcl_ls3d/segmentation/ground_filter.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
+#include <pcl_ls3d/segmentation/object_assembly.h>
 #include <pcl_ls3d/segmentation/segment_adjacency.h>
+
+#include <pcl/search/kdtree.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 
 using Segmenter = pcl_ls3d::MultiRuleRegionGrowing<pcl::PointXYZ>;
@@ -227,4 +232,109 @@ TEST(ObjectAssembly, SegmentAdjacencyCountsShortLinksOnly)
   links = pcl_ls3d::segmentation::segmentAdjacency(pts, graph, 2, labels, 1.0);
   ASSERT_EQ(links.size(), 1u);
   EXPECT_EQ(links[0].links, 2u);  // 0->2 is 1.5 long: only 1->2 and 2->1 remain
+}
+
+namespace {
+
+/// k-NN graph (k neighbours per point, self excluded) for assembleObjects().
+std::vector<int>
+knnGraph(const std::vector<Eigen::Vector3f>& pts, int k)
+{
+  Cloud::Ptr c(new Cloud);
+  for (const auto& p : pts)
+    c->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  pcl::search::KdTree<pcl::PointXYZ> tree;
+  tree.setInputCloud(c);
+  std::vector<int> graph(pts.size() * static_cast<std::size_t>(k), -1);
+  pcl::Indices nn;
+  std::vector<float> d2;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    tree.nearestKSearch((*c)[i], k + 1, nn, d2);
+    int g = 0;
+    for (const auto q : nn)
+      if (static_cast<std::size_t>(q) != i && g < k)
+        graph[i * static_cast<std::size_t>(k) + static_cast<std::size_t>(g++)] = q;
+  }
+  return graph;
+}
+
+}  // namespace
+
+// A hedge whose foot (0.4-0.9 m above the terrain) the growing and merging left in the ground
+// segment, and a patch of low vegetation (0.35-0.5 m) in the middle of a lawn, also in the
+// ground segment. The ground filter rejects both; they leave the ground: the foot joins the
+// hedge, the patch becomes its own object, the terrain stays one ground object. With
+// detach_raised_points off, both stay in the ground (what the IGN tiles showed: class 3/4
+// points inside ground segments).
+TEST(ObjectAssembly, RaisedPointsLeaveTheGroundSegment)
+{
+  namespace sg = pcl_ls3d::segmentation;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> part, labels;
+  enum { TERRAIN, FOOT, HEDGE, PATCH };
+  for (float x = 0.f; x <= 30.f; x += 0.3f)
+    for (float y = 0.f; y <= 30.f; y += 0.3f) {
+      pts.emplace_back(x, y, n(rng));
+      part.push_back(TERRAIN);
+      labels.push_back(0);
+    }
+  // Hedge 12 m x 1.5 m at x in [5, 17], y in [5, 6.5]: foot in the ground segment (label 0),
+  // the rest its own rough segment (label 1).
+  for (int i = 0; i < 1800; ++i) {
+    const float z = 0.4f + 2.1f * u(rng);
+    pts.emplace_back(5.f + 12.f * u(rng), 5.f + 1.5f * u(rng), z);
+    part.push_back(z < 0.9f ? FOOT : HEDGE);
+    labels.push_back(z < 0.9f ? 0 : 1);
+  }
+  // Low vegetation patch 2 m x 2 m at (22, 22), in the ground segment.
+  for (int i = 0; i < 120; ++i) {
+    pts.emplace_back(21.f + 2.f * u(rng), 21.f + 2.f * u(rng), 0.35f + 0.15f * u(rng));
+    part.push_back(PATCH);
+    labels.push_back(0);
+  }
+  std::vector<float> residuals(pts.size());
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    residuals[i] = part[i] == TERRAIN ? 0.01f : 0.1f;
+  sg::GroundFilterSettings gf;
+  gf.cell = 0.6;
+  const std::vector<char> ground = sg::groundPoints(pts, gf);
+  const std::vector<int> graph = knnGraph(pts, 16);
+  sg::AssemblySettings a;
+  a.max_link_length = 0.8;
+
+  // Label holding most points of a part, and that share.
+  const auto majority = [&](const std::vector<int>& l, int p) {
+    std::map<int, std::size_t> count;
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < l.size(); ++i)
+      if (part[i] == p) {
+        ++count[l[i]];
+        ++total;
+      }
+    const auto best = std::max_element(count.begin(), count.end(),
+                                       [](auto& x, auto& y) { return x.second < y.second; });
+    return std::make_pair(best->first, static_cast<double>(best->second) / total);
+  };
+
+  std::vector<int> on = labels;
+  const auto rep = sg::assembleObjects(pts, graph, 16, residuals, ground, a, on);
+  EXPECT_GT(rep.detached_points, 300u);
+  const auto terrain = majority(on, TERRAIN), foot = majority(on, FOOT),
+             hedge = majority(on, HEDGE), patch = majority(on, PATCH);
+  EXPECT_GE(terrain.second, 0.99);
+  EXPECT_GE(hedge.second, 0.99);
+  EXPECT_EQ(foot.first, hedge.first);  // the foot joined the hedge
+  EXPECT_GE(foot.second, 0.9);
+  EXPECT_NE(patch.first, terrain.first);  // the patch left the ground ...
+  EXPECT_NE(patch.first, hedge.first);    // ... as its own object
+  EXPECT_GE(patch.second, 0.9);
+
+  std::vector<int> off = labels;
+  a.detach_raised_points = false;
+  const auto rep_off = sg::assembleObjects(pts, graph, 16, residuals, ground, a, off);
+  EXPECT_EQ(rep_off.detached_points, 0u);
+  EXPECT_EQ(majority(off, FOOT).first, majority(off, TERRAIN).first);
+  EXPECT_EQ(majority(off, PATCH).first, majority(off, TERRAIN).first);
 }

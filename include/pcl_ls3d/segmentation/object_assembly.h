@@ -7,6 +7,10 @@
 ///
 /// Each segment gets a kind from its geometry (segment_kinds.h: ground, linear, rough, wall,
 /// solid).
+/// First, points of a ground segment that the ground filter rejects (the foot of a hedge, low
+/// vegetation, a wall's foot carried along by the planar growth) leave it as their own pieces,
+/// one per connected component (detach_raised_points); each piece joins the one non-ground
+/// group it has most links with, or stays alone, and never bridges two groups.
 /// Segments touch through k-NN links no longer than max_link_length (at least min_links of
 /// them). Touching segments join when their kinds belong together: ground with ground; solid
 /// and wall with solid and wall (roof planes and walls: a building); rough with rough (a tree
@@ -48,12 +52,15 @@ struct AssemblySettings
                                  ///< (in plan) to join it, if at most enclosure_size_ratio of it
   double footprint_margin = 0.75; ///< the roof's plan reaches this far past its points (eaves,
                                  ///< balconies)
+  bool detach_raised_points = true;  ///< points of a ground segment that the ground filter
+                                    ///< rejects leave it as their own segments
 };
 
 /// \brief What assembleObjects() did.
 struct AssemblyReport
 {
   std::size_t segments_before = 0, objects = 0;
+  std::size_t detached_points = 0;  ///< points that left ground segments (raised above terrain)
   std::size_t kind_count[5] = {0, 0, 0, 0, 0};  ///< segments per SegmentKind
   double ground_residual = 0.0;  ///< median residual of the ground points (roughness unit)
 };
