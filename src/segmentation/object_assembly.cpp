@@ -164,14 +164,21 @@ attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<Segm
                const AssemblySettings& s, Groups& groups)
 {
   const std::size_t n = shapes.size();
-  std::vector<std::size_t> size(n, 0), total(n, 0);
+  std::vector<std::size_t> size(n, 0), total(n, 0), rough(n, 0);
   std::vector<char> eligible(n, 1);  // roots whose members are neither ground nor linear
   for (std::size_t i = 0; i < n; ++i) {
     const auto r = static_cast<std::size_t>(groups.find(static_cast<int>(i)));
     size[r] += shapes[i].n;
+    rough[r] += kind[i] == SegmentKind::Rough ? shapes[i].n : 0;
     if (kind[i] == SegmentKind::Ground || kind[i] == SegmentKind::Linear || on_terrain[i])
       eligible[r] = 0;
   }
+  // A rough group (vegetation-like: a crown, or a chimney's scattered returns) sits on a
+  // building only if it lies on its roof in plan (attachUnderRoofs); contact alone does not
+  // make a crown that leans over a roof part of it.
+  for (std::size_t r = 0; r < n; ++r)
+    if (2 * rough[r] > size[r])
+      eligible[r] = 0;
   std::map<std::pair<int, int>, std::size_t> links;  // (root, other root) -> links
   for (const SegmentLink& l : adjacency) {
     const int ra = groups.find(l.a), rb = groups.find(l.b);
@@ -332,8 +339,9 @@ std::size_t
 detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
                    int graph_k, const std::vector<char>& ground,
                    const std::vector<SegmentKind>& kind, double max_length,
-                   std::vector<int>& labels)
+                   std::vector<int>& labels, std::vector<int>& origin)
 {
+  origin.clear();
   const double max_sq = max_length * max_length;
   const auto raised = [&](std::size_t p) {
     return labels[p] >= 0 && !ground[p] &&
@@ -347,6 +355,7 @@ detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector
     if (!raised(p) || fresh[p] >= 0)
       continue;
     const int from = labels[p];
+    origin.push_back(from);
     fresh[p] = next;
     stack.assign(1, static_cast<int>(p));
     while (!stack.empty()) {
@@ -372,6 +381,28 @@ detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector
   return detached;
 }
 
+/// A detached piece as smooth as a roof or the terrain (kind Solid: not rough, not a wall, not
+/// a line) is terrain the filter misjudged (a steep slope, an embankment, a tile edge) and goes
+/// back to its ground segment; rough pieces (vegetation) and walls stay detached. Pieces are
+/// the labels from \a first on, \a origin their ground segments; labels stay dense.
+/// \return points that stay detached
+std::size_t
+restoreTerrainPieces(const std::vector<SegmentKind>& kind, std::size_t first,
+                     const std::vector<int>& origin, std::vector<int>& labels)
+{
+  std::vector<int> to(kind.size(), -1);
+  int next = static_cast<int>(first);
+  for (std::size_t s = first; s < kind.size(); ++s)
+    to[s] = kind[s] == SegmentKind::Solid ? origin[s - first] : next++;
+  std::size_t kept = 0;
+  for (int& l : labels)
+    if (l >= static_cast<int>(first)) {
+      l = to[static_cast<std::size_t>(l)];
+      kept += l >= static_cast<int>(first);
+    }
+  return kept;
+}
+
 }  // namespace
 
 AssemblyReport
@@ -394,9 +425,12 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   rep.segments_before = shapes.size();
   std::vector<SegmentKind> kind = kindsOf(shapes);
   if (settings.detach_raised_points) {
+    std::vector<int> origin;
     rep.detached_points = detachRaisedPoints(points, graph, graph_k, ground, kind,
-                                             settings.max_link_length, labels);
+                                             settings.max_link_length, labels, origin);
     if (rep.detached_points > 0) {
+      const auto pieces = segmentShapes(points, labels, residuals, ground);
+      rep.detached_points = restoreTerrainPieces(kindsOf(pieces), rep.segments_before, origin, labels);
       shapes = segmentShapes(points, labels, residuals, ground);
       kind = kindsOf(shapes);
     }

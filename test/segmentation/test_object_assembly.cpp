@@ -338,3 +338,74 @@ TEST(ObjectAssembly, RaisedPointsLeaveTheGroundSegment)
   EXPECT_EQ(majority(off, FOOT).first, majority(off, TERRAIN).first);
   EXPECT_EQ(majority(off, PATCH).first, majority(off, TERRAIN).first);
 }
+
+// A crown leaning over the edge of a flat roof touches nothing but the roof, and the house is
+// more than 20 times its size: by contact alone it would "sit on" the building like a chimney.
+// A rough group joins a building only by lying on its roof in plan, and most of this crown is
+// outside the roof: it stays its own object. A chimney (rough too) in the middle of the roof
+// still joins.
+TEST(ObjectAssembly, CrownLeaningOverARoofStaysATree)
+{
+  namespace sg = pcl_ls3d::segmentation;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(-1.f, 1.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> labels;
+  std::vector<float> residuals;
+  enum { ROOF, WALL, GROUND, CROWN, CHIMNEY };
+  const auto push = [&](float x, float y, float z, int l, float r) {
+    pts.emplace_back(x, y, z);
+    labels.push_back(l);
+    residuals.push_back(r);
+  };
+  for (float x = 0.f; x <= 10.f; x += 0.25f)
+    for (float y = 0.f; y <= 10.f; y += 0.25f)
+      push(x, y, 6.f + n(rng), ROOF, 0.01f);
+  for (float t = 0.f; t <= 10.f; t += 0.5f)
+    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
+      push(t, n(rng), z, WALL, 0.01f);
+      push(t, 10.f + n(rng), z, WALL, 0.01f);
+      push(n(rng), t, z, WALL, 0.01f);
+      push(10.f + n(rng), t, z, WALL, 0.01f);
+    }
+  for (float x = -8.f; x <= 22.f; x += 0.3f)
+    for (float y = -8.f; y <= 18.f; y += 0.3f)
+      if (x < -0.3f || x > 10.3f || y < -0.3f || y > 10.3f)
+        push(x, y, n(rng), GROUND, 0.01f);
+  // Crown: 80 points in a ball of radius 1.2 m centred 1.2 m outside the east eave, its lower
+  // part resting on the roof edge; no trunk (it reaches the roof, not the ground).
+  for (int i = 0; i < 80;) {
+    const Eigen::Vector3f d(u(rng), u(rng), u(rng));
+    if (d.norm() > 1.f)
+      continue;
+    const Eigen::Vector3f p = Eigen::Vector3f(11.2f, 5.f, 7.f) + 1.2f * d;
+    if (p.x() < 10.f && p.z() < 6.1f)
+      continue;  // not inside the roof
+    push(p.x(), p.y(), p.z(), CROWN, 0.2f);
+    ++i;
+  }
+  // Chimney: 60 scattered points in a 0.8 m box on the middle of the roof.
+  for (int i = 0; i < 60; ++i)
+    push(5.f + 0.4f * u(rng), 5.f + 0.4f * u(rng), 6.9f + 0.7f * u(rng), CHIMNEY, 0.2f);
+
+  sg::GroundFilterSettings gf;
+  gf.cell = 0.6;
+  const std::vector<char> ground = sg::groundPoints(pts, gf);
+  const std::vector<int> graph = knnGraph(pts, 16);
+  sg::AssemblySettings a;
+  a.max_link_length = 0.8;
+  std::vector<int> out = labels;
+  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  const auto labelOf = [&](int part) {
+    std::map<int, std::size_t> count;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      if (labels[i] == part)
+        ++count[out[i]];
+    return std::max_element(count.begin(), count.end(),
+                            [](auto& x, auto& y) { return x.second < y.second; })->first;
+  };
+  EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
+  EXPECT_EQ(labelOf(CHIMNEY), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(GROUND));
+}

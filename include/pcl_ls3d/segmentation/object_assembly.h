@@ -16,9 +16,10 @@
 /// and wall with solid and wall (roof planes and walls: a building); rough with rough (a tree
 /// group). Then, repeated until nothing changes: a linear segment joins the non-linear,
 /// non-ground group that at least edge_share of its points touch (an edge line along its roof;
-/// a wire span touching its tower with its last points stays a span); a group whose contacts
-/// go (enclosure_share) to one building at least 1/enclosure_size_ratio times its size joins
-/// that building (a chimney, a dormer); a group lying in plan (footprint_share of its points) on
+/// a wire span touching its tower with its last points stays a span); a group, not mostly
+/// rough, whose contacts go (enclosure_share) to one building at least 20 times its size joins
+/// that building (a dormer, a roof window; a rough group — a crown leaning over the roof, or a
+/// chimney's scattered returns — joins only by the footprint rule); a group lying in plan (footprint_share of its points) on
 /// or under one building's roof, widened by footprint_margin, joins it (a chimney whose k-NN
 /// links never leave it, a facade with balconies under the eaves). Nothing joins the ground, and lines never join lines:
 /// two spans of a wire meet end to end at their tower.
