@@ -445,8 +445,17 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     on_terrain[i] = 1;
   Groups groups(shapes.size());
   const std::vector<SegmentLink> adjacency = segmentAdjacency(points, graph, graph_k, labels, settings.max_link_length);
+  const auto isRough = [&kind](int s) { return kind[static_cast<std::size_t>(s)] == SegmentKind::Rough; };
   for (const SegmentLink& l : adjacency)
-    if (joinable(l.a, l.b, l.links, kind, on_terrain, settings))
+    if (!(isRough(l.a) && isRough(l.b)) && joinable(l.a, l.b, l.links, kind, on_terrain, settings))
+      groups.unite(l.a, l.b);
+  // Crowns join crowns only through links as short as the volumetric growth steps: two trees
+  // whose crowns come within the (longer) roof-growth radius of each other stay two trees.
+  const double rough_length = settings.rough_link_length > 0.0
+                                  ? std::min(settings.rough_link_length, settings.max_link_length)
+                                  : settings.max_link_length;
+  for (const SegmentLink& l : segmentAdjacency(points, graph, graph_k, labels, rough_length))
+    if (isRough(l.a) && isRough(l.b) && joinable(l.a, l.b, l.links, kind, on_terrain, settings))
       groups.unite(l.a, l.b);
   attachTerrainPieces(adjacency, kind, on_terrain, settings, groups);
   const Contacts contacts{points, graph, graph_k, labels,

@@ -409,3 +409,51 @@ TEST(ObjectAssembly, CrownLeaningOverARoofStaysATree)
   EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
   EXPECT_NE(labelOf(CROWN), labelOf(GROUND));
 }
+
+// Two sparse crowns (300 points in 4 m cubes, about 0.6 m apart inside) whose facing sides are
+// 0.8 m apart: their k-NN graphs link them through edges of 0.8-1.2 m. Rough segments touch
+// each other only through links up to rough_link_length (0.75 m here), so the two trees stay
+// two objects, while the two halves of one crown still join. With rough_link_length off
+// (= max_link_length, 1.2 m) the crowns join: generated scene seed 2's tree 11 and tree 28,
+// 1.3 m apart, were one segment.
+TEST(ObjectAssembly, NeighbouringCrownsStayTwoTrees)
+{
+  namespace sg = pcl_ls3d::segmentation;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-2.f, 2.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> labels;
+  const auto crown = [&](float cx, int left, int right) {
+    for (int i = 0; i < 300; ++i) {
+      const Eigen::Vector3f d(u(rng), u(rng), u(rng));
+      pts.push_back(Eigen::Vector3f(cx, 0.f, 6.f) + d);
+      labels.push_back(d.x() < 0.f ? left : right);
+    }
+  };
+  crown(0.f, 0, 1);  // crown A in two segments, x in [-2, 2]
+  crown(4.8f, 2, 2);  // crown B, x in [2.8, 6.8]
+  std::vector<float> residuals(pts.size(), 0.2f);
+  std::vector<char> ground(pts.size(), 0);
+  // Flat ground far below (the noise unit of the roughness: crowns are rough against it).
+  for (float x = -6.f; x <= 11.f; x += 0.5f)
+    for (float y = -5.f; y <= 5.f; y += 0.5f) {
+      pts.emplace_back(x, y, 0.f);
+      labels.push_back(3);
+      residuals.push_back(0.01f);
+      ground.push_back(1);
+    }
+  const std::vector<int> graph = knnGraph(pts, 16);
+  sg::AssemblySettings a;
+  a.max_link_length = 1.2;
+  a.rough_link_length = 0.75;
+  const std::size_t a_right = static_cast<std::size_t>(
+      std::find(labels.begin(), labels.end(), 1) - labels.begin());
+  std::vector<int> out = labels;
+  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  EXPECT_EQ(out[0], out[a_right]);  // A's halves join
+  EXPECT_NE(out[0], out[599]);      // A and B do not
+  a.rough_link_length = 0.0;
+  out = labels;
+  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  EXPECT_EQ(out[0], out[599]);
+}

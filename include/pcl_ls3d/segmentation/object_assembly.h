@@ -45,6 +45,9 @@ struct AssemblySettings
   std::size_t min_links = 3;     ///< weaker contacts never join
   double max_link_length = 1.0;  ///< longer k-NN links do not make segments touch (the class
                                  ///< sets its growth radius)
+  double rough_link_length = 0.0;  ///< rough segments (crowns) touch each other only through
+                                   ///< links this short (the class sets its volumetric radius);
+                                   ///< ≤ 0: max_link_length
   double edge_share = 0.25;      ///< share of a linear segment's points touching a group to
                                  ///< join it (a wire span touches its tower with about 10 %)
   double enclosure_share = 0.8;  ///< share of a group's contacts with one building to join it

@@ -296,6 +296,10 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
     residuals[p] = features_[p].residual;
   segmentation::AssemblySettings a = assembly_;
   a.max_link_length = grow_.growth_radius;  // touching = as close as growth may step
+  // Crowns touch crowns through links up to halfway between the volumetric step and the
+  // growth radius (1.5 spacings by default; tuned on 77050_627755, 77055_627755 and the
+  // generated seeds 1-3, docs/BENCHMARKS.md).
+  a.rough_link_length = 0.5 * (grow_.volumetric_radius + grow_.growth_radius);
   assembly_report_ = segmentation::assembleObjects(points_, graph_, grow_.graph_k, residuals,
                                                    ground, a, segment_of_);
   if (min_fragment_size_ > 1)
