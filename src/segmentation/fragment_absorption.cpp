@@ -12,7 +12,7 @@ namespace segmentation {
 
 std::size_t
 absorbFragments(const std::vector<int>& graph, int graph_k, std::vector<int>& labels,
-                std::size_t min_size)
+                std::size_t min_size, const std::function<bool(int, int)>& linkable)
 {
   if (min_size < 2 || graph_k < 1 || labels.empty() ||
       graph.size() != labels.size() * static_cast<std::size_t>(graph_k))
@@ -51,7 +51,7 @@ absorbFragments(const std::vector<int>& graph, int graph_k, std::vector<int>& la
     for (const int p : members[s])
       for (int g = 0; g < graph_k; ++g) {
         const int q = graph[static_cast<std::size_t>(p) * graph_k + g];
-        if (q < 0 || labels[q] < 0)
+        if (q < 0 || labels[q] < 0 || (linkable && !linkable(p, q)))
           continue;
         const int t = find(labels[q]);
         if (t != s)

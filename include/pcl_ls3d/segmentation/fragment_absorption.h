@@ -6,6 +6,7 @@
 ///        an addition to Wang et al. 2021, off when the minimum size is 0. PCL-free.
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -22,10 +23,13 @@ namespace segmentation {
 /// \param[in] graph_k neighbours per point in \a graph
 /// \param[in,out] labels segment id per point (dense 0..n−1, −1 none); relabelled densely
 /// \param[in] min_size segments under this many points are absorbed (0 or 1: nothing happens)
+/// \param[in] linkable optional: only links p → q for which it returns true count (the plane
+///            level passes the planar growth rule, so a wall fragment never joins the roof it
+///            touches at the eave); empty: every link counts
 /// \return number of segments absorbed
 std::size_t
 absorbFragments(const std::vector<int>& graph, int graph_k, std::vector<int>& labels,
-                std::size_t min_size);
+                std::size_t min_size, const std::function<bool(int, int)>& linkable = {});
 
 }  // namespace segmentation
 }  // namespace pcl_ls3d

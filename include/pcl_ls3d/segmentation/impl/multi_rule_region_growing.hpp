@@ -89,9 +89,23 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   growSegments();
   plane_of_ = segment_of_;
   // The plane level keeps the grown planes; points that the seed condition left in fragments
-  // (residual above v_t: they join a plane but do not grow it) join their most-linked plane.
-  if (min_fragment_size_ > 1)
-    segmentation::absorbFragments(graph_, grow_.graph_k, plane_of_, min_fragment_size_);
+  // (residual above v_t: they join a plane but do not grow it) join their most-linked plane,
+  // counting only links p -> q where p lies on q's tangent plane within what the planar rule
+  // allows over one growth step (growth radius x sin N_t); volumetric pairs always count. A
+  // fragment of a sparse wall does not join the roof it touches at the eave.
+  if (min_fragment_size_ > 1) {
+    const double tol = grow_.growth_radius * std::sin(grow_.normal_angle);
+    const auto on_plane = [this, tol](int p, int q) {
+      const auto& fp = features_[static_cast<std::size_t>(p)];
+      const auto& fq = features_[static_cast<std::size_t>(q)];
+      if (fp.dimensionality == Dimensionality::Volumetric &&
+          fq.dimensionality == Dimensionality::Volumetric)
+        return true;
+      const Eigen::Vector3f d = points_[static_cast<std::size_t>(p)] - points_[static_cast<std::size_t>(q)];
+      return std::abs(d.dot(fq.normal)) <= tol;
+    };
+    segmentation::absorbFragments(graph_, grow_.graph_k, plane_of_, min_fragment_size_, on_plane);
+  }
   lap(stage_times_.growing);
   mergeSegments();
   lap(stage_times_.merging);
