@@ -1,7 +1,37 @@
 #include <pcl_ls3d/deformation/deformation_analysis.h>
 
+#include <algorithm>
+#include <random>
+
 namespace pcl_ls3d {
 namespace deformation {
+
+namespace {
+
+// A random sample (fixed seed) of `count` finite epoch points in input order; empty when all are
+// used. Random, not every k-th point: on a gridded or scan-line cloud every k-th point lies on a
+// few lines, whose neighbourhoods have no second tangent direction (the noise estimate of the
+// quality gate then sees a flat, noise-free surface and the σ0 gate refuses a good fit).
+std::vector<int>
+matchingSample(const std::vector<Eigen::Vector3d>& epoch, std::size_t count)
+{
+  std::vector<int> finite;
+  for (std::size_t i = 0; i < epoch.size(); ++i)
+    if (epoch[i].allFinite())
+      finite.push_back(static_cast<int>(i));
+  if (count == 0 || finite.size() <= count)
+    return {};
+  std::mt19937 rng(20011);
+  for (std::size_t k = 0; k < count; ++k) {  // partial Fisher–Yates
+    std::uniform_int_distribution<std::size_t> pick(k, finite.size() - 1);
+    std::swap(finite[k], finite[pick(rng)]);
+  }
+  finite.resize(count);
+  std::sort(finite.begin(), finite.end());
+  return finite;
+}
+
+}  // namespace
 
 bool
 DeformationSettings::isValid(std::string* why) const
@@ -20,28 +50,13 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
     out.matching.message = "invalid settings: " + why;
     return out;
   }
-  std::size_t finite = 0;
-  for (const Eigen::Vector3d& p : epoch)
-    finite += p.allFinite();
-  if (settings.matching_points > 0 && finite > settings.matching_points) {
-    // Every k-th finite point (k ≥ 1 real-valued, so exactly matching_points are taken).
-    std::vector<Eigen::Vector3d> sample;
-    std::vector<int> index;
-    sample.reserve(settings.matching_points);
-    const double step = static_cast<double>(finite) / static_cast<double>(settings.matching_points);
-    double next = 0.0;
-    std::size_t rank = 0;
-    for (std::size_t i = 0; i < epoch.size(); ++i) {
-      if (!epoch[i].allFinite())
-        continue;
-      if (static_cast<double>(rank) >= next && sample.size() < settings.matching_points) {
-        sample.push_back(epoch[i]);
-        index.push_back(static_cast<int>(i));
-        next += step;
-      }
-      ++rank;
-    }
-    out.matching = robustMatching(sample, index, reference, rule, settings.matching, guess);
+  const std::vector<int> sample = matchingSample(epoch, settings.matching_points);
+  if (!sample.empty()) {
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(sample.size());
+    for (int i : sample)
+      points.push_back(epoch[static_cast<std::size_t>(i)]);
+    out.matching = robustMatching(points, sample, reference, rule, settings.matching, guess);
   }
   else
     out.matching = robustMatching(epoch, {}, reference, rule, settings.matching, guess);

@@ -218,3 +218,28 @@ TEST(DeformationAnalysis, HysteresisRecoversTheLowTail)
   bad.grow_k = -1.0;
   EXPECT_FALSE(bad.isValid());
 }
+
+// The matching sample of a large gridded epoch (DeformationSettings::matching_points): every k-th
+// node of a 200 × 200 grid would lie on 10 lines per row direction, whose neighbourhoods are
+// collinear; the quality gate then measured the epoch's noise as 0 and refused the right answer
+// as UNRELIABLE (σ0 ≈ σ "3.2e3 × the surfaces' noise", the 1 M-point pipeline of issue 9). A
+// random sample covers the surface in two directions: the fit is trusted, σ0 ≈ σ.
+TEST(DeformationAnalysis, GridEpochSampleIsNotAliased)
+{
+  synth::LiSurfaceSettings s;
+  s.grid_size = 200;
+  s.spacing = 25.0;  // the same 5000-unit extent
+  s.deformation_percent = 20.0;
+  s.position = synth::DeformationPosition::UPPER_LEFT;
+  const synth::LiSurface li = synth::makeLiSurface(s);
+  const LiPair pair(li);
+  DeformationSettings settings;
+  settings.matching_points = 2000;  // 1 in 20 nodes
+  const DeformationResult r = pair.run(settings);
+  ASSERT_TRUE(r.ok()) << r.matching.message;
+  EXPECT_EQ(r.matching.termination, TerminationType::CONVERGED) << r.matching.message;
+  EXPECT_EQ(r.matching.adjustment.source_points, 2000u);
+  EXPECT_LT(pair.errorSigma(r.matching.adjustment.transformation), 0.5);
+  EXPECT_NEAR(r.matching.adjustment.sigma0, kSigma, 0.25 * kSigma);
+  EXPECT_NEAR(r.regions.percent_deformed, li.percent, 2.0);
+}

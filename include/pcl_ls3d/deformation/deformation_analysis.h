@@ -23,8 +23,9 @@ struct DeformationSettings
   ConjugateRuleType rule = ConjugateRuleType::LZD;  ///< LHD (Li et al.) = LZD + 6 parameters
   ResidualSettings residuals;
   RegionSettings regions;
-  /// The robust matching uses at most this many epoch points (every k-th finite point, so the
-  /// sample covers the surface evenly); the residual field is always computed for every point.
+  /// The robust matching uses at most this many epoch points (a random sample with a fixed
+  /// seed: it covers the surface evenly without aliasing a grid or scan lines); the residual
+  /// field is always computed for every point.
   /// The transformation's σ are those of the sample. 0: all points.
   std::size_t matching_points = 50000;
 
