@@ -41,6 +41,10 @@ constexpr double kMaxHeightVariance = 0.7;
 // point spacing) the local surface is drawn towards that sample; see towardsNearestSample().
 constexpr double kSnapFraction = 0.05;
 
+// LZD re-centres its neighbour search at the height found when that moves the centre by more
+// than this fraction of the neighbourhood radius (see LzdRule::findConjugate).
+constexpr double kRecentreFraction = 0.25;
+
 Scratch&
 scratch()
 {
@@ -368,9 +372,12 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
       for (int attempt = 0; attempt < 2; ++attempt) {
         double height = std::numeric_limits<double>::quiet_NaN();
         ok = lzdElement(centre, target, neighbours_, surface_, max_distance, cache, v, n, c, height);
+        // Near the surface already when the height moves the centre by less than a quarter of
+        // the neighbourhood's radius: a retry would find about the same set. (Not "less than the
+        // radius": seen from a query far above, every neighbour is at least that far away.)
         if (attempt == 1 || !std::isfinite(height) ||
-            std::abs(height - centre.z()) <= neighbourhoodRadius())
-          break;  // accepted, or near the surface already (a retry would find the same set)
+            std::abs(height - centre.z()) <= kRecentreFraction * neighbourhoodRadius())
+          break;
         centre.z() = height;
       }
       if (!ok) {
