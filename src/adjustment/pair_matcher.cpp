@@ -86,7 +86,7 @@ PairMatcher::match(const BlockLinearization& source_pose, const BlockLinearizati
   target_pose_ = target_pose;
   const std::size_t n = source_->size();
   const std::ptrdiff_t chunks = static_cast<std::ptrdiff_t>(chunks_.size());
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
   for (std::ptrdiff_t c = 0; c < chunks; ++c) {
     std::vector<Observation>& out = chunks_[static_cast<std::size_t>(c)];
     out.clear();

@@ -2,6 +2,7 @@
 #include "matching_steps.h"
 
 #include <pcl_ls3d/adjustment/spatial_precision.h>
+#include <pcl_ls3d/common/parallel.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +18,7 @@ accumulateNormalEquations(const SourceRows& row, const Eigen::VectorXd& weights)
 {
   NormalEquations ne;
   const Index m = weights.size();
-#pragma omp parallel
+#pragma omp parallel if (worthParallel(static_cast<std::size_t>(m)))
   {
     NormalEquations local;
 #pragma omp for schedule(static) nowait
@@ -90,7 +91,7 @@ storeObservations(AdjustmentReport& report, const GaussMarkovSolution& sol, cons
   report.residuals.resize(m);
   report.weights.resize(m);
   report.redundancy_numbers.resize(m);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worthParallel(m))
   for (Index j = 0; j < static_cast<Index>(m); ++j) {
     const std::size_t s = static_cast<std::size_t>(j);
     const RowVector7d a = row(s);

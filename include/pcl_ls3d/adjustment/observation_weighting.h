@@ -7,6 +7,7 @@
 ///        [0, 1] (NaN counts as 0), so no later stage has to.
 
 #include <pcl_ls3d/adjustment/observation_set.h>
+#include <pcl_ls3d/common/parallel.h>
 #include <pcl_ls3d/estimators/robust_estimator.h>
 
 #include <Eigen/Core>
@@ -46,7 +47,7 @@ public:
     if (estimator.needsResidualSigmas() && sigma0 > 0.0) {
       sigma_v_.resize(m);
       redundancy_.resize(m);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (worthParallel(static_cast<std::size_t>(m)))
       for (Eigen::Index j = 0; j < m; ++j) {
         const auto a = row(static_cast<std::size_t>(j));
         redundancy_[j] = std::max(0.0, 1.0 - (a * qxx * a.transpose())(0, 0));

@@ -15,6 +15,9 @@ public:
   explicit ZuoEstimator(double k = 6.0) : k_(k) {}
   std::string
   name() const override;
+  /// All ones in the first iteration (no σ0 yet; see the class comment).
+  void
+  weigh(const WeightingInput& input, Eigen::Ref<Eigen::VectorXd> weights) const override;
   void
   computeWeights(const Eigen::Ref<const Eigen::VectorXd>& residuals,
                  const Eigen::Ref<const Eigen::VectorXd>& sigma_v, double sigma0,
