@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <limits>
 
 namespace pcl_ls3d {
@@ -79,29 +78,61 @@ containsOrigin(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::
   return !(has_neg && has_pos) && std::abs(area2) > 1e-12 * (b - a).squaredNorm();
 }
 
+namespace {
+
+// The smallest enclosing triangle with vertices from `order` (sorted by distance r) and, when
+// fixed >= 0, through point `fixed`; visiting in order of distance lets the search stop once no
+// smaller triangle can follow (the sums only grow). `best` and `triangle` carry the best so far.
+void
+smallestEnclosing(const std::vector<Eigen::Vector2d>& points, const std::vector<double>& r,
+                  const std::vector<int>& order, int fixed, double& best, std::array<int, 3>& triangle)
+{
+  const std::size_t m = order.size();
+  auto at = [&](std::size_t i) { return static_cast<std::size_t>(order[i]); };
+  auto tryTriangle = [&](int a, int b, int c, double size) {
+    if (size < best && containsOrigin(points[static_cast<std::size_t>(a)], points[static_cast<std::size_t>(b)],
+                                      points[static_cast<std::size_t>(c)])) {
+      best = size;
+      triangle = {a, b, c};
+      std::sort(triangle.begin(), triangle.end());
+    }
+  };
+  if (fixed >= 0) {
+    const double r0 = r[static_cast<std::size_t>(fixed)];
+    for (std::size_t j = 0; j + 1 < m && r0 + r[at(j)] + r[at(j + 1)] < best; ++j)
+      for (std::size_t k = j + 1; k < m && r0 + r[at(j)] + r[at(k)] < best; ++k)
+        tryTriangle(fixed, order[j], order[k], r0 + r[at(j)] + r[at(k)]);
+    return;
+  }
+  for (std::size_t i = 0; i + 2 < m && r[at(i)] + r[at(i + 1)] + r[at(i + 2)] < best; ++i)
+    for (std::size_t j = i + 1; j + 1 < m && r[at(i)] + r[at(j)] + r[at(j + 1)] < best; ++j)
+      for (std::size_t k = j + 1; k < m && r[at(i)] + r[at(j)] + r[at(k)] < best; ++k)
+        tryTriangle(order[i], order[j], order[k], r[at(i)] + r[at(j)] + r[at(k)]);
+}
+
+}  // namespace
+
 bool
 enclosingTriangle(const std::vector<Eigen::Vector2d>& points, std::array<int, 3>& triangle)
 {
   const int n = static_cast<int>(points.size());
   if (n < 3)
     return false;
-  double best = std::numeric_limits<double>::max();
-  // First pass: triangles through the nearest point; second pass: all triangles.
-  for (int pass = 0; pass < 2 && best == std::numeric_limits<double>::max(); ++pass) {
-    const int i_end = pass == 0 ? 1 : n - 2;
-    for (int i = pass == 0 ? 0 : 1; i < i_end; ++i)
-      for (int j = i + 1; j < n - 1; ++j)
-        for (int k = j + 1; k < n; ++k) {
-          const auto& a = points[static_cast<std::size_t>(i)];
-          const auto& b = points[static_cast<std::size_t>(j)];
-          const auto& c = points[static_cast<std::size_t>(k)];
-          const double size = a.norm() + b.norm() + c.norm();
-          if (size < best && containsOrigin(a, b, c)) {
-            best = size;
-            triangle = {i, j, k};
-          }
-        }
+  // Distances to the query and the other points (not the nearest) nearest first.
+  std::vector<double> r(points.size());
+  std::vector<int> others;
+  for (int i = 0; i < n; ++i) {
+    r[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)].norm();
+    if (i > 0)
+      others.push_back(i);
   }
+  std::sort(others.begin(), others.end(),
+            [&](int a, int b) { return r[static_cast<std::size_t>(a)] < r[static_cast<std::size_t>(b)]; });
+  double best = std::numeric_limits<double>::max();
+  // First triangles through the nearest point; then all triangles of the others.
+  smallestEnclosing(points, r, others, 0, best, triangle);
+  if (best == std::numeric_limits<double>::max())
+    smallestEnclosing(points, r, others, -1, best, triangle);
   return best < std::numeric_limits<double>::max();
 }
 
