@@ -52,16 +52,6 @@ ZuoEstimator::name() const
 }
 
 void
-ZuoEstimator::weigh(const WeightingInput& input, Eigen::Ref<Eigen::VectorXd> weights) const
-{
-  // σ0 exists only after the first solve. The engine's robust start scale (1.4826 MAD of the
-  // first residuals) is not σ0: where most points already agree (a street's ground and
-  // facades), K times it cut every observation that sees the offset (poles, car fronts, block
-  // ends for an offset along the street) and the fit converged without moving (1.2 m off).
-  computeWeights(input.residuals, input.sigma_v, input.iteration > 1 ? input.scale : 0.0, weights);
-}
-
-void
 ZuoEstimator::computeWeights(const Eigen::Ref<const Eigen::VectorXd>& residuals,
                              const Eigen::Ref<const Eigen::VectorXd>&, double sigma0,
                              Eigen::Ref<Eigen::VectorXd> weights) const
