@@ -91,18 +91,25 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   // The plane level keeps the grown planes; points that the seed condition left in fragments
   // (residual above v_t: they join a plane but do not grow it) join their most-linked plane,
   // counting only links p -> q where p lies on q's tangent plane within what the planar rule
-  // allows over one growth step (growth radius x sin N_t); volumetric pairs always count. A
-  // fragment of a sparse wall does not join the roof it touches at the eave.
+  // allows over one growth step (growth radius x sin N_t) and, between two planar points, the
+  // normals agree within N_t; volumetric pairs always count. A fragment of a sparse wall does
+  // not join the roof it touches at the eave, nor a fragment of one roof plane the plane
+  // across the ridge.
   if (min_fragment_size_ > 1) {
     const double tol = grow_.growth_radius * std::sin(grow_.normal_angle);
-    const auto on_plane = [this, tol](int p, int q) {
+    const double cos_nt = std::cos(grow_.normal_angle);
+    const auto on_plane = [this, tol, cos_nt](int p, int q) {
       const auto& fp = features_[static_cast<std::size_t>(p)];
       const auto& fq = features_[static_cast<std::size_t>(q)];
       if (fp.dimensionality == Dimensionality::Volumetric &&
           fq.dimensionality == Dimensionality::Volumetric)
         return true;
       const Eigen::Vector3f d = points_[static_cast<std::size_t>(p)] - points_[static_cast<std::size_t>(q)];
-      return std::abs(d.dot(fq.normal)) <= tol;
+      if (std::abs(d.dot(fq.normal)) > tol)
+        return false;
+      return fp.dimensionality != Dimensionality::Planar ||
+             fq.dimensionality != Dimensionality::Planar ||
+             std::abs(fp.normal.dot(fq.normal)) >= cos_nt;
     };
     segmentation::absorbFragments(graph_, grow_.graph_k, plane_of_, min_fragment_size_, on_plane);
   }
