@@ -81,6 +81,19 @@ describe(const std::vector<int>& members, const std::vector<Eigen::Vector3d>& po
 /// Hysteresis: each kept region takes in, breadth first, the points within `adjacency` of one of
 /// its points that are not significant, have the region's sign and |r| > grow_k σ_i; a point
 /// joins the first region that reaches it.
+// Positions the regions are linked on: in the area plane when one is given (LZD heights: on a
+// surface sampled more densely than its noise, a point's 3-D neighbours within the adjacency
+// are few, and 3-D links cut a deformed patch into pieces below min_points), else in 3-D.
+std::vector<Eigen::Vector3d>
+linkPositions(const std::vector<Eigen::Vector3d>& points, int plane_axis)
+{
+  std::vector<Eigen::Vector3d> out = points;
+  if (plane_axis >= 0 && plane_axis < 3)
+    for (Eigen::Vector3d& p : out)
+      p[plane_axis] = 0.0;
+  return out;
+}
+
 void
 growRegions(std::vector<std::vector<int>>& kept, const std::vector<Eigen::Vector3d>& points,
             const ResidualField& field, double adjacency, double grow_k)
@@ -152,10 +165,11 @@ analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& 
   out.area_observed = static_cast<double>(cells.size()) * out.cell * out.cell;
 
   // Significant points of each sign, linked within the adjacency distance.
+  const std::vector<Eigen::Vector3d> link = linkPositions(points, s.plane_axis);
   std::vector<Eigen::Vector3d> flagged(n, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (std::size_t i = 0; i < n; ++i)
     if (field.significant[i] && std::isfinite(field.residual[i]))
-      flagged[i] = points[i];
+      flagged[i] = link[i];
   const VoxelIndex index(flagged, std::max(out.adjacency, 1e-9));
   DisjointSets sets(n);
   std::vector<int> near;
@@ -184,7 +198,7 @@ analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& 
     }
   }
   if (s.grow_k > 0.0)
-    growRegions(kept, points, field, out.adjacency, s.grow_k);
+    growRegions(kept, link, field, out.adjacency, s.grow_k);
   for (const auto& members : kept)
     out.regions.push_back(describe(members, points, field, sp.normal_axis, out.cell));
   // Ids by decreasing area (ties: more points, then the smallest first index) — deterministic.

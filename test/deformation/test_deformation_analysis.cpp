@@ -252,3 +252,28 @@ TEST(DeformationAnalysis, GridEpochSampleIsNotAliased)
   EXPECT_GT(static_cast<double>(observed), 0.97 * static_cast<double>(li.deformed_indices.size()));
   EXPECT_NEAR(r.regions.percent_deformed, li.percent, 2.0);
 }
+
+// A surface sampled more densely than its noise (8-unit grid, σ = 20; the 1 M-point pipeline
+// has 5): in 3-D a deformed point has few neighbours within the adjacency (2.5 spacings), and
+// 3-D links cut the raised patch into hundreds of pieces, most below min_points (3.5 % of a
+// 20 % patch found at 1 M points). LZD regions are linked in plan: one region holds the patch.
+TEST(DeformationAnalysis, DenseNoisySurfaceGivesOneRegion)
+{
+  synth::LiSurfaceSettings s;
+  s.grid_size = 200;
+  s.spacing = 8.0;
+  s.deformation_percent = 20.0;
+  s.position = synth::DeformationPosition::UPPER_RIGHT;
+  const synth::LiSurface li = synth::makeLiSurface(s);
+  const LiPair pair(li);
+  const DeformationResult r = pair.run(DeformationSettings());
+  ASSERT_TRUE(r.ok()) << r.matching.message;
+  EXPECT_LT(pair.errorSigma(r.matching.adjustment.transformation), 0.5);
+  std::size_t in_region = 0;
+  for (std::size_t i = 0; i < li.deformed.size(); ++i)
+    in_region += li.deformed[i] && r.regions.region[i] == 1;
+  EXPECT_GT(static_cast<double>(in_region), 0.95 * static_cast<double>(li.deformed_indices.size()));
+  EXPECT_EQ(r.regions.regions.size(), 1u);
+  const Detection d = score(r, li);
+  EXPECT_GE(d.precision, 0.99);
+}

@@ -32,7 +32,8 @@ struct RegionSettings
   double adjacency = 0.0;       ///< link distance; 0: 2.5 × the point spacing
   double cell = 0.0;            ///< area cell edge; 0: the point spacing
   /// Normal axis of the plane areas are counted on (0 x, 1 y, 2 z); −1: the largest projection
-  /// of the epoch's box. analyseDeformation() sets 2 (xy) for the LZD rule.
+  /// of the epoch's box, points linked in 3-D. When set (≥ 0), points are also linked in that
+  /// plane. analyseDeformation() sets 2 (xy) for the LZD rule.
   int plane_axis = -1;
 
   bool
