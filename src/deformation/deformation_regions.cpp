@@ -78,9 +78,6 @@ describe(const std::vector<int>& members, const std::vector<Eigen::Vector3d>& po
   return r;
 }
 
-/// Hysteresis: each kept region takes in, breadth first, the points within `adjacency` of one of
-/// its points that are not significant, have the region's sign and |r| > grow_k σ_i; a point
-/// joins the first region that reaches it.
 // Positions the regions are linked on: in the area plane when one is given (LZD heights: on a
 // surface sampled more densely than its noise, a point's 3-D neighbours within the adjacency
 // are few, and 3-D links cut a deformed patch into pieces below min_points), else in 3-D.
@@ -94,6 +91,9 @@ linkPositions(const std::vector<Eigen::Vector3d>& points, int plane_axis)
   return out;
 }
 
+/// Hysteresis: each kept region takes in, breadth first, the points within `adjacency` of one of
+/// its points that are not significant, have the region's sign and |r| > grow_k σ_i; a point
+/// joins the first region that reaches it.
 void
 growRegions(std::vector<std::vector<int>>& kept, const std::vector<Eigen::Vector3d>& points,
             const ResidualField& field, double adjacency, double grow_k)
