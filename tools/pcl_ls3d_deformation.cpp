@@ -10,6 +10,7 @@
 #include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
+#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
@@ -287,7 +288,8 @@ main(int argc, char** argv)
 
   // Robust matching and the residual field.
   tt.tic();
-  pcl::search::KdTree<pcl_ls3d::PointLiDAR>::Ptr tree(new pcl::search::KdTree<pcl_ls3d::PointLiDAR>);
+  pcl::search::KdTree<pcl_ls3d::PointLiDAR>::Ptr tree(
+      new pcl_ls3d::search::FlannKdTree<pcl_ls3d::PointLiDAR>);
   tree->setInputCloud(reference);
   const pcl_ls3d::PclTargetSurface<pcl_ls3d::PointLiDAR> surface(reference, tree);
   const pcl_ls3d::ConjugateRule::Ptr rule = pcl_ls3d::makeConjugateRule(settings.rule);

@@ -1,6 +1,7 @@
 #include <pcl_ls3d/evaluation/robust_method.h>
 
 #include <pcl_ls3d/registration/pcl_target_surface.h>
+#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/common/time.h>
 #include <pcl/search/kdtree.h>
@@ -33,7 +34,7 @@ runRobust(RobustMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& s
   try {
     pcl::StopWatch watch;
     const double cpu0 = processCpuSeconds();
-    pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+    pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl_ls3d::search::FlannKdTree<pcl::PointXYZ>);
     tree->setInputCloud(target);
     const PclTargetSurface<pcl::PointXYZ> surface(target, tree);
     const ConjugateRule::Ptr rule = makeConjugateRule(ConjugateRuleType::LZD);

@@ -3,6 +3,7 @@
 #include <pcl_ls3d/rules/lnd_rule.h>
 #include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/strips/discrepancies.h>
+#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/search/kdtree.h>
 
@@ -60,7 +61,7 @@ struct Surface
   {
     if (!cloud || cloud->size() < 3)
       return;
-    search.reset(new pcl::search::KdTree<pcl::PointXYZ>);
+    search.reset(new pcl_ls3d::search::FlannKdTree<pcl::PointXYZ>);
     search->setInputCloud(cloud);
     surface = std::make_unique<PclTargetSurface<pcl::PointXYZ>>(cloud, search);
   }

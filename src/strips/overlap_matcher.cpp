@@ -1,5 +1,6 @@
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 #include <pcl_ls3d/strips/overlap_matcher.h>
+#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/search/kdtree.h>
 
@@ -138,7 +139,7 @@ OverlapMatcher::OverlapMatcher(const OverlapSelection& selection, const Conjugat
     D.eiv.setSourceNoise(noise[d]);
     if (!sel[d]->surface || sel[d]->surface->size() < 3 || sel[d]->points.empty())
       continue;
-    D.search.reset(new pcl::search::KdTree<pcl::PointXYZ>);
+    D.search.reset(new pcl_ls3d::search::FlannKdTree<pcl::PointXYZ>);
     D.search->setInputCloud(sel[d]->surface);
     D.surface = std::make_unique<PclTargetSurface<pcl::PointXYZ>>(sel[d]->surface, D.search);
     std::string why;

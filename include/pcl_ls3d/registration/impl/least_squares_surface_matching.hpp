@@ -3,6 +3,7 @@
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 #include <pcl_ls3d/registration/point_to_point_rule.h>
+#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/common/io.h>
 #include <pcl/common/transforms.h>
@@ -26,6 +27,7 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::LeastSquaresSurfa
 {
   reg_name_ = "LeastSquaresSurfaceMatching";
   max_iterations_ = settings_.max_iterations;
+  tree_.reset(new pcl_ls3d::search::FlannKdTree<PointTarget>);  // same tree as PCL's, cheaper queries
   default_correspondence_estimation_ = correspondence_estimation_;
 }
 

@@ -3,6 +3,7 @@
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
 #include <pcl_ls3d/estimators/tukey_estimator.h>
 #include <pcl_ls3d/sample_consensus/sac_model_surface_matching.h>
+#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/common/transforms.h>
 #include <pcl/console/print.h>
@@ -56,7 +57,7 @@ SampleConsensusModelSurfaceMatching<PointT>::setUp(const PointCloudConstPtr& ref
     PCL_ERROR("[pcl_ls3d::%s] the reference has fewer than 3 finite points\n", model_name_.c_str());
     return;
   }
-  tree_.reset(new pcl::search::KdTree<PointT>);
+  tree_.reset(new pcl_ls3d::search::FlannKdTree<PointT>);
   tree_->setInputCloud(reference_);
   surface_ = std::make_shared<PclTargetSurface<PointT>>(reference_, tree_);
   linearize(Eigen::Matrix4d::Identity());

@@ -5,6 +5,7 @@
 #include <pcl_ls3d/segmentation/adaptive_thresholds.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 #include <pcl_ls3d/stats/descriptive.h>
+#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/common/point_tests.h>
 #include <pcl/common/time.h>
@@ -195,7 +196,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
     points_[p] = (*input_)[valid_indices_[p]].getVector3fMap() - origin_;
 
   if (!search_)
-    search_.reset(new pcl::search::KdTree<PointT>);
+    search_.reset(new pcl_ls3d::search::FlannKdTree<PointT>);
   search_->setInputCloud(input_, pcl::IndicesConstPtr(new pcl::Indices(valid_indices_.begin(),
                                                                        valid_indices_.end())));
   return true;
