@@ -23,6 +23,30 @@ addFrameObservations(const Eigen::Vector3d& query, const Eigen::Vector3d& q,
   out.add(s * e1, s * e1.dot(d), q, variance);
   out.add(s * e2, s * e2.dot(d), q, variance);
 }
+
+// A spinning scanner's k nearest points often lie on one scan line: their plane (and the noise
+// read from its residuals, ~0) is then undefined, and such pairs anchored LS3D-ICP at the
+// initial guess on street scans. As the TIN rules do, a line-like set is widened once to
+// kWiden·k points; the query is given up when that is a line too. Returns the count (0: none).
+int
+planeNeighbourhood(const Eigen::Vector3d& query, const TargetSurface& target, int k,
+                   double max_distance, std::vector<int>& indices, std::vector<float>& sq_dists,
+                   Eigen::Vector3d& normal)
+{
+  constexpr double kMinSpreadRatio = 0.1;  // λ1/λ2, as the TIN rules (tin_rules.cpp)
+  constexpr int kWiden = 3;
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    const int found = target.nearestKSearch(query, attempt == 0 ? k : kWiden * k, indices, sq_dists);
+    if (found < 3 || !(static_cast<double>(sq_dists[0]) <= max_distance * max_distance))
+      return 0;
+    Eigen::Vector3d eigenvalues;
+    if (!tin::neighbourhoodPca(target, indices, found, normal, eigenvalues))
+      return 0;
+    if (tin::wellSpread(eigenvalues, kMinSpreadRatio))
+      return found;
+  }
+  return 0;
+}
 }  // namespace
 
 bool
@@ -42,13 +66,11 @@ IcpRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   thread_local std::vector<int> indices;
   thread_local std::vector<float> sq_dists;
   thread_local std::vector<Eigen::Vector2d> projected;
-  const int k = std::max(3, neighbours_);
-  const int found = target.nearestKSearch(query, k, indices, sq_dists);
   cache.vertices[0] = -1;
-  if (found < 3 || !(static_cast<double>(sq_dists[0]) <= max_distance * max_distance))
-    return false;
   Eigen::Vector3d normal;
-  if (!tin::planeNormal(target, indices, found, normal))
+  const int found = planeNeighbourhood(query, target, std::max(3, neighbours_), max_distance,
+                                       indices, sq_dists, normal);
+  if (found < 3)
     return false;
   if (require_enclosure_) {
     // Overlap test: the query must lie inside the local surface, not beyond its border.
