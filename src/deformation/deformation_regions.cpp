@@ -41,7 +41,9 @@ cellKey(const Eigen::Vector3d& p, int axis, double cell)
   const int a = (axis + 1) % 3, b = (axis + 2) % 3;
   const auto u = static_cast<std::int64_t>(std::floor(p[a] / cell));
   const auto v = static_cast<std::int64_t>(std::floor(p[b] / cell));
-  return (u << 32) ^ (v & 0xffffffff);
+  // Unsigned: shifting a negative value left is undefined before C++20.
+  return static_cast<std::int64_t>((static_cast<std::uint64_t>(u) << 32) ^
+                                   (static_cast<std::uint64_t>(v) & 0xffffffffu));
 }
 
 /// Statistics of one connected set of points.

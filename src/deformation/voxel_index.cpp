@@ -39,7 +39,8 @@ cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis)
       if (p.allFinite()) {
         const auto u = static_cast<std::int64_t>(std::floor(p[a] / out.spacing));
         const auto v = static_cast<std::int64_t>(std::floor(p[b] / out.spacing));
-        cells.insert((u << 32) ^ (v & 0xffffffff));
+        cells.insert(static_cast<std::int64_t>((static_cast<std::uint64_t>(u) << 32) ^
+                                                (static_cast<std::uint64_t>(v) & 0xffffffffu)));  // no UB for u < 0
       }
     out.spacing = std::sqrt(static_cast<double>(cells.size()) * out.spacing * out.spacing / static_cast<double>(n));
   }

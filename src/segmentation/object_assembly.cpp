@@ -230,7 +230,7 @@ joinTouchingRoofs(const std::unordered_map<std::int64_t, int>& own, int reach,
     std::vector<int> seen;
     for (int dx = -reach; dx <= reach; ++dx)
       for (int dy = -reach; dy <= reach; ++dy) {
-        const auto it = own.find(key + (static_cast<std::int64_t>(dx) << 22) + dy);
+        const auto it = own.find(key + dx * (std::int64_t{1} << 22) + dy);  // dx < 0: no shift
         if (it != own.end() && it->second != a &&
             std::find(seen.begin(), seen.end(), it->second) == seen.end()) {
           seen.push_back(it->second);

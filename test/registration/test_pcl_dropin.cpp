@@ -143,9 +143,10 @@ TEST(PclDropin, ICP_translated)
 
   // Fill in the CloudIn data
   for (auto& point : *cloud_in) {
-    point.x = 1024 * rand() / (RAND_MAX + 1.0f);
-    point.y = 1024 * rand() / (RAND_MAX + 1.0f);
-    point.z = 1024 * rand() / (RAND_MAX + 1.0f);
+    // PCL's test writes 1024 * rand() / ..., an int overflow (UB) the sanitizer build reports.
+    point.x = 1024 * (rand() / (RAND_MAX + 1.0f));
+    point.y = 1024 * (rand() / (RAND_MAX + 1.0f));
+    point.z = 1024 * (rand() / (RAND_MAX + 1.0f));
   }
 
   *cloud_out = *cloud_in;
