@@ -107,10 +107,14 @@ applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimate
   if (q.rejected_fraction > s.max_rejected_fraction)
     add(figure("%.3g of the correspondences were rejected (limit %.3g)", q.rejected_fraction,
                s.max_rejected_fraction));
-  if (q.start_scale > 0.0 && q.final_scale > s.max_scale_growth * q.start_scale)
+  // Residuals within the surfaces' own noise are no sign of leaving the data, however small
+  // they were at the guess (two spinning scans from the same height: their ground rings
+  // coincide in the sensor frames to a fraction of the noise).
+  const double start_level = std::max(q.start_scale, q.expected_noise);
+  if (q.start_scale > 0.0 && q.final_scale > s.max_scale_growth * start_level)
     add(figure("the residuals ended %.3g x larger than at the initial guess (limit %.3g): the "
                "adjustment moved away from the data",
-               q.final_scale / q.start_scale, s.max_scale_growth));
+               q.final_scale / start_level, s.max_scale_growth));
   if (q.median_gradient > s.max_median_gradient)
     add(figure("most observations lie on surfaces steeper than the rule measures (median gradient "
                "%.3g, limit %.3g): use a normal-distance rule (LND)",

@@ -6,6 +6,8 @@
 
 #include "matching_steps.h"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace pcl_ls3d {
@@ -50,6 +52,7 @@ struct PairRun
   double source_noise = 0.0;       // σ_s, the source's own roughness
   double start_scale = 0.0;        // 1.4826 · median |l| at the initial guess
   double spacing = 0.0;            // the target's point spacing (nearest-neighbour median)
+  double guess_uncertainty = 0.0;  // the annealed cut's floor in the first iteration
 
   void
   prepare(const AdjustmentSettings& settings, const std::vector<Eigen::Vector3d>& reduced)
@@ -60,11 +63,24 @@ struct PairRun
     problem.scaling = rankTestScaling(setup.radius);
     start = setup.source.values;
     source_noise = sourceNoise(reduced, setup);
+    guess_uncertainty = settings.guess_uncertainty > 0.0
+                            ? settings.guess_uncertainty
+                            : std::min(0.01 * setup.source_box.diagonal().norm(),
+                                       settings.max_correspondence_distance);
     if (settings.correct_source_noise)
       eiv.setSourceNoise(source_noise);
     sol.qxx = Matrix7d::Zero();
   }
 };
+
+// The floor of the estimator's cut in iteration `it` (AdjustmentSettings::guess_uncertainty):
+// the guess's possible error at first, halved each iteration, until the estimator's own cut
+// (K σ0) is the larger.
+double
+annealedCut(double guess_uncertainty, int it)
+{
+  return std::ldexp(guess_uncertainty, 1 - it);
+}
 
 // Too few conjugate points to go on (sets the report's failure).
 bool
@@ -224,7 +240,8 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     const SourceRows row{matcher_, obs, pair.eiv};
     // Stages 3–4: robust weights (eq. 15), normal equations (eq. 8), solve (eqs. 9–11).
     const Eigen::VectorXd& p =
-        weighting_.compute(estimator, obs, row, pair.sol.sigma0, Matrix7d(pair.sol.qxx), it);
+        weighting_.compute(estimator, obs, row, pair.sol.sigma0, Matrix7d(pair.sol.qxx), it,
+                           annealedCut(pair.guess_uncertainty, it));
     const NormalEquations ne = accumulateNormalEquations(row, p);
     if (!solveAndUpdate(pair, ne, it, settings, report))
       return report;

@@ -1,6 +1,7 @@
 // Weights of the shipped weight-function estimators (one header each in estimators/).
 #include <pcl_ls3d/estimators/robust_estimator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -60,6 +61,15 @@ ZuoEstimator::computeWeights(const Eigen::Ref<const Eigen::VectorXd>& residuals,
   const double limit = sigma0 > 0.0 ? k_ * sigma0 : std::numeric_limits<double>::infinity();
   for (Eigen::Index i = 0; i < residuals.size(); ++i)
     weights[i] = std::abs(residuals[i]) > limit ? 0.0 : 1.0;
+}
+
+void
+ZuoEstimator::weigh(const WeightingInput& in, Eigen::Ref<Eigen::VectorXd> weights) const
+{
+  const double limit = in.scale > 0.0 ? std::max(k_ * in.scale, in.min_cut)
+                                      : std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < in.residuals.size(); ++i)
+    weights[i] = std::abs(in.residuals[i]) > limit ? 0.0 : 1.0;
 }
 
 // ---- Huber -----------------------------------------------------------------------------

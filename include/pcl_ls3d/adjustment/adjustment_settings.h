@@ -81,6 +81,14 @@ struct AdjustmentSettings
   /// then stop pulling once the estimate has settled, and the overlap grid culls them. False:
   /// truly unlimited.
   bool automatic_reach = true;
+  /// How far the initial guess may be off [length]. Observations with |v| up to this are kept in
+  /// the first iteration whatever the estimator's own cut says, and that floor halves every
+  /// iteration (an annealed cut): where most points already agree with the guess and only a
+  /// few see its error (street scans offset along the street: only poles, trunks and car fronts
+  /// see it), the estimator's first scale comes from the agreeing majority and would cut those
+  /// few. 0 (default): 1 % of the source's bounding-box diagonal, at most the
+  /// max_correspondence_distance. Used by estimators that cut (ZuoEstimator).
+  double guess_uncertainty = 0.0;
   /// Regular thinning of the source observations: one source point per voxel of this edge
   /// [length]; 0 = use every source point.
   double source_thinning = 0.0;
@@ -129,7 +137,8 @@ struct AdjustmentSettings
   /// LZD is used on objects rather than terrain.
   double max_median_gradient = std::numeric_limits<double>::infinity();
   /// The robust scale of the residuals (1.4826 · median |l|) at the end above this multiple of
-  /// the one at the initial guess: the adjustment moved away from the data.
+  /// the one at the initial guess, or of the surfaces' own noise when that is larger: the
+  /// adjustment moved away from the data.
   double max_scale_growth = 1.25;
 
   // --- results ----------------------------------------------------------------------------------

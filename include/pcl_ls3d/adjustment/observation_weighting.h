@@ -38,7 +38,7 @@ public:
   template <typename RowFn, typename Matrix>
   const Eigen::VectorXd&
   compute(const RobustEstimator& estimator, const ObservationSet& set, RowFn row, double sigma0,
-          const Matrix& qxx, int iteration)
+          const Matrix& qxx, int iteration, double min_cut = 0.0)
   {
     const Eigen::Index m = static_cast<Eigen::Index>(set.size());
     l_ = set.distances();
@@ -56,7 +56,9 @@ public:
     }
     const double scale = sigma0 > 0.0 ? sigma0 : robustScale(l_);
     weights_.resize(m);
-    estimator.weigh(WeightingInput(l_, sigma_v_, redundancy_, scale, &set, iteration), weights_);
+    WeightingInput input(l_, sigma_v_, redundancy_, scale, &set, iteration);
+    input.min_cut = min_cut;
+    estimator.weigh(input, weights_);
     for (Eigen::Index j = 0; j < m; ++j)
       weights_[j] = clampWeight(weights_[j]);
     return weights_;

@@ -48,6 +48,9 @@ struct WeightingInput
   /// The observations behind the residuals (same order), or null when called without them.
   const ObservationSet* observations;
   int iteration;                      ///< 1 for the first iteration
+  /// The engine's annealed floor for estimators that cut (AdjustmentSettings::guess_uncertainty
+  /// halved each iteration): |v| up to this is never cut. 0: none.
+  double min_cut = 0.0;
 };
 
 /// \brief Abstract robust estimator: one main virtual, computeWeights().
