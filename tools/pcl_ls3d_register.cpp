@@ -43,6 +43,9 @@ printHelp(const char* prog)
              "  -max_dist d          maximum correspondence distance (default unlimited); a finite\n"
              "                       value also skips source points with no target point within it\n"
              "                       before any neighbour search (faster on partial overlap)\n"
+             "  -guess d             how far the initial guess may be off: residuals up to d are\n"
+             "                       kept in the first iteration, halving each iteration (default\n"
+             "                       1 %% of the source extent, at most -max_dist)\n"
              "  -json REPORT         write a JSON report\n"
              "  -truth TRUTH.json    compare with a known transform (key \"transformation\": 4x4\n"
              "                       row-major, SOURCE -> TARGET, input coordinates)\n"
@@ -207,7 +210,7 @@ main(int argc, char** argv)
   }
   // Positional files and the known options (anything else starting with '-' is an error).
   static const std::set<std::string> valued = {"-o", "-rule", "-params", "-fix", "-max_iter",
-                                               "-K", "-thin", "-max_dist", "-json", "-truth"};
+                                               "-K", "-thin", "-max_dist", "-guess", "-json", "-truth"};
   std::vector<std::string> files;
   std::string why;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite"}, files, why))
@@ -218,7 +221,7 @@ main(int argc, char** argv)
 
   std::string out_path, rule_text = "lnd", fix_text, json_path, truth_path;
   int params = 6, max_iter = 30;
-  double K = 6.0, thin = 0.0, max_dist = -1.0;
+  double K = 6.0, thin = 0.0, max_dist = -1.0, guess = 0.0;
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   parse_argument(argc, argv, "-o", out_path);
   parse_argument(argc, argv, "-rule", rule_text);
@@ -230,7 +233,8 @@ main(int argc, char** argv)
   if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
       !integerOption(argc, argv, "-max_iter", max_iter, why, 1, 1000000) ||
       !numberOption(argc, argv, "-K", K, why) || !numberOption(argc, argv, "-thin", thin, why) ||
-      !numberOption(argc, argv, "-max_dist", max_dist, why))
+      !numberOption(argc, argv, "-max_dist", max_dist, why) ||
+      !numberOption(argc, argv, "-guess", guess, why))
     return fail(why), 1;
 
   // Settings, validated before any file is read.
@@ -252,6 +256,7 @@ main(int argc, char** argv)
     settings.fixParameter(i);
   settings.max_iterations = max_iter;
   settings.source_thinning = thin;
+  settings.guess_uncertainty = guess;
   if (max_dist != -1.0)
     settings.max_correspondence_distance = max_dist;
   if (!settings.isValid(&why))

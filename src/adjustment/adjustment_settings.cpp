@@ -87,6 +87,8 @@ AdjustmentSettings::isValid(std::string* why) const
     return fail("max_correspondence_distance must be > 0");
   if (!(source_thinning >= 0.0) || std::isinf(source_thinning))
     return fail("source_thinning must be >= 0 and finite");
+  if (!(guess_uncertainty >= 0.0) || std::isinf(guess_uncertainty))
+    return fail("guess_uncertainty must be >= 0 and finite");
   if (recheck_interval < 0)
     return fail("recheck_interval must be >= 0");
   if (!(precision_cell >= 0.0) || std::isinf(precision_cell))
