@@ -259,7 +259,10 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       matcher_.freeze();
     const bool stop = hooks_.after_iteration &&
                       hooks_.after_iteration(rec, pair.setup.source.matrix(), obs);
-    if (next.converged || stop) {
+    // Converged while the annealed floor still set the cut: the estimate is the floor's, not
+    // the estimator's. Go on while the floor keeps halving, until the estimator's own cut rules.
+    const bool settled = next.converged && !weighting_.floorBound();
+    if (settled || stop) {
       report.termination = TerminationType::CONVERGED;
       break;
     }

@@ -57,11 +57,26 @@ public:
     const double scale = sigma0 > 0.0 ? sigma0 : robustScale(l_);
     weights_.resize(m);
     WeightingInput input(l_, sigma_v_, redundancy_, scale, &set, iteration);
-    input.min_cut = min_cut;
     estimator.weigh(input, weights_);
+    // Weigh again with the floor to learn whether it, not the estimator, set the cut.
+    floor_bound_ = false;
+    if (min_cut > 0.0) {
+      unfloored_.swap(weights_);
+      weights_.resize(m);
+      input.min_cut = min_cut;
+      estimator.weigh(input, weights_);
+      floor_bound_ = weights_ != unfloored_;
+    }
     for (Eigen::Index j = 0; j < m; ++j)
       weights_[j] = clampWeight(weights_[j]);
     return weights_;
+  }
+
+  /// True when the last compute()'s weights were set by its min_cut, not by the estimator.
+  bool
+  floorBound() const
+  {
+    return floor_bound_;
   }
 
   /// The weights of the last compute(), each in [0, 1].
@@ -72,7 +87,8 @@ public:
   }
 
 private:
-  Eigen::VectorXd l_, sigma_v_, redundancy_, weights_;
+  Eigen::VectorXd l_, sigma_v_, redundancy_, weights_, unfloored_;
+  bool floor_bound_ = false;  // the last compute()'s weights were set by its min_cut
 };
 
 }  // namespace pcl_ls3d
