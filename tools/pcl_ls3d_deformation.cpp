@@ -60,6 +60,12 @@ printHelp(const char* prog)
       "  -k K                 significance |r| > K sigma (default 3)\n"
       "  -lod95               significance by an M3C2-style level of detection at 95 %% instead\n"
       "  -min_region N        smaller connected detections are noise (default 10 points)\n"
+      "  -grow_k G            regions grow into adjacent points of their sign with |r| > G sigma\n"
+      "                       (hysteresis; default 2, 0: off)\n"
+      "  -refine N            rounds of the stable-part refinement: the regions and their rim\n"
+      "                       left out, the rest matched again until that set repeats (default at\n"
+      "                       most 10; 0: the estimator's\n"
+      "                       own answer, as in Li et al.)\n"
       "  -max_dist d          maximum correspondence distance (default unlimited)\n"
       "  -matching_points N   match on at most N evenly spread epoch points (default 50000; 0:\n"
       "                       all); residuals are computed for every point\n"
@@ -185,7 +191,7 @@ main(int argc, char** argv)
     return 0;
   }
   static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
-                                               "-contamination", "-seed", "-k", "-min_region",
+                                               "-contamination", "-seed", "-k", "-min_region", "-grow_k", "-refine",
                                                "-max_dist", "-matching_points", "-o", "-json",
                                                "-map", "-crs", "-map_cell"};
   std::vector<std::string> files;
@@ -197,9 +203,9 @@ main(int argc, char** argv)
   const std::string reference_path = files[0], epoch_path = files[1];
 
   std::string estimator_text = "mm", rule_text = "lzd", out_path, json_path, map_prefix, crs_text;
-  int params = 6, subsets = 0, min_region = 10;
+  int params = 6, subsets = 0, min_region = 10, refine = 10;
   long long matching_points = 50000;
-  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, map_cell = 0.0;
+  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, map_cell = 0.0, grow_k = 2.0;
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   parse_argument(argc, argv, "-estimator", estimator_text);
   parse_argument(argc, argv, "-rule", rule_text);
@@ -212,6 +218,8 @@ main(int argc, char** argv)
   if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
       !integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
       !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
+      !integerOption(argc, argv, "-refine", refine, why, 0, 100) ||
+      !numberOption(argc, argv, "-grow_k", grow_k, why, 0.0, 1e6) ||
       !integerOption(argc, argv, "-matching_points", matching_points, why, 0, 1000000000000LL) ||
       !numberOption(argc, argv, "-seed", seed, why, 0, 4294967295.0) ||
       !numberOption(argc, argv, "-k", k, why, 1e-6, 1e6) ||
@@ -246,6 +254,8 @@ main(int argc, char** argv)
   if (find_switch(argc, argv, "-lod95"))
     settings.residuals.rule = def::DetectionRule::LOD95;
   settings.regions.min_points = static_cast<std::size_t>(min_region);
+  settings.regions.grow_k = grow_k;
+  settings.refinement.max_rounds = refine;
   settings.matching_points = static_cast<std::size_t>(matching_points);
   if (!settings.isValid(&why))
     return fail("invalid settings: " + why), 1;
@@ -386,6 +396,9 @@ main(int argc, char** argv)
     j["subsets"] = mr.subsets_drawn;
     j["rounds"] = mr.rounds;
     j["iterations"] = mr.iterations;
+    j["stable_refinement"] = {{"rounds", result.refinement.rounds},
+                              {"points_left_out", result.refinement.left_out},
+                              {"stopped", result.refinement.stopped}};
     j["sigma0"] = a.sigma0;
     j["significance"] = def::toString(settings.residuals.rule);
     j["k"] = settings.residuals.k;

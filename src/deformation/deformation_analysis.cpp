@@ -36,7 +36,8 @@ matchingSample(const std::vector<Eigen::Vector3d>& epoch, std::size_t count)
 bool
 DeformationSettings::isValid(std::string* why) const
 {
-  return matching.isValid(why) && residuals.isValid(why) && regions.isValid(why);
+  return matching.isValid(why) && residuals.isValid(why) && regions.isValid(why) &&
+         refinement.isValid(why);
 }
 
 DeformationResult
@@ -51,23 +52,26 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
     return out;
   }
   const std::vector<int> sample = matchingSample(epoch, settings.matching_points);
+  std::vector<Eigen::Vector3d> sampled;
   if (!sample.empty()) {
-    std::vector<Eigen::Vector3d> points;
-    points.reserve(sample.size());
+    sampled.reserve(sample.size());
     for (int i : sample)
-      points.push_back(epoch[static_cast<std::size_t>(i)]);
-    out.matching = robustMatching(points, sample, reference, rule, settings.matching, guess);
+      sampled.push_back(epoch[static_cast<std::size_t>(i)]);
   }
-  else
-    out.matching = robustMatching(epoch, {}, reference, rule, settings.matching, guess);
+  const std::vector<Eigen::Vector3d>& matched = sample.empty() ? epoch : sampled;
+  out.matching = robustMatching(matched, sample, reference, rule, settings.matching, guess);
   if (!out.matching.isSolutionUsable())
     return out;
   ResidualSettings rs = settings.residuals;
   rs.max_distance = std::min(rs.max_distance, settings.matching.adjustment.max_correspondence_distance);
-  out.field = computeResidualField(epoch, reference, rule, out.matching.adjustment, out.matching.scale, rs);
   RegionSettings regions = settings.regions;
   if (regions.plane_axis < 0 && settings.rule == ConjugateRuleType::LZD)
     regions.plane_axis = 2;  // LZD residuals are heights: areas and volumes on the xy plane
+  out.refinement = refineOnStablePart(matched, sample, reference, rule, settings.matching, rs, regions,
+                                      settings.refinement, out.matching);
+  if (out.refinement.rounds > 0)
+    out.matching.estimator += " + stable part (" + std::to_string(out.refinement.left_out) + " left out)";
+  out.field = computeResidualField(epoch, reference, rule, out.matching.adjustment, out.matching.scale, rs);
   out.regions = analyseRegions(epoch, out.field, regions);
   return out;
 }

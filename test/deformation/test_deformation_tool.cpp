@@ -75,6 +75,9 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
                           "subsets", "percent_deformed", "regions", "noise", "local_origin"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_TRUE(j["converged"].get<bool>());
+  ASSERT_TRUE(j.contains("stable_refinement"));
+  EXPECT_GE(j["stable_refinement"]["rounds"].get<int>(), 0);
+  EXPECT_FALSE(j["stable_refinement"]["stopped"].get<std::string>().empty());
   Eigen::Matrix4d T;
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c)
@@ -150,6 +153,10 @@ TEST(DeformationTool, BadInputGivesOneErrorLine)
       {a + " -params 5", "-params"},
       {a + " -k 0", "-k"},
       {a + " -subsets 6x", "-subsets"},
+      {a + " -refine 2.5", "-refine"},
+      {a + " -refine -1", "-refine"},
+      {a + " -grow_k abc", "-grow_k"},
+      {a + " -grow_k -1", "-grow_k"},
       {a + " -contamination 0.8", "-contamination"},
       {a + " -o " + s.file("out.las"), ".pcd, .xyz or .txt"},
       {a + " -bogus", "Unknown option"},

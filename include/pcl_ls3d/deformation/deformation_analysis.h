@@ -3,10 +3,12 @@
 /// \brief Local deformation between two epochs in one call (Li et al. 2001): robust matching of
 ///        the epoch onto the reference (estimators/robust_matching.h), the residual field with σ
 ///        and significance (residual_field.h), and connected regions with area, displacement and
-///        volume (deformation_regions.h). PCL-free; detectDeformation() below takes PCL clouds.
+///        volume (deformation_regions.h), the stable part matched again without the regions
+///        (stable_refinement.h). PCL-free; detectDeformation() below takes PCL clouds.
 
 #include <pcl_ls3d/deformation/deformation_regions.h>
 #include <pcl_ls3d/deformation/residual_field.h>
+#include <pcl_ls3d/deformation/stable_refinement.h>
 #include <pcl_ls3d/estimators/robust_matching.h>
 
 #include <string>
@@ -23,6 +25,9 @@ struct DeformationSettings
   ConjugateRuleType rule = ConjugateRuleType::LZD;  ///< LHD (Li et al.) = LZD + 6 parameters
   ResidualSettings residuals;
   RegionSettings regions;
+  /// After the robust matching: the deformed regions left out, the stable part matched again
+  /// (stable_refinement.h). max_rounds = 0 gives the estimator's own answer (Li's tables).
+  StableRefinementSettings refinement;
   /// The robust matching uses at most this many epoch points (a random sample with a fixed
   /// seed: it covers the surface evenly without aliasing a grid or scan lines); the residual
   /// field is always computed for every point.
@@ -45,6 +50,7 @@ struct DeformationSettings
 struct DeformationResult
 {
   RobustMatchingReport matching;
+  StableRefinementReport refinement;
   ResidualField field;
   RegionAnalysis regions;
   /// True when the matching gave a usable estimate and the field was computed.
