@@ -67,10 +67,12 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
   RegionSettings regions = settings.regions;
   if (regions.plane_axis < 0 && settings.rule == ConjugateRuleType::LZD)
     regions.plane_axis = 2;  // LZD residuals are heights: areas and volumes on the xy plane
+  const std::string robust_estimator = out.matching.estimator;
   out.refinement = refineOnStablePart(matched, sample, reference, rule, settings.matching, rs, regions,
                                       settings.refinement, out.matching);
   if (out.refinement.rounds > 0)
-    out.matching.estimator += " + stable part (" + std::to_string(out.refinement.left_out) + " left out)";
+    out.matching.estimator = robust_estimator + ", then " + out.matching.estimator + " on the stable part (" +
+                             std::to_string(out.refinement.left_out) + " left out)";
   out.field = computeResidualField(epoch, reference, rule, out.matching.adjustment, out.matching.scale, rs);
   out.regions = analyseRegions(epoch, out.field, regions);
   return out;
