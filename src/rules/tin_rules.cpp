@@ -44,6 +44,7 @@ constexpr double kSnapFraction = 0.05;
 // LZD re-centres its neighbour search at the height found when that moves the centre by more
 // than this fraction of the neighbourhood radius (see LzdRule::findConjugate).
 constexpr double kRecentreFraction = 0.25;
+constexpr int kMaxRecentring = 4;  // searches per LZD query at most (the first and 3 re-centred)
 
 Scratch&
 scratch()
@@ -366,16 +367,18 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
       // LZD observes along z, so its neighbours must surround the query's vertical. A query far
       // above or below the surface (a height offset or a deformation of several point spacings
       // on steep relief) has its 3-D nearest neighbours on the nearest slope, one-sided: then
-      // the search is repeated once from the query moved vertically to the height found first.
+      // the search is repeated from the query moved vertically to the height found, until that
+      // height settles (far above steep relief, the first height is an extrapolation of the
+      // nearest slope and one step does not reach the surface).
       Eigen::Vector3d centre = query, c;
       bool ok = false;
-      for (int attempt = 0; attempt < 2; ++attempt) {
+      for (int attempt = 0; attempt < kMaxRecentring; ++attempt) {
         double height = std::numeric_limits<double>::quiet_NaN();
         ok = lzdElement(centre, target, neighbours_, surface_, max_distance, cache, v, n, c, height);
         // Near the surface already when the height moves the centre by less than a quarter of
         // the neighbourhood's radius: a retry would find about the same set. (Not "less than the
         // radius": seen from a query far above, every neighbour is at least that far away.)
-        if (attempt == 1 || !std::isfinite(height) ||
+        if (attempt + 1 == kMaxRecentring || !std::isfinite(height) ||
             std::abs(height - centre.z()) <= kRecentreFraction * neighbourhoodRadius())
           break;
         centre.z() = height;
