@@ -345,7 +345,10 @@ pipeline(int n)
   const ConjugateRule::Ptr rule = makeConjugateRule(ConjugateRuleType::LZD);
   std::string why;
   rule->prepare(surface, &why);
-  const deformation::DeformationResult r = deformation::analyseDeformation(pts, surface, *rule, {});
+  deformation::DeformationSettings settings;
+  if (g_refine >= 0)
+    settings.refinement.max_rounds = g_refine;
+  const deformation::DeformationResult r = deformation::analyseDeformation(pts, surface, *rule, settings);
   const double ms = tt.toc();
   struct rusage ru;
   getrusage(RUSAGE_SELF, &ru);

@@ -1,6 +1,9 @@
 #include <pcl_ls3d/deformation/stable_refinement.h>
 #include <pcl_ls3d/deformation/voxel_index.h>
 
+#include <Eigen/Geometry>
+
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -57,6 +60,23 @@ leftOut(const std::vector<Eigen::Vector3d>& points, const TargetSurface& referen
   for (std::size_t i = 0; i < points.size(); ++i)
     out.count += out.mask[i] && std::isfinite(field.residual[i]) ? 1 : 0;
   return out;
+}
+
+// The largest displacement the change from transformation a to b gives a corner of the points'
+// bounding box (NaN points ignored).
+double
+cornerDisplacement(const std::vector<Eigen::Vector3d>& points, const Eigen::Matrix4d& a, const Eigen::Matrix4d& b)
+{
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points)
+    if (p.allFinite())
+      box.extend(p);
+  double d = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector4d x = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).homogeneous();
+    d = std::max(d, ((a - b) * x).head<3>().norm());
+  }
+  return d;
 }
 
 }  // namespace
@@ -156,10 +176,17 @@ refineOnStablePart(const std::vector<Eigen::Vector3d>& points, const std::vector
       return report;
     }
     keepHighBreakdownFigures(robust, refined);
+    const double moved =
+        cornerDisplacement(points, robust.adjustment.transformation, refined.adjustment.transformation);
     robust = std::move(refined);
     previous = std::move(left.mask);
     report.rounds = round;
     report.left_out = left.count;
+    // As the subset search's re-linearisation: a move below a tenth of σ̂ changes no region.
+    if (moved < 0.1 * robust.scale) {
+      report.stopped = "the estimate moved less than 0.1 sigma_hat";
+      return report;
+    }
   }
   report.stopped = "max rounds";
   return report;
