@@ -1,9 +1,7 @@
 #include <pcl_ls3d/deformation/stable_refinement.h>
 #include <pcl_ls3d/deformation/voxel_index.h>
+#include <pcl_ls3d/evaluation/transform_error.h>
 
-#include <Eigen/Geometry>
-
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -60,23 +58,6 @@ leftOut(const std::vector<Eigen::Vector3d>& points, const TargetSurface& referen
   for (std::size_t i = 0; i < points.size(); ++i)
     out.count += out.mask[i] && std::isfinite(field.residual[i]) ? 1 : 0;
   return out;
-}
-
-// The largest displacement the change from transformation a to b gives a corner of the points'
-// bounding box (NaN points ignored).
-double
-cornerDisplacement(const std::vector<Eigen::Vector3d>& points, const Eigen::Matrix4d& a, const Eigen::Matrix4d& b)
-{
-  Eigen::AlignedBox3d box;
-  for (const Eigen::Vector3d& p : points)
-    if (p.allFinite())
-      box.extend(p);
-  double d = 0.0;
-  for (int c = 0; c < 8; ++c) {
-    const Eigen::Vector4d x = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)).homogeneous();
-    d = std::max(d, ((a - b) * x).head<3>().norm());
-  }
-  return d;
 }
 
 }  // namespace
@@ -143,6 +124,9 @@ refineOnStablePart(const std::vector<Eigen::Vector3d>& points, const std::vector
   // tilted the means flag the tilt too; then the point-wise test (the user's) is used.
   ResidualSettings by_means = residuals;
   by_means.rule = DetectionRule::LOD95;
+  Eigen::Matrix3Xd sample(3, static_cast<Eigen::Index>(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    sample.col(static_cast<Eigen::Index>(i)) = points[i];
   std::vector<std::uint8_t> previous;
   for (int round = 1; round <= settings.max_rounds; ++round) {
     LeftOut left = leftOut(points, reference, rule, robust, by_means, regions);
@@ -176,8 +160,9 @@ refineOnStablePart(const std::vector<Eigen::Vector3d>& points, const std::vector
       return report;
     }
     keepHighBreakdownFigures(robust, refined);
-    const double moved =
-        cornerDisplacement(points, robust.adjustment.transformation, refined.adjustment.transformation);
+    const double moved = evaluation::computeTransformError(refined.adjustment.transformation,
+                                                           robust.adjustment.transformation, sample)
+                             .max_bbox;
     robust = std::move(refined);
     previous = std::move(left.mask);
     report.rounds = round;

@@ -34,6 +34,14 @@ scaleOrSigma0(ScaleRule rule, const Eigen::Ref<const Eigen::VectorXd>& v, double
   const double s = scaleByRule(rule, v, sigma0, fixed);
   return s > 0.0 ? s : sigma0;
 }
+
+// Zuo's 0/1 weight: 0 where |v_i| > limit, else 1.
+void
+zeroBeyond(const Eigen::Ref<const Eigen::VectorXd>& residuals, double limit, Eigen::Ref<Eigen::VectorXd> weights)
+{
+  for (Eigen::Index i = 0; i < residuals.size(); ++i)
+    weights[i] = std::abs(residuals[i]) > limit ? 0.0 : 1.0;
+}
 }  // namespace
 
 // ---- least squares -------------------------------------------------------------------
@@ -58,18 +66,15 @@ ZuoEstimator::computeWeights(const Eigen::Ref<const Eigen::VectorXd>& residuals,
                              Eigen::Ref<Eigen::VectorXd> weights) const
 {
   // eq. 15: p_i = 0 where |v_i| > K σ0, else 1; all ones while σ0 is unknown.
-  const double limit = sigma0 > 0.0 ? k_ * sigma0 : std::numeric_limits<double>::infinity();
-  for (Eigen::Index i = 0; i < residuals.size(); ++i)
-    weights[i] = std::abs(residuals[i]) > limit ? 0.0 : 1.0;
+  zeroBeyond(residuals, sigma0 > 0.0 ? k_ * sigma0 : std::numeric_limits<double>::infinity(), weights);
 }
 
 void
 ZuoEstimator::weigh(const WeightingInput& in, Eigen::Ref<Eigen::VectorXd> weights) const
 {
-  const double limit = in.scale > 0.0 ? std::max(k_ * in.scale, in.min_cut)
-                                      : std::numeric_limits<double>::infinity();
-  for (Eigen::Index i = 0; i < in.residuals.size(); ++i)
-    weights[i] = std::abs(in.residuals[i]) > limit ? 0.0 : 1.0;
+  zeroBeyond(in.residuals,
+             in.scale > 0.0 ? std::max(k_ * in.scale, in.min_cut) : std::numeric_limits<double>::infinity(),
+             weights);
 }
 
 // ---- Huber -----------------------------------------------------------------------------
