@@ -1,5 +1,7 @@
 // Deformation detection on Li's surface with a planted deformation of known extent: the residual
 // field's significance mask and its regions recover the patch; no deformation gives ~0 % area.
+#include "deformation/li_surface_pair.h"
+
 #include <pcl_ls3d/deformation/deformation_analysis.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
@@ -12,54 +14,33 @@
 #include <limits>
 
 using namespace pcl_ls3d;
+using li_test::liSurface;
 using namespace pcl_ls3d::deformation;
 
 namespace {
 
 constexpr double kSigma = 20.0;
 
-struct LiPair
+struct LiPair : li_test::LiSurfacePair
 {
-  explicit LiPair(const synth::LiSurface& li_) : li(li_)
-  {
-    for (std::size_t i = 0; i < li.mate->size(); ++i)
-      points.push_back((*li.mate)[i].getVector3fMap().cast<double>());
-    tree.reset(new pcl::search::KdTree<PointLiDAR>);
-    tree->setInputCloud(li.reference);
-    surface = std::make_shared<PclTargetSurface<PointLiDAR>>(li.reference, tree);
-    rule = makeConjugateRule(ConjugateRuleType::LZD);
-    std::string why;
-    rule->prepare(*surface, &why);
-  }
+  using LiSurfacePair::LiSurfacePair;
   DeformationResult
   run(const DeformationSettings& s) const
   {
     return analyseDeformation(points, *surface, *rule, s);
   }
-  double
-  errorSigma(const Eigen::Matrix4d& T) const
-  {
-    Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(points.size()));
-    for (std::size_t i = 0; i < points.size(); ++i)
-      pts.col(static_cast<Eigen::Index>(i)) = points[i];
-    return evaluation::computeTransformError(T, li.truth.matrix(), pts).max / kSigma;
-  }
-
-  const synth::LiSurface& li;
-  std::vector<Eigen::Vector3d> points;
-  pcl::search::KdTree<PointLiDAR>::Ptr tree;
-  std::shared_ptr<PclTargetSurface<PointLiDAR>> surface;
-  ConjugateRule::Ptr rule;
 };
 
+/// 200 × 200 nodes at `spacing` (the large, dense epochs of the 1 M-point pipeline in small),
+/// 20 % raised by the default N(10σ, σ), Table 4's transform.
 synth::LiSurface
-liSurface(double percent, double c, synth::DeformationPosition position, std::uint32_t seed = 1)
+denseGrid(double spacing, synth::DeformationPosition position)
 {
   synth::LiSurfaceSettings s;
-  s.deformation_percent = percent;
-  s.deformation_c = c;
+  s.grid_size = 200;
+  s.spacing = spacing;
+  s.deformation_percent = 20.0;
   s.position = position;
-  s.seed = seed;
   return synth::makeLiSurface(s);
 }
 
@@ -232,12 +213,7 @@ TEST(DeformationAnalysis, HysteresisRecoversTheLowTail)
 // 2. The whole patch is found (17.1 % of 20 % before LZD's re-centring was fixed).
 TEST(DeformationAnalysis, GridEpochSampleIsNotAliased)
 {
-  synth::LiSurfaceSettings s;
-  s.grid_size = 200;
-  s.spacing = 25.0;  // the same 5000-unit extent
-  s.deformation_percent = 20.0;
-  s.position = synth::DeformationPosition::UPPER_LEFT;
-  const synth::LiSurface li = synth::makeLiSurface(s);
+  const synth::LiSurface li = denseGrid(25.0, synth::DeformationPosition::UPPER_LEFT); // the same 5000-unit extent
   const LiPair pair(li);
   DeformationSettings settings;
   settings.matching_points = 2000;  // 1 in 20 nodes
@@ -263,12 +239,7 @@ TEST(DeformationAnalysis, GridEpochSampleIsNotAliased)
 // 20 % patch found at 1 M points). LZD regions are linked in plan: one region holds the patch.
 TEST(DeformationAnalysis, DenseNoisySurfaceGivesOneRegion)
 {
-  synth::LiSurfaceSettings s;
-  s.grid_size = 200;
-  s.spacing = 8.0;
-  s.deformation_percent = 20.0;
-  s.position = synth::DeformationPosition::UPPER_RIGHT;
-  const synth::LiSurface li = synth::makeLiSurface(s);
+  const synth::LiSurface li = denseGrid(8.0, synth::DeformationPosition::UPPER_RIGHT);
   const LiPair pair(li);
   const DeformationResult r = pair.run(DeformationSettings());
   ASSERT_TRUE(r.ok()) << r.matching.message;
@@ -289,12 +260,7 @@ TEST(DeformationAnalysis, DenseNoisySurfaceGivesOneRegion)
 // Re-centred until the height settles, the matching converges and the patch is found.
 TEST(DeformationAnalysis, DenseGridFarFromItsStartIsMatched)
 {
-  synth::LiSurfaceSettings s;
-  s.grid_size = 200;
-  s.spacing = 8.0;
-  s.deformation_percent = 20.0;
-  s.position = synth::DeformationPosition::UPPER_LEFT;
-  const synth::LiSurface li = synth::makeLiSurface(s);
+  const synth::LiSurface li = denseGrid(8.0, synth::DeformationPosition::UPPER_LEFT);
   const LiPair pair(li);
   const DeformationResult r = pair.run(DeformationSettings());
   ASSERT_TRUE(r.ok()) << r.matching.message;

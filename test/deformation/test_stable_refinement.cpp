@@ -2,6 +2,8 @@
 // again. nearRegions() against a brute-force count; on Li's surface, a small deformation that
 // pulls the robust estimators beyond 0.5 σ at the far corner is recovered once its region is
 // left out, and a surface without deformation is not touched.
+#include "deformation/li_surface_pair.h"
+
 #include <pcl_ls3d/deformation/deformation_analysis.h>
 #include <pcl_ls3d/deformation/stable_refinement.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
@@ -78,24 +80,11 @@ TEST(StableRefinement, InvalidSettingsAreRefused)
 
 namespace {
 
-struct LiCase
+struct LiCase : li_test::LiSurfacePair
 {
-  explicit LiCase(double percent, double c, synth::DeformationPosition position, std::uint32_t seed)
+  LiCase(double percent, double c, synth::DeformationPosition position, std::uint32_t seed)
+    : LiSurfacePair(li_test::liSurface(percent, c, position, seed))
   {
-    synth::LiSurfaceSettings s;
-    s.deformation_percent = percent;
-    s.deformation_c = c;
-    s.position = position;
-    s.seed = seed;
-    li = synth::makeLiSurface(s);
-    for (const auto& p : *li.mate)
-      points.push_back(p.getVector3fMap().cast<double>());
-    tree.reset(new pcl::search::KdTree<PointLiDAR>);
-    tree->setInputCloud(li.reference);
-    surface = std::make_shared<PclTargetSurface<PointLiDAR>>(li.reference, tree);
-    rule = makeConjugateRule(ConjugateRuleType::LZD);
-    std::string why;
-    rule->prepare(*surface, &why);
   }
   DeformationResult
   run(int rounds) const
@@ -107,18 +96,8 @@ struct LiCase
   double
   errorSigma(const DeformationResult& r) const
   {
-    Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(points.size()));
-    for (std::size_t i = 0; i < points.size(); ++i)
-      pts.col(static_cast<Eigen::Index>(i)) = points[i];
-    return evaluation::computeTransformError(r.matching.adjustment.transformation, li.truth.matrix(), pts).max /
-           kSigma;
+    return LiSurfacePair::errorSigma(r.matching.adjustment.transformation);
   }
-
-  synth::LiSurface li;
-  std::vector<Eigen::Vector3d> points;
-  pcl::search::KdTree<PointLiDAR>::Ptr tree;
-  std::shared_ptr<PclTargetSurface<PointLiDAR>> surface;
-  ConjugateRule::Ptr rule;
 };
 
 }  // namespace

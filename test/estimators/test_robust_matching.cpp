@@ -1,5 +1,7 @@
 // Robust matching in one call (Li et al. 2001's procedure and the MM-estimator) on Li's surface
 // with known truth, and its answers to bad input.
+#include "deformation/li_surface_pair.h"
+
 #include <pcl_ls3d/estimators/robust_matching.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
@@ -12,27 +14,16 @@
 #include <limits>
 
 using namespace pcl_ls3d;
+using li_test::liSurface;
 
 namespace {
 
 constexpr double kSigma = 20.0;
 
 /// One robust matching of a Li surface pair (mate onto reference) from the identity.
-struct LiRun
+struct LiRun : li_test::LiSurfacePair
 {
-  explicit LiRun(const synth::LiSurface& li) : li_(li)
-  {
-    for (std::size_t i = 0; i < li.mate->size(); ++i) {
-      points.push_back((*li.mate)[i].getVector3fMap().cast<double>());
-      indices.push_back(static_cast<int>(i));
-    }
-    tree.reset(new pcl::search::KdTree<PointLiDAR>);
-    tree->setInputCloud(li.reference);
-    surface = std::make_shared<PclTargetSurface<PointLiDAR>>(li.reference, tree);
-    rule = makeConjugateRule(ConjugateRuleType::LZD);
-    std::string why;
-    rule->prepare(*surface, &why);
-  }
+  using LiSurfacePair::LiSurfacePair;
   RobustMatchingReport
   operator()(RobustMethod method, const Eigen::Matrix4d& guess = Eigen::Matrix4d::Identity()) const
   {
@@ -40,34 +31,7 @@ struct LiRun
     s.method = method;
     return robustMatching(points, indices, *surface, *rule, s, guess);
   }
-  /// Worst displacement of a grid node against the truth, in σ.
-  double
-  errorSigma(const Eigen::Matrix4d& T) const
-  {
-    Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(points.size()));
-    for (std::size_t i = 0; i < points.size(); ++i)
-      pts.col(static_cast<Eigen::Index>(i)) = points[i];
-    return evaluation::computeTransformError(T, li_.truth.matrix(), pts).max / kSigma;
-  }
-
-  const synth::LiSurface& li_;
-  std::vector<Eigen::Vector3d> points;
-  std::vector<int> indices;
-  pcl::search::KdTree<PointLiDAR>::Ptr tree;
-  std::shared_ptr<PclTargetSurface<PointLiDAR>> surface;
-  ConjugateRule::Ptr rule;
 };
-
-synth::LiSurface
-liSurface(double percent, double c, synth::DeformationPosition position, std::uint32_t seed = 1)
-{
-  synth::LiSurfaceSettings s;
-  s.deformation_percent = percent;
-  s.deformation_c = c;
-  s.position = position;
-  s.seed = seed;
-  return synth::makeLiSurface(s);
-}
 
 }  // namespace
 
