@@ -37,6 +37,11 @@ namespace def = pcl_ls3d::deformation;
 
 namespace {
 
+// Above this share of the observed area deformed, which part is stable is a close call (the
+// larger part; LZD leaves a surface's border unobserved, so a central patch of 46 % of the nodes
+// is already about half of the observed ones).
+constexpr double kNearHalfPercent = 40.0;
+
 void
 printHelp(const char* prog)
 {
@@ -353,6 +358,12 @@ main(int argc, char** argv)
              "clusters; %.2f %% of the area deformed\n",
              mr.scale, result.field.observed, epoch->size(), result.field.significant_count,
              reg.regions.size(), reg.noise.size(), reg.percent_deformed);
+  // A robust estimator takes the larger part to be stable; near half, the data cannot say which.
+  const bool near_half = reg.percent_deformed > kNearHalfPercent;
+  if (near_half)
+    print_warn("Warning: %.1f %% of the observed area differs: the part taken as stable is only the larger "
+               "one; check on the map which part really moved\n",
+               reg.percent_deformed);
   for (std::size_t i = 0; i < std::min<std::size_t>(reg.regions.size(), 10); ++i) {
     const auto& r = reg.regions[i];
     print_info("  region %d: %s, %zu points, area %.4g, mean %+.4g (min %+.4g, max %+.4g), volume %+.4g\n",
@@ -393,6 +404,7 @@ main(int argc, char** argv)
     j["rule"] = rule_text;
     j["scale"] = mr.scale;
     j["high_breakdown_scale"] = mr.high_breakdown_scale;
+    j["neighbour_noise"] = mr.neighbour_noise;
     j["subsets"] = mr.subsets_drawn;
     j["rounds"] = mr.rounds;
     j["iterations"] = mr.iterations;
@@ -408,6 +420,7 @@ main(int argc, char** argv)
     j["epoch_centroid"] = {centroid_in.x(), centroid_in.y(), centroid_in.z()};
     j["centroid_shift"] = {shift.x(), shift.y(), shift.z()};
     j["percent_deformed"] = reg.percent_deformed;
+    j["stable_part_ambiguous"] = near_half;
     j["matching_points"] = a.source_points;
     j["area_observed"] = reg.area_observed;
     j["area_deformed"] = reg.area_deformed;

@@ -1,5 +1,5 @@
 #include <pcl_ls3d/deformation/deformation_regions.h>
-#include <pcl_ls3d/deformation/voxel_index.h>
+#include <pcl_ls3d/common/voxel_index.h>
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 #include <pcl_ls3d/deformation/stable_refinement.h>
-#include <pcl_ls3d/deformation/voxel_index.h>
+#include <pcl_ls3d/common/voxel_index.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 
 #include <cmath>
@@ -33,6 +33,7 @@ keepHighBreakdownFigures(const RobustMatchingReport& robust, RobustMatchingRepor
   refined.subsets_drawn = robust.subsets_drawn;
   refined.high_breakdown_transformation = robust.high_breakdown_transformation;
   refined.high_breakdown_scale = robust.high_breakdown_scale;
+  refined.neighbour_noise = robust.neighbour_noise;
   refined.iterations += robust.iterations;
 }
 
@@ -41,23 +42,56 @@ struct LeftOut
   std::vector<std::uint8_t> mask;  // per point: in a region or its rim
   std::size_t count = 0;           // observed points in the mask
   std::size_t observed = 0;
-  std::size_t regions = 0;
+  std::size_t regions = 0;         // regions found
 };
 
+// The regions of `field` and their rim; with `largest` > 0 only regions 1..largest (regions are
+// numbered by decreasing area).
 LeftOut
-leftOut(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference, const ConjugateRule& rule,
-        const RobustMatchingReport& robust, const ResidualSettings& residuals, const RegionSettings& regions)
+regionsAndRim(const std::vector<Eigen::Vector3d>& points, const ResidualField& field, const RegionSettings& regions,
+              std::size_t largest = 0)
 {
-  const ResidualField field =
-      computeResidualField(points, reference, rule, robust.adjustment, robust.scale, residuals);
-  const RegionAnalysis analysis = analyseRegions(points, field, regions);
+  RegionAnalysis analysis = analyseRegions(points, field, regions);
   LeftOut out;
-  out.mask = nearRegions(points, analysis, regions.plane_axis);
   out.observed = field.observed;
   out.regions = analysis.regions.size();
+  if (largest > 0)
+    for (int& id : analysis.region)
+      id = id > 0 && static_cast<std::size_t>(id) <= largest ? id : 0;
+  out.mask = nearRegions(points, analysis, regions.plane_axis);
   for (std::size_t i = 0; i < points.size(); ++i)
     out.count += out.mask[i] && std::isfinite(field.residual[i]) ? 1 : 0;
   return out;
+}
+
+// What is left out is found first on neighbourhood means (LOD95): a patch the robust fit has
+// partly absorbed (3 σ showing as 1.5 σ) is below the point-wise 3 σ test almost everywhere, but
+// its mean over 12 neighbours stands √12 times clearer of the noise. When the fit is tilted the
+// means flag the tilt too; then the point-wise test (the user's) is used, and when that also
+// flags more than `max_share`, only its largest regions that stay within it: a fit tilted
+// towards a large patch flags the far side of the stable part as well, and leaving the patch
+// alone out lets the next round correct the tilt.
+LeftOut
+leftOut(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference, const ConjugateRule& rule,
+       const RobustMatchingReport& robust, const ResidualSettings& residuals, const RegionSettings& regions,
+       double max_share)
+{
+  ResidualSettings by_means = residuals;
+  by_means.rule = DetectionRule::LOD95;
+  const ResidualField means = computeResidualField(points, reference, rule, robust.adjustment, robust.scale, by_means);
+  const double max_count = max_share * static_cast<double>(means.observed);
+  LeftOut left = regionsAndRim(points, means, regions);
+  if (static_cast<double>(left.count) <= max_count)
+    return left;
+  const ResidualField own = computeResidualField(points, reference, rule, robust.adjustment, robust.scale, residuals);
+  left = regionsAndRim(points, own, regions);
+  for (std::size_t largest = 1; static_cast<double>(left.count) > max_count && largest < left.regions; ++largest) {
+    LeftOut fewer = regionsAndRim(points, own, regions, largest);
+    if (static_cast<double>(fewer.count) > max_count)
+      break;
+    left = std::move(fewer);
+  }
+  return left;
 }
 
 }  // namespace
@@ -118,20 +152,12 @@ refineOnStablePart(const std::vector<Eigen::Vector3d>& points, const std::vector
   if (settings.max_rounds <= 0)
     return report;
   const RobustMatchingSettings m = stablePartMatching(matching);
-  // What is left out is found first on neighbourhood means (LOD95): a patch the robust fit has
-  // partly absorbed (3 σ showing as 1.5 σ) is below the point-wise 3 σ test almost everywhere,
-  // but its mean over 12 neighbours stands √12 times clearer of the noise. When the fit is
-  // tilted the means flag the tilt too; then the point-wise test (the user's) is used.
-  ResidualSettings by_means = residuals;
-  by_means.rule = DetectionRule::LOD95;
   Eigen::Matrix3Xd sample(3, static_cast<Eigen::Index>(points.size()));
   for (std::size_t i = 0; i < points.size(); ++i)
     sample.col(static_cast<Eigen::Index>(i)) = points[i];
   std::vector<std::uint8_t> previous;
   for (int round = 1; round <= settings.max_rounds; ++round) {
-    LeftOut left = leftOut(points, reference, rule, robust, by_means, regions);
-    if (left.count > settings.max_left_out * static_cast<double>(left.observed))
-      left = leftOut(points, reference, rule, robust, residuals, regions);
+    const LeftOut left = leftOut(points, reference, rule, robust, residuals, regions, settings.max_left_out);
     if (left.regions == 0) {
       report.stopped = "no deformed region";
       return report;
@@ -164,7 +190,7 @@ refineOnStablePart(const std::vector<Eigen::Vector3d>& points, const std::vector
                                                            robust.adjustment.transformation, sample)
                              .max_bbox;
     robust = std::move(refined);
-    previous = std::move(left.mask);
+    previous = left.mask;
     report.rounds = round;
     report.left_out = left.count;
     // As the subset search's re-linearisation: a move below a tenth of σ̂ changes no region.

@@ -1,6 +1,7 @@
 #include <pcl_ls3d/estimators/robust_matching.h>
 
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
+#include <pcl_ls3d/estimators/neighbour_noise.h>
 #include <pcl_ls3d/sample_consensus/linearized_matching.h>
 
 #include <algorithm>
@@ -69,11 +70,27 @@ maxDisplacement(const LinearizedMatching& lin, const Vector7d& a, const Vector7d
   return d;
 }
 
+/// σ_d of the residuals v (one per observation) at the epoch points: each point's first
+/// observation (its surface normal or height for LND / LZD, the first axis for ICP).
+double
+neighbourNoise(const LinearizedMatching& lin, const Eigen::VectorXd& v)
+{
+  const std::vector<Eigen::Vector3d>& points = lin.reducedPoints();
+  std::vector<double> first(points.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int o = lin.observationOf(static_cast<int>(i));
+    if (o >= 0)
+      first[i] = v[o];
+  }
+  return neighbourDifferenceScale(points, first);
+}
+
 /// The scale the M-step keeps fixed, from the high-breakdown fit X (its residuals v over all
 /// matched observations): LMS s0 (recomputed at X, which may be an earlier round's) and σ*;
-/// MM the LTS scale reweighted, or the S-scale.
+/// MM the LTS scale reweighted, or the S-scale; at most the neighbour noise when capped.
 double
-fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchingSettings& s, double search_scale)
+fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchingSettings& s, double search_scale,
+           RobustMatchingReport& report)
 {
   Eigen::VectorXd v;
   lin.residuals(X, v);
@@ -81,10 +98,16 @@ fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchin
   if (s.method == RobustMethod::LMS) {
     const double s0 = lmsScale(lmsCriterion(lin, X), lin.size(), lin.freeParameters());
     fixed = s.lms_scale == LmsScale::PRELIMINARY ? s0 : lmsFinalScale(v, s0, lin.freeParameters());
-    return fixed > 0.0 ? fixed : s0;
+    fixed = fixed > 0.0 ? fixed : s0;
   }
-  fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, search_scale) : reweightedScale(v, search_scale);
-  return fixed > 0.0 ? fixed : search_scale;
+  else {
+    fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, search_scale) : reweightedScale(v, search_scale);
+    fixed = fixed > 0.0 ? fixed : search_scale;
+  }
+  report.neighbour_noise = neighbourNoise(lin, v);
+  if (s.cap_scale_by_neighbour_noise && report.neighbour_noise > 0.0)
+    fixed = std::min(fixed, report.neighbour_noise);
+  return fixed;
 }
 
 /// The high-breakdown stage: rounds of subset searches, re-linearised at the last estimate
@@ -124,7 +147,7 @@ highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, Ro
       break;
   }
   report.high_breakdown_transformation = lin.matrixOf(X);
-  report.high_breakdown_scale = fixedScale(lin, X, s, report.search.scale);
+  report.high_breakdown_scale = fixedScale(lin, X, s, report.search.scale, report);
   return true;
 }
 

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <utility>
 
 using namespace pcl_ls3d;
 using li_test::liSurface;
@@ -268,4 +269,37 @@ TEST(DeformationAnalysis, DenseGridFarFromItsStartIsMatched)
   EXPECT_LT(pair.errorSigma(r.matching.adjustment.transformation), 0.5);
   EXPECT_NEAR(r.regions.percent_deformed, li.percent, 3.0);
   EXPECT_GT(r.field.observed, 38000u);  // of 40000 (border nodes have no conjugate)
+}
+
+// LMS at 25 % deformed by only N(4σ, σ): without the cap, the M-step starts from a subset fit
+// that compromises between the stable and the raised part, keeps its inflated scale (σ* ≈ 1.45 σ)
+// and ends there, 2.5–3 σ off at the far corner, with no region found. The noise of neighbouring
+// residuals (≈ σ) is what the M-step needs: capped by it, both cases recover the truth.
+TEST(DeformationAnalysis, NeighbourNoiseCapBreaksTheCompromise)
+{
+  const std::pair<synth::DeformationPosition, std::uint32_t> cases[] = {
+      {synth::DeformationPosition::UPPER_RIGHT, 1u}, {synth::DeformationPosition::LEFT, 2u}};
+  for (const auto& c : cases) {
+    const LiPair pair(liSurface(25.0, 4.0, c.first, c.second));
+    DeformationSettings s;
+    s.matching.method = RobustMethod::LMS;
+    s.matching.cap_scale_by_neighbour_noise = false;
+    const DeformationResult uncapped = pair.run(s);
+    ASSERT_TRUE(uncapped.ok()) << uncapped.matching.message;
+    EXPECT_GT(pair.errorSigma(uncapped.matching.adjustment.transformation), 1.0)
+        << "seed " << c.second << ": the case no longer shows the compromise";
+    EXPECT_GT(uncapped.matching.high_breakdown_scale, 1.3 * kSigma);
+    s.matching.cap_scale_by_neighbour_noise = true;
+    const DeformationResult capped = pair.run(s);
+    ASSERT_TRUE(capped.ok()) << capped.matching.message;
+    EXPECT_LT(pair.errorSigma(capped.matching.adjustment.transformation), 0.5) << "seed " << c.second;
+    // σ_d sees the noise and the patch's own spread (√2 σ on a quarter of the nodes).
+    EXPECT_GT(capped.matching.neighbour_noise, 0.95 * kSigma);
+    EXPECT_LT(capped.matching.neighbour_noise, 1.25 * kSigma);
+    EXPECT_LE(capped.matching.high_breakdown_scale, capped.matching.neighbour_noise);
+    EXPECT_GE(capped.refinement.rounds, 1);
+    const Detection d = score(capped, pair.li);
+    EXPECT_GT(d.precision, 0.95);
+    EXPECT_GT(d.recall, 0.8);
+  }
 }

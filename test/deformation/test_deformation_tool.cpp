@@ -87,6 +87,8 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
     pts.col(static_cast<Eigen::Index>(i)) = (*li.mate)[i].getVector3fMap().cast<double>();
   EXPECT_LT(evaluation::computeTransformError(T, li.truth.matrix(), pts).max, 0.5 * 20.0);
   EXPECT_NEAR(j["percent_deformed"].get<double>(), li.percent, 3.0);
+  EXPECT_FALSE(j["stable_part_ambiguous"].get<bool>());  // 20 % moved: clearly a minority
+  EXPECT_NEAR(j["neighbour_noise"].get<double>(), 20.0, 4.0);  // σ = 20 (√2 σ on the patch)
   ASSERT_GE(j["regions"].size(), 1u);
   EXPECT_EQ(j["regions"][0]["sign"].get<int>(), 1);
 
@@ -173,4 +175,30 @@ TEST(DeformationTool, BadInputGivesOneErrorLine)
   const auto help = runTool("pcl_ls3d_deformation", "-h", s.dir.string());
   EXPECT_EQ(help.code, 0);
   EXPECT_NE(help.out.find("Usage"), std::string::npos);
+}
+
+// 49 % of the nodes raised in the middle: LZD observes no border node, so the raised part is the
+// larger one of the observed surface. The tool cannot know which part moved; it says so.
+TEST(DeformationTool, NearHalfMovedIsReportedAsAmbiguous)
+{
+  const Scratch s;
+  synth::LiSurfaceSettings ls;
+  ls.deformation_percent = 49.0;
+  ls.deformation_c = 25.0;
+  ls.position = synth::DeformationPosition::MIDDLE;
+  const synth::LiSurface li = synth::makeLiSurface(ls);
+  pcl::PointCloud<pcl::PointXYZ> ref, mate;
+  pcl::copyPointCloud(*li.reference, ref);
+  pcl::copyPointCloud(*li.mate, mate);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("epoch.pcd"), mate), 0);
+  const auto run = runTool("pcl_ls3d_deformation",
+                           s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -json " + s.file("report.json"),
+                           s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  EXPECT_NE((run.out + run.err).find("only the larger"), std::string::npos) << run.out;
+  std::ifstream in(s.file("report.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_GT(j["percent_deformed"].get<double>(), 40.0);
+  EXPECT_TRUE(j["stable_part_ambiguous"].get<bool>());
 }

@@ -7,7 +7,8 @@
 ///        area"), which the point-wise weights cannot use and the regions can: the regions of
 ///        the neighbourhood-mean test (LOD95, residual_field.h) and their rim within the link
 ///        distance are left out, and the rest is matched again with the M-estimator from the
-///        robust estimate. Repeated while the left-out set changes. PCL-free.
+///        robust estimate. Repeated while the left-out set changes. When the regions cover more
+///        than `max_left_out` of the surface, only the largest of them are left out. PCL-free.
 
 #include <pcl_ls3d/deformation/deformation_regions.h>
 #include <pcl_ls3d/deformation/residual_field.h>

@@ -12,6 +12,7 @@
 ///      with its scale fixed from the LMS fit (Rousseeuw & Leroy's σ*, see LmsScale);
 ///      for MM (beyond the paper): FAST-LTS starts with C-steps, a scale fixed from the LTS fit
 ///      (reweighted, or the 50 %-breakdown S-scale), then a Tukey M-step at 95 % efficiency;
+///      both fixed scales at most the neighbour-difference noise of that fit (beyond the paper);
 ///   3. the report of the last adjustment: parameters with the engine's σ (spatial sandwich),
 ///      weights, residuals and redundancy numbers, σ̂, subsets, rounds and why it stopped.
 /// PCL-free; the PCL face is estimators/robust_surface_matching.h.
@@ -87,6 +88,13 @@ struct RobustMatchingSettings
   int max_rounds = 3;                ///< search rounds (re-linearised at the last estimate)
   MmScale mm_scale = MmScale::REWEIGHTED;
   LmsScale lms_scale = LmsScale::FINAL;
+  /// LMS and MM: the M-step's fixed scale is at most σ_d, the noise of neighbouring residuals at
+  /// the high-breakdown fit (neighbour_noise.h). A fit that compromises between the stable and
+  /// the moved part inflates its own scale (σ* 1.5 σ at 25 % deformed by 4 σ), Tukey's
+  /// c = 4.685 σ̂ then keeps half the deformation's weight and the M-step stays at the
+  /// compromise; the deformation is gathered, so the differences of neighbours see the noise
+  /// alone. false: the fit's own scale (Rousseeuw & Leroy's, as Li et al.).
+  bool cap_scale_by_neighbour_noise = true;
   /// When false the guess is taken as the all-points least-squares start (already computed by
   /// the caller) and stage 1 is skipped; report.start then stays NOT_RUN.
   bool least_squares_start = true;
@@ -124,6 +132,7 @@ struct RobustMatchingReport
   int subsets_drawn = 0;              ///< over all rounds
   Eigen::Matrix4d high_breakdown_transformation = Eigen::Matrix4d::Identity();
   double high_breakdown_scale = 0.0;  ///< the scale the M-step keeps fixed (LMS: σ* or s0, MM: see MmScale)
+  double neighbour_noise = 0.0;       ///< σ_d of the high-breakdown fit's residuals (neighbour_noise.h)
   int iterations = 0;                 ///< adjustment iterations over all stages
 
   /// Usable estimate (the final adjustment converged or hit its iteration limit).

@@ -1,8 +1,8 @@
 #pragma once
 /// \file voxel_index.h
 /// \brief A hashed voxel grid over a point set for fixed-radius and k-nearest searches, and the
-///        point spacing and dominant plane of a cloud (for deformation regions, areas and the
-///        M3C2-style neighbourhoods). PCL-free; searches are const and thread-safe.
+///        point spacing and dominant plane of a cloud (deformation regions, areas, M3C2-style
+///        neighbourhoods, neighbour-difference noise scales). PCL-free; searches are const and thread-safe.
 
 #include <Eigen/Core>
 
@@ -11,7 +11,6 @@
 #include <vector>
 
 namespace pcl_ls3d {
-namespace deformation {
 
 /// \brief Mean point spacing s = √(A / n) over the largest of the three axis-plane projections
 ///        of the points' box (terrain: xy; a wall: xz or yz), and that plane's normal axis
@@ -60,5 +59,4 @@ private:
   std::size_t stored_ = 0;
 };
 
-}  // namespace deformation
 }  // namespace pcl_ls3d

@@ -1,4 +1,4 @@
-#include <pcl_ls3d/deformation/voxel_index.h>
+#include <pcl_ls3d/common/voxel_index.h>
 
 #include <Eigen/Geometry>
 
@@ -7,7 +7,6 @@
 #include <unordered_set>
 
 namespace pcl_ls3d {
-namespace deformation {
 
 CloudSpacing
 cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis)
@@ -127,5 +126,4 @@ VoxelIndex::nearestK(const Eigen::Vector3d& q, int k, std::vector<int>& out) con
   out = std::move(found);
 }
 
-}  // namespace deformation
 }  // namespace pcl_ls3d
