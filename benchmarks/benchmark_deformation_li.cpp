@@ -9,6 +9,7 @@
 //   -v: one line per trial (error, refinement, the matching's report).
 //   -refine N: rounds of the stable-part refinement (stable_refinement.h); 0 gives each
 //   estimator's own answer, as in Li et al.'s tables. Default: the library's.
+//   -cap 0: the M-step keeps the high-breakdown fit's own scale (no neighbour-noise cap).
 //   benchmark_deformation_li -grid [-methods m,md,lms,mm] [-percents 4,9,...] [-mags 3,3.5,...]
 //       [-positions upper_left,upper,middle,...|all] [-seeds N] [-first_seed S] [-full]
 //       Tables 3 and 5 analogues: a trial succeeds when the recovered transform moves no grid
@@ -16,7 +17,7 @@
 //       tried in increasing order until one reaches ≥ 90 % success (all of them with -full);
 //       prints the smallest such magnitude per column (Table 5's layout), the success rate per
 //       position, and the detection precision / recall of the region mask per cell (over the
-//       nodes that have a residual; LZD leaves the surface's border nodes without one).
+//       nodes that have a residual).
 //   benchmark_deformation_li -lms_speed
 //       The LMS search alone: 3000 subsets of 7 on the 2500-point Li surface (40 %, 25 σ), with
 //       and without the early exit, after the all-points LHD start.
@@ -52,6 +53,7 @@ namespace {
 constexpr double kSigma = 20.0;
 double g_grow_k = 0.0;  ///< hysteresis of the second detection score (-grow_k; default: none)
 int g_refine = -1;      ///< stable-part refinement rounds (-refine; -1: the library's default)
+int g_cap = -1;         ///< cap the M-step scale by the neighbour noise (-cap 0|1; -1: the library's default)
 bool g_verbose = false; ///< one line per trial (-v)
 
 /// Precision and recall of a region labelling against the planted patch, over observed nodes.
@@ -61,7 +63,7 @@ detection(const synth::LiSurface& li, const deformation::ResidualField& field, c
   std::size_t tp = 0, fp = 0, fn = 0;
   for (std::size_t i = 0; i < li.deformed.size(); ++i) {
     if (!std::isfinite(field.residual[i]))
-      continue;  // no conjugate (LZD: nodes on the border): not observable
+      continue;  // no conjugate: not observable
     const bool found = region[i] > 0;
     tp += found && li.deformed[i];
     fp += found && !li.deformed[i];
@@ -142,6 +144,8 @@ runTrial(const synth::LiSurface& li, const Method& method)
   s.matching.lms_scale = method.lms_scale;
   if (g_refine >= 0)
     s.refinement.max_rounds = g_refine;
+  if (g_cap >= 0)
+    s.matching.cap_scale_by_neighbour_noise = g_cap != 0;
   Trial t;
   pcl::console::TicToc tt;
   tt.tic();
@@ -396,6 +400,7 @@ main(int argc, char** argv)
   pcl::console::parse_argument(argc, argv, "-first_seed", first_seed);
   pcl::console::parse_argument(argc, argv, "-grow_k", g_grow_k);
   pcl::console::parse_argument(argc, argv, "-refine", g_refine);
+  pcl::console::parse_argument(argc, argv, "-cap", g_cap);
   g_verbose = pcl::console::find_switch(argc, argv, "-v");
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   int pipeline_n = 0;

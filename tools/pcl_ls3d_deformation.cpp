@@ -37,9 +37,9 @@ namespace def = pcl_ls3d::deformation;
 
 namespace {
 
-// Above this share of the observed area deformed, which part is stable is a close call (the
-// larger part; LZD leaves a surface's border unobserved, so a central patch of 46 % of the nodes
-// is already about half of the observed ones).
+// Above this share of the observed area deformed, which part is stable is a close call: a
+// robust estimator takes the larger one, and a border the rule cannot observe (LND beside a
+// one-sided neighbourhood) shifts the balance by several per cent.
 constexpr double kNearHalfPercent = 40.0;
 
 void

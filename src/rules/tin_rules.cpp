@@ -40,6 +40,11 @@ constexpr double kMaxHeightVariance = 0.7;
 // Within this fraction of the neighbourhood radius of a target sample (about an eighth of the
 // point spacing) the local surface is drawn towards that sample; see towardsNearestSample().
 constexpr double kSnapFraction = 0.05;
+// LZD supports a query within the snap radius of a sample also on the target's border (heights
+// of a DEM's edge nodes are measured, not extrapolated): 7 % of a 50 × 50 grid, all its border,
+// had no height difference, which made a central patch of 46 % of the nodes half of the observed
+// surface. LND keeps the stricter rule its registration figures were measured with.
+constexpr bool kLzdOnSample = true;
 
 // LZD re-centres its neighbour search at the height found when that moves the centre by more
 // than this fraction of the neighbourhood radius (see LzdRule::findConjugate).
@@ -137,12 +142,52 @@ cachedTriangle(const TargetSurface& target, const CorrespondenceCache& cache,
   return true;
 }
 
+// Index of the projected neighbour nearest to the query (the origin) when it lies within the snap
+// radius (see towardsNearestSample), else −1.
+int
+sampleUnderQuery(const std::vector<Eigen::Vector2d>& projected, double snap_radius)
+{
+  int nearest = -1;
+  double best = snap_radius * snap_radius;
+  for (std::size_t i = 0; i < projected.size(); ++i)
+    if (projected[i].squaredNorm() <= best) {
+      best = projected[i].squaredNorm();
+      nearest = static_cast<int>(i);
+    }
+  return nearest;
+}
+
+// A triangle through `apex` and the two nearest neighbours that span a plane with it.
+bool
+triangleThrough(const std::vector<Eigen::Vector2d>& projected, int apex, std::array<int, 3>& tri)
+{
+  tri = {{apex, -1, -1}};
+  for (std::size_t i = 0; i < projected.size() && tri[2] < 0; ++i) {
+    const int j = static_cast<int>(i);
+    if (j == apex)
+      continue;
+    const Eigen::Vector2d a = projected[i] - projected[static_cast<std::size_t>(apex)];
+    if (tri[1] < 0) {
+      if (a.norm() > 0.0)
+        tri[1] = j;
+      continue;
+    }
+    const Eigen::Vector2d b = projected[static_cast<std::size_t>(tri[1])] - projected[static_cast<std::size_t>(apex)];
+    if (std::abs(a.x() * b.y() - a.y() * b.x()) > 1e-3 * a.norm() * b.norm())
+      tri[2] = j;
+  }
+  return tri[2] >= 0;
+}
+
 // Finds the enclosing triangle among the k nearest neighbours, projected along `dir`
-// (nullptr: along the neighbourhood's PCA normal).
+// (nullptr: along the neighbourhood's PCA normal). With `on_sample`, a query within the snap
+// radius of a sample is supported even on the border of the target (neighbours on one side, no
+// enclosing triangle): its surface is measured there, not extrapolated (the element is drawn
+// to that sample).
 bool
 searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
                const Eigen::Vector3d* dir, double max_distance, CorrespondenceCache& cache,
-               std::array<Eigen::Vector3d, 3>& v)
+               std::array<Eigen::Vector3d, 3>& v, bool on_sample = false)
 {
   Scratch& s = scratch();
   int found = 0;
@@ -162,10 +207,11 @@ searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
   }
   const Eigen::Vector3d normal = dir ? *dir : s.normal;
   tin::projectToPlane(target, s.indices, found, query, normal, s.projected);
-  if (!tin::centredSupport(s.projected, kMaxCentroidOffset))
-    return false;
+  const int under = on_sample ? sampleUnderQuery(s.projected, kSnapFraction * std::sqrt(s.sq_dists.back())) : -1;
   std::array<int, 3> tri;
-  if (!tin::enclosingTriangle(s.projected, tri))
+  if (under < 0 && !tin::centredSupport(s.projected, kMaxCentroidOffset))
+    return false;
+  if (!tin::enclosingTriangle(s.projected, tri) && !(under >= 0 && triangleThrough(s.projected, under, tri)))
     return false;
   for (std::size_t i = 0; i < 3; ++i) {
     cache.vertices[i] = s.indices[static_cast<std::size_t>(tri[i])];
@@ -243,7 +289,7 @@ lzdElement(const Eigen::Vector3d& centre, const TargetSurface& target, int k, Lz
   Scratch& s = scratch();
   s.indices.clear();
   s.sq_dists.clear();
-  const bool found = searchTriangle(centre, target, k, &up, max_distance, cache, v);
+  const bool found = searchTriangle(centre, target, k, &up, max_distance, cache, v, kLzdOnSample);
   if (s.indices.size() >= 3 && !s.sq_dists.empty() &&
       static_cast<double>(s.sq_dists.front()) <= max_distance * max_distance)
     height = heightBelow(centre, target);
@@ -399,7 +445,7 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     const bool have = cached && (cache.frozen || (reusable(cache, query) &&
                                                   projectsInto(query, up, v[0], v[1], v[2])));
     if (!have) {
-      if (!searchTriangle(query, target, neighbours_, &up, max_distance, cache, v)) {
+      if (!searchTriangle(query, target, neighbours_, &up, max_distance, cache, v, kLzdOnSample)) {
         cache.vertices = {{-1, -1, -1}};
         return false;
       }

@@ -51,8 +51,8 @@ struct Detection
 };
 
 /// Precision and recall of "in a region" (noise clusters excluded) against the planted patch,
-/// over the points that have a residual (LZD leaves nodes on the surface's border without a
-/// conjugate: their neighbours are one-sided).
+/// over the points that have a residual (LZD gives none to a point beside the reference's border,
+/// one-sided and off any sample).
 Detection
 score(const DeformationResult& r, const synth::LiSurface& li)
 {
@@ -225,8 +225,7 @@ TEST(DeformationAnalysis, GridEpochSampleIsNotAliased)
   EXPECT_LT(pair.errorSigma(r.matching.adjustment.transformation), 0.5);
   EXPECT_NEAR(r.matching.adjustment.sigma0, kSigma, 0.25 * kSigma);
   // The deformed part is observed: LZD re-centres its search at the surface below a point 8
-  // spacings above it (82 % of the deformed nodes had a residual before; the rest are the
-  // patch's nodes on the grid border, one-sided).
+  // spacings above it (82 % of the deformed nodes had a residual before).
   std::size_t observed = 0;
   for (std::size_t i = 0; i < li.deformed.size(); ++i)
     observed += li.deformed[i] && std::isfinite(r.field.residual[i]);
@@ -268,7 +267,7 @@ TEST(DeformationAnalysis, DenseGridFarFromItsStartIsMatched)
   EXPECT_EQ(r.matching.termination, TerminationType::CONVERGED) << r.matching.message;
   EXPECT_LT(pair.errorSigma(r.matching.adjustment.transformation), 0.5);
   EXPECT_NEAR(r.regions.percent_deformed, li.percent, 3.0);
-  EXPECT_GT(r.field.observed, 38000u);  // of 40000 (border nodes have no conjugate)
+  EXPECT_GT(r.field.observed, 38000u);  // of 40000
 }
 
 // LMS at 25 % deformed by only N(4σ, σ): without the cap, the M-step starts from a subset fit
@@ -278,7 +277,7 @@ TEST(DeformationAnalysis, DenseGridFarFromItsStartIsMatched)
 TEST(DeformationAnalysis, NeighbourNoiseCapBreaksTheCompromise)
 {
   const std::pair<synth::DeformationPosition, std::uint32_t> cases[] = {
-      {synth::DeformationPosition::UPPER_RIGHT, 1u}, {synth::DeformationPosition::LEFT, 2u}};
+      {synth::DeformationPosition::LEFT, 2u}, {synth::DeformationPosition::LOWER, 2u}};
   for (const auto& c : cases) {
     const LiPair pair(liSurface(25.0, 4.0, c.first, c.second));
     DeformationSettings s;

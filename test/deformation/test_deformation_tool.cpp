@@ -100,7 +100,7 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
     EXPECT_FLOAT_EQ(res[i].x, (*li.mate)[i].x);
     EXPECT_FLOAT_EQ(res[i].z, (*li.mate)[i].z);
     if (!std::isfinite(res[i].residual))
-      continue;  // border nodes without a conjugate
+      continue;  // no conjugate
     const bool found = res[i].region > 0;
     tp += found && li.deformed[i];
     fp += found && !li.deformed[i];
@@ -177,8 +177,8 @@ TEST(DeformationTool, BadInputGivesOneErrorLine)
   EXPECT_NE(help.out.find("Usage"), std::string::npos);
 }
 
-// 49 % of the nodes raised in the middle: LZD observes no border node, so the raised part is the
-// larger one of the observed surface. The tool cannot know which part moved; it says so.
+// 49 % of the nodes raised in the middle, 51 % stable around them: the data alone cannot say
+// which part moved (a robust estimator takes the larger one). The tool says so.
 TEST(DeformationTool, NearHalfMovedIsReportedAsAmbiguous)
 {
   const Scratch s;
