@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <unordered_map>
@@ -243,9 +244,18 @@ joinTouchingRoofs(const std::unordered_map<std::int64_t, int>& own, int reach,
       groups.unite(pair.first, pair.second);
 }
 
+/// A building's plan cell: the building group and the top of its roof or walls there.
+struct RoofCell
+{
+  int root = -1;
+  float top = 0.f;
+};
+
 /// Per horizontal cell: the building group (most of its points in roof or wall segments) with
-/// most points in it, spread over the cells within \a reach of it (a cell keeps its own).
-std::unordered_map<std::int64_t, int>
+/// most points in it, spread over the cells within \a reach of it (a cell keeps its own), and
+/// that building's highest structural point in the cell (spread cells: in the cells they
+/// spread from).
+std::unordered_map<std::int64_t, RoofCell>
 buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
                    const std::vector<std::size_t>& size, double cell, int reach,
                    std::size_t min_contacts, Groups& groups)
@@ -262,35 +272,48 @@ buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
     if (2 * structural_points[root] > size[root])
       ++count[cellKey(c.points[p], cell)][static_cast<int>(root)];
   }
-  std::unordered_map<std::int64_t, int> own, spread;
+  std::unordered_map<std::int64_t, RoofCell> own, spread;
   for (const auto& [key, by_root] : count)
-    own[key] = std::max_element(by_root.begin(), by_root.end(), [&size](auto& a, auto& b) {
-                 return a.second < b.second || (a.second == b.second && size[a.first] < size[b.first]);
-               })->first;
-  joinTouchingRoofs(own, reach, min_contacts, groups);
-  for (auto& [key, root] : own)
-    root = groups.find(root);
+    own[key].root = std::max_element(by_root.begin(), by_root.end(), [&size](auto& a, auto& b) {
+                      return a.second < b.second || (a.second == b.second && size[a.first] < size[b.first]);
+                    })->first;
+  std::unordered_map<std::int64_t, int> owner;
+  for (const auto& [key, rc] : own)
+    owner[key] = rc.root;
+  joinTouchingRoofs(owner, reach, min_contacts, groups);
+  for (auto& [key, rc] : own) {
+    rc.root = groups.find(rc.root);
+    rc.top = -std::numeric_limits<float>::infinity();
+  }
   for (std::size_t p = 0; p < c.labels.size(); ++p) {
-    if (c.labels[p] < 0 || !own.count(cellKey(c.points[p], cell)))
+    if (c.labels[p] < 0 || !structural(kind[static_cast<std::size_t>(c.labels[p])]))
       continue;
-    const int root = own[cellKey(c.points[p], cell)];
+    const auto it = own.find(cellKey(c.points[p], cell));
+    if (it != own.end() && it->second.root == groups.find(c.labels[p]))
+      it->second.top = std::max(it->second.top, c.points[p].z());
+  }
+  for (const auto& [key, rc] : own)
     for (int dx = -reach; dx <= reach; ++dx)
       for (int dy = -reach; dy <= reach; ++dy) {
-        const std::int64_t key = cellKey(c.points[p], cell, dx, dy);
-        if (!own.count(key))
-          spread.emplace(key, root);
+        const std::int64_t to = key + dx * (std::int64_t{1} << 22) + dy;
+        if (own.count(to))
+          continue;
+        const auto [it, fresh] = spread.emplace(to, rc);
+        if (!fresh && it->second.root == rc.root)
+          it->second.top = std::max(it->second.top, rc.top);
       }
-  }
-  for (const auto& [key, root] : own)
-    spread[key] = root;
+  for (const auto& [key, rc] : own)
+    spread[key] = rc;
   return spread;
 }
 
 /// A non-ground group whose points lie (footprint_share of them) on or under one building's
-/// roof in plan, within footprint_margin of it, and which is at most enclosure_size_ratio of
-/// that building, joins it: chimneys and roof units (dense blobs whose k-NN links stay inside
-/// themselves), facades with balconies under the eaves. A tree beside a house has most of its
-/// crown outside the footprint.
+/// roof in plan, within footprint_margin of it, joins it if it is at most
+/// enclosure_size_ratio of that building (chimneys and roof units: dense blobs whose k-NN links
+/// stay inside themselves) or if those points also lie below the building's roof or walls in
+/// their cell, whatever its size: a facade with balconies under the eaves of a roof that the
+/// tile edge cut to a strip. A tree beside a house has most of its crown outside the
+/// footprint; a crown over a roof lies above it and stays bound by the size ratio.
 void
 attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
                  const AssemblySettings& s, Groups& groups)
@@ -311,20 +334,25 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
   for (std::size_t p = 0; p < c.labels.size(); ++p)
     if (c.labels[p] >= 0)
       ++size[static_cast<std::size_t>(groups.find(c.labels[p]))];
-  std::map<std::pair<int, int>, std::size_t> under;  // (group, building) -> points
+  // (group, building) -> points in the footprint, and those of them below the roof
+  std::map<std::pair<int, int>, std::pair<std::size_t, std::size_t>> under;
   for (std::size_t p = 0; p < c.labels.size(); ++p) {
     if (c.labels[p] < 0)
       continue;
     const int root = groups.find(c.labels[p]);
     const auto it = footprint.find(cellKey(c.points[p], cell));
-    if (eligible[static_cast<std::size_t>(root)] && it != footprint.end() && it->second != root)
-      ++under[{root, it->second}];
+    if (!eligible[static_cast<std::size_t>(root)] || it == footprint.end() || it->second.root == root)
+      continue;
+    auto& count = under[{root, it->second.root}];
+    ++count.first;
+    count.second += c.points[p].z() < it->second.top;
   }
   for (const auto& [pair, count] : under) {
-    const auto group = static_cast<std::size_t>(pair.first);
-    const auto building = static_cast<std::size_t>(pair.second);
-    if (static_cast<double>(count) >= s.footprint_share * static_cast<double>(size[group]) &&
-        static_cast<double>(size[group]) <= s.enclosure_size_ratio * static_cast<double>(size[building]))
+    const auto group = static_cast<double>(size[static_cast<std::size_t>(pair.first)]);
+    const auto building = static_cast<double>(size[static_cast<std::size_t>(pair.second)]);
+    const bool small = group <= s.enclosure_size_ratio * building;
+    const bool below = static_cast<double>(count.second) >= s.footprint_share * group;
+    if (static_cast<double>(count.first) >= s.footprint_share * group && (small || below))
       groups.unite(pair.first, pair.second);
   }
 }
