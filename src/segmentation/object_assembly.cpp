@@ -268,6 +268,15 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   };
   auto shapes = segmentShapes(points, labels, residuals, ground);
   rep.segments_before = shapes.size();
+  // Pieces detached from the ground are judged by their points: a flat patch of low
+  // vegetation, rough in its points, is vegetation standing on the terrain, not a roof.
+  const auto pieceKinds = [&](const std::vector<SegmentShape>& all) {
+    std::vector<SegmentKind> kind = kindsOf(all);
+    for (std::size_t s = rep.segments_before; s < all.size(); ++s)
+      if (kind[s] != SegmentKind::Linear && hasRoughPoints(all[s], rep.ground_residual, settings.kinds))
+        kind[s] = SegmentKind::Rough;
+    return kind;
+  };
   std::vector<SegmentKind> kind = kindsOf(shapes);
   if (settings.detach_raised_points) {
     std::vector<int> origin;
@@ -275,9 +284,9 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
                                              settings.max_link_length, labels, origin);
     if (rep.detached_points > 0) {
       const auto pieces = segmentShapes(points, labels, residuals, ground);
-      rep.detached_points = restoreTerrainPieces(kindsOf(pieces), rep.segments_before, origin, labels);
+      rep.detached_points = restoreTerrainPieces(pieceKinds(pieces), rep.segments_before, origin, labels);
       shapes = segmentShapes(points, labels, residuals, ground);
-      kind = kindsOf(shapes);
+      kind = pieceKinds(shapes);
     }
   }
   for (const SegmentKind k : kind)

@@ -590,3 +590,63 @@ TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
   EXPECT_NE(labelOf(TREE), labelOf(ROOF));
   EXPECT_NE(labelOf(TREE), labelOf(GROUND));
 }
+
+// A flat roof of gravel (point residuals 5 x the ground's, but a thin sheet at its own scale)
+// with a crown touching its east eave (77060_627760). Taken as rough, the roof joined the
+// crown rough-to-rough and its walls stayed apart; flat, it is a roof: walls join it, the
+// crown stays a tree.
+TEST(ObjectAssembly, RoughFlatRoofIsARoofNotATree)
+{
+  namespace sg = pcl_ls3d::segmentation;
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> n(-0.02f, 0.02f), gravel(-0.05f, 0.05f), b(-1.f, 1.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> labels;
+  std::vector<float> residuals;
+  enum { ROOF, WALL, GROUND, CROWN };
+  const auto push = [&](float x, float y, float z, int l, float r) {
+    pts.emplace_back(x, y, z);
+    labels.push_back(l);
+    residuals.push_back(r);
+  };
+  for (float x = 0.f; x <= 10.f; x += 0.25f)
+    for (float y = 0.f; y <= 10.f; y += 0.25f)
+      push(x, y, 6.f + gravel(rng), ROOF, 0.05f);
+  for (float t = 0.f; t <= 10.f; t += 0.5f)
+    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
+      push(t, n(rng), z, WALL, 0.01f);
+      push(t, 10.f + n(rng), z, WALL, 0.01f);
+      push(n(rng), t, z, WALL, 0.01f);
+    }
+  for (float x = -8.f; x <= 22.f; x += 0.3f)
+    for (float y = -8.f; y <= 18.f; y += 0.3f)
+      if (x < -0.3f || x > 10.3f || y < -0.3f || y > 10.3f)
+        push(x, y, n(rng), GROUND, 0.01f);
+  for (int i = 0; i < 400;) {  // crown: radius 2 m, its west side on the eave at x = 10
+    const Eigen::Vector3f d(b(rng), b(rng), b(rng));
+    if (d.norm() > 1.f)
+      continue;
+    const Eigen::Vector3f p = Eigen::Vector3f(12.f, 5.f, 6.5f) + 2.f * d;
+    push(p.x(), p.y(), p.z(), CROWN, 0.2f);
+    ++i;
+  }
+  sg::GroundFilterSettings gf;
+  gf.cell = 0.6;
+  const std::vector<char> ground = sg::groundPoints(pts, gf);
+  const std::vector<int> graph = knnGraph(pts, 16);
+  sg::AssemblySettings a;
+  a.max_link_length = 0.8;
+  std::vector<int> out = labels;
+  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  const auto labelOf = [&](int part) {
+    std::map<int, std::size_t> count;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      if (labels[i] == part)
+        ++count[out[i]];
+    return std::max_element(count.begin(), count.end(),
+                            [](auto& x, auto& y) { return x.second < y.second; })->first;
+  };
+  EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(GROUND));
+}
