@@ -316,11 +316,12 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
                           settings.max_link_length * settings.max_link_length};
   // Attachments see groups, and each one can complete another (a roof takes its chimney, then
   // the edge line along both): repeat until nothing joins.
+  std::vector<char> building(shapes.size(), 0);  // per segment: in a building group
   for (std::size_t before = 0, after = 1; before != after;) {
     before = countRoots(groups, shapes.size());
     attachLines(contacts, shapes, kind, settings, groups);
     attachEnclosed(adjacency, shapes, kind, on_terrain, settings, groups);
-    detail::attachUnderRoofs(contacts, kind, settings, groups);
+    detail::attachUnderRoofs(contacts, kind, settings, groups, building);
     after = countRoots(groups, shapes.size());
   }
   std::vector<int> dense(shapes.size(), -1);

@@ -57,25 +57,35 @@ struct RoofCell
   float top = 0.f;
 };
 
-/// Per horizontal cell: the building group (most of its points in roof or wall segments) with
-/// most points in it, spread over the cells within \a reach of it (a cell keeps its own), and
-/// that building's highest structural point in the cell (spread cells: in the cells they
-/// spread from).
+/// Per horizontal cell: the building group (most of its points in roof or wall segments, or
+/// flagged in \a building by an earlier pass; per segment, updated here) with most points in
+/// it, spread over the cells within \a reach of it (a cell keeps its own), and that building's
+/// highest structural point in the cell (spread cells: in the cells they spread from).
 std::unordered_map<std::int64_t, RoofCell>
 buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
                    const std::vector<std::size_t>& size, double cell, int reach,
-                   std::size_t min_contacts, Groups& groups)
+                   std::size_t min_contacts, Groups& groups, std::vector<char>& building)
 {
   std::vector<std::size_t> structural_points(size.size(), 0);
   for (std::size_t p = 0; p < c.labels.size(); ++p)
     if (c.labels[p] >= 0 && structural(kind[static_cast<std::size_t>(c.labels[p])]))
       ++structural_points[static_cast<std::size_t>(groups.find(c.labels[p]))];
+  // A group is a building while most of its points are in roofs and walls, and stays one
+  // after what hangs under its roof has joined it (a rough facade may outweigh a roof strip).
+  std::vector<char> is_building(size.size(), 0);
+  for (std::size_t r = 0; r < size.size(); ++r)
+    is_building[r] = 2 * structural_points[r] > size[r];
+  for (std::size_t i = 0; i < size.size(); ++i)
+    if (building[i])
+      is_building[static_cast<std::size_t>(groups.find(static_cast<int>(i)))] = 1;
+  for (std::size_t i = 0; i < size.size(); ++i)
+    building[i] = is_building[static_cast<std::size_t>(groups.find(static_cast<int>(i)))];
   std::unordered_map<std::int64_t, std::map<int, std::size_t>> count;
   for (std::size_t p = 0; p < c.labels.size(); ++p) {
     if (c.labels[p] < 0 || !structural(kind[static_cast<std::size_t>(c.labels[p])]))
       continue;
     const auto root = static_cast<std::size_t>(groups.find(c.labels[p]));
-    if (2 * structural_points[root] > size[root])
+    if (is_building[root])
       ++count[cellKey(c.points[p], cell)][static_cast<int>(root)];
   }
   std::unordered_map<std::int64_t, RoofCell> own, spread;
@@ -124,7 +134,7 @@ buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
 /// footprint; a crown over a roof lies above it and stays bound by the size ratio.
 void
 attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
-                 const AssemblySettings& s, Groups& groups)
+                 const AssemblySettings& s, Groups& groups, std::vector<char>& building)
 {
   const std::size_t n = kind.size();
   std::vector<std::size_t> size(n, 0);
@@ -137,7 +147,7 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
       eligible[static_cast<std::size_t>(groups.find(static_cast<int>(i)))] = 0;
   const double cell = std::sqrt(c.max_sq);
   const int reach = static_cast<int>(std::ceil(s.footprint_margin / cell));
-  const auto footprint = buildingFootprints(c, kind, size, cell, reach, s.min_links, groups);
+  const auto footprint = buildingFootprints(c, kind, size, cell, reach, s.min_links, groups, building);
   std::fill(size.begin(), size.end(), 0);  // touching roofs may have joined
   for (std::size_t p = 0; p < c.labels.size(); ++p)
     if (c.labels[p] >= 0)

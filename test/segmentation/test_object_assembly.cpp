@@ -530,8 +530,11 @@ TEST(ObjectAssembly, RoofPlanesHoldNoWallOrNeighbourFragments)
 // the tile holds of it is a 2.5 m strip of its flat roof and, under the eaves, a facade of
 // four storeys with 1 m deep balconies (rough, as scattered as a crown). The facade is larger
 // than the roof strip, so the size ratio that keeps crowns off roofs kept it out; it lies
-// under the roof in plan and below it, so it joins. A crown resting on the roof strip (above
-// it, larger than a fifth of the building) and a tree beside the facade stay trees.
+// under the roof in plan and below it, so it joins. A rough roof unit on the strip, larger
+// than a fifth of the strip but not of strip and facade, then joins too: the building stays
+// a building although its rough facade now outweighs its roof. A crown resting on the roof
+// strip (above it, larger than a fifth of the building) and a tree beside the facade stay
+// trees.
 TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
 {
   namespace sg = pcl_ls3d::segmentation;
@@ -540,7 +543,7 @@ TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
   std::vector<Eigen::Vector3f> pts;
   std::vector<int> labels;
   std::vector<float> residuals;
-  enum { ROOF, GROUND, CROWN, TREE, STOREY };  // storeys: STOREY + 0..3
+  enum { ROOF, GROUND, CROWN, TREE, UNIT, STOREY };  // storeys: STOREY + 0..3
   const auto push = [&](const Eigen::Vector3f& p, int l, float r) {
     pts.push_back(p);
     labels.push_back(l);
@@ -566,6 +569,7 @@ TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
     }
   };
   ball({1.25f, 8.5f, 16.5f}, 1.2f, 300, CROWN);  // rests on the roof strip, 15.3-17.7 m
+  ball({1.25f, 2.f, 15.8f}, 0.5f, 120, UNIT);    // 120 > 0.2 x 451 roof points, < 0.2 x 1091
   ball({8.f, 5.f, 5.f}, 2.5f, 500, TREE);        // beside the facade
 
   sg::GroundFilterSettings gf;
@@ -586,6 +590,7 @@ TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
   };
   for (int s = 0; s < 4; ++s)
     EXPECT_EQ(labelOf(STOREY + s), labelOf(ROOF)) << "storey " << s;
+  EXPECT_EQ(labelOf(UNIT), labelOf(ROOF));
   EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
   EXPECT_NE(labelOf(TREE), labelOf(ROOF));
   EXPECT_NE(labelOf(TREE), labelOf(GROUND));
