@@ -273,7 +273,8 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   const auto pieceKinds = [&](const std::vector<SegmentShape>& all) {
     std::vector<SegmentKind> kind = kindsOf(all);
     for (std::size_t s = rep.segments_before; s < all.size(); ++s)
-      if (kind[s] != SegmentKind::Linear && hasRoughPoints(all[s], rep.ground_residual, settings.kinds))
+      if (kind[s] != SegmentKind::Linear &&
+          hasRoughPoints(all[s], rep.ground_residual, settings.kinds))
         kind[s] = SegmentKind::Rough;
     return kind;
   };
@@ -284,7 +285,8 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
                                              settings.max_link_length, labels, origin);
     if (rep.detached_points > 0) {
       const auto pieces = segmentShapes(points, labels, residuals, ground);
-      rep.detached_points = restoreTerrainPieces(pieceKinds(pieces), rep.segments_before, origin, labels);
+      rep.detached_points =
+          restoreTerrainPieces(pieceKinds(pieces), rep.segments_before, origin, labels);
       shapes = segmentShapes(points, labels, residuals, ground);
       kind = pieceKinds(shapes);
     }

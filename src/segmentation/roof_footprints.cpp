@@ -91,7 +91,8 @@ buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
   std::unordered_map<std::int64_t, RoofCell> own, spread;
   for (const auto& [key, by_root] : count)
     own[key].root = std::max_element(by_root.begin(), by_root.end(), [&size](auto& a, auto& b) {
-                      return a.second < b.second || (a.second == b.second && size[a.first] < size[b.first]);
+                      return a.second < b.second ||
+                             (a.second == b.second && size[a.first] < size[b.first]);
                     })->first;
   std::unordered_map<std::int64_t, int> owner;
   for (const auto& [key, rc] : own)
@@ -147,7 +148,8 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
       eligible[static_cast<std::size_t>(groups.find(static_cast<int>(i)))] = 0;
   const double cell = std::sqrt(c.max_sq);
   const int reach = static_cast<int>(std::ceil(s.footprint_margin / cell));
-  const auto footprint = buildingFootprints(c, kind, size, cell, reach, s.min_links, groups, building);
+  const auto footprint =
+      buildingFootprints(c, kind, size, cell, reach, s.min_links, groups, building);
   std::fill(size.begin(), size.end(), 0);  // touching roofs may have joined
   for (std::size_t p = 0; p < c.labels.size(); ++p)
     if (c.labels[p] >= 0)
@@ -159,7 +161,8 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
       continue;
     const int root = groups.find(c.labels[p]);
     const auto it = footprint.find(cellKey(c.points[p], cell));
-    if (!eligible[static_cast<std::size_t>(root)] || it == footprint.end() || it->second.root == root)
+    if (!eligible[static_cast<std::size_t>(root)] || it == footprint.end() ||
+        it->second.root == root)
       continue;
     auto& count = under[{root, it->second.root}];
     ++count.first;

@@ -24,8 +24,9 @@
 /// footprint_margin, joins it if it is small beside it (a chimney whose k-NN links never leave
 /// it: enclosure_size_ratio) or if those points also lie below the roof, whatever its size (a
 /// facade with balconies under the eaves of a roof strip that the tile edge left, a lower
-/// annex under the eaves; a crown over a roof lies above it). Nothing joins the ground, and lines never join lines:
-/// two spans of a wire meet end to end at their tower.
+/// annex under the eaves; a crown over a roof lies above it). A building stays one after a
+/// rough facade has joined it. Nothing joins the ground, and lines never join lines: two spans
+/// of a wire meet end to end at their tower.
 /// Kinds come from the segments before any join, so the joins do not depend on their order.
 
 #include <pcl_ls3d/segmentation/segment_adjacency.h>
