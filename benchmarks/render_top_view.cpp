@@ -4,12 +4,16 @@
 ///        another segment are darkened so segment borders (and fragmentation) are visible.
 ///
 /// Usage: render_top_view INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class]
+///                       [-crop x0,x1,y0,y1] [-view top|north|east|south|west]
 ///   INPUT  SEGMENTS.pcd of pcl_ls3d_segment (x y z rgba label), or any cloud pcl_ls3d reads
 ///          (-by class colours by the LAS classification / PCD label with a fixed palette)
 ///   -pixel pixel size in cloud units (default 0.25)
 ///   -splat each point also paints the pixels within n of its own (default 1: 3 × 3)
 ///   -by    rgb: the file's colours (default for PCD with rgba); label: a colour per label;
 ///          class: ASPRS palette (ground brown, vegetation greens, building red, wire yellow)
+///   -crop  keep only points with x0 ≤ x ≤ x1 and y0 ≤ y ≤ y1 (the file's local coordinates)
+///   -view  top (default); or a side view looking north, east, south or west, the nearest
+///          point per pixel shown (facades, storeys, what hangs under a roof)
 /// Not run by CTest: a viewing aid for docs/BENCHMARKS.md.
 
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
@@ -81,6 +85,38 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
   return true;
 }
 
+/// Keeps the points inside the crop box.
+void
+crop(const std::vector<float>& box, std::vector<Sample>& pts)
+{
+  if (box.size() != 4)
+    return;
+  pts.erase(std::remove_if(pts.begin(), pts.end(), [&box](const Sample& p) {
+              return p.x < box[0] || p.x > box[1] || p.y < box[2] || p.y > box[3];
+            }), pts.end());
+}
+
+/// Turns a side view into the top view the renderer draws: image x to the viewer's right,
+/// image y up, and "height" = nearness to the viewer.
+bool
+toView(const std::string& view, std::vector<Sample>& pts)
+{
+  for (auto& p : pts) {
+    const float x = p.x, y = p.y, z = p.z;
+    if (view == "north")
+      p = {x, z, -y, p.rgb, p.label};
+    else if (view == "east")
+      p = {-y, z, -x, p.rgb, p.label};
+    else if (view == "south")
+      p = {-x, z, y, p.rgb, p.label};
+    else if (view == "west")
+      p = {y, z, x, p.rgb, p.label};
+    else if (view != "top")
+      return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 int
@@ -88,7 +124,8 @@ main(int argc, char** argv)
 {
   std::vector<int> files = pcl::console::parse_file_extension_argument(argc, argv, ".png");
   if (argc < 3 || files.empty()) {
-    std::printf("Usage: %s INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class]\n", argv[0]);
+    std::printf("Usage: %s INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class] "
+                "[-crop x0,x1,y0,y1] [-view top|north|east|south|west]\n", argv[0]);
     return 1;
   }
   double pixel = 0.25;
@@ -97,9 +134,15 @@ main(int argc, char** argv)
   pcl::console::parse_argument(argc, argv, "-pixel", pixel);
   pcl::console::parse_argument(argc, argv, "-splat", splat);
   pcl::console::parse_argument(argc, argv, "-by", by);
+  std::vector<float> box;
+  pcl::console::parse_x_arguments(argc, argv, "-crop", box);
+  std::string view = "top";
+  pcl::console::parse_argument(argc, argv, "-view", view);
   const std::string input = argv[1], output = argv[files.front()];
   std::vector<Sample> pts;
-  if (!(pixel > 0.0) || splat < 0 || !loadSamples(input, by, pts) || pts.empty()) {
+  const bool loaded = loadSamples(input, by, pts);
+  crop(box, pts);
+  if (!(pixel > 0.0) || splat < 0 || !loaded || !toView(view, pts) || pts.empty()) {
     std::fprintf(stderr, "render_top_view: cannot read '%s' or bad options\n", input.c_str());
     return 1;
   }

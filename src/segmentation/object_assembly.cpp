@@ -3,22 +3,22 @@
 
 #include <pcl_ls3d/segmentation/object_assembly.h>
 
+#include "assembly_groups.h"
+#include "roof_footprints.h"
+
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <map>
 #include <numeric>
-#include <unordered_map>
 
 namespace pcl_ls3d {
 namespace segmentation {
 namespace {
 
-bool
-structural(SegmentKind k)
-{
-  return k == SegmentKind::Solid || k == SegmentKind::Wall;
-}
+using detail::Contacts;
+using detail::Groups;
+using detail::structural;
+
 
 /// May two touching segments (a, b) with \a links links join symmetrically? Linear segments
 /// never do: two spans of a wire meet end to end at their tower, and joining them would make
@@ -39,41 +39,6 @@ joinable(int a, int b, std::size_t links, const std::vector<SegmentKind>& kind,
     return true;
   return false;
 }
-
-/// The point-level contacts the attachments look at.
-struct Contacts
-{
-  const std::vector<Eigen::Vector3f>& points;
-  const std::vector<int>& graph;
-  int graph_k;
-  const std::vector<int>& labels;
-  double max_sq;
-};
-
-/// Union-find over segments.
-class Groups
-{
-public:
-  explicit Groups(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int s)
-  {
-    while (parent_[static_cast<std::size_t>(s)] != s) {
-      const int up = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(s)])];
-      parent_[static_cast<std::size_t>(s)] = up;
-      s = up;
-    }
-    return s;
-  }
-  void unite(int a, int b)
-  {
-    const int ra = find(a), rb = find(b);
-    if (ra != rb)
-      parent_[static_cast<std::size_t>(std::max(ra, rb))] = std::min(ra, rb);
-  }
-
-private:
-  std::vector<int> parent_;
-};
 
 /// A piece detached from the ground (detachRaisedPoints) joins the one non-ground group it has
 /// most links with (the hedge above its foot, the wall above its foot), or stays alone (low
@@ -209,126 +174,6 @@ attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<Segm
   }
 }
 
-/// Horizontal grid cell key of a point (cells of \a cell; 2^21 cells per axis around 0).
-std::int64_t
-cellKey(const Eigen::Vector3f& p, double cell, int dx = 0, int dy = 0)
-{
-  const auto ix = static_cast<std::int64_t>(std::floor(p.x() / cell)) + dx + (1 << 20);
-  const auto iy = static_cast<std::int64_t>(std::floor(p.y() / cell)) + dy + (1 << 20);
-  return (ix << 22) | iy;
-}
-
-/// Two buildings whose roofs touch in plan (at least \a min_contacts cells of one within
-/// \a reach cells of the other) are one building: a roof step, where the wall between the
-/// levels holds too few points for the k-NN links, or an annex under the main roof's eaves.
-void
-joinTouchingRoofs(const std::unordered_map<std::int64_t, int>& own, int reach,
-                  std::size_t min_contacts, Groups& groups)
-{
-  std::map<std::pair<int, int>, std::size_t> contacts;
-  for (const auto& [key, a] : own) {
-    std::vector<int> seen;
-    for (int dx = -reach; dx <= reach; ++dx)
-      for (int dy = -reach; dy <= reach; ++dy) {
-        const auto it = own.find(key + dx * (std::int64_t{1} << 22) + dy);  // dx < 0: no shift
-        if (it != own.end() && it->second != a &&
-            std::find(seen.begin(), seen.end(), it->second) == seen.end()) {
-          seen.push_back(it->second);
-          ++contacts[{std::min(a, it->second), std::max(a, it->second)}];
-        }
-      }
-  }
-  for (const auto& [pair, count] : contacts)
-    if (count >= min_contacts)
-      groups.unite(pair.first, pair.second);
-}
-
-/// Per horizontal cell: the building group (most of its points in roof or wall segments) with
-/// most points in it, spread over the cells within \a reach of it (a cell keeps its own).
-std::unordered_map<std::int64_t, int>
-buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
-                   const std::vector<std::size_t>& size, double cell, int reach,
-                   std::size_t min_contacts, Groups& groups)
-{
-  std::vector<std::size_t> structural_points(size.size(), 0);
-  for (std::size_t p = 0; p < c.labels.size(); ++p)
-    if (c.labels[p] >= 0 && structural(kind[static_cast<std::size_t>(c.labels[p])]))
-      ++structural_points[static_cast<std::size_t>(groups.find(c.labels[p]))];
-  std::unordered_map<std::int64_t, std::map<int, std::size_t>> count;
-  for (std::size_t p = 0; p < c.labels.size(); ++p) {
-    if (c.labels[p] < 0 || !structural(kind[static_cast<std::size_t>(c.labels[p])]))
-      continue;
-    const auto root = static_cast<std::size_t>(groups.find(c.labels[p]));
-    if (2 * structural_points[root] > size[root])
-      ++count[cellKey(c.points[p], cell)][static_cast<int>(root)];
-  }
-  std::unordered_map<std::int64_t, int> own, spread;
-  for (const auto& [key, by_root] : count)
-    own[key] = std::max_element(by_root.begin(), by_root.end(), [&size](auto& a, auto& b) {
-                 return a.second < b.second || (a.second == b.second && size[a.first] < size[b.first]);
-               })->first;
-  joinTouchingRoofs(own, reach, min_contacts, groups);
-  for (auto& [key, root] : own)
-    root = groups.find(root);
-  for (std::size_t p = 0; p < c.labels.size(); ++p) {
-    if (c.labels[p] < 0 || !own.count(cellKey(c.points[p], cell)))
-      continue;
-    const int root = own[cellKey(c.points[p], cell)];
-    for (int dx = -reach; dx <= reach; ++dx)
-      for (int dy = -reach; dy <= reach; ++dy) {
-        const std::int64_t key = cellKey(c.points[p], cell, dx, dy);
-        if (!own.count(key))
-          spread.emplace(key, root);
-      }
-  }
-  for (const auto& [key, root] : own)
-    spread[key] = root;
-  return spread;
-}
-
-/// A non-ground group whose points lie (footprint_share of them) on or under one building's
-/// roof in plan, within footprint_margin of it, and which is at most enclosure_size_ratio of
-/// that building, joins it: chimneys and roof units (dense blobs whose k-NN links stay inside
-/// themselves), facades with balconies under the eaves. A tree beside a house has most of its
-/// crown outside the footprint.
-void
-attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
-                 const AssemblySettings& s, Groups& groups)
-{
-  const std::size_t n = kind.size();
-  std::vector<std::size_t> size(n, 0);
-  std::vector<char> eligible(n, 1);
-  for (std::size_t p = 0; p < c.labels.size(); ++p)
-    if (c.labels[p] >= 0)
-      ++size[static_cast<std::size_t>(groups.find(c.labels[p]))];
-  for (std::size_t i = 0; i < n; ++i)
-    if (kind[i] == SegmentKind::Ground)
-      eligible[static_cast<std::size_t>(groups.find(static_cast<int>(i)))] = 0;
-  const double cell = std::sqrt(c.max_sq);
-  const int reach = static_cast<int>(std::ceil(s.footprint_margin / cell));
-  const auto footprint = buildingFootprints(c, kind, size, cell, reach, s.min_links, groups);
-  std::fill(size.begin(), size.end(), 0);  // touching roofs may have joined
-  for (std::size_t p = 0; p < c.labels.size(); ++p)
-    if (c.labels[p] >= 0)
-      ++size[static_cast<std::size_t>(groups.find(c.labels[p]))];
-  std::map<std::pair<int, int>, std::size_t> under;  // (group, building) -> points
-  for (std::size_t p = 0; p < c.labels.size(); ++p) {
-    if (c.labels[p] < 0)
-      continue;
-    const int root = groups.find(c.labels[p]);
-    const auto it = footprint.find(cellKey(c.points[p], cell));
-    if (eligible[static_cast<std::size_t>(root)] && it != footprint.end() && it->second != root)
-      ++under[{root, it->second}];
-  }
-  for (const auto& [pair, count] : under) {
-    const auto group = static_cast<std::size_t>(pair.first);
-    const auto building = static_cast<std::size_t>(pair.second);
-    if (static_cast<double>(count) >= s.footprint_share * static_cast<double>(size[group]) &&
-        static_cast<double>(size[group]) <= s.enclosure_size_ratio * static_cast<double>(size[building]))
-      groups.unite(pair.first, pair.second);
-  }
-}
-
 /// Points of a ground segment that the ground filter rejects (higher above the opened terrain
 /// than its noise allowance) are not ground: the foot of a hedge, low vegetation, a wall's foot
 /// that the planar growth carried along the terrain. They leave the segment as new segments, one
@@ -423,6 +268,16 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   };
   auto shapes = segmentShapes(points, labels, residuals, ground);
   rep.segments_before = shapes.size();
+  // Pieces detached from the ground are judged by their points: a flat patch of low
+  // vegetation, rough in its points, is vegetation standing on the terrain, not a roof.
+  const auto pieceKinds = [&](const std::vector<SegmentShape>& all) {
+    std::vector<SegmentKind> kind = kindsOf(all);
+    for (std::size_t s = rep.segments_before; s < all.size(); ++s)
+      if (kind[s] != SegmentKind::Linear &&
+          hasRoughPoints(all[s], rep.ground_residual, settings.kinds))
+        kind[s] = SegmentKind::Rough;
+    return kind;
+  };
   std::vector<SegmentKind> kind = kindsOf(shapes);
   if (settings.detach_raised_points) {
     std::vector<int> origin;
@@ -430,9 +285,10 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
                                              settings.max_link_length, labels, origin);
     if (rep.detached_points > 0) {
       const auto pieces = segmentShapes(points, labels, residuals, ground);
-      rep.detached_points = restoreTerrainPieces(kindsOf(pieces), rep.segments_before, origin, labels);
+      rep.detached_points =
+          restoreTerrainPieces(pieceKinds(pieces), rep.segments_before, origin, labels);
       shapes = segmentShapes(points, labels, residuals, ground);
-      kind = kindsOf(shapes);
+      kind = pieceKinds(shapes);
     }
   }
   for (const SegmentKind k : kind)
@@ -462,11 +318,12 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
                           settings.max_link_length * settings.max_link_length};
   // Attachments see groups, and each one can complete another (a roof takes its chimney, then
   // the edge line along both): repeat until nothing joins.
+  std::vector<char> building(shapes.size(), 0);  // per segment: in a building group
   for (std::size_t before = 0, after = 1; before != after;) {
     before = countRoots(groups, shapes.size());
     attachLines(contacts, shapes, kind, settings, groups);
     attachEnclosed(adjacency, shapes, kind, on_terrain, settings, groups);
-    attachUnderRoofs(contacts, kind, settings, groups);
+    detail::attachUnderRoofs(contacts, kind, settings, groups, building);
     after = countRoots(groups, shapes.size());
   }
   std::vector<int> dense(shapes.size(), -1);

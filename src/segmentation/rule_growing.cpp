@@ -17,6 +17,7 @@ struct Rules
   double cos_principal;
   double cos_normal;
   double growth_sq;
+  double plane_tol;  ///< growth radius × sin N_t: how far off a tangent plane one step may go
   double volumetric_sq;
   bool seed_condition;
   double residual_threshold;
@@ -34,7 +35,10 @@ joins(std::size_t i, std::size_t j, const std::vector<Eigen::Vector3f>& points,
     return d2 <= r.growth_sq &&
            std::abs(features[i].principal.dot(features[j].principal)) >= r.cos_principal;
   case Dimensionality::Planar:
-    return d2 <= r.growth_sq && std::abs(normals[i].dot(normals[j])) >= r.cos_normal;
+    // On i's tangent plane too (an addition to the paper): a parallel surface beside a roof
+    // edge (a crown's or hedge's top, a roof step) is not the roof.
+    return d2 <= r.growth_sq && std::abs(normals[i].dot(normals[j])) >= r.cos_normal &&
+           std::abs(static_cast<double>(normals[i].dot(points[j] - points[i]))) <= r.plane_tol;
   case Dimensionality::Volumetric:
     return d2 <= r.volumetric_sq;
   default:
@@ -106,6 +110,7 @@ growRegions(const std::vector<Eigen::Vector3f>& points,
   r.cos_principal = std::cos(settings.principal_angle);
   r.cos_normal = std::cos(settings.normal_angle);
   r.growth_sq = settings.growth_radius * settings.growth_radius;
+  r.plane_tol = settings.growth_radius * std::sin(settings.normal_angle);
   r.volumetric_sq = settings.volumetric_radius * settings.volumetric_radius;
   r.seed_condition = settings.use_seed_condition && std::isfinite(settings.residual_threshold);
   r.residual_threshold = settings.residual_threshold;

@@ -66,12 +66,20 @@ kindOf(const SegmentShape& sh, double ground_residual, const KindSettings& s)
   const double l1 = sh.lambda[2], l2 = sh.lambda[1], l3 = sh.lambda[0];
   if (sh.n >= 3 && l1 > 0.0 && std::sqrt(l2 / l1) < s.linear_ratio)
     return SegmentKind::Linear;
-  if (sh.median_residual > s.roughness_ratio * ground_residual)
+  // Flat at its own scale: a surface, however rough its points (a facade with windows and
+  // recesses, a gravel roof); vegetation is volumetric at the segment's scale.
+  const bool flat = sh.n >= 3 && l2 > 0.0 && std::sqrt(l3 / l2) < s.flat_ratio;
+  if (!flat && hasRoughPoints(sh, ground_residual, s))
     return SegmentKind::Rough;
-  if (sh.n >= 3 && l2 > 0.0 && std::sqrt(l3 / l2) < s.flat_ratio &&
-      std::abs(sh.normal.z()) < s.wall_normal_z)
+  if (flat && std::abs(sh.normal.z()) < s.wall_normal_z)
     return SegmentKind::Wall;
   return SegmentKind::Solid;
+}
+
+bool
+hasRoughPoints(const SegmentShape& sh, double ground_residual, const KindSettings& s)
+{
+  return sh.median_residual > s.roughness_ratio * ground_residual;
 }
 
 double

@@ -386,9 +386,12 @@ TEST(MultiRuleRegionGrowing, PclStyleApi)
   EXPECT_EQ(total, lidar->size());
 }
 
-// setInputNormals replaces the computed normals in the planar rule: with every normal set to
-// +z, roof and wall (both planar sets) grow into one segment although their true normals are
-// 90° apart; a normal cloud of the wrong size is refused.
+// setInputNormals replaces the computed normals in the planar rule: supplied normals that
+// turn by 20° halfway across the roof (more than N_t) cut the flat roof in two, where the
+// computed normals keep it one segment; a normal cloud of the wrong size is refused. (Until
+// the planar rule also required a neighbour on the tangent plane, this test supplied +z
+// normals everywhere and expected roof and wall to grow into one segment; a wall is never on
+// a roof's tangent plane, whatever normals are supplied.)
 TEST(MultiRuleRegionGrowing, InputNormalsAreUsed)
 {
   std::mt19937 rng(8);
@@ -406,19 +409,26 @@ TEST(MultiRuleRegionGrowing, InputNormalsAreUsed)
   s.extract(clusters);
   auto l = labelsOf(clusters, c->size());
   const std::size_t wall_mid = roof_end + (c->size() - roof_end) / 2;  // (3.05, 1.5, 1.5)
-  const std::size_t roof_mid = 15 * 31 + 15;                             // (1.5, 1.5, 3)
-  ASSERT_LT(roof_mid, roof_end);
-  ASSERT_GE(l[roof_mid], 0);
-  EXPECT_NE(l[roof_mid], l[wall_mid]) << "computed normals keep roof and wall apart";
+  const std::size_t roof_left = 7 * 31 + 15;                             // (0.7, 1.5, 3)
+  const std::size_t roof_right = 22 * 31 + 15;                           // (2.2, 1.5, 3)
+  ASSERT_LT(roof_right, roof_end);
+  ASSERT_GE(l[roof_left], 0);
+  EXPECT_NE(l[roof_left], l[wall_mid]) << "computed normals keep roof and wall apart";
+  EXPECT_EQ(l[roof_left], l[roof_right]) << "computed normals keep the flat roof whole";
 
-  pcl::PointCloud<pcl::Normal>::Ptr up(new pcl::PointCloud<pcl::Normal>);
-  up->resize(c->size(), pcl::Normal(0.f, 0.f, 1.f));
-  s.setInputNormals(up);
+  pcl::PointCloud<pcl::Normal>::Ptr given(new pcl::PointCloud<pcl::Normal>);
+  given->resize(c->size(), pcl::Normal(1.f, 0.f, 0.f));  // the wall's own normal
+  const float tilt = 20.f * static_cast<float>(M_PI) / 180.f;
+  for (std::size_t i = 0; i < roof_end; ++i)
+    (*given)[i] = (*c)[i].x < 1.5f ? pcl::Normal(0.f, 0.f, 1.f)
+                                   : pcl::Normal(std::sin(tilt), 0.f, std::cos(tilt));
+  s.setInputNormals(given);
   s.extract(clusters);
   l = labelsOf(clusters, c->size());
-  EXPECT_EQ(l[roof_mid], l[wall_mid]) << "supplied normals must drive the planar rule";
+  ASSERT_GE(l[roof_left], 0);
+  EXPECT_NE(l[roof_left], l[roof_right]) << "supplied normals must drive the planar rule";
 
-  up->resize(10);
+  given->resize(10);
   s.extract(clusters);
   EXPECT_TRUE(clusters.empty());
 }

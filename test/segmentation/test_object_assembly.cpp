@@ -525,3 +525,133 @@ TEST(ObjectAssembly, RoofPlanesHoldNoWallOrNeighbourFragments)
   EXPECT_LE(two.wall, 150u) << two.wall << " wall points in roof-plane segments";
   EXPECT_LE(two.other_plane, 95u) << two.other_plane << " points of another roof plane";
 }
+
+// The east facade of a building that stands outside the tile's west edge (77050_627755): all
+// the tile holds of it is a 2.5 m strip of its flat roof and, under the eaves, a facade of
+// four storeys with 1 m deep balconies (rough, as scattered as a crown). The facade is larger
+// than the roof strip, so the size ratio that keeps crowns off roofs kept it out; it lies
+// under the roof in plan and below it, so it joins. A rough roof unit on the strip, larger
+// than a fifth of the strip but not of strip and facade, then joins too: the building stays
+// a building although its rough facade now outweighs its roof. A crown resting on the roof
+// strip (above it, larger than a fifth of the building) and a tree beside the facade stay
+// trees.
+TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
+{
+  namespace sg = pcl_ls3d::segmentation;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f), b(-1.f, 1.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> labels;
+  std::vector<float> residuals;
+  enum { ROOF, GROUND, CROWN, TREE, UNIT, STOREY };  // storeys: STOREY + 0..3
+  const auto push = [&](const Eigen::Vector3f& p, int l, float r) {
+    pts.push_back(p);
+    labels.push_back(l);
+    residuals.push_back(r);
+  };
+  for (float x = 0.f; x <= 2.5f; x += 0.25f)
+    for (float y = 0.f; y <= 10.f; y += 0.25f)
+      push({x, y, 15.f + n(rng)}, ROOF, 0.01f);
+  for (int s = 0; s < 4; ++s)
+    for (int i = 0; i < 160; ++i)
+      push({1.5f + u(rng), 10.f * u(rng), 0.5f + 3.4f * static_cast<float>(s) + 3.f * u(rng)},
+           STOREY + s, 0.2f);
+  for (float x = 2.8f; x <= 20.f; x += 0.3f)
+    for (float y = -6.f; y <= 16.f; y += 0.3f)
+      push({x, y, n(rng)}, GROUND, 0.01f);
+  const auto ball = [&](const Eigen::Vector3f& c, float r, int count, int l) {
+    for (int i = 0; i < count;) {
+      const Eigen::Vector3f d(b(rng), b(rng), b(rng));
+      if (d.norm() <= 1.f) {
+        push(c + r * d, l, 0.2f);
+        ++i;
+      }
+    }
+  };
+  ball({1.25f, 8.5f, 16.5f}, 1.2f, 300, CROWN);  // rests on the roof strip, 15.3-17.7 m
+  ball({1.25f, 2.f, 15.8f}, 0.5f, 120, UNIT);    // 120 > 0.2 x 451 roof points, < 0.2 x 1091
+  ball({8.f, 5.f, 5.f}, 2.5f, 500, TREE);        // beside the facade
+
+  sg::GroundFilterSettings gf;
+  gf.cell = 0.6;
+  const std::vector<char> ground = sg::groundPoints(pts, gf);
+  const std::vector<int> graph = knnGraph(pts, 16);
+  sg::AssemblySettings a;
+  a.max_link_length = 0.8;
+  std::vector<int> out = labels;
+  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  const auto labelOf = [&](int part) {
+    std::map<int, std::size_t> count;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      if (labels[i] == part)
+        ++count[out[i]];
+    return std::max_element(count.begin(), count.end(),
+                            [](auto& x, auto& y) { return x.second < y.second; })->first;
+  };
+  for (int s = 0; s < 4; ++s)
+    EXPECT_EQ(labelOf(STOREY + s), labelOf(ROOF)) << "storey " << s;
+  EXPECT_EQ(labelOf(UNIT), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
+  EXPECT_NE(labelOf(TREE), labelOf(ROOF));
+  EXPECT_NE(labelOf(TREE), labelOf(GROUND));
+}
+
+// A flat roof of gravel (point residuals 5 x the ground's, but a thin sheet at its own scale)
+// with a crown touching its east eave (77060_627760). Taken as rough, the roof joined the
+// crown rough-to-rough and its walls stayed apart; flat, it is a roof: walls join it, the
+// crown stays a tree.
+TEST(ObjectAssembly, RoughFlatRoofIsARoofNotATree)
+{
+  namespace sg = pcl_ls3d::segmentation;
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> n(-0.02f, 0.02f), gravel(-0.05f, 0.05f), b(-1.f, 1.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> labels;
+  std::vector<float> residuals;
+  enum { ROOF, WALL, GROUND, CROWN };
+  const auto push = [&](float x, float y, float z, int l, float r) {
+    pts.emplace_back(x, y, z);
+    labels.push_back(l);
+    residuals.push_back(r);
+  };
+  for (float x = 0.f; x <= 10.f; x += 0.25f)
+    for (float y = 0.f; y <= 10.f; y += 0.25f)
+      push(x, y, 6.f + gravel(rng), ROOF, 0.05f);
+  for (float t = 0.f; t <= 10.f; t += 0.5f)
+    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
+      push(t, n(rng), z, WALL, 0.01f);
+      push(t, 10.f + n(rng), z, WALL, 0.01f);
+      push(n(rng), t, z, WALL, 0.01f);
+    }
+  for (float x = -8.f; x <= 22.f; x += 0.3f)
+    for (float y = -8.f; y <= 18.f; y += 0.3f)
+      if (x < -0.3f || x > 10.3f || y < -0.3f || y > 10.3f)
+        push(x, y, n(rng), GROUND, 0.01f);
+  for (int i = 0; i < 400;) {  // crown: radius 2 m, its west side on the eave at x = 10
+    const Eigen::Vector3f d(b(rng), b(rng), b(rng));
+    if (d.norm() > 1.f)
+      continue;
+    const Eigen::Vector3f p = Eigen::Vector3f(12.f, 5.f, 6.5f) + 2.f * d;
+    push(p.x(), p.y(), p.z(), CROWN, 0.2f);
+    ++i;
+  }
+  sg::GroundFilterSettings gf;
+  gf.cell = 0.6;
+  const std::vector<char> ground = sg::groundPoints(pts, gf);
+  const std::vector<int> graph = knnGraph(pts, 16);
+  sg::AssemblySettings a;
+  a.max_link_length = 0.8;
+  std::vector<int> out = labels;
+  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  const auto labelOf = [&](int part) {
+    std::map<int, std::size_t> count;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      if (labels[i] == part)
+        ++count[out[i]];
+    return std::max_element(count.begin(), count.end(),
+                            [](auto& x, auto& y) { return x.second < y.second; })->first;
+  };
+  EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(GROUND));
+}

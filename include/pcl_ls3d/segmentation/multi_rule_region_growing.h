@@ -34,7 +34,8 @@ namespace pcl_ls3d {
 ///     come from the same neighbourhood.
 ///  2. growing per set, over the k-NN graph (setNumberOfNeighbours) restricted to the set:
 ///     linear: principal directions within M_t and distance ≤ growth radius;
-///     planar: normals within N_t and distance ≤ growth radius;
+///     planar: normals within N_t, distance ≤ growth radius and (an addition) the neighbour
+///     within growth radius × sin N_t of the tangent plane (rule_growing.h);
 ///     volumetric: Euclidean connectivity within the volumetric radius (vegetation has no
 ///     stable normal or direction, so only proximity is meaningful; the radius follows the
 ///     local point spacing so it adapts to density).

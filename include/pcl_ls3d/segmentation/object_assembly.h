@@ -19,10 +19,14 @@
 /// a wire span touching its tower with its last points stays a span); a group, not mostly
 /// rough, whose contacts go (enclosure_share) to one building at least 20 times its size joins
 /// that building (a dormer, a roof window; a rough group — a crown leaning over the roof, or a
-/// chimney's scattered returns — joins only by the footprint rule); a group lying in plan (footprint_share of its points) on
-/// or under one building's roof, widened by footprint_margin, joins it (a chimney whose k-NN
-/// links never leave it, a facade with balconies under the eaves). Nothing joins the ground, and lines never join lines:
-/// two spans of a wire meet end to end at their tower.
+/// chimney's scattered returns — joins only by the footprint rule); a group lying in plan
+/// (footprint_share of its points) on or under one building's roof, widened by
+/// footprint_margin, joins it if it is small beside it (a chimney whose k-NN links never leave
+/// it: enclosure_size_ratio) or if those points also lie below the roof, whatever its size (a
+/// facade with balconies under the eaves of a roof strip that the tile edge left, a lower
+/// annex under the eaves; a crown over a roof lies above it). A building stays one after a
+/// rough facade has joined it. Nothing joins the ground, and lines never join lines: two spans
+/// of a wire meet end to end at their tower.
 /// Kinds come from the segments before any join, so the joins do not depend on their order.
 
 #include <pcl_ls3d/segmentation/segment_adjacency.h>
@@ -54,6 +58,7 @@ struct AssemblySettings
   double enclosure_size_ratio = 0.2;  ///< ... if at most this fraction of the building's size
   double footprint_share = 0.8;  ///< share of a group's points on or under one building's roof
                                  ///< (in plan) to join it, if at most enclosure_size_ratio of it
+                                 ///< or if that share also lies below the roof
   double footprint_margin = 0.75; ///< the roof's plan reaches this far past its points (eaves,
                                  ///< balconies)
   bool detach_raised_points = true;  ///< points of a ground segment that the ground filter

@@ -30,7 +30,11 @@ struct GrowingSettings
 ///
 /// A neighbour j of i (both in the same set, j in i's graph row) joins i's segment when
 ///  - linear:     |d_i · d_j| ≥ cos M_t and ‖p_i − p_j‖ ≤ growth_radius;
-///  - planar:     |n_i · n_j| ≥ cos N_t and ‖p_i − p_j‖ ≤ growth_radius;
+///  - planar:     |n_i · n_j| ≥ cos N_t and ‖p_i − p_j‖ ≤ growth_radius, and (an addition to
+///                the paper) p_j on i's tangent plane: |n_i · (p_j − p_i)| ≤ growth_radius ·
+///                sin N_t, the offset a plane tilted by N_t reaches over one step. Without it
+///                a parallel surface beside a roof edge (the top of a crown or hedge, a step
+///                of a few decimetres) grows into the roof;
 ///  - volumetric: ‖p_i − p_j‖ ≤ volumetric_radius.
 /// Seeds are taken in order of increasing residual (as pcl::RegionGrowing orders by curvature).
 /// With the seed condition, a planar point other than the seed propagates only if its residual
