@@ -47,21 +47,30 @@ struct Scratch
   fs::path dir;
 };
 
+/// Li's surface with `percent` of the nodes raised by N(c σ, σ) at `position`, written as
+/// s/ref.pcd (binary) and s/epoch.pcd (ASCII), as a user's files would come.
+synth::LiSurface
+writeLiPair(const Scratch& s, double percent, double c, synth::DeformationPosition position)
+{
+  synth::LiSurfaceSettings ls;
+  ls.deformation_percent = percent;
+  ls.deformation_c = c;
+  ls.position = position;
+  synth::LiSurface li = synth::makeLiSurface(ls);
+  pcl::PointCloud<pcl::PointXYZ> ref, mate;
+  pcl::copyPointCloud(*li.reference, ref);
+  pcl::copyPointCloud(*li.mate, mate);
+  EXPECT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  EXPECT_EQ(pcl::io::savePCDFileASCII(s.file("epoch.pcd"), mate), 0);
+  return li;
+}
+
 }  // namespace
 
 TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
 {
   const Scratch s;
-  synth::LiSurfaceSettings ls;
-  ls.deformation_percent = 20.0;
-  ls.deformation_c = 10.0;
-  ls.position = synth::DeformationPosition::LOWER_RIGHT;
-  const synth::LiSurface li = synth::makeLiSurface(ls);
-  pcl::PointCloud<pcl::PointXYZ> ref, mate;
-  pcl::copyPointCloud(*li.reference, ref);
-  pcl::copyPointCloud(*li.mate, mate);
-  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
-  ASSERT_EQ(pcl::io::savePCDFileASCII(s.file("epoch.pcd"), mate), 0);
+  const synth::LiSurface li = writeLiPair(s, 20.0, 10.0, synth::DeformationPosition::LOWER_RIGHT);
 
   const auto run = runTool("pcl_ls3d_deformation",
                            s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -o " + s.file("res.pcd") +
@@ -182,16 +191,7 @@ TEST(DeformationTool, BadInputGivesOneErrorLine)
 TEST(DeformationTool, NearHalfMovedIsReportedAsAmbiguous)
 {
   const Scratch s;
-  synth::LiSurfaceSettings ls;
-  ls.deformation_percent = 49.0;
-  ls.deformation_c = 25.0;
-  ls.position = synth::DeformationPosition::MIDDLE;
-  const synth::LiSurface li = synth::makeLiSurface(ls);
-  pcl::PointCloud<pcl::PointXYZ> ref, mate;
-  pcl::copyPointCloud(*li.reference, ref);
-  pcl::copyPointCloud(*li.mate, mate);
-  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
-  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("epoch.pcd"), mate), 0);
+  writeLiPair(s, 49.0, 25.0, synth::DeformationPosition::MIDDLE);
   const auto run = runTool("pcl_ls3d_deformation",
                            s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -json " + s.file("report.json"),
                            s.dir.string());
