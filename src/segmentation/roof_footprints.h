@@ -16,7 +16,8 @@ namespace detail {
 
 /// \brief Joins buildings whose roofs touch in plan, then every non-ground group lying (in
 ///        plan) on or under one building's roof, within footprint_margin of it, when it is small
-///        beside the building or lies below its roof (rules in roof_footprints.cpp).
+///        beside the building or lies below its roof; above the roof, margin cells that open
+///        onto what lies beyond it do not count (rules in roof_footprints.cpp).
 ///        \a building (per segment, all 0 at first) remembers between passes which groups are
 ///        buildings, so a building stays one after a rough facade has joined it.
 void

@@ -24,7 +24,10 @@
 /// footprint_margin, joins it if it is small beside it (a chimney whose k-NN links never leave
 /// it: enclosure_size_ratio) or if those points also lie below the roof, whatever its size (a
 /// facade with balconies under the eaves of a roof strip that the tile edge left, a lower
-/// annex under the eaves; a crown over a roof lies above it). A building stays one after a
+/// annex under the eaves; a crown over a roof lies above it). Above the roof only what stands
+/// on it counts: a point higher than the roof in the margin, where the margin opens onto what
+/// lies beyond the roof, is off the footprint (a crown overhanging the eave stays a tree; the
+/// cells a roof unit hides under itself are enclosed and count). A building stays one after a
 /// rough facade has joined it. Nothing joins the ground, and lines never join lines: two spans
 /// of a wire meet end to end at their tower.
 /// Kinds come from the segments before any join, so the joins do not depend on their order.
@@ -60,7 +63,8 @@ struct AssemblySettings
                                  ///< (in plan) to join it, if at most enclosure_size_ratio of it
                                  ///< or if that share also lies below the roof
   double footprint_margin = 0.75; ///< the roof's plan reaches this far past its points (eaves,
-                                 ///< balconies)
+                                 ///< balconies: for what lies below the roof; above it, only
+                                 ///< margin cells enclosed by the roof count)
   bool detach_raised_points = true;  ///< points of a ground segment that the ground filter
                                     ///< rejects leave it as their own segments
 };
