@@ -127,10 +127,10 @@ buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
   return spread;
 }
 
-/// The groups with points in each plan cell, and the cells the data cover.
+/// The groups with points in each margin cell of a footprint, and the cells the data cover.
 struct PlanOccupancy
 {
-  std::unordered_map<std::int64_t, std::vector<int>> roots;  ///< cell -> groups with points there
+  std::unordered_map<std::int64_t, std::vector<int>> roots;  ///< margin cell -> groups in it
   std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), hi_x = -1;
   std::int64_t lo_y = std::numeric_limits<std::int64_t>::max(), hi_y = -1;
 
@@ -150,7 +150,8 @@ struct PlanOccupancy
 };
 
 PlanOccupancy
-planOccupancy(const Contacts& c, double cell, Groups& groups)
+planOccupancy(const Contacts& c, double cell,
+              const std::unordered_map<std::int64_t, RoofCell>& footprint, Groups& groups)
 {
   PlanOccupancy o;
   for (std::size_t p = 0; p < c.points.size(); ++p) {
@@ -160,6 +161,9 @@ planOccupancy(const Contacts& c, double cell, Groups& groups)
     o.lo_y = std::min(o.lo_y, key & ((std::int64_t{1} << 22) - 1));
     o.hi_y = std::max(o.hi_y, key & ((std::int64_t{1} << 22) - 1));
     if (c.labels[p] < 0)
+      continue;
+    const auto f = footprint.find(key);
+    if (f == footprint.end() || !f->second.margin)
       continue;
     const int root = groups.find(c.labels[p]);
     auto& at = o.roots[key];
@@ -227,7 +231,7 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
   for (std::size_t p = 0; p < c.labels.size(); ++p)
     if (c.labels[p] >= 0)
       ++size[static_cast<std::size_t>(groups.find(c.labels[p]))];
-  const PlanOccupancy occupancy = planOccupancy(c, cell, groups);
+  const PlanOccupancy occupancy = planOccupancy(c, cell, footprint, groups);
   // (group, building) -> points in the footprint, and those of them below the roof
   std::map<std::pair<int, int>, std::pair<std::size_t, std::size_t>> under;
   for (std::size_t p = 0; p < c.labels.size(); ++p) {
