@@ -260,6 +260,39 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
   }
 }
 
+std::vector<std::int8_t>
+roofSides(const Contacts& c, const std::vector<SegmentKind>& kind, const AssemblySettings& s,
+          const Groups& groups)
+{
+  const std::size_t n = kind.size();
+  Groups g = groups;  // touching roofs join only in attachUnderRoofs
+  std::vector<std::size_t> size(n, 0), points(n, 0), under(n, 0);
+  for (std::size_t p = 0; p < c.labels.size(); ++p)
+    if (c.labels[p] >= 0)
+      ++size[static_cast<std::size_t>(g.find(c.labels[p]))];
+  const double cell = std::sqrt(c.max_sq);
+  const int reach = static_cast<int>(std::ceil(s.footprint_margin / cell));
+  std::vector<char> building(n, 0);
+  const auto footprint = buildingFootprints(c, kind, size, cell, reach, s.min_links, g, building);
+  for (std::size_t p = 0; p < c.labels.size(); ++p) {
+    if (c.labels[p] < 0)
+      continue;
+    const auto seg = static_cast<std::size_t>(c.labels[p]);
+    ++points[seg];
+    const auto it = footprint.find(cellKey(c.points[p], cell));
+    under[seg] += it != footprint.end() && !it->second.margin &&
+                  it->second.root != g.find(c.labels[p]) && c.points[p].z() < it->second.top;
+  }
+  std::vector<std::int8_t> side(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] == SegmentKind::Ground || points[i] == 0)
+      continue;
+    const double share = static_cast<double>(under[i]) / static_cast<double>(points[i]);
+    side[i] = share >= s.footprint_share ? 1 : 1.0 - share >= s.footprint_share ? -1 : 0;
+  }
+  return side;
+}
+
 }  // namespace detail
 }  // namespace segmentation
 }  // namespace pcl_ls3d

@@ -8,6 +8,7 @@
 
 #include <pcl_ls3d/segmentation/object_assembly.h>
 
+#include <cstdint>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -23,6 +24,15 @@ namespace detail {
 void
 attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
                  const AssemblySettings& s, Groups& groups, std::vector<char>& building);
+
+/// \brief Per segment, where it lies against the roofs of the buildings formed so far (the
+///        groups mostly in roof and wall segments): +1 if it hangs under one (footprint_share of
+///        its points under that building's own roof cells in plan, below its roof: a balcony row,
+///        a rough facade), −1 if it lies mostly outside every roof (footprint_share of its points
+///        not so), 0 otherwise. Ground segments are 0. \a groups is not changed.
+std::vector<std::int8_t>
+roofSides(const Contacts& c, const std::vector<SegmentKind>& kind, const AssemblySettings& s,
+          const Groups& groups);
 
 }  // namespace detail
 }  // namespace segmentation

@@ -14,12 +14,15 @@
 /// Segments touch through k-NN links no longer than max_link_length (at least min_links of
 /// them). Touching segments join when their kinds belong together: ground with ground; solid
 /// and wall with solid and wall (roof planes and walls: a building); rough with rough (a tree
-/// group). Then, repeated until nothing changes: a linear segment joins the non-linear,
-/// non-ground group that at least edge_share of its points touch (an edge line along its roof;
-/// a wire span touching its tower with its last points stays a span); a group, not mostly
-/// rough, whose contacts go (enclosure_share) to one building at least 20 times its size joins
-/// that building (a dormer, a roof window; a rough group — a crown leaning over the roof, or a
-/// chimney's scattered returns — joins only by the footprint rule); a group lying in plan
+/// group), except that what hangs under a roof (footprint_share of it under the roof's own plan
+/// cells, below the roof: a balcony row) and what lies mostly outside every roof (the hedge at
+/// the facade's foot) never join. Then, repeated until nothing changes: a linear segment joins
+/// the non-linear, non-ground group that at least edge_share of its points touch (an edge line
+/// along its roof; a wire span touching its tower with its last points stays a span); a group,
+/// not mostly rough, whose contacts go (enclosure_share) to one building at least 20 times its
+/// size joins that building (a dormer, a roof window; a rough group — a crown leaning over the
+/// roof, or a chimney's scattered returns — joins only by the footprint rule); a group lying in
+/// plan
 /// (footprint_share of its points) on or under one building's roof, widened by
 /// footprint_margin, joins it if it is small beside it (a chimney whose k-NN links never leave
 /// it: enclosure_size_ratio) or if those points also lie below the roof, whatever its size (a
