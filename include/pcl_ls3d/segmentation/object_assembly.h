@@ -22,8 +22,7 @@
 /// not mostly rough, whose contacts go (enclosure_share) to one building at least 20 times its
 /// size joins that building (a dormer, a roof window; a rough group — a crown leaning over the
 /// roof, or a chimney's scattered returns — joins only by the footprint rule); a group lying in
-/// plan
-/// (footprint_share of its points) on or under one building's roof, widened by
+/// plan (footprint_share of its points) on or under one building's roof, widened by
 /// footprint_margin, joins it if it is small beside it (a chimney whose k-NN links never leave
 /// it: enclosure_size_ratio) or if those points also lie below the roof, whatever its size (a
 /// facade with balconies under the eaves of a roof strip that the tile edge left, a lower
