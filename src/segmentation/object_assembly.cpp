@@ -307,15 +307,20 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
       groups.unite(l.a, l.b);
   // Crowns join crowns only through links as short as the volumetric growth steps: two trees
   // whose crowns come within the (longer) roof-growth radius of each other stay two trees.
+  // What hangs under a roof (a balcony row under the eaves) and what lies outside it (the hedge
+  // at the facade's foot) are not one tree, however rough both are.
   const double rough_length = settings.rough_link_length > 0.0
                                   ? std::min(settings.rough_link_length, settings.max_link_length)
                                   : settings.max_link_length;
-  for (const SegmentLink& l : segmentAdjacency(points, graph, graph_k, labels, rough_length))
-    if (isRough(l.a) && isRough(l.b) && joinable(l.a, l.b, l.links, kind, on_terrain, settings))
-      groups.unite(l.a, l.b);
-  attachTerrainPieces(adjacency, kind, on_terrain, settings, groups);
   const Contacts contacts{points, graph, graph_k, labels,
                           settings.max_link_length * settings.max_link_length};
+  const std::vector<std::int8_t> side = detail::roofSides(contacts, kind, settings, groups);
+  for (const SegmentLink& l : segmentAdjacency(points, graph, graph_k, labels, rough_length))
+    if (isRough(l.a) && isRough(l.b) &&
+        side[static_cast<std::size_t>(l.a)] * side[static_cast<std::size_t>(l.b)] >= 0 &&
+        joinable(l.a, l.b, l.links, kind, on_terrain, settings))
+      groups.unite(l.a, l.b);
+  attachTerrainPieces(adjacency, kind, on_terrain, settings, groups);
   // Attachments see groups, and each one can complete another (a roof takes its chimney, then
   // the edge line along both): repeat until nothing joins.
   std::vector<char> building(shapes.size(), 0);  // per segment: in a building group

@@ -55,6 +55,7 @@ struct RoofCell
 {
   int root = -1;
   float top = 0.f;
+  bool margin = false;  ///< within reach of the building's cells, no roof or wall point in it
 };
 
 /// Per horizontal cell: the building group (most of its points in roof or wall segments, or
@@ -115,13 +116,85 @@ buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
         const std::int64_t to = key + dx * (std::int64_t{1} << 22) + dy;
         if (own.count(to))
           continue;
-        const auto [it, fresh] = spread.emplace(to, rc);
+        RoofCell edge = rc;
+        edge.margin = true;
+        const auto [it, fresh] = spread.emplace(to, edge);
         if (!fresh && it->second.root == rc.root)
           it->second.top = std::max(it->second.top, rc.top);
       }
   for (const auto& [key, rc] : own)
     spread[key] = rc;
   return spread;
+}
+
+/// The groups with points in each margin cell of a footprint, and the cells the data cover.
+struct PlanOccupancy
+{
+  std::unordered_map<std::int64_t, std::vector<int>> roots;  ///< margin cell -> groups in it
+  std::int64_t lo_x = std::numeric_limits<std::int64_t>::max(), hi_x = -1;
+  std::int64_t lo_y = std::numeric_limits<std::int64_t>::max(), hi_y = -1;
+
+  bool
+  inside(std::int64_t key) const
+  {
+    const std::int64_t x = key >> 22, y = key & ((std::int64_t{1} << 22) - 1);
+    return x >= lo_x && x <= hi_x && y >= lo_y && y <= hi_y;
+  }
+  bool
+  holds(std::int64_t key, int root) const
+  {
+    const auto it = roots.find(key);
+    return it != roots.end() &&
+           std::find(it->second.begin(), it->second.end(), root) != it->second.end();
+  }
+};
+
+PlanOccupancy
+planOccupancy(const Contacts& c, double cell,
+              const std::unordered_map<std::int64_t, RoofCell>& footprint, Groups& groups)
+{
+  PlanOccupancy o;
+  for (std::size_t p = 0; p < c.points.size(); ++p) {
+    const std::int64_t key = cellKey(c.points[p], cell);
+    o.lo_x = std::min(o.lo_x, key >> 22);
+    o.hi_x = std::max(o.hi_x, key >> 22);
+    o.lo_y = std::min(o.lo_y, key & ((std::int64_t{1} << 22) - 1));
+    o.hi_y = std::max(o.hi_y, key & ((std::int64_t{1} << 22) - 1));
+    if (c.labels[p] < 0)
+      continue;
+    const auto f = footprint.find(key);
+    if (f == footprint.end() || !f->second.margin)
+      continue;
+    const int root = groups.find(c.labels[p]);
+    auto& at = o.roots[key];
+    if (std::find(at.begin(), at.end(), root) == at.end())
+      at.push_back(root);
+  }
+  return o;
+}
+
+/// Does margin cell \a key of building \a b open onto what lies beyond b's roof, seen from
+/// group \a g: is one of its four neighbour cells inside the data neither a cell of b's roof nor
+/// a margin cell of b holding g's points? A chimney or roof unit hides the roof under itself, so
+/// the cells it covers hold no roof point; they are enclosed by roof cells and by each other.
+/// Beyond the data's edge nothing is known (a roof cut by the tile edge may go on).
+bool
+opensBeyondRoof(std::int64_t key, int b, int g,
+                const std::unordered_map<std::int64_t, RoofCell>& footprint,
+                const PlanOccupancy& occupancy)
+{
+  constexpr std::pair<int, int> kSides[] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+  for (const auto& [dx, dy] : kSides) {
+    const std::int64_t to = key + dx * (std::int64_t{1} << 22) + dy;
+    if (!occupancy.inside(to))
+      continue;
+    const auto f = footprint.find(to);
+    const bool of_b = f != footprint.end() && f->second.root == b;
+    if (of_b && (!f->second.margin || occupancy.holds(to, g)))
+      continue;
+    return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -132,7 +205,11 @@ buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
 /// stay inside themselves) or if those points also lie below the building's roof or walls in
 /// their cell, whatever its size: a facade with balconies under the eaves of a roof that the
 /// tile edge cut to a strip. A tree beside a house has most of its crown outside the
-/// footprint; a crown over a roof lies above it and stays bound by the size ratio.
+/// footprint; a crown over a roof lies above it and stays bound by the size ratio. Above the
+/// roof, only what stands on it counts: a point higher than the roof in a margin cell that opens
+/// onto what lies beyond the roof (opensBeyondRoof) is off the footprint. The margin is for what
+/// hangs under the eaves; a crown overhanging the eave is above it and beyond the edge, a
+/// chimney stands on the roof's own cells and on those it hides.
 void
 attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
                  const AssemblySettings& s, Groups& groups, std::vector<char>& building)
@@ -154,6 +231,7 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
   for (std::size_t p = 0; p < c.labels.size(); ++p)
     if (c.labels[p] >= 0)
       ++size[static_cast<std::size_t>(groups.find(c.labels[p]))];
+  const PlanOccupancy occupancy = planOccupancy(c, cell, footprint, groups);
   // (group, building) -> points in the footprint, and those of them below the roof
   std::map<std::pair<int, int>, std::pair<std::size_t, std::size_t>> under;
   for (std::size_t p = 0; p < c.labels.size(); ++p) {
@@ -164,9 +242,13 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
     if (!eligible[static_cast<std::size_t>(root)] || it == footprint.end() ||
         it->second.root == root)
       continue;
+    const bool below = c.points[p].z() < it->second.top;
+    if (it->second.margin && !below &&
+        opensBeyondRoof(it->first, it->second.root, root, footprint, occupancy))
+      continue;
     auto& count = under[{root, it->second.root}];
     ++count.first;
-    count.second += c.points[p].z() < it->second.top;
+    count.second += below;
   }
   for (const auto& [pair, count] : under) {
     const auto group = static_cast<double>(size[static_cast<std::size_t>(pair.first)]);
@@ -176,6 +258,39 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
     if (static_cast<double>(count.first) >= s.footprint_share * group && (small || below))
       groups.unite(pair.first, pair.second);
   }
+}
+
+std::vector<std::int8_t>
+roofSides(const Contacts& c, const std::vector<SegmentKind>& kind, const AssemblySettings& s,
+          const Groups& groups)
+{
+  const std::size_t n = kind.size();
+  Groups g = groups;  // touching roofs join only in attachUnderRoofs
+  std::vector<std::size_t> size(n, 0), points(n, 0), under(n, 0);
+  for (std::size_t p = 0; p < c.labels.size(); ++p)
+    if (c.labels[p] >= 0)
+      ++size[static_cast<std::size_t>(g.find(c.labels[p]))];
+  const double cell = std::sqrt(c.max_sq);
+  const int reach = static_cast<int>(std::ceil(s.footprint_margin / cell));
+  std::vector<char> building(n, 0);
+  const auto footprint = buildingFootprints(c, kind, size, cell, reach, s.min_links, g, building);
+  for (std::size_t p = 0; p < c.labels.size(); ++p) {
+    if (c.labels[p] < 0)
+      continue;
+    const auto seg = static_cast<std::size_t>(c.labels[p]);
+    ++points[seg];
+    const auto it = footprint.find(cellKey(c.points[p], cell));
+    under[seg] += it != footprint.end() && !it->second.margin &&
+                  it->second.root != g.find(c.labels[p]) && c.points[p].z() < it->second.top;
+  }
+  std::vector<std::int8_t> side(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kind[i] == SegmentKind::Ground || points[i] == 0)
+      continue;
+    const double share = static_cast<double>(under[i]) / static_cast<double>(points[i]);
+    side[i] = share >= s.footprint_share ? 1 : 1.0 - share >= s.footprint_share ? -1 : 0;
+  }
+  return side;
 }
 
 }  // namespace detail

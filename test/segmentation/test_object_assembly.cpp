@@ -655,3 +655,138 @@ TEST(ObjectAssembly, RoughFlatRoofIsARoofNotATree)
   EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
   EXPECT_NE(labelOf(CROWN), labelOf(GROUND));
 }
+
+// A crown overhanging the east eave of a flat roof (77055_627760: small crowns over low
+// roofs): 100 points, a fifth of the building at most, two-thirds over the roof and a third
+// beyond the eave, all above the roof. The roof's plan widened by footprint_margin held all of
+// it, so the size ratio let it join like a chimney. The margin is for what hangs under the
+// eaves: above the roof, a point in a margin cell that opens onto what lies beyond the roof
+// does not count, so the crown stays a tree. A roof unit (2 m x 2 m, 1.2 m high) hides the
+// roof under it, so the cells it covers hold no roof point and are margin cells too; they are
+// enclosed by roof cells and by each other, and the unit still joins, as does a chimney.
+TEST(ObjectAssembly, CrownOverhangingAnEaveStaysATree)
+{
+  namespace sg = pcl_ls3d::segmentation;
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f), b(-1.f, 1.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> labels;
+  std::vector<float> residuals;
+  enum { ROOF, WALL, GROUND, CROWN, UNIT, CHIMNEY };
+  const auto push = [&](float x, float y, float z, int l, float r) {
+    pts.emplace_back(x, y, z);
+    labels.push_back(l);
+    residuals.push_back(r);
+  };
+  for (float x = 0.f; x <= 10.f; x += 0.25f)
+    for (float y = 0.f; y <= 10.f; y += 0.25f)
+      if (x <= 2.f || x >= 4.f || y <= 2.f || y >= 4.f)  // no roof under the unit
+        push(x, y, 6.f + n(rng), ROOF, 0.01f);
+  for (float t = 0.f; t <= 10.f; t += 0.5f)
+    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
+      push(t, n(rng), z, WALL, 0.01f);
+      push(t, 10.f + n(rng), z, WALL, 0.01f);
+      push(n(rng), t, z, WALL, 0.01f);
+      push(10.f + n(rng), t, z, WALL, 0.01f);
+    }
+  for (float x = -8.f; x <= 22.f; x += 0.3f)
+    for (float y = -8.f; y <= 18.f; y += 0.3f)
+      if (x < -0.3f || x > 10.3f || y < -0.3f || y > 10.3f)
+        push(x, y, n(rng), GROUND, 0.01f);
+  for (int i = 0; i < 100;) {  // crown: radius 0.9 m, 6.3-8.1 m, x 9.3-11.1
+    const Eigen::Vector3f d(b(rng), b(rng), b(rng));
+    if (d.norm() > 1.f)
+      continue;
+    const Eigen::Vector3f p = Eigen::Vector3f(10.2f, 5.f, 7.2f) + 0.9f * d;
+    push(p.x(), p.y(), p.z(), CROWN, 0.2f);
+    ++i;
+  }
+  for (int i = 0; i < 150; ++i)  // roof unit: scattered returns in a 2 m x 2 m x 1.2 m box
+    push(2.f + 2.f * u(rng), 2.f + 2.f * u(rng), 6.f + 1.2f * u(rng), UNIT, 0.2f);
+  for (int i = 0; i < 60; ++i)
+    push(7.f + 0.4f * b(rng), 7.f + 0.4f * b(rng), 6.9f + 0.7f * b(rng), CHIMNEY, 0.2f);
+
+  sg::GroundFilterSettings gf;
+  gf.cell = 0.6;
+  const std::vector<char> ground = sg::groundPoints(pts, gf);
+  const std::vector<int> graph = knnGraph(pts, 16);
+  sg::AssemblySettings a;
+  a.max_link_length = 0.8;
+  std::vector<int> out = labels;
+  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  const auto labelOf = [&](int part) {
+    std::map<int, std::size_t> count;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      if (labels[i] == part)
+        ++count[out[i]];
+    return std::max_element(count.begin(), count.end(),
+                            [](auto& x, auto& y) { return x.second < y.second; })->first;
+  };
+  EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
+  EXPECT_EQ(labelOf(UNIT), labelOf(ROOF));
+  EXPECT_EQ(labelOf(CHIMNEY), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
+  EXPECT_NE(labelOf(CROWN), labelOf(GROUND));
+}
+
+// The lowest balcony row of a facade under the eaves and the hedge at the facade's foot
+// (77055_627755: the south facade of the tall building): both rough, 0.3 m apart, so they
+// joined rough-to-rough as one "tree", and that group, half of it outside the roof, no longer
+// lay on the building's footprint. What hangs under a roof (footprint_share of it under the
+// roof's own cells, below the roof) does not join rough-to-rough with what lies mostly outside
+// every roof: the balcony row joins the house (it hangs under the roof), the hedge stays a
+// tree.
+TEST(ObjectAssembly, BalconyRowUnderTheEavesIsNotPartOfTheHedgeBelow)
+{
+  namespace sg = pcl_ls3d::segmentation;
+  std::mt19937 rng(19);
+  std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> labels;
+  std::vector<float> residuals;
+  enum { ROOF, WALL, GROUND, BALCONY, HEDGE };
+  const auto push = [&](float x, float y, float z, int l, float r) {
+    pts.emplace_back(x, y, z);
+    labels.push_back(l);
+    residuals.push_back(r);
+  };
+  for (float x = 0.f; x <= 10.f; x += 0.25f)  // the roof's eaves reach 0.6 m past the walls
+    for (float y = -0.6f; y <= 10.f; y += 0.25f)
+      push(x, y, 6.f + n(rng), ROOF, 0.01f);
+  for (float t = 0.f; t <= 10.f; t += 0.5f)
+    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
+      push(t, n(rng), z, WALL, 0.01f);
+      push(t, 10.f + n(rng), z, WALL, 0.01f);
+      push(n(rng), t, z, WALL, 0.01f);
+      push(10.f + n(rng), t, z, WALL, 0.01f);
+    }
+  for (float x = -8.f; x <= 22.f; x += 0.3f)
+    for (float y = -8.f; y <= 18.f; y += 0.3f)
+      if (x < -0.3f || x > 10.3f || y < -0.7f || y > 10.3f)
+        push(x, y, n(rng), GROUND, 0.01f);
+  for (int i = 0; i < 150; ++i)  // balcony row under the eaves: 2.5-3.5 m, 0.5 m deep
+    push(2.f + 6.f * u(rng), -0.5f * u(rng), 2.5f + u(rng), BALCONY, 0.2f);
+  for (int i = 0; i < 400; ++i)  // hedge at the facade's foot: 0.3-2.4 m, 0.8-2.4 m out
+    push(2.f + 6.f * u(rng), -0.8f - 1.6f * u(rng), 0.3f + 2.1f * u(rng), HEDGE, 0.2f);
+
+  sg::GroundFilterSettings gf;
+  gf.cell = 0.6;
+  const std::vector<char> ground = sg::groundPoints(pts, gf);
+  const std::vector<int> graph = knnGraph(pts, 16);
+  sg::AssemblySettings a;
+  a.max_link_length = 0.8;
+  std::vector<int> out = labels;
+  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  const auto labelOf = [&](int part) {
+    std::map<int, std::size_t> count;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      if (labels[i] == part)
+        ++count[out[i]];
+    return std::max_element(count.begin(), count.end(),
+                            [](auto& x, auto& y) { return x.second < y.second; })->first;
+  };
+  EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
+  EXPECT_EQ(labelOf(BALCONY), labelOf(ROOF));
+  EXPECT_NE(labelOf(HEDGE), labelOf(ROOF));
+  EXPECT_NE(labelOf(HEDGE), labelOf(GROUND));
+}

@@ -14,17 +14,22 @@
 /// Segments touch through k-NN links no longer than max_link_length (at least min_links of
 /// them). Touching segments join when their kinds belong together: ground with ground; solid
 /// and wall with solid and wall (roof planes and walls: a building); rough with rough (a tree
-/// group). Then, repeated until nothing changes: a linear segment joins the non-linear,
-/// non-ground group that at least edge_share of its points touch (an edge line along its roof;
-/// a wire span touching its tower with its last points stays a span); a group, not mostly
-/// rough, whose contacts go (enclosure_share) to one building at least 20 times its size joins
-/// that building (a dormer, a roof window; a rough group — a crown leaning over the roof, or a
-/// chimney's scattered returns — joins only by the footprint rule); a group lying in plan
-/// (footprint_share of its points) on or under one building's roof, widened by
+/// group), except that what hangs under a roof (footprint_share of it under the roof's own plan
+/// cells, below the roof: a balcony row) and what lies mostly outside every roof (the hedge at
+/// the facade's foot) never join. Then, repeated until nothing changes: a linear segment joins
+/// the non-linear, non-ground group that at least edge_share of its points touch (an edge line
+/// along its roof; a wire span touching its tower with its last points stays a span); a group,
+/// not mostly rough, whose contacts go (enclosure_share) to one building at least 20 times its
+/// size joins that building (a dormer, a roof window; a rough group — a crown leaning over the
+/// roof, or a chimney's scattered returns — joins only by the footprint rule); a group lying in
+/// plan (footprint_share of its points) on or under one building's roof, widened by
 /// footprint_margin, joins it if it is small beside it (a chimney whose k-NN links never leave
 /// it: enclosure_size_ratio) or if those points also lie below the roof, whatever its size (a
 /// facade with balconies under the eaves of a roof strip that the tile edge left, a lower
-/// annex under the eaves; a crown over a roof lies above it). A building stays one after a
+/// annex under the eaves; a crown over a roof lies above it). Above the roof only what stands
+/// on it counts: a point higher than the roof in the margin, where the margin opens onto what
+/// lies beyond the roof, is off the footprint (a crown overhanging the eave stays a tree; the
+/// cells a roof unit hides under itself are enclosed and count). A building stays one after a
 /// rough facade has joined it. Nothing joins the ground, and lines never join lines: two spans
 /// of a wire meet end to end at their tower.
 /// Kinds come from the segments before any join, so the joins do not depend on their order.
@@ -60,7 +65,8 @@ struct AssemblySettings
                                  ///< (in plan) to join it, if at most enclosure_size_ratio of it
                                  ///< or if that share also lies below the roof
   double footprint_margin = 0.75; ///< the roof's plan reaches this far past its points (eaves,
-                                 ///< balconies)
+                                 ///< balconies: for what lies below the roof; above it, only
+                                 ///< margin cells enclosed by the roof count)
   bool detach_raised_points = true;  ///< points of a ground segment that the ground filter
                                     ///< rejects leave it as their own segments
 };
