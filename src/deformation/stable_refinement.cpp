@@ -34,6 +34,7 @@ keepHighBreakdownFigures(const RobustMatchingReport& robust, RobustMatchingRepor
   refined.high_breakdown_transformation = robust.high_breakdown_transformation;
   refined.high_breakdown_scale = robust.high_breakdown_scale;
   refined.neighbour_noise = robust.neighbour_noise;
+  refined.held_out = robust.held_out;
   refined.iterations += robust.iterations;
 }
 

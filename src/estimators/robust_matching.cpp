@@ -1,6 +1,7 @@
 #include <pcl_ls3d/estimators/robust_matching.h>
 
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
+#include <pcl_ls3d/estimators/masked_estimator.h>
 #include <pcl_ls3d/estimators/neighbour_noise.h>
 #include <pcl_ls3d/sample_consensus/linearized_matching.h>
 
@@ -90,7 +91,7 @@ neighbourNoise(const LinearizedMatching& lin, const Eigen::VectorXd& v)
 /// MM the LTS scale reweighted, or the S-scale; at most the neighbour noise when capped.
 double
 fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchingSettings& s, double search_scale,
-           RobustMatchingReport& report)
+           double& neighbour_noise)
 {
   Eigen::VectorXd v;
   lin.residuals(X, v);
@@ -104,10 +105,29 @@ fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchin
     fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, search_scale) : reweightedScale(v, search_scale);
     fixed = fixed > 0.0 ? fixed : search_scale;
   }
-  report.neighbour_noise = neighbourNoise(lin, v);
-  if (s.cap_scale_by_neighbour_noise && report.neighbour_noise > 0.0)
-    fixed = std::min(fixed, report.neighbour_noise);
+  neighbour_noise = neighbourNoise(lin, v);
+  if (s.cap_scale_by_neighbour_noise && neighbour_noise > 0.0)
+    fixed = std::min(fixed, neighbour_noise);
   return fixed;
+}
+
+/// Points whose first observation lies beyond 2.5 ŝ of the high-breakdown fit X (Rousseeuw &
+/// Leroy's reweighting cut, as lmsFinalScale and reweightedScale use); 1 = beyond.
+std::vector<std::uint8_t>
+beyondStart(const LinearizedMatching& lin, const Vector7d& X, double scale, std::size_t& count)
+{
+  Eigen::VectorXd v;
+  lin.residuals(X, v);
+  std::vector<std::uint8_t> out(lin.reducedPoints().size(), 0);
+  count = 0;
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const int o = lin.observationOf(static_cast<int>(i));
+    if (o >= 0 && std::abs(v[o]) > 2.5 * scale) {
+      out[i] = 1;
+      ++count;
+    }
+  }
+  return out;
 }
 
 /// The high-breakdown stage: rounds of subset searches, re-linearised at the last estimate
@@ -147,7 +167,7 @@ highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, Ro
       break;
   }
   report.high_breakdown_transformation = lin.matrixOf(X);
-  report.high_breakdown_scale = fixedScale(lin, X, s, report.search.scale, report);
+  report.high_breakdown_scale = fixedScale(lin, X, s, report.search.scale, report.neighbour_noise);
   return true;
 }
 
@@ -262,6 +282,7 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
     from = report.start.transformation;
   }
   double fixed_scale = 0.0;
+  std::vector<std::uint8_t> held_out;  // MM: points beyond 2.5 ŝ of the start
 
   // 2. High-breakdown start (LMS, MM).
   if (s.method == RobustMethod::LMS || s.method == RobustMethod::MM) {
@@ -279,10 +300,14 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
     from = report.high_breakdown_transformation;
     if (!(s.method == RobustMethod::LMS && s.lms_scale == LmsScale::MAD))
       fixed_scale = report.high_breakdown_scale;
+    if (s.method == RobustMethod::MM && s.mm_hold_out_beyond_start)
+      held_out = beyondStart(lin, lin.parametersOf(from), fixed_scale, report.held_out);
   }
 
   // 3. The final adjustment: IRLS with the method's weight function (none for LS).
-  const RobustEstimator::Ptr w = weightFunction(s.method, s.constant, fixed_scale);
+  RobustEstimator::Ptr w = weightFunction(s.method, s.constant, fixed_scale);
+  if (!held_out.empty())
+    w = std::make_shared<MaskedEstimator>(w, std::move(held_out));
   if (s.method == RobustMethod::LEAST_SQUARES)
     report.adjustment = report.start;
   else {

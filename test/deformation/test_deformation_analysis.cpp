@@ -302,3 +302,31 @@ TEST(DeformationAnalysis, NeighbourNoiseCapBreaksTheCompromise)
     EXPECT_GT(d.recall, 0.8);
   }
 }
+
+// MM at 42 % deformed by N(5σ, σ): the LTS start is 0.15 σ off, but Tukey's M-step over every
+// point keeps the patch's low tail (within c ŝ ≈ 5 σ) weighted and walks 5 σ away from it.
+// Holding out the points beyond 2.5 ŝ of the start while they stay there keeps it near.
+TEST(DeformationAnalysis, MmStepHoldsOutTheStartsOutliers)
+{
+  const LiPair pair(liSurface(42.0, 5.0, synth::DeformationPosition::LOWER_RIGHT, 1));
+  DeformationSettings s;
+  s.refinement.max_rounds = 0;  // the estimator's own answer
+  s.matching.mm_hold_out_beyond_start = false;
+  const DeformationResult all = pair.run(s);
+  ASSERT_TRUE(all.ok()) << all.matching.message;
+  EXPECT_LT(pair.errorSigma(all.matching.high_breakdown_transformation), 0.5) << "the start is no longer good";
+  EXPECT_GT(pair.errorSigma(all.matching.adjustment.transformation), 3.0) << "the M-step no longer walks away";
+  s.matching.mm_hold_out_beyond_start = true;
+  const DeformationResult held = pair.run(s);
+  ASSERT_TRUE(held.ok()) << held.matching.message;
+  EXPECT_LT(pair.errorSigma(held.matching.adjustment.transformation),
+            0.6 * pair.errorSigma(all.matching.adjustment.transformation));
+  // About the patch (42 % of 2500 nodes) is held out, not the surface.
+  EXPECT_GT(held.matching.held_out, 900u);
+  EXPECT_LT(held.matching.held_out, 1250u);
+  EXPECT_NE(held.matching.estimator.find("holding out"), std::string::npos);
+  // With the refinement the answer reaches the truth.
+  const DeformationResult refined = pair.run(DeformationSettings());
+  ASSERT_TRUE(refined.ok()) << refined.matching.message;
+  EXPECT_LT(pair.errorSigma(refined.matching.adjustment.transformation), 0.5);
+}

@@ -11,7 +11,8 @@
 ///      and searched again while the estimate moves; then Li's M-estimator (Tukey c = 4.685)
 ///      with its scale fixed from the LMS fit (Rousseeuw & Leroy's σ*, see LmsScale);
 ///      for MM (beyond the paper): FAST-LTS starts with C-steps, a scale fixed from the LTS fit
-///      (reweighted, or the 50 %-breakdown S-scale), then a Tukey M-step at 95 % efficiency;
+///      (reweighted, or the 50 %-breakdown S-scale), then a Tukey M-step at 95 % efficiency
+///      holding out the points beyond 2.5 ŝ of the start while they stay there;
 ///      both fixed scales at most the neighbour-difference noise of that fit (beyond the paper);
 ///   3. the report of the last adjustment: parameters with the engine's σ (spatial sandwich),
 ///      weights, residuals and redundancy numbers, σ̂, subsets, rounds and why it stopped.
@@ -87,6 +88,11 @@ struct RobustMatchingSettings
   std::uint32_t seed = 1;
   int max_rounds = 3;                ///< search rounds (re-linearised at the last estimate)
   MmScale mm_scale = MmScale::REWEIGHTED;
+  /// MM: points beyond 2.5 ŝ of the LTS start stay out of the M-step (Rousseeuw & Leroy's
+  /// reweighting, MaskedEstimator). Tukey's c = 4.685 ŝ keeps a deformation of c σ near 4–5 σ
+  /// partly weighted, and that pull leads the M-step from a start 0.1 σ off to a compromise
+  /// 5 σ off (42 % deformed by 5 σ); held out, it cannot pull.
+  bool mm_hold_out_beyond_start = true;
   LmsScale lms_scale = LmsScale::FINAL;
   /// LMS and MM: the M-step's fixed scale is at most σ_d, the noise of neighbouring residuals at
   /// the high-breakdown fit (neighbour_noise.h). A fit that compromises between the stable and
@@ -133,6 +139,7 @@ struct RobustMatchingReport
   Eigen::Matrix4d high_breakdown_transformation = Eigen::Matrix4d::Identity();
   double high_breakdown_scale = 0.0;  ///< the scale the M-step keeps fixed (LMS: σ* or s0, MM: see MmScale)
   double neighbour_noise = 0.0;       ///< σ_d of the high-breakdown fit's residuals (neighbour_noise.h)
+  std::size_t held_out = 0;           ///< MM: points beyond 2.5 ŝ of the start, out of the M-step
   int iterations = 0;                 ///< adjustment iterations over all stages
 
   /// Usable estimate (the final adjustment converged or hit its iteration limit).
