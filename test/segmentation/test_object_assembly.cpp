@@ -259,6 +259,109 @@ knnGraph(const std::vector<Eigen::Vector3f>& pts, int k)
   return graph;
 }
 
+namespace sg = pcl_ls3d::segmentation;
+
+/// A constructed scene for assembleObjects(): each point with its segment label (the part of
+/// the scene it belongs to) and its plane-fit residual.
+struct Scene
+{
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> labels;
+  std::vector<float> residuals;
+
+  void
+  push(const Eigen::Vector3f& p, int label, float residual)
+  {
+    pts.push_back(p);
+    labels.push_back(label);
+    residuals.push_back(residual);
+  }
+
+  void
+  push(float x, float y, float z, int label, float residual)
+  {
+    push(Eigen::Vector3f(x, y, z), label, residual);
+  }
+
+  /// Walls of a 10 m x 10 m house with a flat roof at 6 m: the sides y = 0, y = 10, x = 0 and
+  /// (if east) x = 10 on a 0.5 m grid from 0.5 m to 5.5 m, noise n(rng) across each wall.
+  void
+  addHouseWalls(int label, std::uniform_real_distribution<float>& n, std::mt19937& rng,
+                bool east = true)
+  {
+    for (float t = 0.f; t <= 10.f; t += 0.5f)
+      for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
+        push(t, n(rng), z, label, 0.01f);
+        push(t, 10.f + n(rng), z, label, 0.01f);
+        push(n(rng), t, z, label, 0.01f);
+        if (east)
+          push(10.f + n(rng), t, z, label, 0.01f);
+      }
+  }
+
+  /// Ground around that house: a 0.3 m grid over [-8, 22] x [-8, 18], noise n(rng) in z,
+  /// outside the house's plan [-0.3, 10.3] x [south, 10.3].
+  void
+  addGroundAroundHouse(int label, std::uniform_real_distribution<float>& n, std::mt19937& rng,
+                       float south = -0.3f)
+  {
+    for (float x = -8.f; x <= 22.f; x += 0.3f)
+      for (float y = -8.f; y <= 18.f; y += 0.3f)
+        if (x < -0.3f || x > 10.3f || y < south || y > 10.3f)
+          push(x, y, n(rng), label, 0.01f);
+  }
+
+  /// count rough points (residual 0.2) in the ball of radius r at c, drawn by rejection from
+  /// the cube of b(rng), b uniform in [-1, 1].
+  void
+  addBall(const Eigen::Vector3f& c, float r, int count, int label,
+          std::uniform_real_distribution<float>& b, std::mt19937& rng)
+  {
+    for (int i = 0; i < count;) {
+      const Eigen::Vector3f d(b(rng), b(rng), b(rng));
+      if (d.norm() <= 1.f) {
+        push(c + r * d, label, 0.2f);
+        ++i;
+      }
+    }
+  }
+
+  /// Output labels of assembleObjects() on the 16-NN graph, with the ground given per point.
+  std::vector<int>
+  assemble(const sg::AssemblySettings& a, const std::vector<char>& ground,
+           sg::AssemblyReport* report = nullptr) const
+  {
+    std::vector<int> out = labels;
+    const sg::AssemblyReport rep =
+        sg::assembleObjects(pts, knnGraph(pts, 16), 16, residuals, ground, a, out);
+    if (report)
+      *report = rep;
+    return out;
+  }
+
+  /// ... with the ground found by groundPoints() on cells of ground_cell.
+  std::vector<int>
+  assemble(const sg::AssemblySettings& a, double ground_cell,
+           sg::AssemblyReport* report = nullptr) const
+  {
+    sg::GroundFilterSettings gf;
+    gf.cell = ground_cell;
+    return assemble(a, sg::groundPoints(pts, gf), report);
+  }
+
+  /// Output label (of out, from assemble()) holding most points of input label part.
+  int
+  labelOf(int part, const std::vector<int>& out) const
+  {
+    std::map<int, std::size_t> count;
+    for (std::size_t i = 0; i < labels.size(); ++i)
+      if (labels[i] == part)
+        ++count[out[i]];
+    return std::max_element(count.begin(), count.end(),
+                            [](auto& x, auto& y) { return x.second < y.second; })->first;
+  }
+};
+
 }  // namespace
 
 // A hedge whose foot (0.4-0.9 m above the terrain) the growing and merging left in the ground
@@ -269,39 +372,28 @@ knnGraph(const std::vector<Eigen::Vector3f>& pts, int k)
 // points inside ground segments).
 TEST(ObjectAssembly, RaisedPointsLeaveTheGroundSegment)
 {
-  namespace sg = pcl_ls3d::segmentation;
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f);
-  std::vector<Eigen::Vector3f> pts;
-  std::vector<int> part, labels;
+  Scene scene;
+  std::vector<int> part;
   enum { TERRAIN, FOOT, HEDGE, PATCH };
   for (float x = 0.f; x <= 30.f; x += 0.3f)
     for (float y = 0.f; y <= 30.f; y += 0.3f) {
-      pts.emplace_back(x, y, n(rng));
+      scene.push(x, y, n(rng), 0, 0.01f);
       part.push_back(TERRAIN);
-      labels.push_back(0);
     }
   // Hedge 12 m x 1.5 m at x in [5, 17], y in [5, 6.5]: foot in the ground segment (label 0),
   // the rest its own rough segment (label 1).
   for (int i = 0; i < 1800; ++i) {
     const float z = 0.4f + 2.1f * u(rng);
-    pts.emplace_back(5.f + 12.f * u(rng), 5.f + 1.5f * u(rng), z);
+    scene.push(5.f + 12.f * u(rng), 5.f + 1.5f * u(rng), z, z < 0.9f ? 0 : 1, 0.1f);
     part.push_back(z < 0.9f ? FOOT : HEDGE);
-    labels.push_back(z < 0.9f ? 0 : 1);
   }
   // Low vegetation patch 2 m x 2 m at (22, 22), in the ground segment.
   for (int i = 0; i < 120; ++i) {
-    pts.emplace_back(21.f + 2.f * u(rng), 21.f + 2.f * u(rng), 0.35f + 0.15f * u(rng));
+    scene.push(21.f + 2.f * u(rng), 21.f + 2.f * u(rng), 0.35f + 0.15f * u(rng), 0, 0.1f);
     part.push_back(PATCH);
-    labels.push_back(0);
   }
-  std::vector<float> residuals(pts.size());
-  for (std::size_t i = 0; i < pts.size(); ++i)
-    residuals[i] = part[i] == TERRAIN ? 0.01f : 0.1f;
-  sg::GroundFilterSettings gf;
-  gf.cell = 0.6;
-  const std::vector<char> ground = sg::groundPoints(pts, gf);
-  const std::vector<int> graph = knnGraph(pts, 16);
   sg::AssemblySettings a;
   a.max_link_length = 0.8;
 
@@ -319,8 +411,8 @@ TEST(ObjectAssembly, RaisedPointsLeaveTheGroundSegment)
     return std::make_pair(best->first, static_cast<double>(best->second) / total);
   };
 
-  std::vector<int> on = labels;
-  const auto rep = sg::assembleObjects(pts, graph, 16, residuals, ground, a, on);
+  sg::AssemblyReport rep;
+  const std::vector<int> on = scene.assemble(a, 0.6, &rep);
   EXPECT_GT(rep.detached_points, 300u);
   const auto terrain = majority(on, TERRAIN), foot = majority(on, FOOT),
              hedge = majority(on, HEDGE), patch = majority(on, PATCH);
@@ -332,9 +424,9 @@ TEST(ObjectAssembly, RaisedPointsLeaveTheGroundSegment)
   EXPECT_NE(patch.first, hedge.first);    // ... as its own object
   EXPECT_GE(patch.second, 0.9);
 
-  std::vector<int> off = labels;
   a.detach_raised_points = false;
-  const auto rep_off = sg::assembleObjects(pts, graph, 16, residuals, ground, a, off);
+  sg::AssemblyReport rep_off;
+  const std::vector<int> off = scene.assemble(a, 0.6, &rep_off);
   EXPECT_EQ(rep_off.detached_points, 0u);
   EXPECT_EQ(majority(off, FOOT).first, majority(off, TERRAIN).first);
   EXPECT_EQ(majority(off, PATCH).first, majority(off, TERRAIN).first);
@@ -347,32 +439,15 @@ TEST(ObjectAssembly, RaisedPointsLeaveTheGroundSegment)
 // still joins.
 TEST(ObjectAssembly, CrownLeaningOverARoofStaysATree)
 {
-  namespace sg = pcl_ls3d::segmentation;
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(-1.f, 1.f);
-  std::vector<Eigen::Vector3f> pts;
-  std::vector<int> labels;
-  std::vector<float> residuals;
+  Scene scene;
   enum { ROOF, WALL, GROUND, CROWN, CHIMNEY };
-  const auto push = [&](float x, float y, float z, int l, float r) {
-    pts.emplace_back(x, y, z);
-    labels.push_back(l);
-    residuals.push_back(r);
-  };
   for (float x = 0.f; x <= 10.f; x += 0.25f)
     for (float y = 0.f; y <= 10.f; y += 0.25f)
-      push(x, y, 6.f + n(rng), ROOF, 0.01f);
-  for (float t = 0.f; t <= 10.f; t += 0.5f)
-    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
-      push(t, n(rng), z, WALL, 0.01f);
-      push(t, 10.f + n(rng), z, WALL, 0.01f);
-      push(n(rng), t, z, WALL, 0.01f);
-      push(10.f + n(rng), t, z, WALL, 0.01f);
-    }
-  for (float x = -8.f; x <= 22.f; x += 0.3f)
-    for (float y = -8.f; y <= 18.f; y += 0.3f)
-      if (x < -0.3f || x > 10.3f || y < -0.3f || y > 10.3f)
-        push(x, y, n(rng), GROUND, 0.01f);
+      scene.push(x, y, 6.f + n(rng), ROOF, 0.01f);
+  scene.addHouseWalls(WALL, n, rng);
+  scene.addGroundAroundHouse(GROUND, n, rng);
   // Crown: 80 points in a ball of radius 1.2 m centred 1.2 m outside the east eave, its lower
   // part resting on the roof edge; no trunk (it reaches the roof, not the ground).
   for (int i = 0; i < 80;) {
@@ -382,29 +457,17 @@ TEST(ObjectAssembly, CrownLeaningOverARoofStaysATree)
     const Eigen::Vector3f p = Eigen::Vector3f(11.2f, 5.f, 7.f) + 1.2f * d;
     if (p.x() < 10.f && p.z() < 6.1f)
       continue;  // not inside the roof
-    push(p.x(), p.y(), p.z(), CROWN, 0.2f);
+    scene.push(p.x(), p.y(), p.z(), CROWN, 0.2f);
     ++i;
   }
   // Chimney: 60 scattered points in a 0.8 m box on the middle of the roof.
   for (int i = 0; i < 60; ++i)
-    push(5.f + 0.4f * u(rng), 5.f + 0.4f * u(rng), 6.9f + 0.7f * u(rng), CHIMNEY, 0.2f);
+    scene.push(5.f + 0.4f * u(rng), 5.f + 0.4f * u(rng), 6.9f + 0.7f * u(rng), CHIMNEY, 0.2f);
 
-  sg::GroundFilterSettings gf;
-  gf.cell = 0.6;
-  const std::vector<char> ground = sg::groundPoints(pts, gf);
-  const std::vector<int> graph = knnGraph(pts, 16);
   sg::AssemblySettings a;
   a.max_link_length = 0.8;
-  std::vector<int> out = labels;
-  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
-  const auto labelOf = [&](int part) {
-    std::map<int, std::size_t> count;
-    for (std::size_t i = 0; i < labels.size(); ++i)
-      if (labels[i] == part)
-        ++count[out[i]];
-    return std::max_element(count.begin(), count.end(),
-                            [](auto& x, auto& y) { return x.second < y.second; })->first;
-  };
+  const std::vector<int> out = scene.assemble(a, 0.6);
+  const auto labelOf = [&](int part) { return scene.labelOf(part, out); };
   EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
   EXPECT_EQ(labelOf(CHIMNEY), labelOf(ROOF));
   EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
@@ -419,43 +482,34 @@ TEST(ObjectAssembly, CrownLeaningOverARoofStaysATree)
 // 1.3 m apart, were one segment.
 TEST(ObjectAssembly, NeighbouringCrownsStayTwoTrees)
 {
-  namespace sg = pcl_ls3d::segmentation;
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-2.f, 2.f);
-  std::vector<Eigen::Vector3f> pts;
-  std::vector<int> labels;
+  Scene scene;
   const auto crown = [&](float cx, int left, int right) {
     for (int i = 0; i < 300; ++i) {
       const Eigen::Vector3f d(u(rng), u(rng), u(rng));
-      pts.push_back(Eigen::Vector3f(cx, 0.f, 6.f) + d);
-      labels.push_back(d.x() < 0.f ? left : right);
+      scene.push(Eigen::Vector3f(cx, 0.f, 6.f) + d, d.x() < 0.f ? left : right, 0.2f);
     }
   };
   crown(0.f, 0, 1);  // crown A in two segments, x in [-2, 2]
   crown(4.8f, 2, 2);  // crown B, x in [2.8, 6.8]
-  std::vector<float> residuals(pts.size(), 0.2f);
-  std::vector<char> ground(pts.size(), 0);
+  std::vector<char> ground(scene.pts.size(), 0);
   // Flat ground far below (the noise unit of the roughness: crowns are rough against it).
   for (float x = -6.f; x <= 11.f; x += 0.5f)
     for (float y = -5.f; y <= 5.f; y += 0.5f) {
-      pts.emplace_back(x, y, 0.f);
-      labels.push_back(3);
-      residuals.push_back(0.01f);
+      scene.push(x, y, 0.f, 3, 0.01f);
       ground.push_back(1);
     }
-  const std::vector<int> graph = knnGraph(pts, 16);
   sg::AssemblySettings a;
   a.max_link_length = 1.2;
   a.rough_link_length = 0.75;
   const std::size_t a_right = static_cast<std::size_t>(
-      std::find(labels.begin(), labels.end(), 1) - labels.begin());
-  std::vector<int> out = labels;
-  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+      std::find(scene.labels.begin(), scene.labels.end(), 1) - scene.labels.begin());
+  std::vector<int> out = scene.assemble(a, ground);
   EXPECT_EQ(out[0], out[a_right]);  // A's halves join
   EXPECT_NE(out[0], out[599]);      // A and B do not
   a.rough_link_length = 0.0;
-  out = labels;
-  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
+  out = scene.assemble(a, ground);
   EXPECT_EQ(out[0], out[599]);
 }
 
@@ -537,57 +591,30 @@ TEST(ObjectAssembly, RoofPlanesHoldNoWallOrNeighbourFragments)
 // trees.
 TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
 {
-  namespace sg = pcl_ls3d::segmentation;
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f), b(-1.f, 1.f);
-  std::vector<Eigen::Vector3f> pts;
-  std::vector<int> labels;
-  std::vector<float> residuals;
+  Scene scene;
   enum { ROOF, GROUND, CROWN, TREE, UNIT, STOREY };  // storeys: STOREY + 0..3
-  const auto push = [&](const Eigen::Vector3f& p, int l, float r) {
-    pts.push_back(p);
-    labels.push_back(l);
-    residuals.push_back(r);
-  };
   for (float x = 0.f; x <= 2.5f; x += 0.25f)
     for (float y = 0.f; y <= 10.f; y += 0.25f)
-      push({x, y, 15.f + n(rng)}, ROOF, 0.01f);
+      scene.push({x, y, 15.f + n(rng)}, ROOF, 0.01f);
   for (int s = 0; s < 4; ++s)
     for (int i = 0; i < 160; ++i)
-      push({1.5f + u(rng), 10.f * u(rng), 0.5f + 3.4f * static_cast<float>(s) + 3.f * u(rng)},
-           STOREY + s, 0.2f);
+      scene.push({1.5f + u(rng), 10.f * u(rng), 0.5f + 3.4f * static_cast<float>(s) + 3.f * u(rng)},
+                 STOREY + s, 0.2f);
   for (float x = 2.8f; x <= 20.f; x += 0.3f)
     for (float y = -6.f; y <= 16.f; y += 0.3f)
-      push({x, y, n(rng)}, GROUND, 0.01f);
-  const auto ball = [&](const Eigen::Vector3f& c, float r, int count, int l) {
-    for (int i = 0; i < count;) {
-      const Eigen::Vector3f d(b(rng), b(rng), b(rng));
-      if (d.norm() <= 1.f) {
-        push(c + r * d, l, 0.2f);
-        ++i;
-      }
-    }
-  };
-  ball({1.25f, 8.5f, 16.5f}, 1.2f, 300, CROWN);  // rests on the roof strip, 15.3-17.7 m
-  ball({1.25f, 2.f, 15.8f}, 0.5f, 120, UNIT);    // 120 > 0.2 x 451 roof points, < 0.2 x 1091
-  ball({8.f, 5.f, 5.f}, 2.5f, 500, TREE);        // beside the facade
+      scene.push({x, y, n(rng)}, GROUND, 0.01f);
+  // rests on the roof strip, 15.3-17.7 m
+  scene.addBall({1.25f, 8.5f, 16.5f}, 1.2f, 300, CROWN, b, rng);
+  // 120 > 0.2 x 451 roof points, < 0.2 x 1091
+  scene.addBall({1.25f, 2.f, 15.8f}, 0.5f, 120, UNIT, b, rng);
+  scene.addBall({8.f, 5.f, 5.f}, 2.5f, 500, TREE, b, rng);  // beside the facade
 
-  sg::GroundFilterSettings gf;
-  gf.cell = 0.6;
-  const std::vector<char> ground = sg::groundPoints(pts, gf);
-  const std::vector<int> graph = knnGraph(pts, 16);
   sg::AssemblySettings a;
   a.max_link_length = 0.8;
-  std::vector<int> out = labels;
-  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
-  const auto labelOf = [&](int part) {
-    std::map<int, std::size_t> count;
-    for (std::size_t i = 0; i < labels.size(); ++i)
-      if (labels[i] == part)
-        ++count[out[i]];
-    return std::max_element(count.begin(), count.end(),
-                            [](auto& x, auto& y) { return x.second < y.second; })->first;
-  };
+  const std::vector<int> out = scene.assemble(a, 0.6);
+  const auto labelOf = [&](int part) { return scene.labelOf(part, out); };
   for (int s = 0; s < 4; ++s)
     EXPECT_EQ(labelOf(STOREY + s), labelOf(ROOF)) << "storey " << s;
   EXPECT_EQ(labelOf(UNIT), labelOf(ROOF));
@@ -602,55 +629,21 @@ TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
 // crown stays a tree.
 TEST(ObjectAssembly, RoughFlatRoofIsARoofNotATree)
 {
-  namespace sg = pcl_ls3d::segmentation;
   std::mt19937 rng(13);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), gravel(-0.05f, 0.05f), b(-1.f, 1.f);
-  std::vector<Eigen::Vector3f> pts;
-  std::vector<int> labels;
-  std::vector<float> residuals;
+  Scene scene;
   enum { ROOF, WALL, GROUND, CROWN };
-  const auto push = [&](float x, float y, float z, int l, float r) {
-    pts.emplace_back(x, y, z);
-    labels.push_back(l);
-    residuals.push_back(r);
-  };
   for (float x = 0.f; x <= 10.f; x += 0.25f)
     for (float y = 0.f; y <= 10.f; y += 0.25f)
-      push(x, y, 6.f + gravel(rng), ROOF, 0.05f);
-  for (float t = 0.f; t <= 10.f; t += 0.5f)
-    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
-      push(t, n(rng), z, WALL, 0.01f);
-      push(t, 10.f + n(rng), z, WALL, 0.01f);
-      push(n(rng), t, z, WALL, 0.01f);
-    }
-  for (float x = -8.f; x <= 22.f; x += 0.3f)
-    for (float y = -8.f; y <= 18.f; y += 0.3f)
-      if (x < -0.3f || x > 10.3f || y < -0.3f || y > 10.3f)
-        push(x, y, n(rng), GROUND, 0.01f);
-  for (int i = 0; i < 400;) {  // crown: radius 2 m, its west side on the eave at x = 10
-    const Eigen::Vector3f d(b(rng), b(rng), b(rng));
-    if (d.norm() > 1.f)
-      continue;
-    const Eigen::Vector3f p = Eigen::Vector3f(12.f, 5.f, 6.5f) + 2.f * d;
-    push(p.x(), p.y(), p.z(), CROWN, 0.2f);
-    ++i;
-  }
-  sg::GroundFilterSettings gf;
-  gf.cell = 0.6;
-  const std::vector<char> ground = sg::groundPoints(pts, gf);
-  const std::vector<int> graph = knnGraph(pts, 16);
+      scene.push(x, y, 6.f + gravel(rng), ROOF, 0.05f);
+  scene.addHouseWalls(WALL, n, rng, /*east=*/false);
+  scene.addGroundAroundHouse(GROUND, n, rng);
+  // crown: radius 2 m, its west side on the eave at x = 10
+  scene.addBall({12.f, 5.f, 6.5f}, 2.f, 400, CROWN, b, rng);
   sg::AssemblySettings a;
   a.max_link_length = 0.8;
-  std::vector<int> out = labels;
-  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
-  const auto labelOf = [&](int part) {
-    std::map<int, std::size_t> count;
-    for (std::size_t i = 0; i < labels.size(); ++i)
-      if (labels[i] == part)
-        ++count[out[i]];
-    return std::max_element(count.begin(), count.end(),
-                            [](auto& x, auto& y) { return x.second < y.second; })->first;
-  };
+  const std::vector<int> out = scene.assemble(a, 0.6);
+  const auto labelOf = [&](int part) { return scene.labelOf(part, out); };
   EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
   EXPECT_NE(labelOf(CROWN), labelOf(ROOF));
   EXPECT_NE(labelOf(CROWN), labelOf(GROUND));
@@ -666,62 +659,27 @@ TEST(ObjectAssembly, RoughFlatRoofIsARoofNotATree)
 // enclosed by roof cells and by each other, and the unit still joins, as does a chimney.
 TEST(ObjectAssembly, CrownOverhangingAnEaveStaysATree)
 {
-  namespace sg = pcl_ls3d::segmentation;
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f), b(-1.f, 1.f);
-  std::vector<Eigen::Vector3f> pts;
-  std::vector<int> labels;
-  std::vector<float> residuals;
+  Scene scene;
   enum { ROOF, WALL, GROUND, CROWN, UNIT, CHIMNEY };
-  const auto push = [&](float x, float y, float z, int l, float r) {
-    pts.emplace_back(x, y, z);
-    labels.push_back(l);
-    residuals.push_back(r);
-  };
   for (float x = 0.f; x <= 10.f; x += 0.25f)
     for (float y = 0.f; y <= 10.f; y += 0.25f)
       if (x <= 2.f || x >= 4.f || y <= 2.f || y >= 4.f)  // no roof under the unit
-        push(x, y, 6.f + n(rng), ROOF, 0.01f);
-  for (float t = 0.f; t <= 10.f; t += 0.5f)
-    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
-      push(t, n(rng), z, WALL, 0.01f);
-      push(t, 10.f + n(rng), z, WALL, 0.01f);
-      push(n(rng), t, z, WALL, 0.01f);
-      push(10.f + n(rng), t, z, WALL, 0.01f);
-    }
-  for (float x = -8.f; x <= 22.f; x += 0.3f)
-    for (float y = -8.f; y <= 18.f; y += 0.3f)
-      if (x < -0.3f || x > 10.3f || y < -0.3f || y > 10.3f)
-        push(x, y, n(rng), GROUND, 0.01f);
-  for (int i = 0; i < 100;) {  // crown: radius 0.9 m, 6.3-8.1 m, x 9.3-11.1
-    const Eigen::Vector3f d(b(rng), b(rng), b(rng));
-    if (d.norm() > 1.f)
-      continue;
-    const Eigen::Vector3f p = Eigen::Vector3f(10.2f, 5.f, 7.2f) + 0.9f * d;
-    push(p.x(), p.y(), p.z(), CROWN, 0.2f);
-    ++i;
-  }
+        scene.push(x, y, 6.f + n(rng), ROOF, 0.01f);
+  scene.addHouseWalls(WALL, n, rng);
+  scene.addGroundAroundHouse(GROUND, n, rng);
+  // crown: radius 0.9 m, 6.3-8.1 m, x 9.3-11.1
+  scene.addBall({10.2f, 5.f, 7.2f}, 0.9f, 100, CROWN, b, rng);
   for (int i = 0; i < 150; ++i)  // roof unit: scattered returns in a 2 m x 2 m x 1.2 m box
-    push(2.f + 2.f * u(rng), 2.f + 2.f * u(rng), 6.f + 1.2f * u(rng), UNIT, 0.2f);
+    scene.push(2.f + 2.f * u(rng), 2.f + 2.f * u(rng), 6.f + 1.2f * u(rng), UNIT, 0.2f);
   for (int i = 0; i < 60; ++i)
-    push(7.f + 0.4f * b(rng), 7.f + 0.4f * b(rng), 6.9f + 0.7f * b(rng), CHIMNEY, 0.2f);
+    scene.push(7.f + 0.4f * b(rng), 7.f + 0.4f * b(rng), 6.9f + 0.7f * b(rng), CHIMNEY, 0.2f);
 
-  sg::GroundFilterSettings gf;
-  gf.cell = 0.6;
-  const std::vector<char> ground = sg::groundPoints(pts, gf);
-  const std::vector<int> graph = knnGraph(pts, 16);
   sg::AssemblySettings a;
   a.max_link_length = 0.8;
-  std::vector<int> out = labels;
-  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
-  const auto labelOf = [&](int part) {
-    std::map<int, std::size_t> count;
-    for (std::size_t i = 0; i < labels.size(); ++i)
-      if (labels[i] == part)
-        ++count[out[i]];
-    return std::max_element(count.begin(), count.end(),
-                            [](auto& x, auto& y) { return x.second < y.second; })->first;
-  };
+  const std::vector<int> out = scene.assemble(a, 0.6);
+  const auto labelOf = [&](int part) { return scene.labelOf(part, out); };
   EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
   EXPECT_EQ(labelOf(UNIT), labelOf(ROOF));
   EXPECT_EQ(labelOf(CHIMNEY), labelOf(ROOF));
@@ -738,53 +696,24 @@ TEST(ObjectAssembly, CrownOverhangingAnEaveStaysATree)
 // tree.
 TEST(ObjectAssembly, BalconyRowUnderTheEavesIsNotPartOfTheHedgeBelow)
 {
-  namespace sg = pcl_ls3d::segmentation;
   std::mt19937 rng(19);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f);
-  std::vector<Eigen::Vector3f> pts;
-  std::vector<int> labels;
-  std::vector<float> residuals;
+  Scene scene;
   enum { ROOF, WALL, GROUND, BALCONY, HEDGE };
-  const auto push = [&](float x, float y, float z, int l, float r) {
-    pts.emplace_back(x, y, z);
-    labels.push_back(l);
-    residuals.push_back(r);
-  };
   for (float x = 0.f; x <= 10.f; x += 0.25f)  // the roof's eaves reach 0.6 m past the walls
     for (float y = -0.6f; y <= 10.f; y += 0.25f)
-      push(x, y, 6.f + n(rng), ROOF, 0.01f);
-  for (float t = 0.f; t <= 10.f; t += 0.5f)
-    for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
-      push(t, n(rng), z, WALL, 0.01f);
-      push(t, 10.f + n(rng), z, WALL, 0.01f);
-      push(n(rng), t, z, WALL, 0.01f);
-      push(10.f + n(rng), t, z, WALL, 0.01f);
-    }
-  for (float x = -8.f; x <= 22.f; x += 0.3f)
-    for (float y = -8.f; y <= 18.f; y += 0.3f)
-      if (x < -0.3f || x > 10.3f || y < -0.7f || y > 10.3f)
-        push(x, y, n(rng), GROUND, 0.01f);
+      scene.push(x, y, 6.f + n(rng), ROOF, 0.01f);
+  scene.addHouseWalls(WALL, n, rng);
+  scene.addGroundAroundHouse(GROUND, n, rng, /*south=*/-0.7f);  // under the eaves too
   for (int i = 0; i < 150; ++i)  // balcony row under the eaves: 2.5-3.5 m, 0.5 m deep
-    push(2.f + 6.f * u(rng), -0.5f * u(rng), 2.5f + u(rng), BALCONY, 0.2f);
+    scene.push(2.f + 6.f * u(rng), -0.5f * u(rng), 2.5f + u(rng), BALCONY, 0.2f);
   for (int i = 0; i < 400; ++i)  // hedge at the facade's foot: 0.3-2.4 m, 0.8-2.4 m out
-    push(2.f + 6.f * u(rng), -0.8f - 1.6f * u(rng), 0.3f + 2.1f * u(rng), HEDGE, 0.2f);
+    scene.push(2.f + 6.f * u(rng), -0.8f - 1.6f * u(rng), 0.3f + 2.1f * u(rng), HEDGE, 0.2f);
 
-  sg::GroundFilterSettings gf;
-  gf.cell = 0.6;
-  const std::vector<char> ground = sg::groundPoints(pts, gf);
-  const std::vector<int> graph = knnGraph(pts, 16);
   sg::AssemblySettings a;
   a.max_link_length = 0.8;
-  std::vector<int> out = labels;
-  sg::assembleObjects(pts, graph, 16, residuals, ground, a, out);
-  const auto labelOf = [&](int part) {
-    std::map<int, std::size_t> count;
-    for (std::size_t i = 0; i < labels.size(); ++i)
-      if (labels[i] == part)
-        ++count[out[i]];
-    return std::max_element(count.begin(), count.end(),
-                            [](auto& x, auto& y) { return x.second < y.second; })->first;
-  };
+  const std::vector<int> out = scene.assemble(a, 0.6);
+  const auto labelOf = [&](int part) { return scene.labelOf(part, out); };
   EXPECT_EQ(labelOf(WALL), labelOf(ROOF));
   EXPECT_EQ(labelOf(BALCONY), labelOf(ROOF));
   EXPECT_NE(labelOf(HEDGE), labelOf(ROOF));
