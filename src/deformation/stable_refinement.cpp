@@ -46,20 +46,19 @@ struct LeftOut
   std::size_t regions = 0;         // regions found
 };
 
-// The regions of `field` and their rim; with `largest` > 0 only regions 1..largest (regions are
-// numbered by decreasing area).
+// The regions of `analysis` (of `field`) and their rim; with `largest` > 0 only regions
+// 1..largest (regions are numbered by decreasing area).
 LeftOut
-regionsAndRim(const std::vector<Eigen::Vector3d>& points, const ResidualField& field, const RegionSettings& regions,
-              std::size_t largest = 0)
+regionsAndRim(const std::vector<Eigen::Vector3d>& points, const ResidualField& field, RegionAnalysis analysis,
+              int plane_axis, std::size_t largest = 0)
 {
-  RegionAnalysis analysis = analyseRegions(points, field, regions);
   LeftOut out;
   out.observed = field.observed;
   out.regions = analysis.regions.size();
   if (largest > 0)
     for (int& id : analysis.region)
       id = id > 0 && static_cast<std::size_t>(id) <= largest ? id : 0;
-  out.mask = nearRegions(points, analysis, regions.plane_axis);
+  out.mask = nearRegions(points, analysis, plane_axis);
   for (std::size_t i = 0; i < points.size(); ++i)
     out.count += out.mask[i] && std::isfinite(field.residual[i]) ? 1 : 0;
   return out;
@@ -81,13 +80,14 @@ leftOut(const std::vector<Eigen::Vector3d>& points, const TargetSurface& referen
   by_means.rule = DetectionRule::LOD95;
   const ResidualField means = computeResidualField(points, reference, rule, robust.adjustment, robust.scale, by_means);
   const double max_count = max_share * static_cast<double>(means.observed);
-  LeftOut left = regionsAndRim(points, means, regions);
+  LeftOut left = regionsAndRim(points, means, analyseRegions(points, means, regions), regions.plane_axis);
   if (static_cast<double>(left.count) <= max_count)
     return left;
   const ResidualField own = computeResidualField(points, reference, rule, robust.adjustment, robust.scale, residuals);
-  left = regionsAndRim(points, own, regions);
+  const RegionAnalysis analysis = analyseRegions(points, own, regions);
+  left = regionsAndRim(points, own, analysis, regions.plane_axis);
   for (std::size_t largest = 1; static_cast<double>(left.count) > max_count && largest < left.regions; ++largest) {
-    LeftOut fewer = regionsAndRim(points, own, regions, largest);
+    LeftOut fewer = regionsAndRim(points, own, analysis, regions.plane_axis, largest);
     if (static_cast<double>(fewer.count) > max_count)
       break;
     left = std::move(fewer);

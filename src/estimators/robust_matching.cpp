@@ -9,6 +9,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace pcl_ls3d {
 
@@ -71,19 +72,18 @@ maxDisplacement(const LinearizedMatching& lin, const Vector7d& a, const Vector7d
   return d;
 }
 
-/// σ_d of the residuals v (one per observation) at the epoch points: each point's first
-/// observation (its surface normal or height for LND / LZD, the first axis for ICP).
-double
-neighbourNoise(const LinearizedMatching& lin, const Eigen::VectorXd& v)
+/// Per epoch point the residual of its first observation in v (its surface normal or height for
+/// LND / LZD, the first axis for ICP); NaN for a point without an observation.
+std::vector<double>
+firstResiduals(const LinearizedMatching& lin, const Eigen::VectorXd& v)
 {
-  const std::vector<Eigen::Vector3d>& points = lin.reducedPoints();
-  std::vector<double> first(points.size(), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < points.size(); ++i) {
+  std::vector<double> first(lin.reducedPoints().size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < first.size(); ++i) {
     const int o = lin.observationOf(static_cast<int>(i));
     if (o >= 0)
       first[i] = v[o];
   }
-  return neighbourDifferenceScale(points, first);
+  return first;
 }
 
 /// The scale the M-step keeps fixed, from the high-breakdown fit X (its residuals v over all
@@ -105,28 +105,27 @@ fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchin
     fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, search_scale) : reweightedScale(v, search_scale);
     fixed = fixed > 0.0 ? fixed : search_scale;
   }
-  neighbour_noise = neighbourNoise(lin, v);
+  neighbour_noise = neighbourDifferenceScale(lin.reducedPoints(), firstResiduals(lin, v));
   if (s.cap_scale_by_neighbour_noise && neighbour_noise > 0.0)
     fixed = std::min(fixed, neighbour_noise);
   return fixed;
 }
 
-/// Points whose first observation lies beyond 2.5 ŝ of the high-breakdown fit X (Rousseeuw &
-/// Leroy's reweighting cut, as lmsFinalScale and reweightedScale use); 1 = beyond.
+/// Points whose first observation lies beyond kReweightingCut ŝ of the high-breakdown fit X;
+/// 1 = beyond.
 std::vector<std::uint8_t>
 beyondStart(const LinearizedMatching& lin, const Vector7d& X, double scale, std::size_t& count)
 {
   Eigen::VectorXd v;
   lin.residuals(X, v);
-  std::vector<std::uint8_t> out(lin.reducedPoints().size(), 0);
+  const std::vector<double> first = firstResiduals(lin, v);
+  std::vector<std::uint8_t> out(first.size(), 0);
   count = 0;
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    const int o = lin.observationOf(static_cast<int>(i));
-    if (o >= 0 && std::abs(v[o]) > 2.5 * scale) {
+  for (std::size_t i = 0; i < first.size(); ++i)
+    if (std::abs(first[i]) > kReweightingCut * scale) {  // false for NaN: no observation
       out[i] = 1;
       ++count;
     }
-  }
   return out;
 }
 

@@ -108,7 +108,7 @@ lmsFinalScale(const Eigen::Ref<const Eigen::VectorXd>& v, double s0, int p)
 {
   if (!(s0 > 0.0))
     return 0.0;
-  const double limit = 2.5 * s0;
+  const double limit = kReweightingCut * s0;
   double ss = 0.0;
   std::size_t inside = 0;
   for (Eigen::Index i = 0; i < v.size(); ++i)

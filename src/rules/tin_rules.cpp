@@ -116,6 +116,14 @@ reusable(const CorrespondenceCache& cache, const Eigen::Vector3d& query)
   return (query - a).norm() <= static_cast<double>(cache.reuse_radius);
 }
 
+// The snap radius of the scratch neighbourhood: kSnapFraction of its radius (0 when empty).
+double
+snapRadius()
+{
+  const Scratch& s = scratch();
+  return s.sq_dists.empty() ? 0.0 : kSnapFraction * std::sqrt(s.sq_dists.back());
+}
+
 // Remembers where (and how far around) a local element was built.
 void
 anchor(CorrespondenceCache& cache, const Eigen::Vector3d& query)
@@ -124,9 +132,7 @@ anchor(CorrespondenceCache& cache, const Eigen::Vector3d& query)
   cache.anchor = {{static_cast<float>(query.x()), static_cast<float>(query.y()), static_cast<float>(query.z())}};
   cache.reuse_radius = s.sq_dists.empty() ? 0.f : 0.05f * std::sqrt(s.sq_dists.back());
   cache.nearest_sample = s.indices.empty() ? -1 : static_cast<std::int32_t>(s.indices.front());
-  cache.snap_radius = s.sq_dists.empty()
-                          ? 0.f
-                          : static_cast<float>(kSnapFraction * std::sqrt(s.sq_dists.back()));
+  cache.snap_radius = static_cast<float>(snapRadius());
 }
 
 bool
@@ -207,7 +213,7 @@ searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
   }
   const Eigen::Vector3d normal = dir ? *dir : s.normal;
   tin::projectToPlane(target, s.indices, found, query, normal, s.projected);
-  const int under = on_sample ? sampleUnderQuery(s.projected, kSnapFraction * std::sqrt(s.sq_dists.back())) : -1;
+  const int under = on_sample ? sampleUnderQuery(s.projected, snapRadius()) : -1;
   std::array<int, 3> tri;
   if (under < 0 && !tin::centredSupport(s.projected, kMaxCentroidOffset))
     return false;

@@ -9,6 +9,7 @@
 ///        across iterations through the observation set (Observation::point).
 
 #include <pcl_ls3d/estimators/robust_estimator_base.h>
+#include <pcl_ls3d/estimators/robust_scale.h>
 
 #include <cstdint>
 #include <vector>
@@ -21,7 +22,8 @@ public:
   /// \param[in] inner the estimator whose weights are kept otherwise
   /// \param[in] held_out per source point (the engine's point list): 1 = held out
   /// \param[in] cut held-out points count again within cut ŝ
-  MaskedEstimator(RobustEstimator::ConstPtr inner, std::vector<std::uint8_t> held_out, double cut = 2.5)
+  MaskedEstimator(RobustEstimator::ConstPtr inner, std::vector<std::uint8_t> held_out,
+                  double cut = kReweightingCut)
   : inner_(std::move(inner)), held_out_(std::move(held_out)), cut_(cut)
   {}
   std::string

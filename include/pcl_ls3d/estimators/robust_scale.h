@@ -16,6 +16,8 @@ namespace pcl_ls3d {
 constexpr double kHuber95 = 1.345;   ///< Huber k for 95 % efficiency at the normal
 constexpr double kTukey95 = 4.685;   ///< Tukey biweight c for 95 % efficiency at the normal
 constexpr double kTukeyS50 = 1.5476; ///< Tukey c of the 50 %-breakdown S-scale (b = 0.5)
+/// Rousseeuw & Leroy's (1987, p. 202) reweighting cut after a high-breakdown fit: |v| > 2.5 ŝ is out.
+constexpr double kReweightingCut = 2.5;
 
 /// \brief Where an estimator takes σ̂ from.
 enum class ScaleRule {
@@ -71,7 +73,7 @@ ltsScale(double trimmed_mean_squared, double alpha);
 ///        descends to the σ of the observations that fit the estimate (Rousseeuw & Van Driessen's
 ///        reweighting step, iterated). 0 when no residual lies inside.
 double
-reweightedScale(const Eigen::Ref<const Eigen::VectorXd>& v, double start, double c = 2.5);
+reweightedScale(const Eigen::Ref<const Eigen::VectorXd>& v, double start, double c = kReweightingCut);
 
 /// σ̂ by a rule: σ0 (sigma0 ≤ 0 → MAD), the MAD of v, or `fixed`.
 double
