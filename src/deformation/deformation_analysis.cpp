@@ -68,11 +68,20 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
   if (regions.plane_axis < 0 && settings.rule == ConjugateRuleType::LZD)
     regions.plane_axis = 2;  // LZD residuals are heights: areas and volumes on the xy plane
   const std::string robust_estimator = out.matching.estimator;
+  const RobustMatchingReport unrefined = out.matching;
   out.refinement = refineOnStablePart(matched, sample, reference, rule, settings.matching, rs, regions,
                                       settings.refinement, out.matching);
+  if (settings.refinement.max_rounds > 0)
+    out.start_choice = chooseBetweenStarts(matched, sample, reference, rule, settings.matching, rs, regions,
+                                           settings.refinement, unrefined, out.matching, out.refinement);
+  std::string estimator = robust_estimator;
+  const bool restarted = out.start_choice.chosen != "mm";
+  if (restarted)
+    estimator += "; chosen: the fit from its " + out.start_choice.chosen + " (" + out.matching.estimator + ")";
   if (out.refinement.rounds > 0)
-    out.matching.estimator = robust_estimator + ", then " + out.matching.estimator + " on the stable part (" +
-                             std::to_string(out.refinement.left_out) + " left out)";
+    estimator += ", then " + out.matching.estimator + " on the stable part (" +
+                 std::to_string(out.refinement.left_out) + " left out)";
+  out.matching.estimator = estimator;
   out.field = computeResidualField(epoch, reference, rule, out.matching.adjustment, out.matching.scale, rs);
   out.regions = analyseRegions(epoch, out.field, regions);
   return out;

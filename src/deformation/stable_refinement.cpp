@@ -10,34 +10,6 @@ namespace deformation {
 
 namespace {
 
-// The M-estimator (Tukey, c = 4.685, MAD scale) from the robust estimate: on a stable part it
-// is 95 % efficient, and it still down-weights what the regions missed.
-RobustMatchingSettings
-stablePartMatching(const RobustMatchingSettings& robust)
-{
-  RobustMatchingSettings m = robust;
-  m.method = RobustMethod::M;
-  m.constant = std::numeric_limits<double>::quiet_NaN();
-  m.least_squares_start = false;
-  return m;
-}
-
-// The refined matching keeps what the robust one found in its high-breakdown stage.
-void
-keepHighBreakdownFigures(const RobustMatchingReport& robust, RobustMatchingReport& refined)
-{
-  refined.method = robust.method;
-  refined.start = robust.start;
-  refined.search = robust.search;
-  refined.rounds = robust.rounds;
-  refined.subsets_drawn = robust.subsets_drawn;
-  refined.high_breakdown_transformation = robust.high_breakdown_transformation;
-  refined.high_breakdown_scale = robust.high_breakdown_scale;
-  refined.neighbour_noise = robust.neighbour_noise;
-  refined.held_out = robust.held_out;
-  refined.iterations += robust.iterations;
-}
-
 struct LeftOut
 {
   std::vector<std::uint8_t> mask;  // per point: in a region or its rim
@@ -96,6 +68,33 @@ leftOut(const std::vector<Eigen::Vector3d>& points, const TargetSurface& referen
 }
 
 }  // namespace
+
+RobustMatchingSettings
+stablePartMatching(const RobustMatchingSettings& robust)
+{
+  RobustMatchingSettings m = robust;
+  m.method = RobustMethod::M;
+  m.constant = std::numeric_limits<double>::quiet_NaN();
+  m.least_squares_start = false;
+  return m;
+}
+
+void
+keepHighBreakdownFigures(const RobustMatchingReport& robust, RobustMatchingReport& refined)
+{
+  refined.method = robust.method;
+  refined.start = robust.start;
+  refined.search = robust.search;
+  refined.rounds = robust.rounds;
+  refined.subsets_drawn = robust.subsets_drawn;
+  refined.high_breakdown_transformation = robust.high_breakdown_transformation;
+  refined.high_breakdown_scale = robust.high_breakdown_scale;
+  refined.neighbour_noise = robust.neighbour_noise;
+  refined.block_start_transformation = robust.block_start_transformation;
+  refined.block_support = robust.block_support;
+  refined.held_out = robust.held_out;
+  refined.iterations += robust.iterations;
+}
 
 bool
 StableRefinementSettings::isValid(std::string* why) const

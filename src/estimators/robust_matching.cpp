@@ -3,6 +3,7 @@
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
 #include <pcl_ls3d/estimators/masked_estimator.h>
 #include <pcl_ls3d/estimators/neighbour_noise.h>
+#include <pcl_ls3d/sample_consensus/block_consensus.h>
 #include <pcl_ls3d/sample_consensus/linearized_matching.h>
 
 #include <algorithm>
@@ -72,20 +73,6 @@ maxDisplacement(const LinearizedMatching& lin, const Vector7d& a, const Vector7d
   return d;
 }
 
-/// Per epoch point the residual of its first observation in v (its surface normal or height for
-/// LND / LZD, the first axis for ICP); NaN for a point without an observation.
-std::vector<double>
-firstResiduals(const LinearizedMatching& lin, const Eigen::VectorXd& v)
-{
-  std::vector<double> first(lin.reducedPoints().size(), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t i = 0; i < first.size(); ++i) {
-    const int o = lin.observationOf(static_cast<int>(i));
-    if (o >= 0)
-      first[i] = v[o];
-  }
-  return first;
-}
-
 /// The scale the M-step keeps fixed, from the high-breakdown fit X (its residuals v over all
 /// matched observations): LMS s0 (recomputed at X, which may be an earlier round's) and σ*;
 /// MM the LTS scale reweighted, or the S-scale; at most the neighbour noise when capped.
@@ -105,7 +92,7 @@ fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchin
     fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, search_scale) : reweightedScale(v, search_scale);
     fixed = fixed > 0.0 ? fixed : search_scale;
   }
-  neighbour_noise = neighbourDifferenceScale(lin.reducedPoints(), firstResiduals(lin, v));
+  neighbour_noise = neighbourDifferenceScale(lin.reducedPoints(), lin.pointResiduals(v));
   if (s.cap_scale_by_neighbour_noise && neighbour_noise > 0.0)
     fixed = std::min(fixed, neighbour_noise);
   return fixed;
@@ -118,7 +105,7 @@ beyondStart(const LinearizedMatching& lin, const Vector7d& X, double scale, std:
 {
   Eigen::VectorXd v;
   lin.residuals(X, v);
-  const std::vector<double> first = firstResiduals(lin, v);
+  const std::vector<double> first = lin.pointResiduals(v);
   std::vector<std::uint8_t> out(first.size(), 0);
   count = 0;
   for (std::size_t i = 0; i < first.size(); ++i)
@@ -167,6 +154,15 @@ highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, Ro
   }
   report.high_breakdown_transformation = lin.matrixOf(X);
   report.high_breakdown_scale = fixedScale(lin, X, s, report.search.scale, report.neighbour_noise);
+  if (!lms && s.mm_block_start && report.neighbour_noise > 0.0) {
+    BlockConsensusSettings bs;
+    bs.seed = s.seed;
+    const BlockConsensusResult blocks = blockConsensus(lin, report.neighbour_noise, X, bs);
+    if (blocks.ok) {
+      report.block_start_transformation = lin.matrixOf(blocks.parameters);
+      report.block_support = blocks.support;
+    }
+  }
   return true;
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pcl_ls3d {
 
@@ -181,6 +182,16 @@ LinearizedMatching::fitWeighted(const Eigen::VectorXd& weights, Vector7d& X, Gau
   if (solution)
     *solution = std::move(sol);
   return ok && X.allFinite();
+}
+
+std::vector<double>
+LinearizedMatching::pointResiduals(const Eigen::VectorXd& v) const
+{
+  std::vector<double> out(reduced_.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (first_[i] >= 0 && first_[i] < v.size())
+      out[i] = v[first_[i]];
+  return out;
 }
 
 void

@@ -9,6 +9,7 @@
 #include <pcl_ls3d/deformation/deformation_regions.h>
 #include <pcl_ls3d/deformation/residual_field.h>
 #include <pcl_ls3d/deformation/stable_refinement.h>
+#include <pcl_ls3d/deformation/start_choice.h>
 #include <pcl_ls3d/estimators/robust_matching.h>
 
 #include <string>
@@ -51,6 +52,7 @@ struct DeformationResult
 {
   RobustMatchingReport matching;
   StableRefinementReport refinement;
+  StartChoice start_choice;  ///< MM: the fits from its starts that competed (start_choice.h)
   ResidualField field;
   RegionAnalysis regions;
   /// True when the matching gave a usable estimate and the field was computed.

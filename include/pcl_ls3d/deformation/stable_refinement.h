@@ -33,6 +33,16 @@ struct StableRefinementSettings
   isValid(std::string* why = nullptr) const;
 };
 
+/// The matching of a stable part: the M-estimator (Tukey, c = 4.685, MAD scale) from the robust
+/// estimate — on a stable part 95 % efficient, and it still down-weights what the regions missed.
+RobustMatchingSettings
+stablePartMatching(const RobustMatchingSettings& robust);
+
+/// A matching of the stable part keeps what the robust one found in its high-breakdown stage
+/// (start, search, subsets, scales, block start) and adds its iterations.
+void
+keepHighBreakdownFigures(const RobustMatchingReport& robust, RobustMatchingReport& refined);
+
 /// Per point: 1 when it belongs to a region (id > 0) or lies within `analysis.adjacency` of a
 /// region point (in the plane `plane_axis` when ≥ 0, else in 3-D), else 0. Noise clusters are
 /// not left out: isolated detections are what the noise of a stable surface produces.

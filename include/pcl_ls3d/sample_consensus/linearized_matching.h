@@ -66,6 +66,10 @@ public:
   /// v = l + A (X − X0) for every observation.
   void
   residuals(const Vector7d& X, Eigen::VectorXd& v) const;
+  /// Per epoch point the entry of v (one per observation) of its first observation (its normal
+  /// or height distance for LND / LZD, the first axis for ICP); NaN for a point without one.
+  std::vector<double>
+  pointResiduals(const Eigen::VectorXd& v) const;
   /// v_j of one observation.
   double
   residual(std::size_t j, const Vector7d& X) const

@@ -1,0 +1,66 @@
+#pragma once
+/// \file start_choice.h
+/// \brief The choice between MM's starts (beyond Li et al. 2001). Three fits compete: the MM
+///        estimate (LTS start, Tukey M-step) refined on its stable part, and the LTS start and
+///        the block-consensus start (sample_consensus/block_consensus.h) each matched on the
+///        points outside its own deformed regions and refined the same way. Each fails where
+///        another holds: at 42 % deformed by 5 σ the M-step walks from a start 0.1–0.3 σ off
+///        to a compromise 3–6 σ off (the patch's low tail comes back within Tukey's support, and
+///        with it the rest); at 36 % by 3.5 σ the point-wise LTS optimum itself is a tilted
+///        compromise, and the block start is not.
+///
+/// The score is the same for every fit, and none of the fits' own scales (a compromise
+/// inflates its own): the residuals at the fit are tested at σ_d, the noise of neighbouring
+/// residuals (estimators/neighbour_noise.h), the deformed regions found as the user's are, and
+/// the score is 1.4826 · med |r| of the observed points outside them — infinite when those are
+/// fewer than half of the observed points. A compromise keeps part of the patch and a tilted
+/// stable part outside its regions and scores 22–40 on Li's surface (σ = 20); the stable part's
+/// own fit scores ≈ σ. The MM estimate is replaced only by a strictly smaller score. PCL-free.
+
+#include <pcl_ls3d/deformation/deformation_regions.h>
+#include <pcl_ls3d/deformation/residual_field.h>
+#include <pcl_ls3d/deformation/stable_refinement.h>
+#include <pcl_ls3d/estimators/robust_matching.h>
+
+#include <string>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace deformation {
+
+/// \brief The scatter of the stable part at `fit` (see the file comment); +inf when the points
+///        outside the regions are fewer than half of the observed ones.
+/// \param[in] noise the scale the residuals are tested at (σ_d)
+double
+stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
+                  const ConjugateRule& rule, const AdjustmentReport& fit, double noise,
+                  const ResidualSettings& residuals, const RegionSettings& regions);
+
+/// \brief One competing fit and its score.
+struct StartCandidate
+{
+  std::string name;     ///< "mm", "lts start", "block start"
+  double scatter = 0.0; ///< stablePartScatter() after its refinement (inf: not scored)
+  bool usable = false;  ///< its matching gave an estimate
+};
+
+/// \brief What chooseBetweenStarts() compared and kept.
+struct StartChoice
+{
+  std::vector<StartCandidate> candidates;  ///< empty: no choice made (not MM, or no block start)
+  std::string chosen = "mm";
+};
+
+/// \brief Replaces `robust` / `refinement` (the MM estimate refined on its stable part) by the
+///        refined fit from the LTS or the block start when that scores strictly smaller.
+/// \param[in] unrefined the robust matching before its refinement (its starts and σ_d)
+StartChoice
+chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices,
+                    const TargetSurface& reference, const ConjugateRule& rule,
+                    const RobustMatchingSettings& matching, const ResidualSettings& residuals,
+                    const RegionSettings& regions, const StableRefinementSettings& settings,
+                    const RobustMatchingReport& unrefined, RobustMatchingReport& robust,
+                    StableRefinementReport& refinement);
+
+}  // namespace deformation
+}  // namespace pcl_ls3d

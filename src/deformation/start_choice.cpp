@@ -1,0 +1,115 @@
+#include <pcl_ls3d/deformation/start_choice.h>
+#include <pcl_ls3d/common/similarity_transform.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace pcl_ls3d {
+namespace deformation {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The adjustment record of `like` moved to the transformation T (parameters in its reduced
+// frame; no covariance: the field's σ then come from the noise alone).
+AdjustmentReport
+fitAt(const AdjustmentReport& like, const Eigen::Matrix4d& T)
+{
+  AdjustmentReport at = like;
+  at.transformation = T;
+  at.parameters = SimilarityTransform::fromMatrix(globalToLocal(T, like.local_origin_source, like.local_origin_target)).vector();
+  at.covariance.setZero();
+  return at;
+}
+
+// The epoch matched from T with the stable part's M-estimator on the points outside T's
+// deformed regions (all points when those are fewer than half of the observed), then refined.
+RobustMatchingReport
+refinedFrom(const Eigen::Matrix4d& T, const std::vector<Eigen::Vector3d>& points,
+            const std::vector<int>& point_indices, const TargetSurface& reference, const ConjugateRule& rule,
+            const RobustMatchingSettings& matching, const ResidualSettings& residuals,
+            const RegionSettings& regions, const StableRefinementSettings& settings,
+            const RobustMatchingReport& unrefined, double noise, StableRefinementReport& refinement)
+{
+  const ResidualField field = computeResidualField(points, reference, rule, fitAt(unrefined.adjustment, T), noise, residuals);
+  const RegionAnalysis analysis = analyseRegions(points, field, regions);
+  std::vector<Eigen::Vector3d> kept;
+  std::vector<int> kept_indices;
+  std::size_t kept_observed = 0;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (analysis.region[i] <= 0) {
+      kept.push_back(points[i]);
+      kept_indices.push_back(point_indices.empty() ? static_cast<int>(i) : point_indices[i]);
+      kept_observed += std::isfinite(field.residual[i]) ? 1 : 0;
+    }
+  if (2 * kept_observed < field.observed) {
+    kept = points;
+    kept_indices = point_indices;
+  }
+  RobustMatchingReport fit = robustMatching(kept, kept_indices, reference, rule, stablePartMatching(matching), T);
+  if (!fit.isSolutionUsable())
+    return fit;
+  keepHighBreakdownFigures(unrefined, fit);
+  refinement = refineOnStablePart(points, point_indices, reference, rule, matching, residuals, regions, settings, fit);
+  return fit;
+}
+
+}  // namespace
+
+double
+stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
+                  const ConjugateRule& rule, const AdjustmentReport& fit, double noise,
+                  const ResidualSettings& residuals, const RegionSettings& regions)
+{
+  const ResidualField field = computeResidualField(points, reference, rule, fit, noise, residuals);
+  const RegionAnalysis analysis = analyseRegions(points, field, regions);
+  std::vector<double> outside;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (std::isfinite(field.residual[i]) && analysis.region[i] <= 0)
+      outside.push_back(std::abs(field.residual[i]));
+  if (outside.empty() || 2 * outside.size() < field.observed)
+    return kInf;
+  const auto mid = outside.begin() + static_cast<std::ptrdiff_t>(outside.size() / 2);
+  std::nth_element(outside.begin(), mid, outside.end());
+  return 1.4826 * *mid;
+}
+
+StartChoice
+chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices,
+                    const TargetSurface& reference, const ConjugateRule& rule,
+                    const RobustMatchingSettings& matching, const ResidualSettings& residuals,
+                    const RegionSettings& regions, const StableRefinementSettings& settings,
+                    const RobustMatchingReport& unrefined, RobustMatchingReport& robust,
+                    StableRefinementReport& refinement)
+{
+  StartChoice choice;
+  if (unrefined.method != RobustMethod::MM || !(unrefined.block_support > 0.0) || !robust.isSolutionUsable())
+    return choice;
+  const double noise = unrefined.neighbour_noise > 0.0 ? unrefined.neighbour_noise : unrefined.scale;
+  double best = stablePartScatter(points, reference, rule, robust.adjustment, noise, residuals, regions);
+  choice.candidates.push_back({"mm", best, true});
+  const std::pair<const char*, Eigen::Matrix4d> starts[] = {
+      {"lts start", unrefined.high_breakdown_transformation},
+      {"block start", unrefined.block_start_transformation}};
+  for (const auto& start : starts) {
+    StableRefinementReport r;
+    RobustMatchingReport fit = refinedFrom(start.second, points, point_indices, reference, rule, matching, residuals,
+                                           regions, settings, unrefined, noise, r);
+    StartCandidate c{start.first, kInf, fit.isSolutionUsable()};
+    if (c.usable)
+      c.scatter = stablePartScatter(points, reference, rule, fit.adjustment, noise, residuals, regions);
+    choice.candidates.push_back(c);
+    if (c.usable && c.scatter < best) {
+      best = c.scatter;
+      choice.chosen = c.name;
+      robust = std::move(fit);
+      refinement = r;
+    }
+  }
+  return choice;
+}
+
+}  // namespace deformation
+}  // namespace pcl_ls3d
