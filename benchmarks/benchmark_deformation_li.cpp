@@ -55,6 +55,7 @@ constexpr double kSigma = 20.0;
 double g_grow_k = 0.0;  ///< hysteresis of the second detection score (-grow_k; default: none)
 int g_refine = -1;      ///< stable-part refinement rounds (-refine; -1: the library's default)
 int g_cap = -1;         ///< cap the M-step scale by the neighbour noise (-cap 0|1; -1: the library's default)
+int g_block_start = -1; ///< MM: the block start and the choice between starts (-block_start 0|1; -1: default)
 int g_hold_out = -1;    ///< MM: points beyond 2.5 s of the start out of the M-step (-hold_out 0|1; -1: default)
 bool g_verbose = false; ///< one line per trial (-v)
 
@@ -151,6 +152,8 @@ runTrial(const synth::LiSurface& li, const Method& method)
     s.matching.cap_scale_by_neighbour_noise = g_cap != 0;
   if (g_hold_out >= 0)
     s.matching.mm_hold_out_beyond_start = g_hold_out != 0;
+  if (g_block_start >= 0)
+    s.matching.mm_block_start = g_block_start != 0;
   Trial t;
   pcl::console::TicToc tt;
   tt.tic();
@@ -255,9 +258,9 @@ grid(const std::vector<std::string>& methods, const std::vector<double>& percent
             const synth::LiSurface li = synth::makeLiSurface(ls);
             const Trial t = runTrial(li, m);
             if (g_verbose)
-              std::printf("   %s seed %d err %.3f (start %.3f) refine %d left %zu (%s) %s\n",
+              std::printf("   %s seed %d err %.3f (start %.3f) chosen %s refine %d left %zu (%s) %s\n",
                           synth::toString(positions[pi]), seed, t.error_sigma, t.start_error_sigma,
-                          t.result.refinement.rounds, t.result.refinement.left_out,
+                          t.result.start_choice.chosen.c_str(), t.result.refinement.rounds, t.result.refinement.left_out,
                           t.result.refinement.stopped.c_str(), (t.result.matching.brief() + " / " + t.result.matching.message).c_str());
             ++n;
             if (t.usable && t.error_sigma <= 0.5) {
@@ -411,6 +414,7 @@ main(int argc, char** argv)
   pcl::console::parse_argument(argc, argv, "-refine", g_refine);
   pcl::console::parse_argument(argc, argv, "-cap", g_cap);
   pcl::console::parse_argument(argc, argv, "-hold_out", g_hold_out);
+  pcl::console::parse_argument(argc, argv, "-block_start", g_block_start);
   g_verbose = pcl::console::find_switch(argc, argv, "-v");
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   int pipeline_n = 0;

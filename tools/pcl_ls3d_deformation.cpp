@@ -408,6 +408,14 @@ main(int argc, char** argv)
     j["subsets"] = mr.subsets_drawn;
     j["rounds"] = mr.rounds;
     j["iterations"] = mr.iterations;
+    if (!result.start_choice.candidates.empty()) {
+      nlohmann::json scores = nlohmann::json::object();
+      for (const auto& c : result.start_choice.candidates)
+        scores[c.name] = finiteOrNull(c.scatter);
+      j["start_choice"] = {{"chosen", result.start_choice.chosen},
+                           {"stable_part_scatter", scores},
+                           {"block_support", mr.block_support}};
+    }
     j["stable_refinement"] = {{"rounds", result.refinement.rounds},
                               {"points_left_out", result.refinement.left_out},
                               {"stopped", result.refinement.stopped}};

@@ -11,6 +11,8 @@ namespace deformation {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// √n × the relative standard error of 1.4826 · MAD for normal errors (Hampel et al. 1986).
+constexpr double kMadStandardError = 1.166;
 
 // The adjustment record of `like` moved to the transformation T (parameters in its reduced
 // frame; no covariance: the field's σ then come from the noise alone).
@@ -56,12 +58,23 @@ refinedFrom(const Eigen::Matrix4d& T, const std::vector<Eigen::Vector3d>& points
   return fit;
 }
 
+// a scores smaller than b by more than the standard error of a's MAD scale.
+bool
+clearlySmaller(const StartCandidate& a, const StartCandidate& b)
+{
+  if (!std::isfinite(a.scatter) || a.outside == 0)
+    return false;
+  if (!std::isfinite(b.scatter))
+    return true;
+  return a.scatter < b.scatter * (1.0 - kMadStandardError / std::sqrt(static_cast<double>(a.outside)));
+}
+
 }  // namespace
 
 double
 stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
                   const ConjugateRule& rule, const AdjustmentReport& fit, double noise,
-                  const ResidualSettings& residuals, const RegionSettings& regions)
+                  const ResidualSettings& residuals, const RegionSettings& regions, std::size_t* outside_count)
 {
   const ResidualField field = computeResidualField(points, reference, rule, fit, noise, residuals);
   const RegionAnalysis analysis = analyseRegions(points, field, regions);
@@ -69,6 +82,8 @@ stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurfac
   for (std::size_t i = 0; i < points.size(); ++i)
     if (std::isfinite(field.residual[i]) && analysis.region[i] <= 0)
       outside.push_back(std::abs(field.residual[i]));
+  if (outside_count)
+    *outside_count = outside.size();
   if (outside.empty() || 2 * outside.size() < field.observed)
     return kInf;
   const auto mid = outside.begin() + static_cast<std::ptrdiff_t>(outside.size() / 2);
@@ -88,8 +103,9 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
   if (unrefined.method != RobustMethod::MM || !(unrefined.block_support > 0.0) || !robust.isSolutionUsable())
     return choice;
   const double noise = unrefined.neighbour_noise > 0.0 ? unrefined.neighbour_noise : unrefined.scale;
-  double best = stablePartScatter(points, reference, rule, robust.adjustment, noise, residuals, regions);
-  choice.candidates.push_back({"mm", best, true});
+  StartCandidate kept{"mm", 0.0, 0, true};
+  kept.scatter = stablePartScatter(points, reference, rule, robust.adjustment, noise, residuals, regions, &kept.outside);
+  choice.candidates.push_back(kept);
   const std::pair<const char*, Eigen::Matrix4d> starts[] = {
       {"lts start", unrefined.high_breakdown_transformation},
       {"block start", unrefined.block_start_transformation}};
@@ -97,12 +113,12 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
     StableRefinementReport r;
     RobustMatchingReport fit = refinedFrom(start.second, points, point_indices, reference, rule, matching, residuals,
                                            regions, settings, unrefined, noise, r);
-    StartCandidate c{start.first, kInf, fit.isSolutionUsable()};
+    StartCandidate c{start.first, kInf, 0, fit.isSolutionUsable()};
     if (c.usable)
-      c.scatter = stablePartScatter(points, reference, rule, fit.adjustment, noise, residuals, regions);
+      c.scatter = stablePartScatter(points, reference, rule, fit.adjustment, noise, residuals, regions, &c.outside);
     choice.candidates.push_back(c);
-    if (c.usable && c.scatter < best) {
-      best = c.scatter;
+    if (c.usable && clearlySmaller(c, kept)) {
+      kept = c;
       choice.chosen = c.name;
       robust = std::move(fit);
       refinement = r;

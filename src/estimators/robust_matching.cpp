@@ -3,7 +3,7 @@
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
 #include <pcl_ls3d/estimators/masked_estimator.h>
 #include <pcl_ls3d/estimators/neighbour_noise.h>
-#include <pcl_ls3d/sample_consensus/block_consensus.h>
+#include <pcl_ls3d/sample_consensus/block_trimmed_squares.h>
 #include <pcl_ls3d/sample_consensus/linearized_matching.h>
 
 #include <algorithm>
@@ -154,10 +154,10 @@ highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, Ro
   }
   report.high_breakdown_transformation = lin.matrixOf(X);
   report.high_breakdown_scale = fixedScale(lin, X, s, report.search.scale, report.neighbour_noise);
-  if (!lms && s.mm_block_start && report.neighbour_noise > 0.0) {
-    BlockConsensusSettings bs;
+  if (!lms && s.mm_block_start) {
+    BlockTrimmedSquaresSettings bs;
     bs.seed = s.seed;
-    const BlockConsensusResult blocks = blockConsensus(lin, report.neighbour_noise, X, bs);
+    const BlockTrimmedSquaresResult blocks = blockTrimmedSquares(lin, X, bs);
     if (blocks.ok) {
       report.block_start_transformation = lin.matrixOf(blocks.parameters);
       report.block_support = blocks.support;

@@ -98,6 +98,14 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
   EXPECT_NEAR(j["percent_deformed"].get<double>(), li.percent, 3.0);
   EXPECT_FALSE(j["stable_part_ambiguous"].get<bool>());  // 20 % moved: clearly a minority
   EXPECT_NEAR(j["neighbour_noise"].get<double>(), 20.0, 4.0);  // σ = 20 (√2 σ on the patch)
+  // MM (the default) compared its three fits by the stable part's scatter (≈ σ for the good ones).
+  ASSERT_TRUE(j.contains("start_choice"));
+  EXPECT_EQ(j["start_choice"]["stable_part_scatter"].size(), 3u);
+  EXPECT_NEAR(j["start_choice"]["stable_part_scatter"]["mm"].get<double>(), 20.0, 4.0);
+  EXPECT_FALSE(j["start_choice"]["chosen"].get<std::string>().empty());
+  // The block start's criterion keeps 40 % of the blocks: about 40 % of the observations.
+  EXPECT_GT(j["start_choice"]["block_support"].get<double>(), 0.3);
+  EXPECT_LT(j["start_choice"]["block_support"].get<double>(), 0.5);
   ASSERT_GE(j["regions"].size(), 1u);
   EXPECT_EQ(j["regions"][0]["sign"].get<int>(), 1);
 

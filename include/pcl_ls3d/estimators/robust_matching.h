@@ -13,7 +13,7 @@
 ///      for MM (beyond the paper): FAST-LTS starts with C-steps, a scale fixed from the LTS fit
 ///      (reweighted, or the 50 %-breakdown S-scale), then a Tukey M-step at 95 % efficiency
 ///      holding out the points beyond 2.5 ŝ of the start while they stay there; a second
-///      start from blocks of the surface is searched and reported (block_consensus.h);
+///      start from blocks of the surface is searched and reported (block_trimmed_squares.h);
 ///      both fixed scales at most the neighbour-difference noise of that fit (beyond the paper);
 ///   3. the report of the last adjustment: parameters with the engine's σ (spatial sandwich),
 ///      weights, residuals and redundancy numbers, σ̂, subsets, rounds and why it stopped.
@@ -94,7 +94,7 @@ struct RobustMatchingSettings
   /// partly weighted, and that pull leads the M-step from a start 0.1 σ off to a compromise
   /// 5 σ off (42 % deformed by 5 σ); held out, it cannot pull.
   bool mm_hold_out_beyond_start = true;
-  /// MM: also search a start on blocks of the surface (block_consensus.h), reported as
+  /// MM: also search a start on blocks of the surface (block_trimmed_squares.h), reported as
   /// block_start_transformation for the deformation analysis to refine and choose between
   /// (deformation/start_choice.h); robust matching itself continues from the LTS start.
   bool mm_block_start = true;
@@ -144,8 +144,8 @@ struct RobustMatchingReport
   Eigen::Matrix4d high_breakdown_transformation = Eigen::Matrix4d::Identity();
   double high_breakdown_scale = 0.0;  ///< the scale the M-step keeps fixed (LMS: σ* or s0, MM: see MmScale)
   double neighbour_noise = 0.0;       ///< σ_d of the high-breakdown fit's residuals (neighbour_noise.h)
-  /// MM with mm_block_start: the block-consensus estimate (4×4, as the transformation) and the
-  /// share of the observations in its consistent blocks; support 0: not searched.
+  /// MM with mm_block_start: the block-LTS estimate (4×4, as the transformation) and the share
+  /// of the observations in the blocks its criterion kept; support 0: not searched.
   Eigen::Matrix4d block_start_transformation = Eigen::Matrix4d::Identity();
   double block_support = 0.0;
   std::size_t held_out = 0;           ///< MM: points beyond 2.5 ŝ of the start, out of the M-step

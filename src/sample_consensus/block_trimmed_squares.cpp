@@ -1,0 +1,144 @@
+#include <pcl_ls3d/sample_consensus/block_trimmed_squares.h>
+#include <pcl_ls3d/common/voxel_index.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+#include <utility>
+
+namespace pcl_ls3d {
+
+namespace {
+
+/// The axis the observations' directions are closest to: the blocks lie in the plane across it
+/// (z for LZD; for LND the surface's dominant normal). Not the box's largest projection: Li's
+/// surface has as much relief as extent.
+int
+surfaceNormalAxis(const LinearizedMatching& lin)
+{
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const Observation& o : lin.observations())
+    sum += o.direction.cwiseAbs();
+  int axis = 2;
+  sum.maxCoeff(&axis);
+  return axis;
+}
+
+/// Observations of `lin` by square blocks of the epoch's dominant plane; blocks with fewer than
+/// half the median block's observations are dropped.
+std::vector<std::vector<int>>
+observationBlocks(const LinearizedMatching& lin, double block_spacings)
+{
+  const std::vector<Eigen::Vector3d>& points = lin.reducedPoints();
+  const int normal = surfaceNormalAxis(lin);
+  const double edge = block_spacings * cloudSpacing(points, normal).spacing;
+  if (!(edge > 0.0))
+    return {};
+  const int a = (normal + 1) % 3, b = (normal + 2) % 3;
+  std::map<std::pair<long long, long long>, std::vector<int>> cells;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const int first = lin.observationOf(static_cast<int>(i));
+    if (first < 0)
+      continue;
+    std::vector<int>& cell = cells[{static_cast<long long>(std::floor(points[i][a] / edge)),
+                                    static_cast<long long>(std::floor(points[i][b] / edge))}];
+    for (int j = 0; j < lin.countOf(static_cast<int>(i)); ++j)
+      cell.push_back(first + j);
+  }
+  std::vector<std::size_t> sizes;
+  for (const auto& cell : cells)
+    sizes.push_back(cell.second.size());
+  if (sizes.empty())
+    return {};
+  std::nth_element(sizes.begin(), sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2), sizes.end());
+  const std::size_t min_size = std::max<std::size_t>(2, sizes[sizes.size() / 2] / 2);
+  std::vector<std::vector<int>> blocks;
+  for (auto& cell : cells)
+    if (cell.second.size() >= min_size)
+      blocks.push_back(std::move(cell.second));
+  return blocks;
+}
+
+/// The h blocks of smallest mean square at X: the criterion (mean of their mean squares) and
+/// their observations.
+double
+trimmedBlocks(const LinearizedMatching& lin, const std::vector<std::vector<int>>& blocks, std::size_t h,
+              const Vector7d& X, std::vector<int>& observations)
+{
+  Eigen::VectorXd v;
+  lin.residuals(X, v);
+  std::vector<std::pair<double, std::size_t>> squares(blocks.size());
+  for (std::size_t k = 0; k < blocks.size(); ++k) {
+    double sum = 0.0;
+    for (int j : blocks[k])
+      sum += v[j] * v[j];
+    squares[k] = {sum / static_cast<double>(blocks[k].size()), k};
+  }
+  std::nth_element(squares.begin(), squares.begin() + static_cast<std::ptrdiff_t>(h - 1), squares.end());
+  double criterion = 0.0;
+  observations.clear();
+  for (std::size_t k = 0; k < h; ++k) {
+    criterion += squares[k].first;
+    const std::vector<int>& block = blocks[squares[k].second];
+    observations.insert(observations.end(), block.begin(), block.end());
+  }
+  return criterion / static_cast<double>(h);
+}
+
+}  // namespace
+
+BlockTrimmedSquaresResult
+blockTrimmedSquares(const LinearizedMatching& lin, const Vector7d& start, const BlockTrimmedSquaresSettings& s)
+{
+  BlockTrimmedSquaresResult out;
+  const std::vector<std::vector<int>> blocks = observationBlocks(lin, s.block_spacings);
+  out.blocks = blocks.size();
+  const auto h = static_cast<std::size_t>(std::ceil(std::clamp(s.coverage, 0.0, 1.0) * static_cast<double>(blocks.size())));
+  if (h == 0 || blocks.size() < static_cast<std::size_t>(std::max(1, s.seed_blocks)))
+    return out;
+  out.kept = h;
+  std::mt19937 rng(s.seed);
+  std::uniform_int_distribution<std::size_t> pick(0, blocks.size() - 1);
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<int> seed, chosen, best_chosen;
+  for (int trial = 0; trial <= s.trials; ++trial) {
+    Vector7d X = start;  // trial 0: the given estimate
+    if (trial > 0) {
+      seed.clear();
+      for (int q = 0; q < s.seed_blocks; ++q) {
+        const std::vector<int>& block = blocks[pick(rng)];
+        seed.insert(seed.end(), block.begin(), block.end());
+      }
+      if (!lin.fit(seed.data(), seed.size(), X))
+        continue;
+    }
+    // Concentration: refit on the h best blocks while the criterion falls (it never rises).
+    double criterion = trimmedBlocks(lin, blocks, h, X, chosen);
+    for (int step = 0; step < s.max_csteps; ++step) {
+      Vector7d next;
+      std::vector<int> next_chosen;
+      if (!lin.fit(chosen.data(), chosen.size(), next))
+        break;
+      const double c = trimmedBlocks(lin, blocks, h, next, next_chosen);
+      if (!(c < criterion * (1.0 - 1e-12)))
+        break;
+      criterion = c;
+      X = next;
+      chosen.swap(next_chosen);
+    }
+    if (std::isfinite(criterion) && criterion < best) {
+      best = criterion;
+      out.ok = true;
+      out.parameters = X;
+      best_chosen = chosen;
+    }
+  }
+  if (out.ok) {
+    out.scale = std::sqrt(best);
+    out.support = static_cast<double>(best_chosen.size()) / static_cast<double>(std::max<std::size_t>(lin.size(), 1));
+  }
+  return out;
+}
+
+}  // namespace pcl_ls3d
