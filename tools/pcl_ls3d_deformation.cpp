@@ -353,6 +353,12 @@ main(int argc, char** argv)
   for (int i = 0; i < 7; ++i)
     print_info(" %s %.6g (%.2g)", names[static_cast<std::size_t>(i)].c_str(), a.parameters[i], a.sigmas[i]);
   print_info("\n");
+  if (!result.start_choice.candidates.empty()) {
+    print_info("Fits compared by the scatter of their stable part:");
+    for (const auto& c : result.start_choice.candidates)
+      print_info(" %s %.4g", c.name.c_str(), c.scatter);
+    print_info("; kept: %s\n", result.start_choice.chosen.c_str());
+  }
   const def::RegionAnalysis& reg = result.regions;
   print_info("Robust scale %.4g; %zu of %zu epoch points observed, %zu significant; %zu regions, %zu noise "
              "clusters; %.2f %% of the area deformed\n",
