@@ -96,8 +96,9 @@ struct RobustMatchingSettings
   bool mm_hold_out_beyond_start = true;
   /// MM: also search a start on blocks of the surface (block_trimmed_squares.h), reported as
   /// block_start_transformation for the deformation analysis to refine and choose between
-  /// (deformation/start_choice.h); robust matching itself continues from the LTS start.
-  bool mm_block_start = true;
+  /// (deformation/start_choice.h; on there by default); robust matching itself continues from
+  /// the LTS start, so other callers leave it off.
+  bool mm_block_start = false;
   LmsScale lms_scale = LmsScale::FINAL;
   /// LMS and MM: the M-step's fixed scale is at most σ_d, the noise of neighbouring residuals at
   /// the high-breakdown fit (neighbour_noise.h). A fit that compromises between the stable and
