@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <random>
 #include <utility>
@@ -86,6 +87,38 @@ trimmedBlocks(const LinearizedMatching& lin, const std::vector<std::vector<int>>
   return criterion / static_cast<double>(h);
 }
 
+/// A seed fit concentrated: refit on the h best blocks while the criterion falls (it never
+/// rises); infinite criterion when the fit fails.
+struct Trial
+{
+  double criterion = std::numeric_limits<double>::infinity();
+  Vector7d X = identityParameters();
+  std::size_t observations = 0;  // in the h best blocks
+};
+
+Trial
+concentrate(const LinearizedMatching& lin, const std::vector<std::vector<int>>& blocks, std::size_t h,
+            const Vector7d& X0, int max_steps)
+{
+  Trial t;
+  t.X = X0;
+  std::vector<int> chosen, next_chosen;
+  t.criterion = trimmedBlocks(lin, blocks, h, t.X, chosen);
+  for (int step = 0; step < max_steps; ++step) {
+    Vector7d next;
+    if (!lin.fit(chosen.data(), chosen.size(), next))
+      break;
+    const double c = trimmedBlocks(lin, blocks, h, next, next_chosen);
+    if (!(c < t.criterion * (1.0 - 1e-12)))
+      break;
+    t.criterion = c;
+    t.X = next;
+    chosen.swap(next_chosen);
+  }
+  t.observations = chosen.size();
+  return t;
+}
+
 }  // namespace
 
 BlockTrimmedSquaresResult
@@ -98,45 +131,33 @@ blockTrimmedSquares(const LinearizedMatching& lin, const Vector7d& start, const 
   if (h == 0 || blocks.size() < static_cast<std::size_t>(std::max(1, s.seed_blocks)))
     return out;
   out.kept = h;
+  // The seeds are drawn first, in order, so that the result does not depend on the threads.
   std::mt19937 rng(s.seed);
   std::uniform_int_distribution<std::size_t> pick(0, blocks.size() - 1);
-  double best = std::numeric_limits<double>::infinity();
-  std::vector<int> seed, chosen, best_chosen;
-  for (int trial = 0; trial <= s.trials; ++trial) {
-    Vector7d X = start;  // trial 0: the given estimate
-    if (trial > 0) {
-      seed.clear();
-      for (int q = 0; q < s.seed_blocks; ++q) {
-        const std::vector<int>& block = blocks[pick(rng)];
-        seed.insert(seed.end(), block.begin(), block.end());
-      }
-      if (!lin.fit(seed.data(), seed.size(), X))
-        continue;
-    }
-    // Concentration: refit on the h best blocks while the criterion falls (it never rises).
-    double criterion = trimmedBlocks(lin, blocks, h, X, chosen);
-    for (int step = 0; step < s.max_csteps; ++step) {
-      Vector7d next;
-      std::vector<int> next_chosen;
-      if (!lin.fit(chosen.data(), chosen.size(), next))
-        break;
-      const double c = trimmedBlocks(lin, blocks, h, next, next_chosen);
-      if (!(c < criterion * (1.0 - 1e-12)))
-        break;
-      criterion = c;
-      X = next;
-      chosen.swap(next_chosen);
-    }
-    if (std::isfinite(criterion) && criterion < best) {
-      best = criterion;
-      out.ok = true;
-      out.parameters = X;
-      best_chosen = chosen;
-    }
+  std::vector<std::vector<std::size_t>> seeds(static_cast<std::size_t>(std::max(0, s.trials)));
+  for (auto& seed : seeds)
+    for (int q = 0; q < s.seed_blocks; ++q)
+      seed.push_back(pick(rng));
+  std::vector<Trial> trials(seeds.size() + 1);
+  trials[0] = concentrate(lin, blocks, h, start, s.max_csteps);  // the given estimate
+#pragma omp parallel for schedule(dynamic, 8)
+  for (std::size_t t = 0; t < seeds.size(); ++t) {
+    std::vector<int> observations;
+    for (std::size_t b : seeds[t])
+      observations.insert(observations.end(), blocks[b].begin(), blocks[b].end());
+    Vector7d X;
+    if (lin.fit(observations.data(), observations.size(), X))
+      trials[t + 1] = concentrate(lin, blocks, h, X, s.max_csteps);
   }
+  const Trial* best = nullptr;
+  for (const Trial& t : trials)  // first of the smallest: deterministic
+    if (std::isfinite(t.criterion) && (!best || t.criterion < best->criterion))
+      best = &t;
+  out.ok = best != nullptr;
   if (out.ok) {
-    out.scale = std::sqrt(best);
-    out.support = static_cast<double>(best_chosen.size()) / static_cast<double>(std::max<std::size_t>(lin.size(), 1));
+    out.parameters = best->X;
+    out.scale = std::sqrt(best->criterion);
+    out.support = static_cast<double>(best->observations) / static_cast<double>(std::max<std::size_t>(lin.size(), 1));
   }
   return out;
 }
