@@ -77,7 +77,7 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
   std::string estimator = robust_estimator;
   const bool restarted = out.start_choice.chosen != "mm";
   if (restarted)
-    estimator += "; chosen: the fit from its " + out.start_choice.chosen + " (" + out.matching.estimator + ")";
+    estimator += "; chosen: the fit from its " + out.start_choice.chosen + " (" + out.start_choice.chosen_matching + ")";
   if (out.refinement.rounds > 0)
     estimator += ", then " + out.matching.estimator + " on the stable part (" +
                  std::to_string(out.refinement.left_out) + " left out)";

@@ -33,7 +33,8 @@ refinedFrom(const Eigen::Matrix4d& T, const std::vector<Eigen::Vector3d>& points
             const std::vector<int>& point_indices, const TargetSurface& reference, const ConjugateRule& rule,
             const RobustMatchingSettings& matching, const ResidualSettings& residuals,
             const RegionSettings& regions, const StableRefinementSettings& settings,
-            const RobustMatchingReport& unrefined, double noise, StableRefinementReport& refinement)
+            const RobustMatchingReport& unrefined, double noise, StableRefinementReport& refinement,
+            std::string& first_matching)
 {
   const ResidualField field = computeResidualField(points, reference, rule, fitAt(unrefined.adjustment, T), noise, residuals);
   const RegionAnalysis analysis = analyseRegions(points, field, regions);
@@ -46,7 +47,8 @@ refinedFrom(const Eigen::Matrix4d& T, const std::vector<Eigen::Vector3d>& points
       kept_indices.push_back(point_indices.empty() ? static_cast<int>(i) : point_indices[i]);
       kept_observed += std::isfinite(field.residual[i]) ? 1 : 0;
     }
-  if (2 * kept_observed < field.observed) {
+  const bool all_points = 2 * kept_observed < field.observed;  // no majority outside T's regions
+  if (all_points) {
     kept = points;
     kept_indices = point_indices;
   }
@@ -54,6 +56,8 @@ refinedFrom(const Eigen::Matrix4d& T, const std::vector<Eigen::Vector3d>& points
   if (!fit.isSolutionUsable())
     return fit;
   keepHighBreakdownFigures(unrefined, fit);
+  fit.held_out = 0;  // nothing of this fit was held out
+  first_matching = fit.estimator + (all_points ? " on all points" : " outside its regions");
   refinement = refineOnStablePart(points, point_indices, reference, rule, matching, residuals, regions, settings, fit);
   return fit;
 }
@@ -111,8 +115,9 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
       {"block start", unrefined.block_start_transformation}};
   for (const auto& start : starts) {
     StableRefinementReport r;
+    std::string first_matching;
     RobustMatchingReport fit = refinedFrom(start.second, points, point_indices, reference, rule, matching, residuals,
-                                           regions, settings, unrefined, noise, r);
+                                           regions, settings, unrefined, noise, r, first_matching);
     StartCandidate c{start.first, kInf, 0, fit.isSolutionUsable()};
     if (c.usable)
       c.scatter = stablePartScatter(points, reference, rule, fit.adjustment, noise, residuals, regions, &c.outside);
@@ -120,6 +125,7 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
     if (c.usable && clearlySmaller(c, kept)) {
       kept = c;
       choice.chosen = c.name;
+      choice.chosen_matching = first_matching;
       robust = std::move(fit);
       refinement = r;
     }

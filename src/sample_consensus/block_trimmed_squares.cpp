@@ -13,8 +13,10 @@ namespace pcl_ls3d {
 namespace {
 
 /// The axis the observations' directions are closest to: the blocks lie in the plane across it
-/// (z for LZD; for LND the surface's dominant normal). Not the box's largest projection: Li's
-/// surface has as much relief as extent.
+/// (z for LZD; for LND the surface's dominant normal). Not the box's largest projection first:
+/// Li's surface has as much relief as extent. (LZD's directions are the height gradients
+/// (−z_x, −z_y, 1): on steep terrain x and y weigh nearly as much as z, and z still wins.) On a
+/// tie (ICP observes along x, y and z alike) the box's largest projection decides.
 int
 surfaceNormalAxis(const LinearizedMatching& lin)
 {
@@ -22,7 +24,11 @@ surfaceNormalAxis(const LinearizedMatching& lin)
   for (const Observation& o : lin.observations())
     sum += o.direction.cwiseAbs();
   int axis = 2;
-  sum.maxCoeff(&axis);
+  const double largest = sum.maxCoeff(&axis);
+  Eigen::Vector3d others = sum;
+  others[axis] = 0.0;
+  if (!(largest > (1.0 + 1e-9) * others.maxCoeff()))
+    return cloudSpacing(lin.reducedPoints()).normal_axis;
   return axis;
 }
 
@@ -127,7 +133,9 @@ blockTrimmedSquares(const LinearizedMatching& lin, const Vector7d& start, const 
   BlockTrimmedSquaresResult out;
   const std::vector<std::vector<int>> blocks = observationBlocks(lin, s.block_spacings);
   out.blocks = blocks.size();
-  const auto h = static_cast<std::size_t>(std::ceil(std::clamp(s.coverage, 0.0, 1.0) * static_cast<double>(blocks.size())));
+  if (!(s.coverage > 0.0 && s.coverage <= 1.0))
+    return out;
+  const auto h = static_cast<std::size_t>(std::ceil(s.coverage * static_cast<double>(blocks.size())));
   if (h == 0 || blocks.size() < static_cast<std::size_t>(std::max(1, s.seed_blocks)))
     return out;
   out.kept = h;

@@ -102,6 +102,7 @@ TEST(StartChoice, OnlyMmChoosesAndAnUndeformedSurfaceKeepsItsFit)
   ASSERT_TRUE(f.ok());
   EXPECT_LT(flat.errorSigma(f.matching.adjustment.transformation), 0.3);
   ASSERT_EQ(f.start_choice.candidates.size(), 3u);
+  EXPECT_EQ(f.start_choice.chosen, "mm");  // the three agree within the MAD's standard error
   for (const StartCandidate& c : f.start_choice.candidates) {
     EXPECT_TRUE(c.usable) << c.name;
     EXPECT_LT(c.scatter, 1.2 * kSigma) << c.name;

@@ -3,7 +3,8 @@
 /// \brief The choice between MM's starts (beyond Li et al. 2001). Three fits compete: the MM
 ///        estimate (LTS start, Tukey M-step) refined on its stable part, and the LTS start and
 ///        the block start (sample_consensus/block_trimmed_squares.h) each matched on the
-///        points outside its own deformed regions and refined the same way. Each fails where
+///        points outside its own deformed regions (on all points when those are fewer than
+///        half of the observed) and refined the same way. Each fails where
 ///        another holds: at 42 % deformed by 5 σ the M-step walks from a start 0.1–0.3 σ off
 ///        to a compromise 3–6 σ off (the patch's low tail comes back within Tukey's support, and
 ///        with it the rest); at 36 % by 3.5 σ the point-wise LTS optimum itself is a tilted
@@ -54,6 +55,7 @@ struct StartChoice
 {
   std::vector<StartCandidate> candidates;  ///< empty: no choice made (not MM, or no block start)
   std::string chosen = "mm";
+  std::string chosen_matching;             ///< a start's fit: its first matching (before the refinement)
 };
 
 /// \brief Replaces `robust` / `refinement` (the MM estimate refined on its stable part) by the

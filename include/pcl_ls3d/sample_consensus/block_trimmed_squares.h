@@ -29,7 +29,7 @@ namespace pcl_ls3d {
 struct BlockTrimmedSquaresSettings
 {
   double block_spacings = 6.0;  ///< block edge in point spacings (≈ 36 points on a grid)
-  double coverage = 0.4;        ///< share of the blocks the criterion keeps
+  double coverage = 0.4;        ///< share of the blocks the criterion keeps, in (0, 1] (else no estimate)
   int trials = 300;             ///< random seeds
   int seed_blocks = 4;          ///< blocks per seed fit
   int max_csteps = 30;          ///< concentration steps per seed
@@ -41,7 +41,7 @@ struct BlockTrimmedSquaresResult
 {
   bool ok = false;
   Vector7d parameters = identityParameters();  ///< reduced frame of the LinearizedMatching
-  double scale = 0.0;         ///< √ of the criterion (RMS of the kept blocks' residuals)
+  double scale = 0.0;         ///< √ of the criterion (√ of the mean of the kept blocks' mean squares)
   double support = 0.0;       ///< share of the observations in the kept blocks
   std::size_t blocks = 0;     ///< blocks taking part
   std::size_t kept = 0;       ///< h
