@@ -257,15 +257,15 @@ grid(const std::vector<std::string>& methods, const std::vector<double>& percent
             ls.seed = static_cast<std::uint32_t>(seed);
             const synth::LiSurface li = synth::makeLiSurface(ls);
             const Trial t = runTrial(li, m);
-            for (const auto& c : t.result.start_choice.candidates)
-              if (g_verbose)
+            if (g_verbose) {
+              for (const auto& c : t.result.start_choice.candidates)
                 std::printf("      %s: scatter %.2f on %zu points%s\n", c.name.c_str(), c.scatter, c.outside,
                             c.usable ? "" : " (no usable fit)");
-            if (g_verbose)
               std::printf("   %s seed %d err %.3f (start %.3f) chosen %s refine %d left %zu (%s) %s\n",
                           synth::toString(positions[pi]), seed, t.error_sigma, t.start_error_sigma,
                           t.result.start_choice.chosen.c_str(), t.result.refinement.rounds, t.result.refinement.left_out,
                           t.result.refinement.stopped.c_str(), (t.result.matching.brief() + " / " + t.result.matching.message).c_str());
+            }
             ++n;
             if (t.usable && t.error_sigma <= 0.5) {
               ++ok;

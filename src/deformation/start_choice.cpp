@@ -1,7 +1,7 @@
 #include <pcl_ls3d/deformation/start_choice.h>
+#include <pcl_ls3d/adjustment/observation_weighting.h>
 #include <pcl_ls3d/common/similarity_transform.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -85,14 +85,12 @@ stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurfac
   std::vector<double> outside;
   for (std::size_t i = 0; i < points.size(); ++i)
     if (std::isfinite(field.residual[i]) && analysis.region[i] <= 0)
-      outside.push_back(std::abs(field.residual[i]));
+      outside.push_back(field.residual[i]);
   if (outside_count)
     *outside_count = outside.size();
   if (outside.empty() || 2 * outside.size() < field.observed)
     return kInf;
-  const auto mid = outside.begin() + static_cast<std::ptrdiff_t>(outside.size() / 2);
-  std::nth_element(outside.begin(), mid, outside.end());
-  return 1.4826 * *mid;
+  return robustScale(Eigen::Map<const Eigen::VectorXd>(outside.data(), static_cast<Eigen::Index>(outside.size())));
 }
 
 StartChoice
