@@ -153,7 +153,7 @@ runTrial(const synth::LiSurface& li, const Method& method)
   if (g_hold_out >= 0)
     s.matching.mm_hold_out_beyond_start = g_hold_out != 0;
   if (g_block_start >= 0)
-    s.matching.mm_block_start = g_block_start != 0;
+    s.matching.block_start = g_block_start != 0;
   Trial t;
   pcl::console::TicToc tt;
   tt.tic();

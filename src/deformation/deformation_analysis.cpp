@@ -60,7 +60,11 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
   }
   const std::vector<Eigen::Vector3d>& matched = sample.empty() ? epoch : sampled;
   out.matching = robustMatching(matched, sample, reference, rule, settings.matching, guess);
-  if (!out.matching.isSolutionUsable())
+  // A fit the quality gate refused (at 49 % deformed it rejects the patch and the stable part's
+  // noise tail: more than half) may still be rescued by the fit from another start.
+  const bool other_starts = out.matching.block_support > 0.0 && out.matching.adjustment.hasEstimate() &&
+                            settings.refinement.max_rounds > 0;
+  if (!out.matching.isSolutionUsable() && !other_starts)
     return out;
   ResidualSettings rs = settings.residuals;
   rs.max_distance = std::min(rs.max_distance, settings.matching.adjustment.max_correspondence_distance);
@@ -69,13 +73,17 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
     regions.plane_axis = 2;  // LZD residuals are heights: areas and volumes on the xy plane
   const std::string robust_estimator = out.matching.estimator;
   const RobustMatchingReport unrefined = out.matching;
-  out.refinement = refineOnStablePart(matched, sample, reference, rule, settings.matching, rs, regions,
-                                      settings.refinement, out.matching);
-  if (settings.refinement.max_rounds > 0)
+  if (out.matching.isSolutionUsable())
+    out.refinement = refineOnStablePart(matched, sample, reference, rule, settings.matching, rs, regions,
+                                        settings.refinement, out.matching);
+  if (other_starts)
     out.start_choice = chooseBetweenStarts(matched, sample, reference, rule, settings.matching, rs, regions,
                                            settings.refinement, unrefined, out.matching, out.refinement);
+  if (!out.matching.isSolutionUsable())
+    return out;
   std::string estimator = robust_estimator;
-  const bool restarted = out.start_choice.chosen != "mm";
+  const bool restarted = !out.start_choice.candidates.empty() &&
+                         out.start_choice.chosen != out.start_choice.candidates.front().name;
   if (restarted)
     estimator += "; chosen: the fit from its " + out.start_choice.chosen + " (" + out.start_choice.chosen_matching + ")";
   if (out.refinement.rounds > 0)

@@ -154,7 +154,7 @@ highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, Ro
   }
   report.high_breakdown_transformation = lin.matrixOf(X);
   report.high_breakdown_scale = fixedScale(lin, X, s, report.search.scale, report.neighbour_noise);
-  if (!lms && s.mm_block_start) {
+  if (s.block_start) {
     BlockTrimmedSquaresSettings bs;
     bs.seed = s.seed;
     const BlockTrimmedSquaresResult blocks = blockTrimmedSquares(lin, X, bs);

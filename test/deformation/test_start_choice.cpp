@@ -1,8 +1,9 @@
-// The choice between MM's starts: at 42 % of Li's surface deformed by 5 σ the MM fit ends 3–7 σ
+// The choice between the starts of MM and LMS: at 42 % of Li's surface deformed by 5 σ the MM fit ends 3–7 σ
 // off (its M-step or its LTS start compromises between the stable and the moved part), the fit
 // from the block start reaches the truth and is chosen by its smaller stable-part scatter. The
 // scatter itself: ≈ σ at the truth, larger at the compromise, infinite when the regions cover
-// more than half of the surface. Other estimators make no choice.
+// more than half of the surface. At 49 % LMS's refused fit is replaced. Other estimators make no
+// choice.
 #include "deformation/li_surface_pair.h"
 
 #include <pcl_ls3d/deformation/deformation_analysis.h>
@@ -27,7 +28,7 @@ struct LiPair : li_test::LiSurfacePair
   run(bool block_start) const
   {
     DeformationSettings s;
-    s.matching.mm_block_start = block_start;
+    s.matching.block_start = block_start;
     return analyseDeformation(points, *surface, *rule, s);
   }
   double
@@ -88,15 +89,23 @@ TEST(StartChoice, ScatterIsTheNoiseAtTheTruthAndLargerAtACompromise)
   EXPECT_TRUE(std::isinf(pair.scatter(lifted, noise)));
 }
 
-TEST(StartChoice, OnlyMmChoosesAndAnUndeformedSurfaceKeepsItsFit)
+TEST(StartChoice, LmsAndMmChooseOthersDoNotAndAnUndeformedSurfaceKeepsItsFit)
 {
   const LiPair deformed(liSurface(25.0, 10.0, synth::DeformationPosition::UPPER_LEFT));
-  DeformationSettings lms;
-  lms.matching.method = RobustMethod::LMS;
-  const DeformationResult r = analyseDeformation(deformed.points, *deformed.surface, *deformed.rule, lms);
+  DeformationSettings md;
+  md.matching.method = RobustMethod::MD;
+  const DeformationResult r = analyseDeformation(deformed.points, *deformed.surface, *deformed.rule, md);
   ASSERT_TRUE(r.ok());
   EXPECT_TRUE(r.start_choice.candidates.empty());
   EXPECT_EQ(r.matching.block_support, 0.0);
+  DeformationSettings lms;
+  lms.matching.method = RobustMethod::LMS;
+  const DeformationResult l = analyseDeformation(deformed.points, *deformed.surface, *deformed.rule, lms);
+  ASSERT_TRUE(l.ok());
+  ASSERT_EQ(l.start_choice.candidates.size(), 3u);
+  EXPECT_EQ(l.start_choice.candidates[0].name, "lms");
+  EXPECT_EQ(l.start_choice.candidates[1].name, "lms start");
+  EXPECT_LT(deformed.errorSigma(l.matching.adjustment.transformation), 0.5);
   const LiPair flat(liSurface(0.0, 0.0, synth::DeformationPosition::MIDDLE));
   const DeformationResult f = flat.run(true);
   ASSERT_TRUE(f.ok());
@@ -107,4 +116,53 @@ TEST(StartChoice, OnlyMmChoosesAndAnUndeformedSurfaceKeepsItsFit)
     EXPECT_TRUE(c.usable) << c.name;
     EXPECT_LT(c.scatter, 1.2 * kSigma) << c.name;
   }
+}
+
+// 49 % of the surface raised by 25 σ: LMS's M-step rejects the patch and the stable part's noise
+// tail, more than half, and the quality gate refuses its fit; the fit from another start is
+// scored and kept.
+TEST(StartChoice, LmsFitRefusedAt49PercentIsReplacedByAnotherStart)
+{
+  const LiPair pair(liSurface(49.0, 25.0, synth::DeformationPosition::LOWER_LEFT, 4));
+  DeformationSettings s;
+  s.matching.method = RobustMethod::LMS;
+  s.matching.block_start = false;
+  const DeformationResult alone = analyseDeformation(pair.points, *pair.surface, *pair.rule, s);
+  EXPECT_TRUE(!alone.ok() || pair.errorSigma(alone.matching.adjustment.transformation) > 0.5)
+      << "LMS alone no longer fails here";
+  s.matching.block_start = true;
+  const DeformationResult chosen = analyseDeformation(pair.points, *pair.surface, *pair.rule, s);
+  ASSERT_TRUE(chosen.ok()) << chosen.matching.message;
+  EXPECT_LT(pair.errorSigma(chosen.matching.adjustment.transformation), 0.5);
+  ASSERT_EQ(chosen.start_choice.candidates.size(), 3u);
+  EXPECT_FALSE(chosen.start_choice.candidates[0].usable);  // the refused LMS fit
+  EXPECT_TRUE(std::isinf(chosen.start_choice.candidates[0].scatter));
+  EXPECT_NE(chosen.start_choice.chosen, "lms");
+  EXPECT_NE(chosen.matching.estimator.find("chosen: the fit from its"), std::string::npos);
+}
+
+// The majority test counts the significant points of the regions, not the stable points the
+// hysteresis grew in: at 49 % deformed a weak growth threshold takes most of the rim, the
+// grown regions cover more than half, and the right fit still scores its noise.
+TEST(StartChoice, PointsGrownByHysteresisDoNotDecideTheMajority)
+{
+  const LiPair pair(liSurface(49.0, 25.0, synth::DeformationPosition::LOWER, 1));
+  const DeformationResult r = pair.run(true);
+  ASSERT_TRUE(r.ok()) << r.matching.message;
+  ASSERT_LT(pair.errorSigma(r.matching.adjustment.transformation), 0.5);
+  const double noise = r.matching.neighbour_noise;
+  DeformationSettings s;
+  s.regions.plane_axis = 2;
+  s.regions.grow_k = 0.5;
+  const ResidualField field = computeResidualField(pair.points, *pair.surface, *pair.rule, r.matching.adjustment,
+                                                   noise, s.residuals);
+  const RegionAnalysis grown = analyseRegions(pair.points, field, s.regions);
+  std::size_t in_regions = 0;
+  for (int id : grown.region)
+    in_regions += id > 0 ? 1 : 0;
+  EXPECT_GT(2 * in_regions, field.observed);  // the grown regions alone would refuse the fit
+  const double scatter = stablePartScatter(pair.points, *pair.surface, *pair.rule, r.matching.adjustment, noise,
+                                           s.residuals, s.regions);
+  EXPECT_TRUE(std::isfinite(scatter));
+  EXPECT_LT(scatter, 1.2 * kSigma);
 }

@@ -40,7 +40,7 @@ struct DeformationSettings
   {
     RobustMatchingSettings s;
     s.method = RobustMethod::MM;
-    s.mm_block_start = true;  // the second start the analysis chooses from (start_choice.h)
+    s.block_start = true;  // the second start the analysis chooses from (start_choice.h)
     return s;
   }
   bool

@@ -1,10 +1,10 @@
 #pragma once
 /// \file start_choice.h
-/// \brief The choice between MM's starts (beyond Li et al. 2001). Three fits compete: the MM
-///        estimate (LTS start, Tukey M-step) refined on its stable part, and the LTS start and
-///        the block start (sample_consensus/block_trimmed_squares.h) each matched on the
-///        points outside its own deformed regions (on all points when those are fewer than
-///        half of the observed) and refined the same way. Each fails where
+/// \brief The choice between the starts of MM and LMS (beyond Li et al. 2001). Three fits
+///        compete: the estimator's own (MM: LTS start and Tukey M-step; LMS: Li's subset fit and
+///        M-step) refined on its stable part, and its subset start and the block start (sample_consensus/block_trimmed_squares.h) each matched on the
+///        points outside its own deformed regions (on all points when the regions' significant
+///        points are half of the observed or more) and refined the same way. Each fails where
 ///        another holds: at 42 % deformed by 5 σ the M-step walks from a start 0.1–0.3 σ off
 ///        to a compromise 3–6 σ off (the patch's low tail comes back within Tukey's support, and
 ///        with it the rest); at 36 % by 3.5 σ the point-wise LTS optimum itself is a tilted
@@ -13,8 +13,11 @@
 /// The score is the same for every fit, and none of the fits' own scales (a compromise
 /// inflates its own): the residuals at the fit are tested at σ_d, the noise of neighbouring
 /// residuals (estimators/neighbour_noise.h), the deformed regions found as the user's are, and
-/// the score is 1.4826 · med |r| of the observed points outside them — infinite when those are
-/// fewer than half of the observed points. A compromise keeps part of the patch and a tilted
+/// the score is 1.4826 · med |r| of the observed points outside them — infinite when the
+/// regions' significant points are half of the observed or more (the points the hysteresis
+/// grew in are not counted: at 49 % deformed the patch's rim would tip a right fit over half).
+/// The estimator's own fit also competes when the quality gate refused it (it scores
+/// infinite): at 49 % deformed LMS's M-step rejects the patch and the stable part's noise tail. A compromise keeps part of the patch and a tilted
 /// stable part outside its regions and scores 22–40 on Li's surface (σ = 20); the stable part's
 /// own fit scores ≈ σ. A fit replaces the one kept so far only when it scores smaller by more
 /// than the standard error of a MAD scale from n points, 1.166 / √n (Hampel et al. 1986): on
@@ -31,8 +34,8 @@
 namespace pcl_ls3d {
 namespace deformation {
 
-/// \brief The scatter of the stable part at `fit` (see the file comment); +inf when the points
-///        outside the regions are fewer than half of the observed ones.
+/// \brief The scatter of the stable part at `fit` (see the file comment); +inf when the
+///        regions' significant points are half of the observed ones or more.
 /// \param[in] noise the scale the residuals are tested at (σ_d)
 /// \param[out] outside (optional) the observed points outside the regions
 double
@@ -44,7 +47,7 @@ stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurfac
 /// \brief One competing fit and its score.
 struct StartCandidate
 {
-  std::string name;     ///< "mm", "lts start", "block start"
+  std::string name;     ///< "mm" / "lms" (the estimator's fit), "lts start" / "lms start", "block start"
   double scatter = 0.0; ///< stablePartScatter() after its refinement (inf: not scored)
   std::size_t outside = 0; ///< the points it was measured on
   bool usable = false;  ///< its matching gave an estimate
@@ -53,13 +56,14 @@ struct StartCandidate
 /// \brief What chooseBetweenStarts() compared and kept.
 struct StartChoice
 {
-  std::vector<StartCandidate> candidates;  ///< empty: no choice made (not MM, or no block start)
-  std::string chosen = "mm";
+  std::vector<StartCandidate> candidates;  ///< empty: no choice made (not LMS / MM, or no block start)
+  std::string chosen;                      ///< the name of the fit kept (the first candidate's: none changed)
   std::string chosen_matching;             ///< a start's fit: its first matching (before the refinement)
 };
 
-/// \brief Replaces `robust` / `refinement` (the MM estimate refined on its stable part) by the
-///        refined fit from the LTS or the block start when that scores clearly smaller.
+/// \brief Replaces `robust` / `refinement` (the LMS / MM estimate refined on its stable part) by
+///        the refined fit from its subset start or the block start when that scores clearly
+///        smaller — also when the quality gate refused `robust` (it then scores infinite).
 /// \param[in] unrefined the robust matching before its refinement (its starts and σ_d)
 StartChoice
 chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices,

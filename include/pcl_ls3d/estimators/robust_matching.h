@@ -94,11 +94,11 @@ struct RobustMatchingSettings
   /// partly weighted, and that pull leads the M-step from a start 0.1 σ off to a compromise
   /// 5 σ off (42 % deformed by 5 σ); held out, it cannot pull.
   bool mm_hold_out_beyond_start = true;
-  /// MM: also search a start on blocks of the surface (block_trimmed_squares.h), reported as
-  /// block_start_transformation for the deformation analysis to refine and choose between
-  /// (deformation/start_choice.h; on there by default); robust matching itself continues from
-  /// the LTS start, so other callers leave it off.
-  bool mm_block_start = false;
+  /// LMS and MM: also search a start on blocks of the surface (block_trimmed_squares.h),
+  /// reported as block_start_transformation for the deformation analysis to refine and choose
+  /// between (deformation/start_choice.h; on there by default); robust matching itself continues
+  /// from its own subset fit, so other callers leave it off.
+  bool block_start = false;
   LmsScale lms_scale = LmsScale::FINAL;
   /// LMS and MM: the M-step's fixed scale is at most σ_d, the noise of neighbouring residuals at
   /// the high-breakdown fit (neighbour_noise.h). A fit that compromises between the stable and
@@ -145,7 +145,7 @@ struct RobustMatchingReport
   Eigen::Matrix4d high_breakdown_transformation = Eigen::Matrix4d::Identity();
   double high_breakdown_scale = 0.0;  ///< the scale the M-step keeps fixed (LMS: σ* or s0, MM: see MmScale)
   double neighbour_noise = 0.0;       ///< σ_d of the high-breakdown fit's residuals (neighbour_noise.h)
-  /// MM with mm_block_start: the block-LTS estimate (4×4, as the transformation) and the share
+  /// LMS / MM with block_start: the block-LTS estimate (4×4, as the transformation) and the share
   /// of the observations in the blocks its criterion kept; support 0: not searched.
   Eigen::Matrix4d block_start_transformation = Eigen::Matrix4d::Identity();
   double block_support = 0.0;
