@@ -425,6 +425,10 @@ main(int argc, char** argv)
   pcl::console::parse_argument(argc, argv, "-pipeline", pipeline_n);
   if (pcl::console::find_switch(argc, argv, "-lms_speed"))
     return lmsSpeed();
+  if (pipeline_n > 5000) {  // N is the grid's side: N × N points per epoch
+    std::fprintf(stderr, "-pipeline N is the grid's side (N x N points per epoch), at most 5000; got %d\n", pipeline_n);
+    return 1;
+  }
   if (pipeline_n > 0)
     return pipeline(pipeline_n);
   if (table == 2 || table == 4)
