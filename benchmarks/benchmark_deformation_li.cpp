@@ -55,7 +55,7 @@ constexpr double kSigma = 20.0;
 double g_grow_k = 0.0;  ///< hysteresis of the second detection score (-grow_k; default: none)
 int g_refine = -1;      ///< stable-part refinement rounds (-refine; -1: the library's default)
 int g_cap = -1;         ///< cap the M-step scale by the neighbour noise (-cap 0|1; -1: the library's default)
-int g_block_start = -1; ///< MM: the block start and the choice between starts (-block_start 0|1; -1: default)
+int g_block_start = -1; ///< LMS, MM: the block start and the choice between starts (-block_start 0|1; -1: default)
 int g_hold_out = -1;    ///< MM: points beyond 2.5 s of the start out of the M-step (-hold_out 0|1; -1: default)
 bool g_verbose = false; ///< one line per trial (-v)
 

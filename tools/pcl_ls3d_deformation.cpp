@@ -55,7 +55,8 @@ printHelp(const char* prog)
       "                       the reference is loaded first, the epoch uses its local origin)\n"
       "  -estimator NAME      mm (default: LTS start + Tukey M-step, high breakdown and 95 %%\n"
       "                       efficiency), lms (Li: LMS subsets then M), md (Li's M-D), m (Tukey on\n"
-      "                       MAD), huber, zuo, ls (plain least squares)\n"
+      "                       MAD), huber, zuo, ls (plain least squares). mm and lms also fit from\n"
+      "                       a block start and keep the fit whose stable part scatters least\n"
       "  -rule lzd|lnd        residuals along z (LHD, default) or along the surface normal\n"
       "  -params 6|7|3        rigid (default), similarity, translation\n"
       "  -subsets N           random subsets for lms/mm (default: lms from Li eq. 12, at least\n"
@@ -415,11 +416,14 @@ main(int argc, char** argv)
     j["rounds"] = mr.rounds;
     j["iterations"] = mr.iterations;
     if (!result.start_choice.candidates.empty()) {
-      nlohmann::json scores = nlohmann::json::object();
-      for (const auto& c : result.start_choice.candidates)
-        scores[c.name] = finiteOrNull(c.scatter);
+      nlohmann::json scores = nlohmann::json::object(), usable = nlohmann::json::object();
+      for (const auto& c : result.start_choice.candidates) {
+        scores[c.name] = finiteOrNull(c.scatter);  // null: refused, or its regions are the majority
+        usable[c.name] = c.usable;
+      }
       j["start_choice"] = {{"chosen", result.start_choice.chosen},
                            {"stable_part_scatter", scores},
+                           {"usable", usable},
                            {"block_support", mr.block_support}};
     }
     j["stable_refinement"] = {{"rounds", result.refinement.rounds},

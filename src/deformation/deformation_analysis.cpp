@@ -84,6 +84,8 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
   std::string estimator = robust_estimator;
   const bool restarted = !out.start_choice.candidates.empty() &&
                          out.start_choice.chosen != out.start_choice.candidates.front().name;
+  if (restarted && !unrefined.isSolutionUsable())
+    estimator += "; its own fit refused by the quality gate";
   if (restarted)
     estimator += "; chosen: the fit from its " + out.start_choice.chosen + " (" + out.start_choice.chosen_matching + ")";
   if (out.refinement.rounds > 0)

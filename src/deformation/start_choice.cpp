@@ -116,6 +116,8 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
   if (!(lms || unrefined.method == RobustMethod::MM) || !(unrefined.block_support > 0.0))
     return choice;
   const double noise = unrefined.neighbour_noise > 0.0 ? unrefined.neighbour_noise : unrefined.scale;
+  if (!(noise > 0.0))  // a refused fit has no scale: nothing to test the residuals at
+    return choice;
   StartCandidate kept{toString(unrefined.method), kInf, 0, robust.isSolutionUsable()};
   if (kept.usable)
     kept.scatter = stablePartScatter(points, reference, rule, robust.adjustment, noise, residuals, regions, &kept.outside);

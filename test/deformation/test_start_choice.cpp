@@ -1,8 +1,8 @@
 // The choice between the starts of MM and LMS: at 42 % of Li's surface deformed by 5 σ the MM fit ends 3–7 σ
 // off (its M-step or its LTS start compromises between the stable and the moved part), the fit
 // from the block start reaches the truth and is chosen by its smaller stable-part scatter. The
-// scatter itself: ≈ σ at the truth, larger at the compromise, infinite when the regions cover
-// more than half of the surface. At 49 % LMS's refused fit is replaced. Other estimators make no
+// scatter itself: ≈ σ at the truth, larger at the compromise, infinite when the regions'
+// significant points are half of the surface or more. At 49 % LMS's refused fit is replaced. Other estimators make no
 // choice.
 #include "deformation/li_surface_pair.h"
 
@@ -128,8 +128,8 @@ TEST(StartChoice, LmsFitRefusedAt49PercentIsReplacedByAnotherStart)
   s.matching.method = RobustMethod::LMS;
   s.matching.block_start = false;
   const DeformationResult alone = analyseDeformation(pair.points, *pair.surface, *pair.rule, s);
-  EXPECT_TRUE(!alone.ok() || pair.errorSigma(alone.matching.adjustment.transformation) > 0.5)
-      << "LMS alone no longer fails here";
+  EXPECT_FALSE(alone.ok()) << "LMS alone is no longer refused here";
+  EXPECT_TRUE(alone.start_choice.candidates.empty());
   s.matching.block_start = true;
   const DeformationResult chosen = analyseDeformation(pair.points, *pair.surface, *pair.rule, s);
   ASSERT_TRUE(chosen.ok()) << chosen.matching.message;
@@ -139,6 +139,13 @@ TEST(StartChoice, LmsFitRefusedAt49PercentIsReplacedByAnotherStart)
   EXPECT_TRUE(std::isinf(chosen.start_choice.candidates[0].scatter));
   EXPECT_NE(chosen.start_choice.chosen, "lms");
   EXPECT_NE(chosen.matching.estimator.find("chosen: the fit from its"), std::string::npos);
+  EXPECT_NE(chosen.matching.estimator.find("own fit refused"), std::string::npos);
+  // Without the refinement no start is refitted: the refused fit stays refused.
+  s.refinement.max_rounds = 0;
+  const DeformationResult unrefined = analyseDeformation(pair.points, *pair.surface, *pair.rule, s);
+  EXPECT_FALSE(unrefined.ok());
+  EXPECT_TRUE(unrefined.start_choice.candidates.empty());
+  EXPECT_TRUE(unrefined.field.residual.empty());
 }
 
 // The majority test counts the significant points of the regions, not the stable points the
@@ -160,7 +167,7 @@ TEST(StartChoice, PointsGrownByHysteresisDoNotDecideTheMajority)
   std::size_t in_regions = 0;
   for (int id : grown.region)
     in_regions += id > 0 ? 1 : 0;
-  EXPECT_GT(2 * in_regions, field.observed);  // the grown regions alone would refuse the fit
+  ASSERT_GT(2 * in_regions, field.observed);  // the grown regions alone would refuse the fit
   const double scatter = stablePartScatter(pair.points, *pair.surface, *pair.rule, r.matching.adjustment, noise,
                                            s.residuals, s.regions);
   EXPECT_TRUE(std::isfinite(scatter));

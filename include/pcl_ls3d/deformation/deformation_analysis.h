@@ -53,7 +53,7 @@ struct DeformationResult
 {
   RobustMatchingReport matching;
   StableRefinementReport refinement;
-  StartChoice start_choice;  ///< MM: the fits from its starts that competed (start_choice.h)
+  StartChoice start_choice;  ///< LMS / MM: the fits from their starts that competed (start_choice.h)
   ResidualField field;
   RegionAnalysis regions;
   /// True when the matching gave a usable estimate and the field was computed.

@@ -1,10 +1,11 @@
 #pragma once
 /// \file start_choice.h
 /// \brief The choice between the starts of MM and LMS (beyond Li et al. 2001). Three fits
-///        compete: the estimator's own (MM: LTS start and Tukey M-step; LMS: Li's subset fit and
-///        M-step) refined on its stable part, and its subset start and the block start (sample_consensus/block_trimmed_squares.h) each matched on the
-///        points outside its own deformed regions (on all points when the regions' significant
-///        points are half of the observed or more) and refined the same way. Each fails where
+///        compete: the estimator's own (MM: LTS start and Tukey M-step; LMS: Li's subset fit
+///        and M-step) refined on its stable part, and its subset start and the block start
+///        (sample_consensus/block_trimmed_squares.h), each matched on the observed points
+///        outside its own deformed regions (on all points when the regions' significant points
+///        are half of the observed or more) and refined the same way. Each fails where
 ///        another holds: at 42 % deformed by 5 σ the M-step walks from a start 0.1–0.3 σ off
 ///        to a compromise 3–6 σ off (the patch's low tail comes back within Tukey's support, and
 ///        with it the rest); at 36 % by 3.5 σ the point-wise LTS optimum itself is a tilted
