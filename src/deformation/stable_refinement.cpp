@@ -174,11 +174,7 @@ refineOnStablePart(const std::vector<Eigen::Vector3d>& points, const std::vector
     }
     std::vector<Eigen::Vector3d> kept;
     std::vector<int> kept_indices;
-    for (std::size_t i = 0; i < points.size(); ++i)
-      if (!left.mask[i]) {
-        kept.push_back(points[i]);
-        kept_indices.push_back(point_indices.empty() ? static_cast<int>(i) : point_indices[i]);
-      }
+    selectPoints(points, point_indices, [&](std::size_t i) { return !left.mask[i]; }, kept, kept_indices);
     RobustMatchingReport refined =
         robustMatching(kept, kept_indices, reference, rule, m, robust.adjustment.transformation);
     if (!refined.isSolutionUsable()) {

@@ -50,18 +50,13 @@ refinedFrom(const Eigen::Matrix4d& T, const std::vector<Eigen::Vector3d>& points
 {
   const ResidualField field = computeResidualField(points, reference, rule, fitAt(unrefined.adjustment, T), noise, residuals);
   const RegionAnalysis analysis = analyseRegions(points, field, regions);
-  std::vector<Eigen::Vector3d> kept;
-  std::vector<int> kept_indices;
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (analysis.region[i] <= 0 && std::isfinite(field.residual[i])) {
-      kept.push_back(points[i]);
-      kept_indices.push_back(point_indices.empty() ? static_cast<int>(i) : point_indices[i]);
-    }
   const bool all_points = !significantMinority(field, analysis);  // T describes no majority
-  if (all_points) {
-    kept = points;
-    kept_indices = point_indices;
-  }
+  std::vector<Eigen::Vector3d> kept = points;
+  std::vector<int> kept_indices = point_indices;
+  if (!all_points)
+    selectPoints(points, point_indices,
+                 [&](std::size_t i) { return analysis.region[i] <= 0 && std::isfinite(field.residual[i]); }, kept,
+                 kept_indices);
   RobustMatchingReport fit = robustMatching(kept, kept_indices, reference, rule, stablePartMatching(matching), T);
   if (!fit.isSolutionUsable())
     return fit;

@@ -43,6 +43,22 @@ stablePartMatching(const RobustMatchingSettings& robust);
 void
 keepHighBreakdownFigures(const RobustMatchingReport& robust, RobustMatchingReport& refined);
 
+/// \brief The points i with keep(i), and their indices in the caller's cloud (point_indices[i],
+///        or i when point_indices is empty) — the part a stable-part matching runs on.
+template <typename Keep>
+void
+selectPoints(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices, Keep keep,
+             std::vector<Eigen::Vector3d>& selected, std::vector<int>& selected_indices)
+{
+  selected.clear();
+  selected_indices.clear();
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (keep(i)) {
+      selected.push_back(points[i]);
+      selected_indices.push_back(point_indices.empty() ? static_cast<int>(i) : point_indices[i]);
+    }
+}
+
 /// Per point: 1 when it belongs to a region (id > 0) or lies within `analysis.adjacency` of a
 /// region point (in the plane `plane_axis` when ≥ 0, else in 3-D), else 0. Noise clusters are
 /// not left out: isolated detections are what the noise of a stable surface produces.
