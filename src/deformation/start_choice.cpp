@@ -21,7 +21,8 @@ fitAt(const AdjustmentReport& like, const Eigen::Matrix4d& T)
 {
   AdjustmentReport at = like;
   at.transformation = T;
-  at.parameters = SimilarityTransform::fromMatrix(globalToLocal(T, like.local_origin_source, like.local_origin_target)).vector();
+  const Eigen::Matrix4d local = globalToLocal(T, like.local_origin_source, like.local_origin_target);
+  at.parameters = SimilarityTransform::fromMatrix(local).vector();
   at.covariance.setZero();
   return at;
 }
@@ -48,7 +49,8 @@ refinedFrom(const Eigen::Matrix4d& T, const std::vector<Eigen::Vector3d>& points
             const RobustMatchingReport& unrefined, double noise, StableRefinementReport& refinement,
             std::string& first_matching)
 {
-  const ResidualField field = computeResidualField(points, reference, rule, fitAt(unrefined.adjustment, T), noise, residuals);
+  const ResidualField field =
+      computeResidualField(points, reference, rule, fitAt(unrefined.adjustment, T), noise, residuals);
   const RegionAnalysis analysis = analyseRegions(points, field, regions);
   const bool all_points = !significantMinority(field, analysis);  // T describes no majority
   std::vector<Eigen::Vector3d> kept = points;
@@ -115,7 +117,8 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
     return choice;
   StartCandidate kept{toString(unrefined.method), kInf, 0, robust.isSolutionUsable()};
   if (kept.usable)
-    kept.scatter = stablePartScatter(points, reference, rule, robust.adjustment, noise, residuals, regions, &kept.outside);
+    kept.scatter =
+        stablePartScatter(points, reference, rule, robust.adjustment, noise, residuals, regions, &kept.outside);
   choice.candidates.push_back(kept);
   choice.chosen = kept.name;
   const std::pair<const char*, Eigen::Matrix4d> starts[] = {
