@@ -48,7 +48,10 @@ printHelp(const char* name)
   print_error("Syntax is: %s SOURCE TARGET [options]\n", name);
   print_info(
       "  Registers SOURCE to TARGET (PCD, PLY, LAS, XYZ; both shifted to TARGET's local origin)\n"
-      "  from the identity with every method and prints one comparison table.\n"
+      "  from the identity with every method and prints one comparison table. Columns: conv =\n"
+      "  stopped by its own criterion before the iteration limit with a finite result; trust =\n"
+      "  LS3D's quality gate (- for PCL's methods: their hasConverged() is no such check).\n"
+      "  Exits 1 when no method converged.\n"
       "  -truth FILE   : truth JSON with \"transformation\": 4x4 row-major source->target in file\n"
       "                  coordinates (as written by pcl_ls3d_synth); adds displacement errors\n"
       "                  (mean/max over the source points, max over its bbox corners) and the\n"
@@ -261,7 +264,10 @@ main(int argc, char** argv)
     }
     evaluation.evaluate(runs.back(), has_truth ? &truth_local : nullptr);
     const RegistrationRun& r = runs.back();
-    const bool ok = r.ran && r.pcl_converged && r.transformation.allFinite();
+    // Converged by its own criterion (not at the iteration limit), finite, and not refused by
+    // a quality gate where the method has one.
+    const bool ok = r.ran && r.converged && r.transformation.allFinite() &&
+                    (!r.quality_checked || r.pcl_converged);
     usable += ok;
     print_info("%.3f s%s%s\n", r.time_s, ok ? "" : ", failed: ", ok ? "" : r.message.c_str());
   }

@@ -61,7 +61,8 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth)
   for (const auto& r : runs) {
     std::snprintf(buf, sizeof(buf), "%-10s %5d %8.3f %8.3f %5s %-10.10s %5s", r.name.c_str(),
                   r.iterations, r.time_s, r.cpu_s, !r.ran ? "FAIL" : (r.converged ? "yes" : "no"),
-                  r.stop.empty() ? "-" : r.stop.c_str(), r.pcl_converged ? "yes" : "no");
+                  r.stop.empty() ? "-" : r.stop.c_str(),
+                  !r.quality_checked ? "-" : (r.pcl_converged ? "yes" : "no"));
     out += buf;
     out += " " + cell(r.rms, 8, 4) + " " + cell(r.sigma0, 8, 4);
     if (with_truth) {

@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <limits>
 
 namespace pcl_ls3d {
 namespace evaluation {
@@ -76,10 +77,11 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     run.ran = true;
     run.iterations = report.iterations;
     run.pcl_converged = ls3d.hasConverged();
+    run.quality_checked = true;
     run.converged = report.termination == TerminationType::CONVERGED;
     run.hit_limit = report.termination == TerminationType::MAX_ITERATIONS;
     run.stop = terminationTypeToString(report.termination);
-    run.sigma0 = report.sigma0;
+    run.sigma0 = report.isSolutionUsable() ? report.sigma0 : std::numeric_limits<double>::quiet_NaN();
     run.transformation = report.isSolutionUsable()
                              ? report.transformation
                              : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());

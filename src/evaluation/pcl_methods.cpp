@@ -45,6 +45,13 @@ alignAndCollect(Reg& reg, CloudT& output, const PclMethodSettings& s, Registrati
   run.message = run.converged ? "converged"
                               : (run.hit_limit ? "iteration limit" : "not converged");
   run.stop = run.converged ? "conv" : (run.hit_limit ? "LIMIT" : "noconv");
+  // PCL can report convergence with a NaN transformation (ICP-N on collinear points).
+  if (!run.transformation.allFinite()) {
+    run.converged = false;
+    run.message = "non-finite transformation (hasConverged() " +
+                  std::string(run.pcl_converged ? "true" : "false") + ")";
+    run.stop = "NaN";
+  }
 }
 
 void

@@ -56,6 +56,7 @@ runRobust(RobustMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& s
     run.iterations = r.adjustment.iterations;
     run.converged = r.termination == TerminationType::CONVERGED;
     run.pcl_converged = run.converged;
+    run.quality_checked = true;
     run.hit_limit = r.termination == TerminationType::MAX_ITERATIONS;
     run.stop = terminationTypeToString(r.termination);
     run.sigma0 = r.scale;

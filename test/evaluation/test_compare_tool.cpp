@@ -169,3 +169,53 @@ TEST_F(CompareTool, BadInputFails)
   in >> content;
   EXPECT_EQ(content, "keep");
 }
+
+// A method that stops at its iteration limit has not converged, whatever PCL's hasConverged()
+// says (true for ICP at the limit): with one iteration allowed, no method converges on this
+// 0.6 m misalignment and the tool exits non-zero; PCL's rows have no trust verdict.
+TEST_F(CompareTool, ExitsNonZeroWhenNoMethodConverges)
+{
+  if (!fs::exists(kTool))
+    FAIL() << kTool << " not built";
+  const fs::path out = dir_ / "one_iteration.json";
+  fs::remove(out);
+  EXPECT_NE(run(inputs() + " -methods ls3d-lnd,icp,gicp -iter 1 -json " + out.string()), 0);
+  std::ifstream in(out);
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["methods"].size(), 3u);
+  for (const auto& m : j["methods"]) {
+    SCOPED_TRACE(m["name"].get<std::string>());
+    EXPECT_FALSE(m["converged"].get<bool>());
+  }
+  EXPECT_TRUE(j["methods"][1]["pcl_has_converged"].get<bool>());  // PCL-ICP at its limit
+}
+
+// Points on one line leave the point-to-plane normals undefined: PCL-ICP-N returns a NaN
+// transformation with hasConverged() true. That is a failure, in the JSON and the exit status.
+TEST_F(CompareTool, NonFiniteTransformationIsAFailure)
+{
+  if (!fs::exists(kTool))
+    FAIL() << kTool << " not built";
+  const fs::path a = dir_ / "line_a.xyz", b = dir_ / "line_b.xyz", out = dir_ / "line.json";
+  {
+    std::ofstream fa(a), fb(b);
+    for (int i = 0; i < 2000; ++i) {
+      const double t = 0.01 * i;
+      fa << t << " " << 2 * t << " " << 3 * t << "\n";
+      fb << t + 0.105 << " " << 2 * t + 0.01 << " " << 3 * t + 0.015 << "\n";
+    }
+  }
+  fs::remove(out);
+  EXPECT_NE(run(a.string() + " " + b.string() + " -methods icpn -json " + out.string()), 0);
+  std::ifstream in(out);
+  const auto j = nlohmann::json::parse(in);
+  ASSERT_EQ(j["methods"].size(), 1u);
+  const auto& m = j["methods"][0];
+  bool finite = true;
+  for (const auto& row : m["transformation"])
+    for (const auto& v : row)
+      finite = finite && !v.is_null();
+  ASSERT_FALSE(finite) << "PCL-ICP-N no longer returns NaN on a line: the test needs another case";
+  EXPECT_FALSE(m["converged"].get<bool>());
+  EXPECT_EQ(m["stop"], "NaN");
+}

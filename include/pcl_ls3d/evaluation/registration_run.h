@@ -37,6 +37,9 @@ struct RegistrationRun
   /// is also true when ICP/GICP/NDT merely hit the limit; that value is kept in pcl_converged.
   bool converged = false;
   bool pcl_converged = false;       ///< the method's hasConverged()
+  /// The method judged its own result (LS3D's quality gate: pcl_converged is false for a
+  /// refused fit); PCL's methods have no such check and hasConverged() is not one.
+  bool quality_checked = false;
   /// Stopped because it reached its iteration limit (PCL: nr_iterations_ == max; LS3D:
   /// MAX_ITERATIONS). A method that hit the limit did not converge by its own criterion.
   bool hit_limit = false;
