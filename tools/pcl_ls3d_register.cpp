@@ -175,7 +175,8 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
                   {"sigma0_ratio", r.quality.sigma0_ratio},
                   {"coverage", r.quality.coverage},
                   {"rejected_fraction", r.quality.rejected_fraction},
-                  {"movement", r.quality.movement}};
+                  {"movement", r.quality.movement},
+                  {"position_sigma", r.quality.position_sigma}};
   nlohmann::json log = nlohmann::json::array();
   for (const auto& it : r.log)
     log.push_back({{"iteration", it.iteration},

@@ -73,7 +73,7 @@ AdjustmentReport::fullReport() const
     os << format("  quality: sigma0 = %.3g x the surfaces' own noise (%.3g)", quality.sigma0_ratio,
                  quality.expected_noise)
        << format(", coverage %.3f, rejected %.3f", quality.coverage, quality.rejected_fraction)
-       << format(", moved %.4g: ", quality.movement)
+       << format(", moved %.4g (position sigma %.3g)", quality.movement, quality.position_sigma) << ": "
        << (quality.trustworthy ? "trustworthy\n" : "NOT TRUSTWORTHY\n");
   os << format("  local origin (source) = (%.4f, %.4f, %.4f)\n", local_origin_source.x(),
                local_origin_source.y(), local_origin_source.z());

@@ -104,6 +104,10 @@ AdjustmentSettings::isValid(std::string* why) const
   if (!(min_coverage >= 0.0 && min_coverage <= 1.0) ||
       !(max_rejected_fraction >= 0.0 && max_rejected_fraction <= 1.0))
     return fail("min_coverage and max_rejected_fraction must be in [0, 1]");
+  if (!(min_movement_significance >= 0.0) || std::isinf(min_movement_significance) ||
+      !(max_position_sigma_ratio > 0.0))
+    return fail("min_movement_significance must be >= 0 and finite (0 switches the test off), "
+                "max_position_sigma_ratio > 0 (+inf switches it off)");
   if (!(determinability_threshold > 0.0) || determinability_threshold >= 1.0)
     return fail("determinability_threshold must be in (0, 1)");
   return true;

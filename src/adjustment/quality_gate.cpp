@@ -1,6 +1,8 @@
 #include <pcl_ls3d/adjustment/quality_gate.h>
 #include <pcl_ls3d/adjustment/observation_weighting.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,6 +23,31 @@ movementOverBox(const Vector7d& start, const Vector7d& estimate, const Eigen::Al
   for (int c = 0; c < 8; ++c) {
     const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
     largest = std::max(largest, (b.apply(corner) - a.apply(corner)).norm());
+  }
+  return largest;
+}
+
+// Largest 1σ position uncertainty of a corner of the box under the estimate: the covariance
+// propagated through the corner's Jacobian (central differences), worst direction and corner.
+double
+cornerPositionSigma(const Vector7d& estimate, const Matrix7d& covariance, const Eigen::AlignedBox3d& box)
+{
+  if (box.isEmpty() || !covariance.allFinite())
+    return 0.0;
+  double largest = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    const Eigen::Vector3d corner = box.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c));
+    Eigen::Matrix<double, 3, 7> jacobian;
+    for (int i = 0; i < 7; ++i) {
+      const double h = 1e-6 * std::max(1.0, std::abs(estimate[i]));
+      Vector7d plus = estimate, minus = estimate;
+      plus[i] += h;
+      minus[i] -= h;
+      jacobian.col(i) = (SimilarityTransform(plus).apply(corner) - SimilarityTransform(minus).apply(corner)) / (2.0 * h);
+    }
+    const Eigen::Matrix3d position = jacobian * covariance * jacobian.transpose();
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(position, Eigen::EigenvaluesOnly);
+    largest = std::max(largest, std::sqrt(std::max(0.0, eig.eigenvalues().maxCoeff())));
   }
   return largest;
 }
@@ -79,6 +106,7 @@ measureQuality(const QualityInputs& in, const ObservationSet& observations)
                                   static_cast<double>(in.correspondences)
                             : 0.0;
   q.movement = movementOverBox(in.start, in.estimate, in.source_box);
+  q.position_sigma = cornerPositionSigma(in.estimate, in.covariance, in.source_box);
   q.median_gradient = medianGradient(observations);
   q.start_scale = in.start_scale;
   q.final_scale = robustScale(observations.distances());
@@ -115,6 +143,20 @@ applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimate
     add(figure("the residuals ended %.3g x larger than at the initial guess (limit %.3g): the "
                "adjustment moved away from the data",
                q.final_scale / start_level, s.max_scale_growth));
+  // Both: the data fix the source's position far worse than the surfaces' noise, and the move
+  // lies within that uncertainty. A move the data do support (significant) is kept, however
+  // weak the geometry.
+  if (q.position_sigma > s.max_position_sigma_ratio * q.expected_noise && q.movement > q.expected_noise &&
+      q.movement < s.min_movement_significance * q.position_sigma)
+  {
+    char buf[320];
+    std::snprintf(buf, sizeof(buf),
+                  "the source moved %.3g, only %.3g x its position sigma %.3g (limit %.3g), which is "
+                  "%.3g x the surfaces' own noise (limit %.3g): the data do not determine the move",
+                  q.movement, q.movement / q.position_sigma, q.position_sigma, s.min_movement_significance,
+                  q.position_sigma / q.expected_noise, s.max_position_sigma_ratio);
+    add(buf);
+  }
   if (q.median_gradient > s.max_median_gradient)
     add(figure("most observations lie on surfaces steeper than the rule measures (median gradient "
                "%.3g, limit %.3g): use a normal-distance rule (LND)",

@@ -146,6 +146,7 @@ assess(const PairRun& run, const ObservationSet& obs, const TargetSurface& targe
   in.start = run.start;
   in.estimate = run.setup.source.values;
   in.source_box = run.setup.source_box;
+  in.covariance = report.covariance;
   report.quality = measureQuality(in, obs);
   if (report.termination != TerminationType::CONVERGED &&
       report.termination != TerminationType::MAX_ITERATIONS)

@@ -203,3 +203,35 @@ TEST_F(RegisterTool, ParamsAndFixAreHonouredAndReportComplete)
   EXPECT_GT(j["quality"]["sigma0_ratio"].get<double>(), 3.0);
   EXPECT_EQ(j["redundancy"].get<long>(), j["observations_used"].get<long>() - 5);
 }
+
+// PDAL's Autzen thin-1 and thin-2 are the south and north of one georeferenced survey (truth:
+// identity) and barely overlap at a few points per 100 ft². LS3D wanders 120 ft from the
+// identity, with a position σ of 46 ft (2.9 × the surfaces' noise): the gate must refuse it
+// (it was CONVERGED and "trustworthy" before the position test), while bun0 → bun4 (position σ
+// 0.6 × the noise, a move 68 × its σ) stays trustworthy.
+TEST(RegisterToolRealData, AMoveTheDataDoNotDetermineIsRefused)
+{
+  const std::string pdal = std::string(PCL_LS3D_SHARED_DATA_DIR) + "/registration/pdal/";
+  const std::string pcl = std::string(PCL_LS3D_SHARED_DATA_DIR) + "/registration/pcl/";
+  if (!std::ifstream(pdal + "thin-1.las").good() || !std::ifstream(pcl + "bun0.pcd").good())
+    GTEST_SKIP() << "shared data not found under " << PCL_LS3D_SHARED_DATA_DIR << "; skipped";
+  const std::string json = (std::filesystem::temp_directory_path() /
+                            ("pcl_ls3d_thin_" + std::to_string(::getpid()) + ".json")).string();
+  const ToolRun thin = runTool(pdal + "thin-1.las " + pdal + "thin-2.las -json " + json + " -overwrite");
+  EXPECT_EQ(thin.code, 3) << thin.output;
+  {
+    std::ifstream in(json);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["termination"].get<std::string>(), "UNRELIABLE");
+    const auto& q = j["quality"];
+    EXPECT_GT(q["position_sigma"].get<double>(), 2.0 * q["expected_noise"].get<double>());
+    EXPECT_LT(q["movement"].get<double>(), 3.0 * q["position_sigma"].get<double>());
+  }
+  const ToolRun bun = runTool(pcl + "bun0.pcd " + pcl + "bun4.pcd -json " + json + " -overwrite");
+  EXPECT_EQ(bun.code, 0) << bun.output;
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j["quality"]["trustworthy"].get<bool>());
+  EXPECT_LT(j["quality"]["position_sigma"].get<double>(), j["quality"]["expected_noise"].get<double>());
+  std::remove(json.c_str());
+}

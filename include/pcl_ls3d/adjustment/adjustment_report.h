@@ -62,6 +62,10 @@ struct QualityFigures
   /// vertical difference is no surface distance.
   double median_gradient = 1.0;
   double movement = 0.0;              ///< largest displacement of the estimate from the initial guess over the source's extent
+  /// Largest 1σ uncertainty of where the estimate puts a corner of the source's box (the
+  /// reported covariance propagated, along the worst direction): how well the data fix the
+  /// source's position. Far above the surfaces' noise the estimate is not determined by the data.
+  double position_sigma = 0.0;
   /// 1.4826 · median |l| of the correspondences at the initial guess and at the end: a fit that
   /// ends worse than it started moved away from the data.
   double start_scale = 0.0;

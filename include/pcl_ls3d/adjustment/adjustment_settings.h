@@ -140,6 +140,14 @@ struct AdjustmentSettings
   /// the one at the initial guess, or of the surfaces' own noise when that is larger: the
   /// adjustment moved away from the data.
   double max_scale_growth = 1.25;
+  /// A fit whose position σ (QualityFigures::position_sigma) exceeds max_position_sigma_ratio ×
+  /// the surfaces' noise and that moved the source by more than the noise but by less than
+  /// min_movement_significance × that σ made a move the data do not support: a sparse or narrow
+  /// overlap lets the estimate wander metres with σ of metres (PDAL's Autzen thin-1 → thin-2:
+  /// 120 ft, σ 46 ft = 2.9 × the noise; two Warsaw strips: 5.9 m, σ 6.6 m = 10 ×). Right fits
+  /// measured: bun0 → bun4 0.63 ×, Li's surface with M-D 1.44 × (a move of 1.2 × the noise).
+  double max_position_sigma_ratio = 2.0;
+  double min_movement_significance = 3.0;
 
   // --- results ----------------------------------------------------------------------------------
   /// Keep per-observation residuals, weights and redundancy numbers r_i in the report

@@ -33,6 +33,7 @@ struct QualityInputs
   Vector7d start = Vector7d::Zero();        ///< parameters at the initial guess (reduced frame)
   Vector7d estimate = Vector7d::Zero();     ///< final parameters
   Eigen::AlignedBox3d source_box;           ///< of the reduced source points
+  Matrix7d covariance = Matrix7d::Zero();   ///< of the estimate (AdjustmentReport::covariance)
 };
 
 /// The figures of QualityFigures from the last observation set (distinct observed points).
