@@ -18,10 +18,10 @@
 
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/maps/png_io.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/io/pcd_io.h>
-#include <pcl/io/png_io.h>
 
 #include <algorithm>
 #include <cmath>
@@ -61,6 +61,15 @@ classColour(std::uint32_t c)
 bool
 loadSamples(const std::string& path, const std::string& by, std::vector<Sample>& out)
 {
+  // pcl_ls3d's reader first: it refuses empty, truncated and foreign files with one line
+  // (PCL's PCD reader crashes on an empty file).
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> c;
+  pcl_ls3d::io::CloudInfo info;
+  std::string error;
+  if (!pcl_ls3d::io::loadCloud(path, c, info, error)) {
+    std::fprintf(stderr, "render_top_view: %s\n", error.c_str());
+    return false;
+  }
   if (by != "class" && pcl_ls3d::io::fileExtension(path) == "pcd") {
     pcl::PointCloud<pcl::PointXYZRGBL> c;
     if (pcl::io::loadPCDFile(path, c) < 0)
@@ -72,13 +81,6 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
                                      : (p.rgba & 0xffffffu),
                        p.label});
     return true;
-  }
-  pcl::PointCloud<pcl_ls3d::PointLiDAR> c;
-  pcl_ls3d::io::CloudInfo info;
-  std::string error;
-  if (!pcl_ls3d::io::loadCloud(path, c, info, error)) {
-    std::fprintf(stderr, "%s\n", error.c_str());
-    return false;
   }
   for (const auto& p : c.points)
     out.push_back({p.x, p.y, p.z, classColour(p.classification), p.classification});
@@ -140,10 +142,12 @@ main(int argc, char** argv)
   pcl::console::parse_argument(argc, argv, "-view", view);
   const std::string input = argv[1], output = argv[files.front()];
   std::vector<Sample> pts;
-  const bool loaded = loadSamples(input, by, pts);
+  if (!loadSamples(input, by, pts))
+    return 1;
   crop(box, pts);
-  if (!(pixel > 0.0) || splat < 0 || !loaded || !toView(view, pts) || pts.empty()) {
-    std::fprintf(stderr, "render_top_view: cannot read '%s' or bad options\n", input.c_str());
+  if (!(pixel > 0.0) || splat < 0 || !toView(view, pts) || pts.empty()) {
+    std::fprintf(stderr, "render_top_view: bad options for '%s' (-pixel > 0, -splat >= 0, -view "
+                 "top|north|east|south|west, a -crop holding points)\n", input.c_str());
     return 1;
   }
   float x0 = pts[0].x, x1 = x0, y0 = pts[0].y, y1 = y0;
@@ -174,7 +178,8 @@ main(int argc, char** argv)
         }
       }
   }
-  std::vector<unsigned char> rgb(top.size() * 3, 255);
+  pcl_ls3d::maps::Image image(w, h);
+  std::vector<std::uint8_t>& rgb = image.pixels();
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const std::size_t i = static_cast<std::size_t>(y) * w + x;
@@ -193,7 +198,11 @@ main(int argc, char** argv)
       rgb[3 * i + 1] = static_cast<unsigned char>(((s->rgb >> 8) & 0xff) * f);
       rgb[3 * i + 2] = static_cast<unsigned char>((s->rgb & 0xff) * f);
     }
-  pcl::io::saveRgbPNGFile(output, rgb.data(), w, h);
+  std::string error;
+  if (!pcl_ls3d::maps::writePng(output, image, error)) {
+    std::fprintf(stderr, "render_top_view: %s\n", error.c_str());
+    return 1;
+  }
   std::printf("Wrote %s (%d x %d pixels of %.3g, %zu points, x %.1f..%.1f, y %.1f..%.1f)\n",
               output.c_str(), w, h, pixel, pts.size(), x0, x1, y0, y1);
   return 0;
