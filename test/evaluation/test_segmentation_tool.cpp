@@ -6,6 +6,7 @@
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/evaluation/segments_file.h>
+#include <pcl_ls3d/maps/png_io.h>
 
 #include <pcl/io/pcd_io.h>
 
@@ -400,4 +401,31 @@ TEST_F(SegmentTool, PlaneLevelGivesThePlanesBeforeMerging)
   }
   EXPECT_LE(static_cast<double>(outside), 0.01 * static_cast<double>(counted));
   EXPECT_NE(run(input_.string() + " -level walls").code, 0);
+}
+
+// render_top_view (the viewing aid behind the docs' pictures): a picture of the tool's
+// SEGMENTS.pcd is written and readable; an empty input (PCL's PCD reader crashed on it) and an
+// unwritable PNG (it said "Wrote" and exited 0) each exit 1 with one error line and no file.
+TEST_F(SegmentTool, TopViewRefusesEmptyInputAndUnwritableOutput)
+{
+  const fs::path viewer = fs::path(PCL_LS3D_TOOL_DIR) / "render_top_view";
+  if (!fs::exists(viewer))
+    GTEST_SKIP() << "render_top_view not built (PCL_LS3D_BUILD_BENCHMARKS=OFF)";
+  const fs::path seg = dir_ / "SEGMENTS.pcd";
+  ASSERT_EQ(run(input_.string() + " -o " + seg.string()).code, 0);
+  tool_ = viewer;
+  const fs::path png = dir_ / "view.png";
+  EXPECT_EQ(run(seg.string() + " " + png.string()).code, 0);
+  pcl_ls3d::maps::Image image;
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::maps::readPng(png.string(), image, error)) << error;
+  EXPECT_GT(image.width(), 10);
+  { std::ofstream(dir_ / "empty.pcd"); }
+  ToolResult r = run((dir_ / "empty.pcd").string() + " " + (dir_ / "empty.png").string());
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "empty.png"));
+  r = run(seg.string() + " " + (dir_ / "no_such_folder" / "x.png").string());
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(r.out.find("Wrote"), std::string::npos) << r.out;
 }
