@@ -73,6 +73,7 @@ printHelp(const char* prog)
       "                       most 10; 0: the estimator's\n"
       "                       own answer, as in Li et al.)\n"
       "  -max_dist d          maximum correspondence distance (default unlimited)\n"
+      "  -max_iter N          iterations of each adjustment (default 30; at the limit: exit 3)\n"
       "  -matching_points N   match on at most N evenly spread epoch points (default 50000; 0:\n"
       "                       all); residuals are computed for every point\n"
       "  -o RESIDUALS.pcd     one record per epoch point, epoch order: x y z (local coordinates,\n"
@@ -89,7 +90,9 @@ printHelp(const char* prog)
       "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
       "                       PROJ string or WKT; default: the reference's LAS CRS, if any)\n"
       "  -overwrite           allow replacing existing output files\n"
-      "  -h                   this help\n",
+      "  -h                   this help\n"
+      "Exit status: 0 done; 1 bad input or the matching failed (nothing written); 3 the matching\n"
+      "did not converge (MAX_ITERATIONS: outputs written, marked \"converged\": false).\n",
       prog);
 }
 
@@ -198,7 +201,7 @@ main(int argc, char** argv)
   }
   static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
                                                "-contamination", "-seed", "-k", "-min_region", "-grow_k", "-refine",
-                                               "-max_dist", "-matching_points", "-o", "-json",
+                                               "-max_iter", "-max_dist", "-matching_points", "-o", "-json",
                                                "-map", "-crs", "-map_cell"};
   std::vector<std::string> files;
   std::string why;
@@ -209,7 +212,7 @@ main(int argc, char** argv)
   const std::string reference_path = files[0], epoch_path = files[1];
 
   std::string estimator_text = "mm", rule_text = "lzd", out_path, json_path, map_prefix, crs_text;
-  int params = 6, subsets = 0, min_region = 10, refine = 10;
+  int params = 6, subsets = 0, min_region = 10, refine = 10, max_iter = 30;
   long long matching_points = 50000;
   double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, map_cell = 0.0, grow_k = 2.0;
   const bool overwrite = find_switch(argc, argv, "-overwrite");
@@ -225,6 +228,7 @@ main(int argc, char** argv)
       !integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
       !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
       !integerOption(argc, argv, "-refine", refine, why, 0, 100) ||
+      !integerOption(argc, argv, "-max_iter", max_iter, why, 1, 100000) ||
       !numberOption(argc, argv, "-grow_k", grow_k, why, 0.0, 1e6) ||
       !integerOption(argc, argv, "-matching_points", matching_points, why, 0, 1000000000000LL) ||
       !numberOption(argc, argv, "-seed", seed, why, 0, 4294967295.0) ||
@@ -256,6 +260,7 @@ main(int argc, char** argv)
     m.sample_size = 4;
   if (max_dist > 0.0)
     m.adjustment.max_correspondence_distance = max_dist;
+  m.adjustment.max_iterations = max_iter;
   settings.residuals.k = k;
   if (find_switch(argc, argv, "-lod95"))
     settings.residuals.rule = def::DetectionRule::LOD95;
@@ -456,6 +461,11 @@ main(int argc, char** argv)
     std::ofstream out(json_path);
     if (!(out << pcl_ls3d::io::toJsonText(j, 2) << "\n"))
       return fail("cannot write " + json_path), 1;
+  }
+  if (!converged) {
+    print_warn("Warning: the matching ended %s, not CONVERGED: the transformation and the residuals "
+               "are the last iterate's (exit 3)\n", pcl_ls3d::terminationTypeToString(mr.termination));
+    return 3;
   }
   return 0;
 }

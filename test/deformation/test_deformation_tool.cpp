@@ -210,3 +210,29 @@ TEST(DeformationTool, NearHalfMovedIsReportedAsAmbiguous)
   EXPECT_GT(j["percent_deformed"].get<double>(), 40.0);
   EXPECT_TRUE(j["stable_part_ambiguous"].get<bool>());
 }
+
+// A matching that stops at its iteration limit is not a converged answer: the outputs are
+// written (marked "converged": false) and the tool says so and exits 3, where it exited 0 before
+// (Toronto's all-point pair ended MAX_ITERATIONS with exit 0). With the default limit the same
+// pair converges and exits 0.
+TEST(DeformationTool, IterationLimitExitsThreeWithOutputsMarked)
+{
+  const Scratch s;
+  writeLiPair(s, 9.0, 10.0, synth::DeformationPosition::UPPER_LEFT);
+  const std::string inputs = s.file("ref.pcd") + " " + s.file("epoch.pcd");
+  const auto limited = runTool("pcl_ls3d_deformation",
+                               inputs + " -max_iter 1 -json " + s.file("limited.json") + " -o " + s.file("limited.pcd"),
+                               s.dir.string());
+  EXPECT_EQ(limited.code, 3) << limited.err << limited.out;
+  EXPECT_NE((limited.out + limited.err).find("not CONVERGED"), std::string::npos) << limited.out;
+  EXPECT_TRUE(fs::exists(s.file("limited.pcd")));
+  {
+    std::ifstream in(s.file("limited.json"));
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_FALSE(j["converged"].get<bool>());
+    EXPECT_EQ(j["termination"].get<std::string>(), "MAX_ITERATIONS");
+  }
+  const auto full = runTool("pcl_ls3d_deformation", inputs + " -json " + s.file("full.json"), s.dir.string());
+  EXPECT_EQ(full.code, 0) << full.err << full.out;
+  EXPECT_NE(runTool("pcl_ls3d_deformation", inputs + " -max_iter 0", s.dir.string()).code, 0);
+}
