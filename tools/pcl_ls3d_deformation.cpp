@@ -168,9 +168,13 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
     q.significant = r.field.significant[i];
     q.region = r.regions.region[i];
   }
-  if (pcl::io::savePCDFileBinary(path, out) != 0)
-    return (error = "cannot write " + path).empty();
-  return true;
+  try {  // PCL throws pcl::IOException where the file cannot be created (/proc, a directory)
+    if (pcl::io::savePCDFileBinary(path, out) == 0)
+      return true;
+  }
+  catch (const std::exception&) {
+  }
+  return (error = "cannot write " + path).empty();
 }
 
 

@@ -108,9 +108,21 @@ makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationR
       hi = hi.cwiseMax(q);
       magnitudes.push_back(std::abs(r.field.residual[i]));
     }
+  out.why_empty = "no residual to map";
   if (magnitudes.empty())
     return out;
   const double cell = s.cell > 0.0 ? s.cell : std::max(1.5 * r.regions.spacing, 1e-9);
+  // Two double rasters and an RGB image per cell: 40 M cells is ~1 GB, far beyond any picture.
+  constexpr double kMaxCells = 4e7;
+  const double cells = std::ceil((hi.x() - lo.x()) / cell + 1.0) * std::ceil((hi.y() - lo.y()) / cell + 1.0);
+  if (!(cells <= kMaxCells)) {
+    char buf[200];
+    std::snprintf(buf, sizeof(buf), "a map cell of %.3g gives %.3g cells (at most %.3g): raise -map_cell", cell,
+                  cells, kMaxCells);
+    out.why_empty = buf;
+    return out;
+  }
+  out.why_empty.clear();
   const maps::GridGeometry grid = maps::GridGeometry::covering(lo, hi, cell);
   maps::RasterAccumulator residual(grid, maps::RasterAccumulator::Mode::MEAN);
   maps::RasterAccumulator region(grid, maps::RasterAccumulator::Mode::MAX_ABS);
@@ -136,7 +148,7 @@ writeDeformationMap(const std::string& prefix, const DeformationMap& map, const 
                     bool overwrite, std::string& error)
 {
   if (map.image.empty())
-    return (error = "no residual to map").empty();
+    return (error = map.why_empty.empty() ? "no residual to map" : map.why_empty).empty();
   const std::string png = prefix + ".png", tif = prefix + ".tif";
   if (!overwrite && std::filesystem::exists(png))
     return (error = png + " exists (not overwritten)").empty();

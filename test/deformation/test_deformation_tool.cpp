@@ -236,3 +236,19 @@ TEST(DeformationTool, IterationLimitExitsThreeWithOutputsMarked)
   EXPECT_EQ(full.code, 0) << full.err << full.out;
   EXPECT_NE(runTool("pcl_ls3d_deformation", inputs + " -max_iter 0", s.dir.string()).code, 0);
 }
+
+// Outputs that cannot be made end with one error line and exit 1, not an abort: a residual
+// cloud under /proc (PCL threw pcl::IOException) and a map cell giving 1e15 cells (bad_alloc).
+TEST(DeformationTool, UnwritableOutputsFailWithOneLine)
+{
+  const Scratch s;
+  writeLiPair(s, 9.0, 10.0, synth::DeformationPosition::UPPER_LEFT);
+  const std::string inputs = s.file("ref.pcd") + " " + s.file("epoch.pcd");
+  auto r = runTool("pcl_ls3d_deformation", inputs + " -o /proc/pcl_ls3d_residuals.pcd", s.dir.string());
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  r = runTool("pcl_ls3d_deformation", inputs + " -map " + s.file("m") + " -map_cell 1e-4", s.dir.string());
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("raise -map_cell"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(s.file("m.png")));
+}
