@@ -60,6 +60,7 @@ printHelp(const char* prog)
              "  -o SEGMENTS.pcd    every input point in input order: x y z float, local frame\n"
              "                     (file coordinate = x + origin; origin in the header line\n"
              "                     '# pcl_ls3d origin X Y Z' and the JSON), label = segment + 1\n"
+             "                     (a header line marks the file: -evaluate refuses it)\n"
              "                     (0 = none, also for non-finite input points), rgba per\n"
              "                     segment; pcl::io::loadPCDFile into pcl::PointXYZRGBL reads it\n"
              "  -mode imrg|mrg|pcl_rg   method for -o and the JSON report (default imrg)\n"
@@ -324,6 +325,9 @@ main(int argc, char** argv)
   tt.tic();
   pcl::PointCloud<PointLiDAR> cloud;
   io::CloudInfo info;
+  if (evaluate && ev::isSegmentsFile(input))
+    return fail("-evaluate: '" + input + "' is a SEGMENTS file of pcl_ls3d_segment: its labels are segment "
+                "ids, not reference classes (evaluate the labelled input instead)");
   if (!io::loadCloud(input, cloud, info, error))
     return fail(error);
   if (cloud.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))

@@ -91,9 +91,9 @@ saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& c
   // PCDWriter has no way to add a comment line: write its header with ours after the first line.
   std::string header = pcl::PCDWriter().generateHeaderBinary(blob, Eigen::Vector4f::Zero(),
                                                               Eigen::Quaternionf::Identity());
-  char line[160];
-  std::snprintf(line, sizeof(line), "# pcl_ls3d origin %.17g %.17g %.17g\n", layout.origin.x(),
-                layout.origin.y(), layout.origin.z());
+  char line[256];
+  std::snprintf(line, sizeof(line), "# pcl_ls3d origin %.17g %.17g %.17g\n%s\n", layout.origin.x(),
+                layout.origin.y(), layout.origin.z(), kSegmentsMarker);
   const std::size_t first = header.find('\n');
   header.insert(first == std::string::npos ? 0 : first + 1, line);
   header += "DATA binary\n";  // generateHeaderBinary() stops before it, as writeBinary() adds it
@@ -106,6 +106,17 @@ saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& c
     return false;
   }
   return true;
+}
+
+bool
+isSegmentsFile(const std::string& path)
+{
+  std::ifstream f(path, std::ios::binary);
+  std::string line;
+  while (std::getline(f, line) && line.rfind("DATA", 0) != 0)
+    if (line == kSegmentsMarker)
+      return true;
+  return false;
 }
 
 bool

@@ -429,3 +429,18 @@ TEST_F(SegmentTool, TopViewRefusesEmptyInputAndUnwritableOutput)
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_EQ(r.out.find("Wrote"), std::string::npos) << r.out;
 }
+
+// The tool's own SEGMENTS.pcd holds segment ids in its label field: -evaluate on it scored them
+// as classes (F1 1.0, exit 0). It is now refused with one line before any work.
+TEST_F(SegmentTool, EvaluateRefusesItsOwnSegmentsFile)
+{
+  const fs::path seg = dir_ / "SEGMENTS.pcd";
+  ASSERT_EQ(run(input_.string() + " -o " + seg.string()).code, 0);
+  EXPECT_TRUE(pcl_ls3d::evaluation::isSegmentsFile(seg.string()));
+  EXPECT_FALSE(pcl_ls3d::evaluation::isSegmentsFile(input_.string()));
+  const ToolResult r = run(seg.string() + " -evaluate");
+  EXPECT_EQ(r.code, 1) << r.out;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_NE(r.err.find("segment ids"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("F1"), std::string::npos) << r.out;
+}

@@ -11,7 +11,8 @@
 /// not found by loadPCDFile into PointXYZRGBL: every point would load as (0, 0, 0)). The origin
 /// is written in the header as a comment line that PCL skips:
 ///   # pcl_ls3d origin X Y Z
-/// (%.17g, so the double comes back exactly) and readSegmentsOrigin() parses it back. Points
+/// (%.17g, so the double comes back exactly) and readSegmentsOrigin() parses it back; a second
+/// comment line (kSegmentsMarker) says the labels are segment ids. Points
 /// whose input coordinates were not finite keep their place with NaN coordinates and label 0,
 /// so that the file lines up with the input point for point (is_dense false then).
 
@@ -46,6 +47,14 @@ bool
 saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& cloud,
                 const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
                 std::string& error);
+
+/// Header comment line that marks a SEGMENTS.pcd: its label field holds segment ids, never
+/// classes (pcl_ls3d_segment -evaluate refuses such a file as its own reference).
+constexpr const char* kSegmentsMarker = "# pcl_ls3d segments: label = segment id + 1, not a class";
+
+/// \brief True when \a path's header carries kSegmentsMarker.
+bool
+isSegmentsFile(const std::string& path);
 
 /// \brief The origin from the "# pcl_ls3d origin" header line of \a path; false if the file has
 ///        none (or cannot be read).
