@@ -63,18 +63,19 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
 {
   // pcl_ls3d's reader first: it refuses empty, truncated and foreign files with one line
   // (PCL's PCD reader crashes on an empty file).
-  pcl::PointCloud<pcl_ls3d::PointLiDAR> c;
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> lidar;
   pcl_ls3d::io::CloudInfo info;
   std::string error;
-  if (!pcl_ls3d::io::loadCloud(path, c, info, error)) {
+  if (!pcl_ls3d::io::loadCloud(path, lidar, info, error)) {
     std::fprintf(stderr, "render_top_view: %s\n", error.c_str());
     return false;
   }
   if (by != "class" && pcl_ls3d::io::fileExtension(path) == "pcd") {
-    pcl::PointCloud<pcl::PointXYZRGBL> c;
-    if (pcl::io::loadPCDFile(path, c) < 0)
+    // Its rgba and label fields, which PointLiDAR does not carry.
+    pcl::PointCloud<pcl::PointXYZRGBL> coloured;
+    if (pcl::io::loadPCDFile(path, coloured) < 0)
       return false;
-    for (const auto& p : c.points)
+    for (const auto& p : coloured.points)
       if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
         out.push_back({p.x, p.y, p.z,
                        by == "label" ? pcl_ls3d::evaluation::segmentColour(p.label)
@@ -82,7 +83,7 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
                        p.label});
     return true;
   }
-  for (const auto& p : c.points)
+  for (const auto& p : lidar.points)
     out.push_back({p.x, p.y, p.z, classColour(p.classification), p.classification});
   return true;
 }

@@ -108,9 +108,8 @@ makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationR
       hi = hi.cwiseMax(q);
       magnitudes.push_back(std::abs(r.field.residual[i]));
     }
-  out.why_empty = "no residual to map";
   if (magnitudes.empty())
-    return out;
+    return out;  // writeDeformationMap says "no residual to map"
   const double cell = s.cell > 0.0 ? s.cell : std::max(1.5 * r.regions.spacing, 1e-9);
   // Two double rasters and an RGB image per cell: 40 M cells is ~1 GB, far beyond any picture.
   constexpr double kMaxCells = 4e7;
@@ -122,7 +121,6 @@ makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationR
     out.why_empty = buf;
     return out;
   }
-  out.why_empty.clear();
   const maps::GridGeometry grid = maps::GridGeometry::covering(lo, hi, cell);
   maps::RasterAccumulator residual(grid, maps::RasterAccumulator::Mode::MEAN);
   maps::RasterAccumulator region(grid, maps::RasterAccumulator::Mode::MAX_ABS);

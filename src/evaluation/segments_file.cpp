@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -108,33 +109,40 @@ saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& c
   return true;
 }
 
+namespace {
+
+/// True when `match` accepts one of the header lines of the PCD at `path` (before DATA).
 bool
-isSegmentsFile(const std::string& path)
+anyHeaderLine(const std::string& path, const std::function<bool(const std::string&)>& match)
 {
   std::ifstream f(path, std::ios::binary);
   std::string line;
   while (std::getline(f, line) && line.rfind("DATA", 0) != 0)
-    if (line == kSegmentsMarker)
+    if (match(line))
       return true;
   return false;
+}
+
+}  // namespace
+
+bool
+isSegmentsFile(const std::string& path)
+{
+  return anyHeaderLine(path, [](const std::string& line) { return line == kSegmentsMarker; });
 }
 
 bool
 readSegmentsOrigin(const std::string& path, Eigen::Vector3d& origin)
 {
-  std::ifstream f(path, std::ios::binary);
-  std::string line;
-  while (std::getline(f, line) && line.rfind("DATA", 0) != 0) {
+  return anyHeaderLine(path, [&origin](const std::string& line) {
     std::istringstream is(line);
     std::string hash, tag, key;
     double x = 0, y = 0, z = 0;
-    if (is >> hash >> tag >> key >> x >> y >> z && hash == "#" && tag == "pcl_ls3d" &&
-        key == "origin") {
-      origin = Eigen::Vector3d(x, y, z);
-      return true;
-    }
-  }
-  return false;
+    if (!(is >> hash >> tag >> key >> x >> y >> z && hash == "#" && tag == "pcl_ls3d" && key == "origin"))
+      return false;
+    origin = Eigen::Vector3d(x, y, z);
+    return true;
+  });
 }
 
 }  // namespace evaluation

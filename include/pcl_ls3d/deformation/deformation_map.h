@@ -41,7 +41,7 @@ struct DeformationMap
   maps::Raster in_region;  ///< 1 where a point of a significant region falls, 0 elsewhere
   maps::Image image;       ///< the rendered map (empty when nothing could be drawn)
   double limit = 0.0;      ///< the colour range is [−limit, +limit]
-  std::string why_empty;   ///< why the image is empty ("no residual to map", too many cells)
+  std::string why_empty;   ///< why the image is empty, when not for want of residuals (too many cells)
 };
 
 /// Builds the rasters and renders the map of `result` over `epoch` (the points analysed, epoch
