@@ -88,7 +88,11 @@ struct SourceRows
   RowVector7d
   operator()(std::size_t j) const
   {
-    const Observation& o = set[j];
+    return of(set[j]);
+  }
+  RowVector7d
+  of(const Observation& o) const
+  {
     RowVector7d a = matcher.sourceRow(o);
     a[SCALE] -= eiv.coefficient(o.direction.squaredNorm()) * o.distance;
     return a;

@@ -1,5 +1,6 @@
 #include <pcl_ls3d/adjustment/gauss_markov.h>
 #include <pcl_ls3d/adjustment/iteration_control.h>
+#include <pcl_ls3d/adjustment/noise_floor.h>
 #include <pcl_ls3d/adjustment/quality_gate.h>
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
 #include <pcl_ls3d/adjustment/surface_noise.h>
@@ -53,6 +54,7 @@ struct PairRun
   double start_scale = 0.0;        // 1.4826 · median |l| at the initial guess
   double spacing = 0.0;            // the target's point spacing (nearest-neighbour median)
   double guess_uncertainty = 0.0;  // the annealed cut's floor in the first iteration
+  double normal_variance = -1.0;   // σ_u² of the target's normals where observed (< 0: not yet)
 
   void
   prepare(const AdjustmentSettings& settings, const std::vector<Eigen::Vector3d>& reduced)
@@ -98,10 +100,29 @@ tooFewObservations(std::size_t m, int it, const AdjustmentSettings& settings, Ad
   return true;
 }
 
+// Parameters whose information is no more than the normals' noise (noise_floor.h): held at
+// their start values in this iteration's solve. Only for rules that observe along the surface
+// normal alone: ICP's tangents and point-to-point's axes fix every direction by the
+// correspondences themselves.
+std::vector<bool>
+noiseDominatedParameters(PairRun& run, const TargetSurface& target, const SourceRows& row,
+                         const Eigen::VectorXd& weights, const NormalEquations& ne)
+{
+  const bool normals_only = std::none_of(row.set.begin(), row.set.end(),
+                                         [](const Observation& o) { return o.component != 0; });
+  if (!normals_only)
+    return std::vector<bool>(7, false);
+  if (run.normal_variance < 0.0)  // a property of the target: measured once
+    run.normal_variance = fittedNormalVariance(target, row.set);
+  const Matrix7d M =
+      noiseFloor(row.set, weights, run.normal_variance, [&row](const Observation& o) { return row.of(o); });
+  return noiseDominated(ne.N, M, run.problem.apriori_weights, run.problem.scaling, kPairNoiseShare);
+}
+
 // Stage 4: solve eqs. 9–11 and apply dx; false (the report says why) when it cannot.
 bool
-solveAndUpdate(PairRun& run, const NormalEquations& ne, int it, const AdjustmentSettings& settings,
-               AdjustmentReport& report)
+solveAndUpdate(PairRun& run, const NormalEquations& ne, const std::vector<bool>& held, int it,
+               const AdjustmentSettings& settings, AdjustmentReport& report)
 {
   if (ne.n < static_cast<std::size_t>(settings.min_observations)) {
     report.iterations = it - 1;
@@ -110,13 +131,19 @@ solveAndUpdate(PairRun& run, const NormalEquations& ne, int it, const Adjustment
     return false;
   }
   ParameterBlock& block = run.setup.source;
+  for (int q = 0; q < 7; ++q)
+    if (held[static_cast<std::size_t>(q)])
+      block.values[q] = run.start[q];
   run.problem.current = block.values;
-  run.sol = solveGaussMarkov(ne, run.problem);
+  GaussMarkovProblem problem = run.problem;
+  holdAtStart(held, run.start, problem);
+  run.sol = solveGaussMarkov(ne, problem);
   report.iterations = it;
   if (!run.sol.ok) {
     fail(report, TerminationType::SINGULAR, run.sol.message);
     return false;
   }
+  reportHeldUndeterminable(held, run.sol);
   if (run.sol.redundancy <= 0) {
     fail(report, TerminationType::TOO_FEW_OBSERVATIONS, "no redundancy (r = n - u <= 0)");
     return false;
@@ -244,7 +271,8 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
         weighting_.compute(estimator, obs, row, pair.sol.sigma0, Matrix7d(pair.sol.qxx), it,
                            annealedCut(pair.guess_uncertainty, it));
     const NormalEquations ne = accumulateNormalEquations(row, p);
-    if (!solveAndUpdate(pair, ne, it, settings, report))
+    const std::vector<bool> held = noiseDominatedParameters(pair, target, row, p, ne);
+    if (!solveAndUpdate(pair, ne, held, it, settings, report))
       return report;
     // Stage 5: log, then let the iteration control decide (extrapolate, freeze, stop).
     IterationRecord rec = iterationRecord(it, ne, obs.size(), pair.sol);

@@ -148,7 +148,8 @@ planeBasis(const Eigen::Vector3d& normal, Eigen::Vector3d& e1, Eigen::Vector3d& 
 bool
 quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int count,
              const Eigen::Vector3d& query, const Eigen::Vector3d& normal, double& height,
-             Eigen::Vector2d& slope, double* height_variance, double* residual_variance)
+             Eigen::Vector2d& slope, double* height_variance, double* residual_variance,
+             Eigen::Vector2d* slope_variance)
 {
   if (count < 8)
     return false;
@@ -179,8 +180,13 @@ quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int c
     return false;
   if (height_variance)
     *height_variance = ldlt.solve(Eigen::Matrix<double, 6, 1>::Unit(0))[0];
+  const double noise = std::max(0.0, ww - x.dot(b)) / (count - 6);
   if (residual_variance)
-    *residual_variance = std::max(0.0, ww - x.dot(b)) / (count - 6);
+    *residual_variance = noise;
+  if (slope_variance)
+    *slope_variance = noise * s * s *
+                      Eigen::Vector2d(ldlt.solve(Eigen::Matrix<double, 6, 1>::Unit(1))[1],
+                                      ldlt.solve(Eigen::Matrix<double, 6, 1>::Unit(2))[2]);
   height = x[0];
   slope = Eigen::Vector2d(x[1] * s, x[2] * s);
   return true;

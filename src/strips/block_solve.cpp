@@ -1,5 +1,6 @@
 #include <pcl_ls3d/adjustment/block_normal_equations.h>
 #include <pcl_ls3d/adjustment/iteration_control.h>
+#include <pcl_ls3d/adjustment/noise_floor.h>
 #include <pcl_ls3d/strips/block_solve.h>
 #include <pcl_ls3d/strips/overlap_matcher.h>
 
@@ -63,21 +64,13 @@ record(const BlockState& state, const GaussMarkovSolution& sol,
 }
 
 // Parameters the overlaps carry no information on beyond the noise of the surface normals
-// (OverlapContribution::noise_floor): per strip, the generalised eigenproblem M v = μ N v on
-// its free parameters (N its diagonal block of the normal matrix with the soft a-priori
-// weights, M its noise floor). A direction with μ > kNoiseShare gets less than
-// (1/kNoiseShare − 1)× its noise floor from real geometry: the parameter dominating it (in
-// displacement at the strip's edge) is undeterminable, held at its start value, and the test is
-// repeated without it. The rank test of the solve alone passes such parameters on a flat
-// overlap (the normals' noise makes the columns independent) and reports a confident σ.
-constexpr double kNoiseShare = 1.0 / 3.0;
-
+// (noise_floor.h), per strip: its diagonal block of the normal matrix against its noise floor.
 std::vector<bool>
 noiseFloorUndeterminable(const StripPlan& plan, const std::vector<OverlapContribution>& contributions,
                          const GaussMarkovProblem& problem)
 {
   const std::size_t n = plan.strips.size();
-  std::vector<Eigen::Matrix<double, 7, 7>> N(n, Eigen::Matrix<double, 7, 7>::Zero()), M = N;
+  std::vector<Matrix7d> N(n, Matrix7d::Zero()), M = N;
   for (const OverlapContribution& c : contributions) {
     const auto i = static_cast<std::size_t>(c.i), j = static_cast<std::size_t>(c.j);
     N[i] += c.normal.N.topLeftCorner<7, 7>();
@@ -85,42 +78,13 @@ noiseFloorUndeterminable(const StripPlan& plan, const std::vector<OverlapContrib
     M[i] += c.noise_floor.topLeftCorner<7, 7>();
     M[j] += c.noise_floor.bottomRightCorner<7, 7>();
   }
-  std::vector<bool> flagged(7 * n, false);
+  std::vector<bool> flagged;
+  flagged.reserve(7 * n);
   for (std::size_t k = 0; k < n; ++k) {
-    std::vector<int> free;
-    for (int q = 0; q < 7; ++q) {
-      const Eigen::Index g = 7 * static_cast<Eigen::Index>(k) + q;
-      if (!std::isinf(problem.apriori_weights[g]))
-        free.push_back(q);
-    }
-    while (!free.empty() && M[k].norm() > 0.0) {
-      const auto m = static_cast<Eigen::Index>(free.size());
-      Eigen::MatrixXd Nr(m, m), Mr(m, m);
-      Eigen::VectorXd d(m);
-      for (Eigen::Index a = 0; a < m; ++a) {
-        const Eigen::Index ga = 7 * static_cast<Eigen::Index>(k) + free[static_cast<std::size_t>(a)];
-        d[a] = 1.0 / problem.scaling[ga];  // parameter → displacement at the strip's edge
-        for (Eigen::Index b = 0; b < m; ++b) {
-          Nr(a, b) = N[k](free[static_cast<std::size_t>(a)], free[static_cast<std::size_t>(b)]);
-          Mr(a, b) = M[k](free[static_cast<std::size_t>(a)], free[static_cast<std::size_t>(b)]);
-        }
-        Nr(a, a) += problem.apriori_weights[ga];
-      }
-      // Scaled to displacements so that N is well conditioned for the Cholesky inside.
-      const Eigen::MatrixXd Ns = d.cwiseInverse().asDiagonal() * Nr * d.cwiseInverse().asDiagonal();
-      const Eigen::MatrixXd Ms = d.cwiseInverse().asDiagonal() * Mr * d.cwiseInverse().asDiagonal();
-      Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ms, Ns);
-      if (es.info() != Eigen::Success)
-        break;
-      Eigen::Index top = 0;
-      const double mu = es.eigenvalues().maxCoeff(&top);
-      if (!(mu > kNoiseShare))
-        break;
-      Eigen::Index dominant = 0;
-      es.eigenvectors().col(top).cwiseAbs().maxCoeff(&dominant);
-      flagged[7 * k + static_cast<std::size_t>(free[static_cast<std::size_t>(dominant)])] = true;
-      free.erase(free.begin() + dominant);
-    }
+    const Eigen::Index g = 7 * static_cast<Eigen::Index>(k);
+    const std::vector<bool> strip = noiseDominated(N[k], M[k], problem.apriori_weights.segment<7>(g),
+                                                   problem.scaling.segment<7>(g), kStripNoiseShare);
+    flagged.insert(flagged.end(), strip.begin(), strip.end());
   }
   return flagged;
 }
@@ -193,22 +157,14 @@ solveIteration(const StripPlan& plan, const std::vector<OverlapContribution>& co
   GaussMarkovProblem problem = plan.problem(blocks);
   // Held at their start values: fixed for this solve, reported undeterminable.
   const std::vector<bool> weak = noiseFloorUndeterminable(plan, sorted, problem);
-  const Vector7d start = identityParameters();
+  const Eigen::VectorXd start = identityParameters().replicate(static_cast<Eigen::Index>(plan.strips.size()), 1);
   for (std::size_t g = 0; g < weak.size(); ++g)
-    if (weak[g]) {
-      const auto k = g / 7;
-      const int q = static_cast<int>(g % 7);
-      state.values[k][q] = start[q];
-      problem.current[static_cast<Eigen::Index>(g)] = start[q];
-      problem.apriori_values[static_cast<Eigen::Index>(g)] = start[q];
-      problem.apriori_weights[static_cast<Eigen::Index>(g)] = std::numeric_limits<double>::infinity();
-    }
+    if (weak[g])
+      state.values[g / 7][static_cast<Eigen::Index>(g % 7)] = start[static_cast<Eigen::Index>(g)];
+  holdAtStart(weak, start, problem);
   GaussMarkovSolution sol = solveGaussMarkov(ne, problem);
-  for (std::size_t g = 0; g < weak.size() && sol.ok; ++g)
-    if (weak[g]) {
-      sol.fixed[g] = false;
-      sol.determinable[g] = false;
-    }
+  if (sol.ok)
+    reportHeldUndeterminable(weak, sol);
   ++state.iteration;
   if (!sol.ok)
     return stop(state, TerminationType::SINGULAR, sol.message);

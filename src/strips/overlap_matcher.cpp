@@ -1,3 +1,4 @@
+#include <pcl_ls3d/adjustment/noise_floor.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 #include <pcl_ls3d/strips/overlap_matcher.h>
 #include <pcl_ls3d/search/flann_kd_tree.h>
@@ -56,71 +57,11 @@ struct OverlapMatcher::Direction
   double spacing = 1.0;  // thinning cell edge of the overlap
 };
 
-namespace {
-
-// σ_u² of the observations' unit normals from neighbouring observations on the thinned grid:
-// for two neighbours on a smooth surface the normals differ by noise (and by curvature, which
-// only makes the estimate conservative); per tangent component var = median |Δu|² / (4 ln 2).
-double
-normalNoiseVariance(const PairMatcher& matcher, const ObservationSet& set, double spacing)
-{
-  // Only the first observation of each point (its surface normal): ICP's tangent axes are
-  // perpendicular to it by construction, not by noise.
-  std::vector<double> d2;
-  const double reach2 = 9.0 * spacing * spacing;
-  std::size_t prev = set.size();
-  for (std::size_t k = 0; k < set.size(); ++k) {
-    if (set[k].component != 0)
-      continue;
-    const std::size_t last = prev;
-    prev = k;
-    if (last == set.size())
-      continue;
-    const Eigen::Vector3d a = matcher.position(set[last]), b = matcher.position(set[k]);
-    if ((a - b).squaredNorm() > reach2)
-      continue;
-    Eigen::Vector3d ua = set[last].direction.normalized(), ub = set[k].direction.normalized();
-    if (ua.dot(ub) < 0.0)
-      ub = -ub;
-    d2.push_back((ua - ub).squaredNorm());
-  }
-  if (d2.size() < 20)
-    return 0.0;
-  auto mid = d2.begin() + static_cast<std::ptrdiff_t>(d2.size() / 2);
-  std::nth_element(d2.begin(), mid, d2.end());
-  return *mid / (4.0 * std::log(2.0));
-}
-
-}  // namespace
-
 Matrix14d
 OverlapMatcher::noiseFloor(const Direction& D, const ObservationSet& set, const Eigen::VectorXd& p)
 {
-  Matrix14d M = Matrix14d::Zero();
-  const double var = normalNoiseVariance(D.matcher, set, D.spacing);
-  if (!(var > 0.0))
-    return M;
-  const double eps = 1e-4;
-  for (std::size_t k = 0; k < set.size(); ++k) {
-    const double w = p[static_cast<Eigen::Index>(k)];
-    if (!(w > 0.0))
-      continue;
-    const Observation& o = set[k];
-    const double len = o.direction.norm();
-    if (!(len > 0.0))
-      continue;
-    const Eigen::Vector3d u = o.direction / len;
-    const Eigen::Vector3d t1 = u.unitOrthogonal(), t2 = u.cross(t1);
-    const Row14 a = D.row(o);
-    for (const Eigen::Vector3d& t : {t1, t2}) {
-      Observation tilted = o;
-      tilted.direction = (u + eps * t).normalized() * len;
-      const Row14 da = (D.row(tilted) - a) / eps;
-      M.selfadjointView<Eigen::Upper>().rankUpdate(da.transpose(), w * var);
-    }
-  }
-  M.triangularView<Eigen::StrictlyLower>() = M.transpose();
-  return M;
+  const double var = normalNoiseVariance(set, sequentialNeighbours(D.matcher, set, 3.0 * D.spacing));
+  return pcl_ls3d::noiseFloor(set, p, var, [&D](const Observation& o) { return D.row(o); });
 }
 
 OverlapMatcher::OverlapMatcher(const OverlapSelection& selection, const ConjugateRule& rule,

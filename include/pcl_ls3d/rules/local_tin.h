@@ -65,12 +65,13 @@ projectToPlane(const TargetSurface& target, const std::vector<int>& indices, int
 /// the variance factor q_aa = (AᵀA)⁻¹₀₀ of the height, i.e. σ²(a) / σ²(point): about 1/3 for
 /// points well spread around the query, large when the neighbours lie on two scan lines (the
 /// quadratic term along the line spacing is then undetermined and a is extrapolated).
-/// `residual_variance` (optional) gets RSS / (count − 6), the points' noise about the quadric.
+/// `residual_variance` (optional) gets RSS / (count − 6), the points' noise about the quadric;
+/// `slope_variance` (optional) the variances of the two slopes from that noise.
 bool
 quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int count,
              const Eigen::Vector3d& query, const Eigen::Vector3d& normal, double& height,
              Eigen::Vector2d& slope, double* height_variance = nullptr,
-             double* residual_variance = nullptr);
+             double* residual_variance = nullptr, Eigen::Vector2d* slope_variance = nullptr);
 
 /// The orthonormal (e1, e2) used with `normal` by projectToPlane() and quadricPatch().
 void
