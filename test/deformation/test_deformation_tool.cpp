@@ -4,6 +4,7 @@
 #include "../io/tool_run.h"
 
 #include <pcl_ls3d/deformation/point_residual.h>
+#include <pcl_ls3d/estimators/robust_matching.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/geotiff_io.h>
@@ -251,4 +252,19 @@ TEST(DeformationTool, UnwritableOutputsFailWithOneLine)
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("raise -map_cell"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(s.file("m.png")));
+}
+
+// The console summary holds the whole estimator description and its tail (the subsets), however
+// long the description grows.
+TEST(DeformationTool, ConsoleSummaryIsNotCut)
+{
+  RobustMatchingReport r;
+  r.estimator = std::string(300, 'e');
+  r.termination = TerminationType::CONVERGED;
+  r.iterations = 312;
+  r.subsets_drawn = 1500;
+  r.rounds = 3;
+  const std::string line = r.brief();
+  EXPECT_EQ(line.substr(0, 300), r.estimator);
+  EXPECT_NE(line.find("312 iterations, 1500 subsets in 3 round(s)"), std::string::npos) << line;
 }
