@@ -59,15 +59,18 @@ printHelp(const char* prog)
       "                       a block start and keep the fit whose stable part scatters least\n"
       "  -rule lzd|lnd        residuals along z (LHD, default) or along the surface normal\n"
       "  -params 6|7|3        rigid (default), similarity, translation\n"
-      "  -subsets N           random subsets for lms/mm (default: lms from Li eq. 12, at least\n"
-      "                       3000 above 40 %% contamination; mm 500 FAST-LTS starts)\n"
+      "  -subsets N           random subsets per search round for lms/mm (default: lms from Li\n"
+      "                       eq. 12, at least 3000 above 40 %% contamination; mm 500 FAST-LTS\n"
+      "                       starts); up to 3 rounds, re-linearised while the fit moves, so a run\n"
+      "                       reports up to 3 N subsets (mm: 1500)\n"
       "  -contamination E     share of the surface that may have moved, for eq. 12 (default 0.5)\n"
       "  -seed S              random seed of the subsets (default 1)\n"
       "  -k K                 significance |r| > K sigma (default 3)\n"
       "  -lod95               significance by an M3C2-style level of detection at 95 %% instead\n"
+      "                       (not with -k)\n"
       "  -min_region N        smaller connected detections are noise (default 10 points)\n"
       "  -grow_k G            regions grow into adjacent points of their sign with |r| > G sigma\n"
-      "                       (hysteresis; default 2, 0: off)\n"
+      "                       (hysteresis; default 2, 0: off; below K)\n"
       "  -refine N            rounds of the stable-part refinement: the regions and their rim\n"
       "                       left out, the rest matched again until that set repeats (default at\n"
       "                       most 10; 0: the estimator's\n"
@@ -94,6 +97,27 @@ printHelp(const char* prog)
       "Exit status: 0 done; 1 bad input or the matching failed (nothing written); 3 the matching\n"
       "did not converge (MAX_ITERATIONS: outputs written, marked \"converged\": false).\n",
       prog);
+}
+
+/// Options that contradict each other, refused before any work: -k has no use with -lod95 (its
+/// threshold is the level of detection), and growing at or above the detection threshold adds
+/// no point to a region.
+bool
+optionConflict(int argc, char** argv, bool lod95, double k, double grow_k, std::string& why)
+{
+  const char* k_text = pcl_ls3d::tools::optionValue(argc, argv, "-k");
+  const char* grow_text = pcl_ls3d::tools::optionValue(argc, argv, "-grow_k");
+  if (lod95 && k_text) {
+    why = "-k and -lod95 exclude each other: -lod95 tests the 95 % level of detection, not K sigma";
+    return false;
+  }
+  if (lod95 || !grow_text || !(grow_k > 0.0 && grow_k >= k))
+    return true;
+  char buf[160];
+  std::snprintf(buf, sizeof(buf), "-grow_k %g must be below -k (%g): regions grow into weaker neighbours "
+                "(-grow_k 0: off)", grow_k, k);
+  why = buf;
+  return false;
 }
 
 bool
@@ -228,8 +252,10 @@ main(int argc, char** argv)
   parse_argument(argc, argv, "-crs", crs_text);
   using pcl_ls3d::tools::integerOption;
   using pcl_ls3d::tools::numberOption;
-  if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
-      !integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
+  using pcl_ls3d::tools::optionValue;
+  if (!integerOption(argc, argv, "-params", params, why, 3, 7) || (params != 3 && params != 6 && params != 7))
+    return fail(std::string("-params expects 6, 7 or 3, got '") + optionValue(argc, argv, "-params") + "'"), 1;
+  if (!integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
       !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
       !integerOption(argc, argv, "-refine", refine, why, 0, 100) ||
       !integerOption(argc, argv, "-max_iter", max_iter, why, 1, 100000) ||
@@ -241,6 +267,13 @@ main(int argc, char** argv)
       !numberOption(argc, argv, "-max_dist", max_dist, why, 1e-12) ||
       !numberOption(argc, argv, "-map_cell", map_cell, why, 1e-12))
     return fail(why), 1;
+  const bool lod95 = find_switch(argc, argv, "-lod95");
+  if (!optionConflict(argc, argv, lod95, k, grow_k, why))
+    return fail(why), 1;
+  if (!lod95 && !optionValue(argc, argv, "-grow_k") && grow_k >= k)
+    print_warn("Warning: -k %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
+               "below K, or 0)\n", k, grow_k);
+
 
   def::DeformationSettings settings;
   pcl_ls3d::RobustMatchingSettings& m = settings.matching;
@@ -253,7 +286,6 @@ main(int argc, char** argv)
   case 7: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7); break;
   case 6: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6); break;
   case 3: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::TRANSLATION_3); break;
-  default: return fail("-params must be 6, 7 or 3"), 1;
   }
   m.subsets = subsets;
   m.contamination = contamination;
@@ -266,7 +298,7 @@ main(int argc, char** argv)
     m.adjustment.max_correspondence_distance = max_dist;
   m.adjustment.max_iterations = max_iter;
   settings.residuals.k = k;
-  if (find_switch(argc, argv, "-lod95"))
+  if (lod95)
     settings.residuals.rule = def::DetectionRule::LOD95;
   settings.regions.min_points = static_cast<std::size_t>(min_region);
   settings.regions.grow_k = grow_k;

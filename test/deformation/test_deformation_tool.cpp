@@ -19,6 +19,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -267,4 +268,60 @@ TEST(DeformationTool, ConsoleSummaryIsNotCut)
   const std::string line = r.brief();
   EXPECT_EQ(line.substr(0, 300), r.estimator);
   EXPECT_NE(line.find("312 iterations, 1500 subsets in 3 round(s)"), std::string::npos) << line;
+}
+
+// -h tells what a run prints: MM draws 500 FAST-LTS starts per search round, so a default run
+// reports 500 x its rounds (at most 3) subsets.
+TEST(DeformationTool, HelpStatesTheSubsetsARunDraws)
+{
+  const Scratch s;
+  writeLiPair(s, 20.0, 10.0, synth::DeformationPosition::LOWER_RIGHT);
+  const auto run = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("epoch.pcd"), s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.out, m, std::regex("(\\d+) subsets in (\\d+) round")));
+  const int drawn = std::stoi(m[1]), rounds = std::stoi(m[2]);
+  EXPECT_EQ(drawn, 500 * rounds);
+  EXPECT_LE(rounds, 3);
+  const auto help = runTool("pcl_ls3d_deformation", "-h", s.dir.string());
+  EXPECT_NE(help.out.find("per search round"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("mm 500 FAST-LTS"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("up to 3 rounds"), std::string::npos) << help.out;
+}
+
+// Options that contradict each other are refused before any work, with one error line naming
+// the options as typed; -params gives the same range whatever was wrong.
+TEST(DeformationTool, ConflictingOptionsAreRefused)
+{
+  const Scratch s;
+  synth::LiSurfaceSettings ls;
+  ls.grid_size = 20;
+  const synth::LiSurface li = synth::makeLiSurface(ls);
+  pcl::PointCloud<pcl::PointXYZ> ref;
+  pcl::copyPointCloud(*li.reference, ref);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  const std::string a = s.file("ref.pcd") + " " + s.file("ref.pcd") + " -json " + s.file("r.json");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {a + " -grow_k 4", "-grow_k 4 must be below -k (3)"},
+      {a + " -k 2 -grow_k 2.5", "-grow_k 2.5 must be below -k (2)"},
+      {a + " -k 2 -grow_k 2", "must be below -k"},
+      {a + " -lod95 -k 3", "-k and -lod95 exclude each other"},
+      {a + " -params 6x", "-params expects 6, 7 or 3, got '6x'"},
+      {a + " -params 5", "-params expects 6, 7 or 3, got '5'"},
+      {a + " -params 1", "-params expects 6, 7 or 3, got '1'"},
+      {a + " -max_iter 0", "-max_iter"},
+  };
+  for (const auto& [args, expect] : cases) {
+    const auto r = runTool("pcl_ls3d_deformation", args, s.dir.string());
+    EXPECT_EQ(r.code, 1) << args;
+    EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(r.err.find("max_iterations"), std::string::npos) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(s.file("r.json"))) << args;  // refused before any work
+  }
+  // Below -k, or off, hysteresis is accepted.
+  for (const char* ok : {" -k 2 -grow_k 1.5", " -grow_k 0", " -lod95"}) {
+    const auto r = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("ref.pcd") + ok, s.dir.string());
+    EXPECT_EQ(r.code, 0) << ok << ": " << r.err;
+  }
 }
