@@ -83,7 +83,8 @@ printHelp(const char* prog)
       "                       origin in the JSON) residual sigma significant region; .xyz/.txt:\n"
       "                       the same as text with full file coordinates\n"
       "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
-      "                       coordinates), converged, parameters, sigmas, estimator, scale,\n"
+      "                       coordinates), converged, parameters and sigmas (reduced frame about\n"
+      "                       local_origin_source / local_origin_target), estimator, scale,\n"
       "                       subsets, percent_deformed, regions\n"
       "  -map PREFIX          PREFIX.png (residual map, diverging colour bar, significant regions\n"
       "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals, NaN\n"
@@ -125,6 +126,29 @@ fail(const std::string& message)
 {
   print_error("%s\n", message.c_str());
   return false;
+}
+
+/// The 4x4 matrix acts on input coordinates, which may be projected (10^6 m): the rotation needs
+/// 15 decimals for its product with them to hold to 1e-8 m.
+void
+printMatrix(const Eigen::Matrix4d& T)
+{
+  print_info("Transformation (EPOCH -> REFERENCE, input coordinates):\n");
+  for (int i = 0; i < 4; ++i)
+    print_info("  %18.15f %18.15f %18.15f %21.9f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
+}
+
+/// The parameters, their frame (its origins in input coordinates) and their sigmas.
+void
+printParameters(const pcl_ls3d::AdjustmentReport& a, const Eigen::Vector3d& o_s, const Eigen::Vector3d& o_t)
+{
+  print_info("Parameters in the reduced frame x_ref - o_t = t + m R (x_epoch - o_s), input coordinates,\n"
+             "  o_s (%.4f, %.4f, %.4f), o_t (%.4f, %.4f, %.4f): t is the shift beyond o_t - o_s\n ",
+             o_s.x(), o_s.y(), o_s.z(), o_t.x(), o_t.y(), o_t.z());
+  const auto& names = pcl_ls3d::similarityParameterNames();
+  for (int i = 0; i < 7; ++i)
+    print_info(" %s %.6g (%.2g)", names[static_cast<std::size_t>(i)].c_str(), a.parameters[i], a.sigmas[i]);
+  print_info("\n");
 }
 
 nlohmann::json
@@ -274,7 +298,6 @@ main(int argc, char** argv)
     print_warn("Warning: -k %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
                "below K, or 0)\n", k, grow_k);
 
-
   def::DeformationSettings settings;
   pcl_ls3d::RobustMatchingSettings& m = settings.matching;
   if (!pcl_ls3d::parseRobustMethod(estimator_text, m.method))
@@ -374,9 +397,7 @@ main(int argc, char** argv)
   print_info("%s\n", mr.brief().c_str());
   if (!mr.message.empty())
     print_info("  %s\n", mr.message.c_str());
-  print_info("Transformation (EPOCH -> REFERENCE, input coordinates):\n");
-  for (int i = 0; i < 4; ++i)
-    print_info("  %14.8f %14.8f %14.8f %16.6f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
+  printMatrix(T);
   // What the transformation does where the data are: the shift of the epoch's centroid.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   std::size_t finite = 0;
@@ -390,11 +411,8 @@ main(int argc, char** argv)
   const Eigen::Vector3d centroid_in = centroid + rinfo.origin;
   print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)\n", centroid_in.x(),
              centroid_in.y(), centroid_in.z(), shift.x(), shift.y(), shift.z());
-  const auto& names = pcl_ls3d::similarityParameterNames();
-  print_info("Parameters (reduced frame) and sigma:");
-  for (int i = 0; i < 7; ++i)
-    print_info(" %s %.6g (%.2g)", names[static_cast<std::size_t>(i)].c_str(), a.parameters[i], a.sigmas[i]);
-  print_info("\n");
+  const Eigen::Vector3d o_s = a.local_origin_source + rinfo.origin, o_t = a.local_origin_target + rinfo.origin;
+  printParameters(a, o_s, o_t);
   if (!result.start_choice.candidates.empty()) {
     print_info("Fits compared by the scatter of their stable part:");
     for (const auto& c : result.start_choice.candidates)
@@ -439,13 +457,17 @@ main(int argc, char** argv)
     j["converged"] = converged;
     j["termination"] = pcl_ls3d::terminationTypeToString(mr.termination);
     j["message"] = mr.message;
+    const auto& names = pcl_ls3d::similarityParameterNames();
     nlohmann::json p, s;
     for (std::size_t i = 0; i < 7; ++i) {
       p[names[i]] = a.parameters[static_cast<int>(i)];
       s[names[i]] = finiteOrNull(a.sigmas[static_cast<int>(i)]);
     }
     j["parameters"] = p;
-    j["parameters_note"] = "reduced frame: x_t - local_origin = t + m R (x_s - local_origin_source)";
+    j["parameters_note"] = "reduced frame, input coordinates: x_t - local_origin_target = t + m R (x_s - "
+                           "local_origin_source); local_origin is the origin of the -o cloud's coordinates";
+    j["local_origin_source"] = {o_s.x(), o_s.y(), o_s.z()};
+    j["local_origin_target"] = {o_t.x(), o_t.y(), o_t.z()};
     j["sigmas"] = s;
     j["estimator"] = mr.estimator;
     j["method"] = pcl_ls3d::toString(mr.method);
