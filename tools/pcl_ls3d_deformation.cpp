@@ -138,7 +138,8 @@ printMatrix(const Eigen::Matrix4d& T)
     print_info("  %18.15f %18.15f %18.15f %21.9f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
 }
 
-/// The parameters, their frame (its origins in input coordinates) and their sigmas.
+/// The parameters, their frame (its origins in input coordinates) and their sigmas; an exact fit
+/// (sigma0 = 0) has none, worded as pcl_ls3d_register's report.
 void
 printParameters(const pcl_ls3d::AdjustmentReport& a, const Eigen::Vector3d& o_s, const Eigen::Vector3d& o_t)
 {
@@ -146,9 +147,15 @@ printParameters(const pcl_ls3d::AdjustmentReport& a, const Eigen::Vector3d& o_s,
              "  o_s (%.4f, %.4f, %.4f), o_t (%.4f, %.4f, %.4f): t is the shift beyond o_t - o_s\n ",
              o_s.x(), o_s.y(), o_s.z(), o_t.x(), o_t.y(), o_t.z());
   const auto& names = pcl_ls3d::similarityParameterNames();
+  bool exact_fit = false;  // the only case with NaN sigmas (fixed ones are 0)
   for (int i = 0; i < 7; ++i)
-    print_info(" %s %.6g (%.2g)", names[static_cast<std::size_t>(i)].c_str(), a.parameters[i], a.sigmas[i]);
-  print_info("\n");
+    exact_fit = exact_fit || std::isnan(a.sigmas[i]);
+  for (int i = 0; i < 7; ++i) {
+    print_info(" %s %.6g", names[static_cast<std::size_t>(i)].c_str(), a.parameters[i]);
+    if (!exact_fit)
+      print_info(" (%.2g)", a.sigmas[i]);
+  }
+  print_info(exact_fit ? "; sigma not estimable (exact fit)\n" : "\n");
 }
 
 nlohmann::json

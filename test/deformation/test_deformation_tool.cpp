@@ -374,6 +374,22 @@ TEST(DeformationTool, JsonParametersRebuildTheTransformation)
   EXPECT_NE(run.out.find(origins), std::string::npos) << origins << "\n" << run.out;
 }
 
+// Two identical inputs: every residual is 0 and the parameters' sigma cannot be estimated. The
+// console says so in pcl_ls3d_register's words instead of printing "(nan)".
+TEST(DeformationTool, IdenticalInputsSayExactFit)
+{
+  const Scratch s;
+  writeLiPair(s, 20.0, 10.0, synth::DeformationPosition::LOWER_RIGHT);
+  const auto run = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("ref.pcd") + " -json " +
+                                                       s.file("report.json"), s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  EXPECT_EQ(run.out.find("nan"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("sigma not estimable (exact fit)"), std::string::npos) << run.out;
+  std::ifstream in(s.file("report.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j["sigmas"]["tx"].is_null());
+}
+
 // -h tells what a run prints: MM draws 500 FAST-LTS starts per search round, so a default run
 // reports 500 x its rounds (at most 3) subsets.
 TEST(DeformationTool, HelpStatesTheSubsetsARunDraws)
