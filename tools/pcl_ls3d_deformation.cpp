@@ -59,15 +59,18 @@ printHelp(const char* prog)
       "                       a block start and keep the fit whose stable part scatters least\n"
       "  -rule lzd|lnd        residuals along z (LHD, default) or along the surface normal\n"
       "  -params 6|7|3        rigid (default), similarity, translation\n"
-      "  -subsets N           random subsets for lms/mm (default: lms from Li eq. 12, at least\n"
-      "                       3000 above 40 %% contamination; mm 500 FAST-LTS starts)\n"
+      "  -subsets N           random subsets per search round for lms/mm (default: lms from Li\n"
+      "                       eq. 12, at least 3000 above 40 %% contamination; mm 500 FAST-LTS\n"
+      "                       starts); up to 3 rounds, re-linearised while the fit moves, so a run\n"
+      "                       reports up to 3 N subsets (mm: 1500)\n"
       "  -contamination E     share of the surface that may have moved, for eq. 12 (default 0.5)\n"
       "  -seed S              random seed of the subsets (default 1)\n"
       "  -k K                 significance |r| > K sigma (default 3)\n"
       "  -lod95               significance by an M3C2-style level of detection at 95 %% instead\n"
+      "                       (not with -k)\n"
       "  -min_region N        smaller connected detections are noise (default 10 points)\n"
       "  -grow_k G            regions grow into adjacent points of their sign with |r| > G sigma\n"
-      "                       (hysteresis; default 2, 0: off)\n"
+      "                       (hysteresis; default 2, 0: off; below K)\n"
       "  -refine N            rounds of the stable-part refinement: the regions and their rim\n"
       "                       left out, the rest matched again until that set repeats (default at\n"
       "                       most 10; 0: the estimator's\n"
@@ -80,7 +83,8 @@ printHelp(const char* prog)
       "                       origin in the JSON) residual sigma significant region; .xyz/.txt:\n"
       "                       the same as text with full file coordinates\n"
       "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
-      "                       coordinates), converged, parameters, sigmas, estimator, scale,\n"
+      "                       coordinates), converged, parameters and sigmas (reduced frame about\n"
+      "                       local_origin_source / local_origin_target), estimator, scale,\n"
       "                       subsets, percent_deformed, regions\n"
       "  -map PREFIX          PREFIX.png (residual map, diverging colour bar, significant regions\n"
       "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals, NaN\n"
@@ -96,11 +100,62 @@ printHelp(const char* prog)
       prog);
 }
 
+/// Options that contradict each other, refused before any work: -k has no use with -lod95 (its
+/// threshold is the level of detection), and growing at or above the detection threshold adds
+/// no point to a region.
+bool
+optionConflict(int argc, char** argv, bool lod95, double k, double grow_k, std::string& why)
+{
+  const char* k_text = pcl_ls3d::tools::optionValue(argc, argv, "-k");
+  const char* grow_text = pcl_ls3d::tools::optionValue(argc, argv, "-grow_k");
+  if (lod95 && k_text) {
+    why = "-k and -lod95 exclude each other: -lod95 tests the 95 % level of detection, not K sigma";
+    return false;
+  }
+  if (lod95 || !grow_text || !(grow_k > 0.0 && grow_k >= k))
+    return true;
+  char buf[160];
+  std::snprintf(buf, sizeof(buf), "-grow_k %g must be below -k (%g): regions grow into weaker neighbours "
+                "(-grow_k 0: off)", grow_k, k);
+  why = buf;
+  return false;
+}
+
 bool
 fail(const std::string& message)
 {
   print_error("%s\n", message.c_str());
   return false;
+}
+
+/// The 4x4 matrix acts on input coordinates, which may be projected (10^6 m): the rotation needs
+/// 15 decimals for its product with them to hold to 1e-8 m.
+void
+printMatrix(const Eigen::Matrix4d& T)
+{
+  print_info("Transformation (EPOCH -> REFERENCE, input coordinates):\n");
+  for (int i = 0; i < 4; ++i)
+    print_info("  %18.15f %18.15f %18.15f %21.9f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
+}
+
+/// The parameters, their frame (its origins in input coordinates) and their sigmas; an exact fit
+/// (sigma0 = 0) has none, worded as pcl_ls3d_register's report.
+void
+printParameters(const pcl_ls3d::AdjustmentReport& a, const Eigen::Vector3d& o_s, const Eigen::Vector3d& o_t)
+{
+  print_info("Parameters in the reduced frame x_ref - o_t = t + m R (x_epoch - o_s), input coordinates,\n"
+             "  o_s (%.4f, %.4f, %.4f), o_t (%.4f, %.4f, %.4f): t is the shift beyond o_t - o_s\n ",
+             o_s.x(), o_s.y(), o_s.z(), o_t.x(), o_t.y(), o_t.z());
+  const auto& names = pcl_ls3d::similarityParameterNames();
+  bool exact_fit = false;  // the only case with NaN sigmas (fixed ones are 0)
+  for (int i = 0; i < 7; ++i)
+    exact_fit = exact_fit || std::isnan(a.sigmas[i]);
+  for (int i = 0; i < 7; ++i) {
+    print_info(" %s %.6g", names[static_cast<std::size_t>(i)].c_str(), a.parameters[i]);
+    if (!exact_fit)
+      print_info(" (%.2g)", a.sigmas[i]);
+  }
+  print_info(exact_fit ? "; sigma not estimable (exact fit)\n" : "\n");
 }
 
 nlohmann::json
@@ -228,8 +283,10 @@ main(int argc, char** argv)
   parse_argument(argc, argv, "-crs", crs_text);
   using pcl_ls3d::tools::integerOption;
   using pcl_ls3d::tools::numberOption;
-  if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
-      !integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
+  using pcl_ls3d::tools::optionValue;
+  if (!integerOption(argc, argv, "-params", params, why, 3, 7) || (params != 3 && params != 6 && params != 7))
+    return fail(std::string("-params expects 6, 7 or 3, got '") + optionValue(argc, argv, "-params") + "'"), 1;
+  if (!integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
       !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
       !integerOption(argc, argv, "-refine", refine, why, 0, 100) ||
       !integerOption(argc, argv, "-max_iter", max_iter, why, 1, 100000) ||
@@ -241,6 +298,12 @@ main(int argc, char** argv)
       !numberOption(argc, argv, "-max_dist", max_dist, why, 1e-12) ||
       !numberOption(argc, argv, "-map_cell", map_cell, why, 1e-12))
     return fail(why), 1;
+  const bool lod95 = find_switch(argc, argv, "-lod95");
+  if (!optionConflict(argc, argv, lod95, k, grow_k, why))
+    return fail(why), 1;
+  if (!lod95 && !optionValue(argc, argv, "-grow_k") && grow_k >= k)
+    print_warn("Warning: -k %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
+               "below K, or 0)\n", k, grow_k);
 
   def::DeformationSettings settings;
   pcl_ls3d::RobustMatchingSettings& m = settings.matching;
@@ -253,7 +316,6 @@ main(int argc, char** argv)
   case 7: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7); break;
   case 6: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6); break;
   case 3: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::TRANSLATION_3); break;
-  default: return fail("-params must be 6, 7 or 3"), 1;
   }
   m.subsets = subsets;
   m.contamination = contamination;
@@ -266,7 +328,7 @@ main(int argc, char** argv)
     m.adjustment.max_correspondence_distance = max_dist;
   m.adjustment.max_iterations = max_iter;
   settings.residuals.k = k;
-  if (find_switch(argc, argv, "-lod95"))
+  if (lod95)
     settings.residuals.rule = def::DetectionRule::LOD95;
   settings.regions.min_points = static_cast<std::size_t>(min_region);
   settings.regions.grow_k = grow_k;
@@ -342,9 +404,7 @@ main(int argc, char** argv)
   print_info("%s\n", mr.brief().c_str());
   if (!mr.message.empty())
     print_info("  %s\n", mr.message.c_str());
-  print_info("Transformation (EPOCH -> REFERENCE, input coordinates):\n");
-  for (int i = 0; i < 4; ++i)
-    print_info("  %14.8f %14.8f %14.8f %16.6f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
+  printMatrix(T);
   // What the transformation does where the data are: the shift of the epoch's centroid.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   std::size_t finite = 0;
@@ -358,11 +418,8 @@ main(int argc, char** argv)
   const Eigen::Vector3d centroid_in = centroid + rinfo.origin;
   print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)\n", centroid_in.x(),
              centroid_in.y(), centroid_in.z(), shift.x(), shift.y(), shift.z());
-  const auto& names = pcl_ls3d::similarityParameterNames();
-  print_info("Parameters (reduced frame) and sigma:");
-  for (int i = 0; i < 7; ++i)
-    print_info(" %s %.6g (%.2g)", names[static_cast<std::size_t>(i)].c_str(), a.parameters[i], a.sigmas[i]);
-  print_info("\n");
+  const Eigen::Vector3d o_s = a.local_origin_source + rinfo.origin, o_t = a.local_origin_target + rinfo.origin;
+  printParameters(a, o_s, o_t);
   if (!result.start_choice.candidates.empty()) {
     print_info("Fits compared by the scatter of their stable part:");
     for (const auto& c : result.start_choice.candidates)
@@ -407,13 +464,17 @@ main(int argc, char** argv)
     j["converged"] = converged;
     j["termination"] = pcl_ls3d::terminationTypeToString(mr.termination);
     j["message"] = mr.message;
+    const auto& names = pcl_ls3d::similarityParameterNames();
     nlohmann::json p, s;
     for (std::size_t i = 0; i < 7; ++i) {
       p[names[i]] = a.parameters[static_cast<int>(i)];
       s[names[i]] = finiteOrNull(a.sigmas[static_cast<int>(i)]);
     }
     j["parameters"] = p;
-    j["parameters_note"] = "reduced frame: x_t - local_origin = t + m R (x_s - local_origin_source)";
+    j["parameters_note"] = "reduced frame, input coordinates: x_t - local_origin_target = t + m R (x_s - "
+                           "local_origin_source); local_origin is the origin of the -o cloud's coordinates";
+    j["local_origin_source"] = {o_s.x(), o_s.y(), o_s.z()};
+    j["local_origin_target"] = {o_t.x(), o_t.y(), o_t.z()};
     j["sigmas"] = s;
     j["estimator"] = mr.estimator;
     j["method"] = pcl_ls3d::toString(mr.method);

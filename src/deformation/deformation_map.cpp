@@ -8,15 +8,19 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdarg>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <sstream>
 
 namespace pcl_ls3d {
 namespace deformation {
 
 namespace {
+
+constexpr std::size_t kSubtitleWidth = 110;  // characters: about the width of the map and its bar
 
 /// The two coordinates of a point on the plane the regions were counted on (x, y for z).
 Eigen::Vector2d
@@ -39,26 +43,67 @@ colourLimit(std::vector<double> magnitudes, double k, double scale)
   return std::ceil(limit / step) * step;
 }
 
+/// printf into a string of any length.
+std::string
+format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+std::string
+format(const char* fmt, ...)
+{
+  va_list args, copy;
+  va_start(args, fmt);
+  va_copy(copy, args);
+  const int n = std::vsnprintf(nullptr, 0, fmt, args);
+  va_end(args);
+  std::string out(static_cast<std::size_t>(std::max(n, 0)) + 1, '\0');
+  std::vsnprintf(out.data(), out.size(), fmt, copy);
+  va_end(copy);
+  out.pop_back();
+  return out;
+}
+
+/// `text` broken at spaces into lines of at most `width` characters (a longer word stays whole):
+/// the estimator's name alone can exceed a map's width.
+std::vector<std::string>
+wrapped(const std::string& text, std::size_t width)
+{
+  std::vector<std::string> lines;
+  std::string line, word;
+  std::istringstream words(text);
+  while (words >> word) {
+    if (!line.empty() && line.size() + 1 + word.size() > width) {
+      lines.push_back(line);
+      line.clear();
+    }
+    line += (line.empty() ? "" : " ") + word;
+  }
+  if (!line.empty())
+    lines.push_back(line);
+  return lines;
+}
+
 maps::MapStyle
 mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps::GridGeometry& grid,
          double limit)
 {
+  // Residuals and cells are in the unit of the coordinates: the CRS's, else the input's own.
+  const std::string crs_unit = maps::crsLinearUnitName(s.crs_wkt);
+  const std::string unit = crs_unit.empty() ? "input units" : crs_unit;
   maps::MapStyle style;
   style.title = s.title;
-  char line[256];
-  std::snprintf(line, sizeof(line), "%s, robust scale %.3g, %zu of %zu points significant (|r| > %g sigma)",
-                r.matching.estimator.c_str(), r.matching.scale, r.field.significant_count, r.field.observed, s.k);
-  style.subtitle.push_back(line);
-  std::snprintf(line, sizeof(line), "%.1f %% of the area in %zu deformed regions (outlined), %zu noise clusters",
-                r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size());
-  style.subtitle.push_back(line);
-  style.unit = "residual";
+  style.subtitle = wrapped(format("%s; robust scale %.3g %s, %zu of %zu points significant (|r| > %g sigma)",
+                                  r.matching.estimator.c_str(), r.matching.scale, unit.c_str(),
+                                  r.field.significant_count, r.field.observed, s.k),
+                           kSubtitleWidth);
+  style.subtitle.push_back(format("%.1f %% of the area in %zu deformed regions (outlined), %zu noise clusters",
+                                  r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size()));
+  style.unit = unit;
   style.tick_format = limit >= 10 ? "%+.0f" : limit >= 1 ? "%+.1f" : "%+.2f";
   style.legend = {"epoch minus reference", "(mean per cell)", "outline: deformed region"};
-  style.length_unit = s.crs_wkt.empty() ? "" : "m";
-  std::snprintf(line, sizeof(line), "cell %.3g, %d x %d cells%s%s", grid.cell, grid.cols, grid.rows,
-                s.crs_wkt.empty() ? "" : ", ", s.crs_wkt.empty() ? "" : maps::crsName(s.crs_wkt).c_str());
-  style.footer = line;
+  style.length_unit = crs_unit;  // no scale bar in unknown units
+  const std::string crs = maps::crsName(s.crs_wkt);
+  style.footer = format("cell %.3g %s, %d x %d cells, %s", grid.cell, unit.c_str(), grid.cols, grid.rows,
+                        crs.empty() ? "no coordinate reference known" : crs.c_str());
   return style;
 }
 
@@ -134,10 +179,10 @@ makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationR
   out.in_region = region.result();
   out.limit = colourLimit(std::move(magnitudes), s.k, r.matching.scale);
   const maps::ColourMap colours = maps::ColourMap::diverging(out.limit);
-  const maps::MapStyle style = mapStyle(r, s, grid, out.limit);
-  out.image = maps::renderRasterMap(out.residual, colours, style);
+  out.style = mapStyle(r, s, grid, out.limit);
+  out.image = maps::renderRasterMap(out.residual, colours, out.style);
   if (!out.image.empty())
-    outlineRegions(out.image, out.residual, out.in_region, colours, style);
+    outlineRegions(out.image, out.residual, out.in_region, colours, out.style);
   return out;
 }
 

@@ -223,13 +223,15 @@ RobustMatchingSettings::isValid(std::string* why) const
 std::string
 RobustMatchingReport::brief() const
 {
-  char buf[256];
-  std::snprintf(buf, sizeof(buf), "%s: %s, sigma_hat %.4g, %d iterations%s", estimator.c_str(),
-                terminationTypeToString(termination), scale, iterations,
-                subsets_drawn > 0 ? (", " + std::to_string(subsets_drawn) + " subsets in " +
-                                     std::to_string(rounds) + " round(s)").c_str()
-                                  : "");
-  return buf;
+  // The estimator's name grows with the stages run (deformation: the refinement too): no fixed
+  // buffer around it.
+  char tail[128];
+  std::snprintf(tail, sizeof(tail), ": %s, sigma_hat %.4g, %d iterations", terminationTypeToString(termination),
+                scale, iterations);
+  std::string line = estimator + tail;
+  if (subsets_drawn > 0)
+    line += ", " + std::to_string(subsets_drawn) + " subsets in " + std::to_string(rounds) + " round(s)";
+  return line;
 }
 
 RobustMatchingReport

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -227,6 +228,17 @@ crsLinearUnit(const std::string& wkt)
   if (!srs || !srs->IsProjected())
     return 0.0;
   return srs->GetLinearUnits(nullptr);
+}
+
+std::string
+crsLinearUnitName(const std::string& wkt)
+{
+  const double metres = crsLinearUnit(wkt);
+  if (!(metres > 0.0))
+    return "";
+  if (std::abs(metres - 1.0) <= 1e-9)
+    return "m";
+  return std::abs(metres - 0.3048) < 1e-6 ? "ft" : "units";  // 1e-6 takes the US foot too
 }
 
 bool

@@ -29,7 +29,7 @@ unitsOf(const std::string& wkt)
   const double metres = maps::crsLinearUnit(wkt);
   if (metres > 0.0 && std::abs(metres - 1.0) > 1e-9) {
     u.per_metre = 1.0 / metres;
-    u.name = std::abs(metres - 0.3048) < 1e-6 ? "ft" : std::abs(metres - 0.3048006096) < 1e-7 ? "ftUS" : "units";
+    u.name = maps::crsLinearUnitName(wkt);
   }
   return u;
 }

@@ -161,3 +161,44 @@ TEST(DeformationMap, FilesReadBackWithTheirCrs)
   std::error_code ec;
   fs::remove_all(dir, ec);
 }
+
+// The map's text says in which unit the residuals are: the CRS's length unit over the colour bar
+// and after the cell (as the strip maps do), the input's own units when no CRS is known. The
+// subtitle keeps the whole estimator description however long, on lines a reader can follow.
+TEST(DeformationMap, TextNamesTheUnitAndKeepsTheWholeSubtitle)
+{
+  const Analysed& a = analysed();
+  ASSERT_TRUE(a.result.ok());
+  DeformationMapSettings metres;
+  metres.crs_wkt = maps::crsFromUserInput("EPSG:26917");  // NAD83 / UTM 17N, metres
+  ASSERT_FALSE(metres.crs_wkt.empty());
+  const DeformationMap m = makeDeformationMap(a.points, a.result, metres);
+  EXPECT_EQ(m.style.unit, "m");
+  EXPECT_EQ(m.style.length_unit, "m");
+  EXPECT_NE(m.style.footer.find(" m, "), std::string::npos) << m.style.footer;
+  EXPECT_NE(m.style.footer.find("UTM zone 17N"), std::string::npos) << m.style.footer;
+
+  DeformationMapSettings feet;
+  feet.crs_wkt = maps::crsFromUserInput("EPSG:2263");  // NAD83 / New York Long Island (ftUS)
+  ASSERT_FALSE(feet.crs_wkt.empty());
+  EXPECT_EQ(makeDeformationMap(a.points, a.result, feet).style.unit, "ft");
+
+  const DeformationMap none = makeDeformationMap(a.points, a.result, DeformationMapSettings());
+  EXPECT_EQ(none.style.unit, "input units");
+  EXPECT_NE(none.style.footer.find("input units"), std::string::npos) << none.style.footer;
+  EXPECT_TRUE(none.style.length_unit.empty());  // no scale bar in unknown units
+
+  DeformationResult long_name = a.result;
+  std::string name;
+  for (int i = 0; name.size() < 400; ++i)
+    name += (i ? " then stage-" : "stage-") + std::to_string(i);
+  long_name.matching.estimator = name;
+  const DeformationMap wrapped = makeDeformationMap(a.points, long_name, DeformationMapSettings());
+  std::string joined;
+  for (const std::string& line : wrapped.style.subtitle) {
+    EXPECT_LE(line.size(), 120u) << line;
+    joined += (joined.empty() ? "" : " ") + line;
+  }
+  EXPECT_NE(joined.find(name), std::string::npos) << joined;
+  EXPECT_NE(joined.find("noise clusters"), std::string::npos) << joined;
+}

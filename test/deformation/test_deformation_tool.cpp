@@ -4,6 +4,7 @@
 #include "../io/tool_run.h"
 
 #include <pcl_ls3d/deformation/point_residual.h>
+#include <pcl_ls3d/estimators/robust_matching.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/geotiff_io.h>
@@ -16,8 +17,13 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
+
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+#include <sstream>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -63,6 +69,56 @@ writeLiPair(const Scratch& s, double percent, double c, synth::DeformationPositi
   EXPECT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
   EXPECT_EQ(pcl::io::savePCDFileASCII(s.file("epoch.pcd"), mate), 0);
   return li;
+}
+
+/// Li's pair moved to projected-like coordinates (UTM easting, northing, height), written as text
+/// in double as survey files come; returns the epoch's points in those coordinates.
+std::vector<Eigen::Vector3d>
+writeLiPairAtUtm(const Scratch& s)
+{
+  synth::LiSurfaceSettings ls;
+  ls.deformation_percent = 20.0;
+  ls.deformation_c = 10.0;
+  const synth::LiSurface li = synth::makeLiSurface(ls);
+  const Eigen::Vector3d offset(500000.0, 5000000.0, 100.0);
+  std::vector<Eigen::Vector3d> epoch;
+  for (const auto& [cloud, name] : {std::make_pair(li.reference, "ref.xyz"), std::make_pair(li.mate, "epoch.xyz")}) {
+    std::ofstream out(s.file(name));
+    out.precision(17);
+    for (const auto& p : *cloud) {
+      const Eigen::Vector3d q = p.getVector3fMap().cast<double>() + offset;
+      out << q.x() << " " << q.y() << " " << q.z() << "\n";
+      if (cloud == li.mate)
+        epoch.push_back(q);
+    }
+  }
+  return epoch;
+}
+
+Eigen::Matrix4d
+jsonMatrix(const nlohmann::json& rows)
+{
+  Eigen::Matrix4d T;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      T(r, c) = rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)].get<double>();
+  return T;
+}
+
+Eigen::Vector3d
+jsonVector(const nlohmann::json& v)
+{
+  return {v[0].get<double>(), v[1].get<double>(), v[2].get<double>()};
+}
+
+/// Largest distance between A(p) and B(p) over `points`.
+double
+largestDifference(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B, const std::vector<Eigen::Vector3d>& points)
+{
+  double worst = 0.0;
+  for (const Eigen::Vector3d& p : points)
+    worst = std::max(worst, ((A - B) * p.homogeneous()).head<3>().norm());
+  return worst;
 }
 
 }  // namespace
@@ -251,4 +307,156 @@ TEST(DeformationTool, UnwritableOutputsFailWithOneLine)
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_NE(r.err.find("raise -map_cell"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(s.file("m.png")));
+}
+
+// The 4x4 matrix printed on the console acts on input coordinates; at UTM-like coordinates
+// (5e6 m) 8 decimals in the rotation put the points 1-2 cm off. Applied to the data, the printed
+// matrix must give what the JSON's full-precision matrix gives, to well under a millimetre.
+TEST(DeformationTool, PrintedMatrixReproducesTheJsonAtProjectedCoordinates)
+{
+  const Scratch s;
+  const std::vector<Eigen::Vector3d> epoch = writeLiPairAtUtm(s);
+  const auto run = runTool("pcl_ls3d_deformation",
+                           s.file("ref.xyz") + " " + s.file("epoch.xyz") + " -json " + s.file("report.json"),
+                           s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  std::istringstream out(run.out);
+  std::string line;
+  while (std::getline(out, line) && line.find("Transformation (EPOCH -> REFERENCE") == std::string::npos) {
+  }
+  Eigen::Matrix4d printed;
+  for (int r = 0; r < 4; ++r) {
+    ASSERT_TRUE(std::getline(out, line)) << run.out;
+    std::istringstream row(line);
+    for (int c = 0; c < 4; ++c)
+      ASSERT_TRUE(row >> printed(r, c)) << line;
+  }
+  std::ifstream in(s.file("report.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const Eigen::Matrix4d T = jsonMatrix(j["transformation"]);
+  EXPECT_GT(T.col(3).head<3>().norm(), 1e4);  // the rotation acts about the far coordinate origin
+  EXPECT_LT(largestDifference(printed, T, epoch), 1e-4);
+}
+
+// The JSON's parameters are in a reduced frame; the note names the origins and the JSON holds
+// them, so a reader rebuilds the transformation from them: x_t = o_t + t + m R (x_s - o_s) with
+// R = R_Y(phi) R_X(omega) R_Z(kappa) (similarity_transform.h), equal to the JSON's matrix. The
+// console says which frame and prints both origins.
+TEST(DeformationTool, JsonParametersRebuildTheTransformation)
+{
+  const Scratch s;
+  const std::vector<Eigen::Vector3d> epoch = writeLiPairAtUtm(s);
+  const auto run = runTool("pcl_ls3d_deformation",
+                           s.file("ref.xyz") + " " + s.file("epoch.xyz") + " -json " + s.file("report.json"),
+                           s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  std::ifstream in(s.file("report.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  const std::string note = j["parameters_note"].get<std::string>();
+  for (const char* key : {"local_origin_source", "local_origin_target"}) {
+    EXPECT_NE(note.find(key), std::string::npos) << note;
+    ASSERT_TRUE(j.contains(key)) << key;
+  }
+  const Eigen::Vector3d o_s = jsonVector(j["local_origin_source"]), o_t = jsonVector(j["local_origin_target"]);
+  const nlohmann::json& p = j["parameters"];
+  const Eigen::Matrix3d R = (Eigen::AngleAxisd(p["phi"].get<double>(), Eigen::Vector3d::UnitY()) *
+                             Eigen::AngleAxisd(p["omega"].get<double>(), Eigen::Vector3d::UnitX()) *
+                             Eigen::AngleAxisd(p["kappa"].get<double>(), Eigen::Vector3d::UnitZ()))
+                                .toRotationMatrix();
+  const Eigen::Vector3d t(p["tx"].get<double>(), p["ty"].get<double>(), p["tz"].get<double>());
+  Eigen::Matrix4d rebuilt = Eigen::Matrix4d::Identity();
+  rebuilt.topLeftCorner<3, 3>() = p["m"].get<double>() * R;
+  rebuilt.topRightCorner<3, 1>() = o_t + t - rebuilt.topLeftCorner<3, 3>() * o_s;
+  EXPECT_LT(largestDifference(rebuilt, jsonMatrix(j["transformation"]), epoch), 1e-6);
+  char origins[160];
+  std::snprintf(origins, sizeof(origins), "o_s (%.4f, %.4f, %.4f), o_t (%.4f, %.4f, %.4f)", o_s.x(), o_s.y(),
+                o_s.z(), o_t.x(), o_t.y(), o_t.z());
+  EXPECT_NE(run.out.find(origins), std::string::npos) << origins << "\n" << run.out;
+}
+
+// Two identical inputs: every residual is 0 and the parameters' sigma cannot be estimated. The
+// console says so in pcl_ls3d_register's words instead of printing "(nan)".
+TEST(DeformationTool, IdenticalInputsSayExactFit)
+{
+  const Scratch s;
+  writeLiPair(s, 20.0, 10.0, synth::DeformationPosition::LOWER_RIGHT);
+  const auto run = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("ref.pcd") + " -json " +
+                                                       s.file("report.json"), s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  EXPECT_EQ(run.out.find("nan"), std::string::npos) << run.out;
+  EXPECT_NE(run.out.find("sigma not estimable (exact fit)"), std::string::npos) << run.out;
+  std::ifstream in(s.file("report.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_TRUE(j["sigmas"]["tx"].is_null());
+}
+
+// -h tells what a run prints: MM draws 500 FAST-LTS starts per search round, so a default run
+// reports 500 x its rounds (at most 3) subsets.
+TEST(DeformationTool, HelpStatesTheSubsetsARunDraws)
+{
+  const Scratch s;
+  writeLiPair(s, 20.0, 10.0, synth::DeformationPosition::LOWER_RIGHT);
+  const auto run = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("epoch.pcd"), s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.out, m, std::regex("(\\d+) subsets in (\\d+) round")));
+  const int drawn = std::stoi(m[1]), rounds = std::stoi(m[2]);
+  EXPECT_EQ(drawn, 500 * rounds);
+  EXPECT_LE(rounds, 3);
+  const auto help = runTool("pcl_ls3d_deformation", "-h", s.dir.string());
+  EXPECT_NE(help.out.find("per search round"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("mm 500 FAST-LTS"), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("up to 3 rounds"), std::string::npos) << help.out;
+}
+
+// Options that contradict each other are refused before any work, with one error line naming
+// the options as typed; -params gives the same range whatever was wrong.
+TEST(DeformationTool, ConflictingOptionsAreRefused)
+{
+  const Scratch s;
+  synth::LiSurfaceSettings ls;
+  ls.grid_size = 20;
+  const synth::LiSurface li = synth::makeLiSurface(ls);
+  pcl::PointCloud<pcl::PointXYZ> ref;
+  pcl::copyPointCloud(*li.reference, ref);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  const std::string a = s.file("ref.pcd") + " " + s.file("ref.pcd") + " -json " + s.file("r.json");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {a + " -grow_k 4", "-grow_k 4 must be below -k (3)"},
+      {a + " -k 2 -grow_k 2.5", "-grow_k 2.5 must be below -k (2)"},
+      {a + " -k 2 -grow_k 2", "must be below -k"},
+      {a + " -lod95 -k 3", "-k and -lod95 exclude each other"},
+      {a + " -params 6x", "-params expects 6, 7 or 3, got '6x'"},
+      {a + " -params 5", "-params expects 6, 7 or 3, got '5'"},
+      {a + " -params 1", "-params expects 6, 7 or 3, got '1'"},
+      {a + " -max_iter 0", "-max_iter"},
+  };
+  for (const auto& [args, expect] : cases) {
+    const auto r = runTool("pcl_ls3d_deformation", args, s.dir.string());
+    EXPECT_EQ(r.code, 1) << args;
+    EXPECT_EQ(lineCount(r.err), 1u) << args << ": " << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << args << ": " << r.err;
+    EXPECT_EQ(r.err.find("max_iterations"), std::string::npos) << args << ": " << r.err;
+    EXPECT_FALSE(fs::exists(s.file("r.json"))) << args;  // refused before any work
+  }
+  // Below -k, or off, hysteresis is accepted.
+  for (const char* ok : {" -k 2 -grow_k 1.5", " -grow_k 0", " -lod95"}) {
+    const auto r = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("ref.pcd") + ok, s.dir.string());
+    EXPECT_EQ(r.code, 0) << ok << ": " << r.err;
+  }
+}
+
+// The console summary holds the whole estimator description and its tail (the subsets), however
+// long the description grows.
+TEST(DeformationTool, ConsoleSummaryIsNotCut)
+{
+  RobustMatchingReport r;
+  r.estimator = std::string(300, 'e');
+  r.termination = TerminationType::CONVERGED;
+  r.iterations = 312;
+  r.subsets_drawn = 1500;
+  r.rounds = 3;
+  const std::string line = r.brief();
+  EXPECT_EQ(line.substr(0, 300), r.estimator);
+  EXPECT_NE(line.find("312 iterations, 1500 subsets in 3 round(s)"), std::string::npos) << line;
 }

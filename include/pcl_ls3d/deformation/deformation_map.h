@@ -14,6 +14,7 @@
 
 #include <pcl_ls3d/deformation/deformation_analysis.h>
 #include <pcl_ls3d/maps/image.h>
+#include <pcl_ls3d/maps/map_rendering.h>
 #include <pcl_ls3d/maps/raster.h>
 
 #include <Eigen/Core>
@@ -40,6 +41,7 @@ struct DeformationMap
   maps::Raster residual;   ///< mean residual per cell, NaN where no point has one
   maps::Raster in_region;  ///< 1 where a point of a significant region falls, 0 elsewhere
   maps::Image image;       ///< the rendered map (empty when nothing could be drawn)
+  maps::MapStyle style;    ///< its text: title, subtitle, colour-bar unit, footer
   double limit = 0.0;      ///< the colour range is [−limit, +limit]
   std::string why_empty;   ///< why the image is empty, when not for want of residuals (too many cells)
 };

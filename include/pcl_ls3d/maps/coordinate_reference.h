@@ -31,6 +31,11 @@ crsName(const std::string& wkt);
 double
 crsLinearUnit(const std::string& wkt);
 
+/// The label of a projected CRS's horizontal unit on maps: "m", "ft" (international or US survey
+/// foot) or "units" (another length); empty when unknown (empty WKT, geographic CRS).
+std::string
+crsLinearUnitName(const std::string& wkt);
+
 /// True when both WKT describe the same CRS (OGRSpatialReference::IsSame).
 bool
 sameCrs(const std::string& a, const std::string& b);
