@@ -220,6 +220,10 @@ main(int argc, char** argv)
   if (!pcl_ls3d::tools::checkOutputFile(json_path, {source_path, target_path, truth_path},
                                         overwrite, why))
     return fail(why);
+  Eigen::Matrix4d truth_file = Eigen::Matrix4d::Identity();  // read before the clouds
+  const bool has_truth = !truth_path.empty();
+  if (has_truth && !loadTruth(truth_path, truth_file, why))
+    return fail(why);
 
   // Target first; the source shares its origin so both live in one local frame.
   TicToc tt;
@@ -240,14 +244,9 @@ main(int argc, char** argv)
              source_path.c_str(), source->size(), target_path.c_str(), target->size(),
              target_info.origin.x(), target_info.origin.y(), target_info.origin.z(), tt.toc());
 
-  Eigen::Matrix4d truth_local = Eigen::Matrix4d::Identity();
-  const bool has_truth = !truth_path.empty();
-  if (has_truth) {
-    Eigen::Matrix4d truth_file;
-    if (!loadTruth(truth_path, truth_file, why))
-      return fail(why);
-    truth_local = pcl_ls3d::globalToLocal(truth_file, target_info.origin, target_info.origin);
-  }
+  const Eigen::Matrix4d truth_local =
+      has_truth ? pcl_ls3d::globalToLocal(truth_file, target_info.origin, target_info.origin)
+                : Eigen::Matrix4d::Identity();
 
   print_info("PCL settings : %s\nLS3D settings: %s\n", ps.describe().c_str(),
              ls.describe().c_str());

@@ -225,7 +225,7 @@ main(int argc, char** argv)
     return -1;
   }
   if (splitting ? !pcl_ls3d::tools::checkOutputFolder(split_dir, why)
-                : !pcl_ls3d::tools::checkOutputFile(files[1], {input}, overwrite, why)) {
+                : !pcl_ls3d::tools::checkOutputFile(files[1], {input}, overwrite, why, true)) {
     print_error("%s\n", why.c_str());
     return -1;
   }

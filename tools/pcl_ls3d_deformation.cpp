@@ -1,6 +1,7 @@
 // pcl_ls3d_deformation: robust matching of EPOCH onto REFERENCE and the map of what moved
 // (Li et al. 2001; issue 9).
 #include "tool_arguments.h"
+#include "tool_output.h"
 
 #include <pcl_ls3d/common/similarity_transform.h>
 #include <pcl_ls3d/deformation/deformation_analysis.h>
@@ -126,16 +127,6 @@ fail(const std::string& message)
 {
   print_error("%s\n", message.c_str());
   return false;
-}
-
-/// The 4x4 matrix acts on input coordinates, which may be projected (10^6 m): the rotation needs
-/// 15 decimals for its product with them to hold to 1e-8 m.
-void
-printMatrix(const Eigen::Matrix4d& T)
-{
-  print_info("Transformation (EPOCH -> REFERENCE, input coordinates):\n");
-  for (int i = 0; i < 4; ++i)
-    print_info("  %18.15f %18.15f %18.15f %21.9f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
 }
 
 /// The parameters, their frame (its origins in input coordinates) and their sigmas; an exact fit
@@ -404,7 +395,7 @@ main(int argc, char** argv)
   print_info("%s\n", mr.brief().c_str());
   if (!mr.message.empty())
     print_info("  %s\n", mr.message.c_str());
-  printMatrix(T);
+  pcl_ls3d::tools::printTransformation("Transformation (EPOCH -> REFERENCE, input coordinates):", T);
   // What the transformation does where the data are: the shift of the epoch's centroid.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   std::size_t finite = 0;

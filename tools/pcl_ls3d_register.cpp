@@ -1,5 +1,6 @@
 // pcl_ls3d_register: least-squares 3-D surface matching of SOURCE onto TARGET (Zuo et al. 2012).
 #include "tool_arguments.h"
+#include "tool_output.h"
 
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/io/cloud_io.h>
@@ -170,6 +171,7 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
   j["source_noise"] = r.source_noise;
   j["quality"] = {{"trustworthy", r.quality.trustworthy},
                   {"expected_noise", r.quality.expected_noise},
+                  {"noise_yardstick", r.quality.noise_yardstick},
                   {"source_noise", r.quality.source_noise},
                   {"target_noise", r.quality.target_noise},
                   {"sigma0_ratio", r.quality.sigma0_ratio},
@@ -237,6 +239,13 @@ main(int argc, char** argv)
       !numberOption(argc, argv, "-max_dist", max_dist, why) ||
       !numberOption(argc, argv, "-guess", guess, why))
     return fail(why), 1;
+  // No sentinel values: a given distance is a distance.
+  const bool max_dist_given = pcl_ls3d::tools::optionValue(argc, argv, "-max_dist") != nullptr;
+  const bool guess_given = pcl_ls3d::tools::optionValue(argc, argv, "-guess") != nullptr;
+  if (max_dist_given && !(max_dist > 0.0))
+    return fail("-max_dist must be > 0 (leave it out for no limit)"), 1;
+  if (guess_given && !(guess > 0.0))
+    return fail("-guess must be > 0 (leave it out for the default, 1 % of the source extent)"), 1;
 
   // Settings, validated before any file is read.
   pcl_ls3d::ConjugateRuleType rule;
@@ -258,7 +267,7 @@ main(int argc, char** argv)
   settings.max_iterations = max_iter;
   settings.source_thinning = thin;
   settings.guess_uncertainty = guess;
-  if (max_dist != -1.0)
+  if (max_dist_given)
     settings.max_correspondence_distance = max_dist;
   if (!settings.isValid(&why))
     return fail("invalid settings: " + why), 1;
@@ -267,10 +276,10 @@ main(int argc, char** argv)
 
   // Outputs must be writable and must not clobber inputs or existing files: checked before any
   // input is read, not after the adjustment.
-  for (const std::string& out : {out_path, json_path})
-    if (!pcl_ls3d::tools::checkOutputFile(out, {source_path, target_path, truth_path}, overwrite,
-                                          why))
-      return fail(why), 1;
+  const std::vector<std::string> inputs = {source_path, target_path, truth_path};
+  if (!pcl_ls3d::tools::checkOutputFile(out_path, inputs, overwrite, why, true) ||
+      !pcl_ls3d::tools::checkOutputFile(json_path, inputs, overwrite, why))
+    return fail(why), 1;
   if (!out_path.empty() && pcl_ls3d::io::isSameFile(out_path, json_path))
     return fail("-o and -json name the same file"), 1;
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
@@ -321,9 +330,7 @@ main(int argc, char** argv)
   // Report: the local transform re-expressed in input coordinates (both clouds share the origin).
   const Eigen::Matrix4d T_input = pcl_ls3d::localToGlobal(r.transformation, tinfo.origin, tinfo.origin);
   print_info("%s", r.fullReport().c_str());
-  print_info("Transformation (SOURCE -> TARGET, input coordinates):\n");
-  for (int i = 0; i < 4; ++i)
-    print_info("  %14.8f %14.8f %14.8f %16.6f\n", T_input(i, 0), T_input(i, 1), T_input(i, 2), T_input(i, 3));
+  pcl_ls3d::tools::printTransformation("Transformation (SOURCE -> TARGET, input coordinates):", T_input);
   print_info("Timings: load %.0f ms, adjustment %.0f ms\n", t_load, t_align);
 
   nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), tinfo.origin);

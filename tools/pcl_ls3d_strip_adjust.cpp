@@ -43,7 +43,7 @@ printHelp(const char* prog)
       "                         a-priori sigmas (length, rad, -); no strip fixed\n"
       "  -params 7|6|3|z        per strip: similarity, rigid (default), translation, height only\n"
       "  -rule lnd|lzd|icp      conjugate-point rule (default lnd)\n"
-      "  -estimator E           zuo[:K] (default zuo:6), huber[:k], tukey[:c], ls\n"
+      "  -estimator E           zuo[:K] (default zuo:6), huber[:k], tukey[:c], md, ls\n"
       "  -classes 2,6           stable-surface classes of classified strips (default 2,6)\n"
       "  -spacing S             one observation per S x S cell (default: 2x the point spacing,\n"
       "                         at most -max_obs per overlap and direction)\n"
@@ -58,10 +58,14 @@ printHelp(const char* prog)
       "  -json REPORT           JSON report\n"
       "  -maps DIR              discrepancy maps before/after per overlap and for the whole block\n"
       "                         (GeoTIFF in the input's CRS + PNG), histograms\n"
-      "  -bands a,b             tolerance classes of the maps in metres (default 0.10,0.20)\n"
+      "  -bands a,b             tolerance classes of the maps in metres (default 0.10,0.20; without\n"
+      "                         a CRS in the input's own unit)\n"
       "  -overwrite             replace existing outputs (never an input)\n"
       "  -q                     quiet: errors only\n"
-      "  -h                     this help\n",
+      "  -h                     this help\n\n"
+      "Exit status: 0 converged (or at the iteration limit); 1 bad input or options; 2 no solution\n"
+      "(singular, too few observations); 3 UNRELIABLE: corrections larger than the strips' noise that\n"
+      "do not reduce the discrepancies on most overlaps (outputs written, the report says why).\n",
       prog, prog, prog);
 }
 
@@ -150,24 +154,48 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   return s.isValid(&why);
 }
 
-// The output folder must not hold an input (corrected strips would sit beside or replace them),
-// and existing outputs are replaced only with -overwrite.
+// Before any input is read: every input once; the output folder must not hold an input
+// (corrected strips would sit beside or replace them) and must be writable, as must the maps
+// folder and the report; existing outputs are replaced only with -overwrite.
 bool
 checkOutputs(const Options& o, std::string& why)
 {
   const std::string& dir = o.request.output_dir;
-  for (const std::string& in : o.inputs) {
+  for (std::size_t k = 0; k < o.inputs.size(); ++k) {
+    const std::string& in = o.inputs[k];
     if (!fs::exists(in))
       return (why = in + ": file does not exist").empty();
+    for (std::size_t l = 0; l < k; ++l)
+      if (io::isSameFile(in, o.inputs[l]))
+        return (why = "input " + in + " is given twice (as " + o.inputs[l] + ")").empty();
     std::error_code ec;
     if (!dir.empty() && fs::exists(dir) && fs::equivalent(fs::absolute(in).parent_path(), dir, ec))
       return (why = "the output directory " + dir + " holds the input " + in + ": choose another -o").empty();
-    for (const std::string& out : {o.request.json_path})
-      if (!out.empty() && fs::exists(out) && fs::equivalent(in, out, ec))
-        return (why = "the report " + out + " would replace the input " + in).empty();
   }
-  if (!o.request.json_path.empty() && fs::exists(o.request.json_path) && !o.overwrite)
-    return (why = o.request.json_path + " exists (use -overwrite)").empty();
+  if (!dir.empty() && !tools::checkOutputFolder(dir, why))
+    return false;
+  if (!o.request.maps_dir.empty() && !tools::checkOutputFolder(o.request.maps_dir, why))
+    return false;
+  return tools::checkOutputFile(o.request.json_path, o.inputs, o.overwrite, why);
+}
+
+// After loading (the split names are known), before the adjustment: no corrected file may
+// exist without -overwrite or be the report, and a maps folder must not hold maps already.
+bool
+checkCorrectedOutputs(const Options& o, const std::vector<strips::OutputUnit>& units, std::string& why)
+{
+  std::error_code ec;
+  for (const auto& u : units) {
+    if (!o.request.json_path.empty() && io::isSameFile(u.path, o.request.json_path))
+      return (why = "the report " + o.request.json_path + " would replace the corrected strip " + u.path).empty();
+    if (fs::exists(u.path, ec) && !o.overwrite)
+      return (why = u.path + " exists (use -overwrite to replace it)").empty();
+  }
+  if (!o.request.maps_dir.empty() && !o.overwrite)
+    for (const auto& e : fs::directory_iterator(o.request.maps_dir, ec))
+      if (e.path().extension() == ".tif" || e.path().extension() == ".png")
+        return (why = "the maps folder " + o.request.maps_dir + " holds maps already (" +
+                      e.path().filename().string() + "; use -overwrite to replace them)").empty();
   return true;
 }
 
@@ -208,11 +236,12 @@ clearOutputs(const Options& o, const std::vector<strips::OutputUnit>& units)
         fs::remove(e.path(), ec);
 }
 
+// The length unit's label in the summary: the CRS's, or "units" (the input's) without one.
 std::string
 unitName(const std::string& wkt)
 {
-  const double m = maps::crsLinearUnit(wkt);
-  return m > 0.0 && std::abs(m - 0.3048) < 1e-6 ? "ft" : m > 0.0 && std::abs(m - 1.0) > 1e-9 ? "units" : "m";
+  const std::string name = maps::crsLinearUnitName(wkt);
+  return name.empty() ? "units" : name;
 }
 
 int
@@ -225,6 +254,10 @@ runSingle(Options& o)
   if (!strips::loadStrips(o.inputs, o.request.load, block, error))
     return fail(error);
   if (!resolveReferences(o, block, o.request.plan.settings.reference_strips, error))
+    return fail(error);
+  const std::vector<strips::OutputUnit> units =
+      o.request.output_dir.empty() ? std::vector<strips::OutputUnit>() : strips::outputUnits(block, o.request.output_dir, o.request.keep_files);
+  if (!checkCorrectedOutputs(o, units, error))
     return fail(error);
   if (!o.quiet)
     print_info("Loaded %zu strips from %zu files in %.1f s, block origin (%.3f, %.3f, %.3f)\n", block.strips.size(),
@@ -244,8 +277,6 @@ runSingle(Options& o)
   strips::PlanFile files = o.request;
   files.plan = adjustment.plan();
   files.crs_wkt = block.crs_wkt;
-  const std::vector<strips::OutputUnit> units =
-      o.request.output_dir.empty() ? std::vector<strips::OutputUnit>() : strips::outputUnits(block, o.request.output_dir, o.request.keep_files);
   clearOutputs(o, units);
   std::vector<Eigen::Matrix4d> corrections;
   for (const auto& s : report.strips)
@@ -262,6 +293,8 @@ runSingle(Options& o)
   if (!o.quiet)
     print_info("Wrote %zu corrected files, %zu map files%s in %.1f s total\n", units.size(), maps.size(),
                o.request.json_path.empty() ? "" : (", " + o.request.json_path).c_str(), tt.toc() / 1000.0);
+  if (report.termination == TerminationType::UNRELIABLE)
+    return 3;
   return report.termination == TerminationType::CONVERGED || report.termination == TerminationType::MAX_ITERATIONS ? 0 : 2;
 }
 

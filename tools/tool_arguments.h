@@ -9,15 +9,18 @@
 ///   as 0; every numeric option goes through these strict parsers instead (the whole word must
 ///   be a finite number, integers must be whole and in range).
 /// - checkOutputFile() / checkOutputFolder(): an output that cannot be written is refused before
-///   any input is read, not after a long run.
+///   any input is read, not after a long run (tried with a probe file, not read from permission
+///   bits, which root and /proc make meaningless).
 
 #include <pcl_ls3d/io/cloud_io.h>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <set>
@@ -149,12 +152,34 @@ parseNumberList(const std::string& text, std::vector<double>& values)
   return !values.empty() && text.back() != ',';
 }
 
+/// \brief Can a file be created at `path` (absent) or written (present)? Tried, not guessed
+///        from permission bits (root passes every access() test, /proc refuses every file):
+///        an absent file is created and removed again, a present one opened without truncation.
+inline bool
+probeWritable(const std::string& path, std::string& why)
+{
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const bool existed = fs::exists(path, ec);
+  const int fd = existed ? ::open(path.c_str(), O_WRONLY | O_APPEND)
+                         : ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
+  if (fd < 0) {
+    why = "cannot write " + path + ": " + std::strerror(errno);
+    return false;
+  }
+  ::close(fd);
+  if (!existed)
+    fs::remove(path, ec);
+  return true;
+}
+
 /// \brief Refuses an output file before any work: it names one of `inputs`, exists without
-///        `overwrite`, is a folder, or cannot be created (missing folder, a file where the folder
-///        should be, no write permission). Creates and changes nothing. An empty path passes.
+///        `overwrite`, is a folder or another non-regular file (/dev/null), has a cloud format
+///        saveCloud() cannot write (when `cloud`), or cannot be created or written (tried: see
+///        probeWritable). Changes nothing. An empty path passes.
 inline bool
 checkOutputFile(const std::string& path, const std::vector<std::string>& inputs, bool overwrite,
-                std::string& why)
+                std::string& why, bool cloud = false)
 {
   namespace fs = std::filesystem;
   if (path.empty())
@@ -165,27 +190,27 @@ checkOutputFile(const std::string& path, const std::vector<std::string>& inputs,
       return false;
     }
   std::error_code ec;
-  if (fs::is_directory(path, ec))
+  const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
+  if (cloud && !io::canSaveFormat(path, why))
+    why = path + ": " + why;
+  else if (fs::is_directory(path, ec))
     why = "output " + path + " is a folder, not a file";
+  else if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))
+    why = "output " + path + " is not a regular file";
   else if (fs::exists(path, ec) && !overwrite)
     why = "output " + path + " exists already (use -overwrite to replace it)";
-  else if (fs::exists(path, ec) && ::access(path.c_str(), W_OK) != 0)
-    why = "cannot write " + path + ": no write permission";
-  else if (!fs::exists(path, ec)) {
-    const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".")
-                                                                 : fs::path(path).parent_path();
-    if (!fs::exists(parent, ec))
-      why = "cannot write " + path + ": folder " + parent.string() + " does not exist";
-    else if (!fs::is_directory(parent, ec))
-      why = "cannot write " + path + ": " + parent.string() + " is not a folder";
-    else if (::access(parent.c_str(), W_OK | X_OK) != 0)
-      why = "cannot write " + path + ": no permission to create files in " + parent.string();
-  }
+  else if (!fs::exists(parent, ec))
+    why = "cannot write " + path + ": folder " + parent.string() + " does not exist";
+  else if (!fs::is_directory(parent, ec))
+    why = "cannot write " + path + ": " + parent.string() + " is not a folder";
+  else
+    probeWritable(path, why);
   return why.empty();
 }
 
-/// \brief Refuses an output folder that exists but is not a writable folder, or that cannot be
-///        created (its nearest existing ancestor is not a writable folder). Creates nothing.
+/// \brief Refuses an output folder that exists but is not a folder or cannot take a new file, or
+///        that cannot be created (its nearest existing ancestor cannot take one: tried with a
+///        probe file, removed again). Creates nothing that stays.
 inline bool
 checkOutputFolder(const std::string& dir, std::string& why)
 {
@@ -194,10 +219,12 @@ checkOutputFolder(const std::string& dir, std::string& why)
   fs::path p = fs::absolute(dir, ec);
   while (!p.empty() && !fs::exists(p, ec) && p != p.parent_path())
     p = p.parent_path();
+  std::string probe_why;
   if (!fs::is_directory(p, ec))
     why = "cannot create or write the folder " + dir + ": " + p.string() + " is not a folder";
-  else if (::access(p.c_str(), W_OK | X_OK) != 0)
-    why = "cannot create or write the folder " + dir + ": no write permission in " + p.string();
+  else if (!probeWritable((p / (".pcl_ls3d_probe_" + std::to_string(::getpid()))).string(), probe_why))
+    why = "cannot create or write the folder " + dir + ": no file can be created in " + p.string() + " (" +
+          probe_why.substr(probe_why.rfind(": ") + 2) + ")";
   return why.empty();
 }
 

@@ -70,8 +70,11 @@ AdjustmentReport::fullReport() const
   if (!message.empty())
     os << "  message: " << message << "\n";
   if (quality.expected_noise > 0.0 || quality.coverage > 0.0)
-    os << format("  quality: sigma0 = %.3g x the surfaces' own noise (%.3g)", quality.sigma0_ratio,
-                 quality.expected_noise)
+    os << (quality.noise_yardstick > quality.expected_noise
+               ? format("  quality: sigma0 = %.3g x 0.001 x the point spacing (%.3g; the surfaces' own noise "
+                        "%.3g is below it)", quality.sigma0_ratio, quality.noise_yardstick, quality.expected_noise)
+               : format("  quality: sigma0 = %.3g x the surfaces' own noise (%.3g)", quality.sigma0_ratio,
+                        quality.expected_noise))
        << format(", coverage %.3f, rejected %.3f", quality.coverage, quality.rejected_fraction)
        << format(", moved %.4g (position sigma %.3g)", quality.movement, quality.position_sigma) << ": "
        << (quality.trustworthy ? "trustworthy\n" : "NOT TRUSTWORTHY\n");

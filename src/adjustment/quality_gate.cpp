@@ -96,8 +96,8 @@ measureQuality(const QualityInputs& in, const ObservationSet& observations)
   q.source_noise = in.source_noise;
   q.target_noise = in.target_noise;
   q.expected_noise = std::sqrt(in.source_noise * in.source_noise + in.target_noise * in.target_noise);
-  const double floor = std::max(q.expected_noise, 1e-3 * in.spacing);
-  q.sigma0_ratio = floor > 0.0 ? in.sigma0 / floor : 0.0;
+  q.noise_yardstick = std::max(q.expected_noise, 1e-3 * in.spacing);
+  q.sigma0_ratio = q.noise_yardstick > 0.0 ? in.sigma0 / q.noise_yardstick : 0.0;
   q.coverage = in.candidates > 0 ? static_cast<double>(distinctPoints(observations)) /
                                        static_cast<double>(in.candidates)
                                  : 0.0;
@@ -128,7 +128,10 @@ applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimate
     return TerminationType::IMPLAUSIBLE_SCALE;
   }
   if (q.sigma0_ratio > s.max_sigma0_ratio)
-    add(figure("sigma0 is %.3g x the surfaces' own noise (limit %.3g)", q.sigma0_ratio, s.max_sigma0_ratio));
+    add(figure(q.noise_yardstick > q.expected_noise
+                   ? "sigma0 is %.3g x the smallest noise the gate assumes, 0.001 x the point spacing (limit %.3g)"
+                   : "sigma0 is %.3g x the surfaces' own noise (limit %.3g)",
+               q.sigma0_ratio, s.max_sigma0_ratio));
   if (q.coverage < s.min_coverage)
     add(figure("only %.3g of the source points over the target have an observation (limit %.3g)",
                q.coverage, s.min_coverage));

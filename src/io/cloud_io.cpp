@@ -149,17 +149,28 @@ loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo
 }
 
 bool
-saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-          const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+canSaveFormat(const std::string& path, std::string& why)
 {
   const std::string ext = fileExtension(path);
   const std::string format = formatOf(ext);
+  if (!format.empty() && format != "laz")
+    return true;
+  why = "cannot write " + detail::quote("." + ext) + " files (supported: .las .pcd .ply .xyz .txt .csv)";
+  return false;
+}
+
+bool
+saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
+          const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+{
+  const std::string format = formatOf(fileExtension(path));
   std::string reason;
   std::error_code ec;
-  if (format.empty() || format == "laz")
-    reason = "cannot write " + detail::quote("." + ext) +
-             " files (supported: .las .pcd .ply .xyz .txt .csv)";
-  else if (cloud.empty())
+  if (!canSaveFormat(path, reason)) {
+    error = detail::printable(path) + ": " + reason;
+    return false;
+  }
+  if (cloud.empty())
     reason = "refusing to write an empty cloud";
   else if (!origin.allFinite())
     reason = "the origin is not finite";

@@ -153,6 +153,12 @@ solveIteration(const StripPlan& plan, const std::vector<OverlapContribution>& co
   BlockNormalEquations ne(static_cast<int>(plan.strips.size()));
   for (const OverlapContribution& c : sorted)
     ne.addOverlap(c.i, c.j, c.normal);
+  if (ne.observations() == 0) {
+    ++state.iteration;
+    return stop(state, TerminationType::TOO_FEW_OBSERVATIONS,
+                "no overlap has an observation: no point of the observed classes (-classes) has a "
+                "conjugate point on the other strip within -max_dist");
+  }
   std::vector<ParameterBlock> blocks = state.blocks(plan);
   GaussMarkovProblem problem = plan.problem(blocks);
   // Held at their start values: fixed for this solve, reported undeterminable.

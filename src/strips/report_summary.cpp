@@ -71,6 +71,11 @@ reportSummary(const StripAdjustmentReport& r, const std::string& u)
       add(out, "%-22s %10.1f   skipped: %s\n", name.c_str(), o.area, o.skip_reason.c_str());
       continue;
     }
+    if (o.used_observations == 0) {
+      add(out, "%-22s %10.1f   no observation (%zu conjugate points found, none used)\n", name.c_str(), o.area,
+          o.observations);
+      continue;
+    }
     add(out, "%-22s %10.1f  %8zu / %-7zu  %8.4f   %10.4f %9.4f  ->  %10.4f %9.4f   %8.4f / %.4f\n", name.c_str(), o.area,
         o.used_observations, o.observations - o.used_observations, o.sigma0, o.before.rms, o.before.sigma_mad, o.after.rms,
         o.after.sigma_mad, o.noise_i.sigma_mad, o.noise_j.sigma_mad);

@@ -27,7 +27,9 @@ unitsOf(const std::string& wkt)
 {
   Units u;
   const double metres = maps::crsLinearUnit(wkt);
-  if (metres > 0.0 && std::abs(metres - 1.0) > 1e-9) {
+  if (!(metres > 0.0))
+    u.name = "input units";  // no CRS: the bands are taken in the input's own unit
+  else if (std::abs(metres - 1.0) > 1e-9) {
     u.per_metre = 1.0 / metres;
     u.name = maps::crsLinearUnitName(wkt);
   }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace pcl_ls3d {
@@ -123,6 +124,41 @@ overlapResult(const Overlap& o, const OverlapContribution* c, const OverlapSampl
   return r;
 }
 
+// An adjustment that moves a strip by more than the strips' own noise must show it in the data:
+// when the normal discrepancies' σMAD grew on more than half of the used overlaps, the
+// corrections are not confirmed and the result is UNRELIABLE (the estimate stays in the report).
+void
+confirmByDiscrepancies(StripAdjustmentReport& report)
+{
+  if (report.termination != TerminationType::CONVERGED && report.termination != TerminationType::MAX_ITERATIONS)
+    return;
+  std::size_t used = 0, grew = 0;
+  std::vector<double> noise;
+  for (const OverlapResult& o : report.overlaps) {
+    if (!o.used || o.before.count == 0 || o.after.count == 0)
+      continue;
+    ++used;
+    grew += o.after.sigma_mad > o.before.sigma_mad ? 1 : 0;
+    noise.push_back(std::max(o.noise_i.sigma_mad, o.noise_j.sigma_mad));
+  }
+  double moved = 0.0;
+  for (const StripResult& s : report.strips)
+    moved = std::max(moved, s.parameters.head<3>().norm());
+  if (used == 0 || 2 * grew <= used)
+    return;
+  std::nth_element(noise.begin(), noise.begin() + static_cast<std::ptrdiff_t>(noise.size() / 2), noise.end());
+  const double own_noise = noise[noise.size() / 2];
+  if (!(moved > own_noise))
+    return;
+  char buf[320];
+  std::snprintf(buf, sizeof(buf),
+                "NOT CONFIRMED: the corrections move a strip by %.3g (the strips' own noise %.3g), but the "
+                "discrepancies' sigmaMAD grew on %zu of %zu overlaps: check before applying them",
+                moved, own_noise, grew, used);
+  report.termination = TerminationType::UNRELIABLE;
+  report.message += std::string(report.message.empty() ? "" : "; ") + buf;
+}
+
 }  // namespace
 
 StripAdjustmentReport
@@ -151,7 +187,7 @@ makeReport(const StripPlan& plan, const BlockState& state,
   std::string undeterminable;
   for (std::size_t k = 0; k < plan.strips.size(); ++k)
     report.strips.push_back(stripResult(plan, state, report.covariance, k, undeterminable));
-  if (!undeterminable.empty()) {
+  if (!undeterminable.empty() && report.observations > 0) {
     report.notes.push_back("undeterminable parameters: " + undeterminable);
     report.message += std::string(report.message.empty() ? "" : "; ") + "undeterminable parameters: " + undeterminable;
   }
@@ -162,6 +198,7 @@ makeReport(const StripPlan& plan, const BlockState& state,
         c = &f;
     report.overlaps.push_back(overlapResult(plan.overlaps[k], c, k < samples.size() ? &samples[k] : nullptr));
   }
+  confirmByDiscrepancies(report);
   return report;
 }
 

@@ -75,7 +75,7 @@ TEST_F(ToolOptions, NumericOptionsAreParsedStrictly)
   const std::pair<std::string, std::string> register_cases[] = {
       {"-params 6x", "-params"},  {"-params abc", "-params"}, {"-max_iter abc", "-max_iter"},
       {"-max_iter 2.5", "-max_iter"}, {"-K 6x", "-K"},         {"-thin abc", "-thin"},
-      {"-max_dist 1e999", "-max_dist"}, {"-guess 1x", "-guess"}, {"-guess -1", "guess_uncertainty"}, {"-params 7 -params 6", "given twice"}};
+      {"-max_dist 1e999", "-max_dist"}, {"-guess 1x", "-guess"}, {"-guess -1", "-guess must be > 0"}, {"-max_dist -1", "-max_dist must be > 0"}, {"-params 7 -params 6", "given twice"}};
   for (const auto& [args, expect] : register_cases)
     expectRefusal("pcl_ls3d_register", pair + " " + args, expect);
   for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{

@@ -152,6 +152,14 @@ TEST_F(RegisterTool, BadInputGivesOneErrorLineAndNonZeroExit)
       s + " " + t + " -bogus 3",                  // unknown option
       s + " " + t + " -o " + s,                   // output would overwrite an input
       s + " " + t + " -truth " + path("missing.json"),
+      s + " " + t + " -max_dist -1",              // no sentinel: a distance must be > 0
+      s + " " + t + " -guess 0",
+      // Outputs refused before any input is read (no "Loaded" line): a format without a writer,
+      // a place no file can be created (/proc, even as root), a report there, a device.
+      s + " " + t + " -o " + path("aligned.foo"),
+      s + " " + t + " -o /proc/pcl_ls3d_aligned.xyz",
+      s + " " + t + " -json /proc/pcl_ls3d_report.json",
+      s + " " + t + " -o /dev/null -overwrite",
   };
   for (const std::string& args : bad) {
     const ToolRun r = runTool(args);

@@ -200,3 +200,60 @@ TEST_F(StripTool, BadInputGivesOneErrorLine)
     EXPECT_TRUE(r.out.empty()) << c.second << ":\n" << r.out;
   }
 }
+
+// Outputs are checked before any input is read: the same input twice, a report or an output
+// folder that cannot be written (/proc takes no file, even as root), a report named like a
+// corrected strip. One error line each, nothing written, the inputs untouched.
+TEST_F(StripTool, OutputsAndDuplicatesAreRefusedBeforeAnyWork)
+{
+  const std::string both = in("strip_1.las") + " " + in("strip_2.las");
+  fs::create_directories(dir + "/outj");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {in("strip_1.las") + " " + in("strip_1.las"), "is given twice"},
+      {both + " -json /proc/pcl_ls3d_report.json", "cannot write /proc/pcl_ls3d_report.json"},
+      {both + " -o /proc/pcl_ls3d_out", "cannot create or write the folder /proc/pcl_ls3d_out"},
+      {both + " -maps /proc/pcl_ls3d_maps", "cannot create or write the folder /proc/pcl_ls3d_maps"},
+      {both + " -o '" + dir + "/outj' -json '" + dir + "/outj/strip_1.las'", "would replace the corrected strip"},
+  };
+  for (const auto& c : cases) {
+    const auto r = runTool("pcl_ls3d_strip_adjust", c.first + " -q", dir);
+    EXPECT_EQ(r.code, 1) << c.first;
+    EXPECT_EQ(pcl_ls3d_test::lineCount(r.err), 1u) << c.first << ":\n" << r.err;
+    EXPECT_NE(r.err.find(c.second), std::string::npos) << c.first << ":\n" << r.err;
+  }
+  EXPECT_TRUE(fs::is_empty(dir + "/outj"));
+}
+
+// No observation at all (a class no point has) is said as such, not as a singular geometry,
+// and the overlap's row shows no figures that read as a perfect fit.
+TEST_F(StripTool, NoObservationIsNamedAsTheCause)
+{
+  const auto r = runTool("pcl_ls3d_strip_adjust", in("strip_1.las") + " " + in("strip_2.las") + " -classes 99", dir);
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.out.find("TOO_FEW_OBSERVATIONS"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no overlap has an observation"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("SINGULAR"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("no observation (0 conjugate points"), std::string::npos) << r.out;
+}
+
+// IGN's 1 km test_semis_2023 block (0.3 pts/m²): the adjustment moves strip 1 by 0.61 m
+// (three times the strips' own noise) while the discrepancies' σMAD grows on 4 of its 5
+// overlaps; that is UNRELIABLE, exit 3, not CONVERGED. The five 50 m IGN tiles, whose
+// corrections do reduce the discrepancies, stay CONVERGED.
+TEST(StripToolRealData, CorrectionsTheDiscrepanciesDoNotConfirmAreUnreliable)
+{
+  const std::string ign = std::string(PCL_LS3D_SHARED_DATA_DIR) + "/registration/ign_lidarhd/";
+  if (!std::ifstream(ign + "test_semis_2023_0292_6833_LA93_IGN69.las").good())
+    GTEST_SKIP() << "shared data not found under " << PCL_LS3D_SHARED_DATA_DIR << "; skipped";
+  const std::string tmp = fs::temp_directory_path().string();
+  const auto semis = runTool("pcl_ls3d_strip_adjust", "'" + ign + "test_semis_2023_0292_6833_LA93_IGN69.las' -split psid", tmp);
+  EXPECT_EQ(semis.code, 3) << semis.out << semis.err;
+  EXPECT_NE(semis.out.find("UNRELIABLE"), std::string::npos) << semis.out;
+  EXPECT_NE(semis.out.find("NOT CONFIRMED"), std::string::npos) << semis.out;
+  std::string tiles;
+  for (const char* t : {"77050_627755", "77050_627760", "77055_627755", "77055_627760", "77060_627760"})
+    tiles += " '" + ign + "test_data_" + t + "_LA93_IGN69.las'";
+  const auto five = runTool("pcl_ls3d_strip_adjust", tiles + " -split psid", tmp);
+  EXPECT_EQ(five.code, 0) << five.out << five.err;
+  EXPECT_NE(five.out.find("CONVERGED"), std::string::npos) << five.out;
+}

@@ -53,7 +53,10 @@ struct QualityFigures
   double expected_noise = 0.0;
   double source_noise = 0.0;          ///< σ_s of the source (its own local roughness)
   double target_noise = 0.0;          ///< σ_t of the target near the conjugate points
-  double sigma0_ratio = 0.0;          ///< σ0 / expected_noise (≈ 1 for a good fit; 0: unknown)
+  /// What σ0 is compared with: expected_noise, but at least 1e-3 × the target's point spacing
+  /// (noise-free data would make any σ0 infinitely many times its noise).
+  double noise_yardstick = 0.0;
+  double sigma0_ratio = 0.0;          ///< σ0 / noise_yardstick (≈ 1 for a good fit; 0: unknown)
   /// Source points over the target's extent that have an observation, as a fraction of them.
   double coverage = 0.0;
   double rejected_fraction = 0.0;     ///< correspondences the estimator gave weight 0, as a fraction

@@ -122,6 +122,10 @@ bool
 saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
           const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options = {});
 
+/// Can saveCloud() write a file of this name's format? False with the reason (the extension).
+bool
+canSaveFormat(const std::string& path, std::string& why);
+
 /// Same file (after resolving paths/links)? Tools use it to refuse overwriting an input.
 bool
 isSameFile(const std::string& a, const std::string& b);

@@ -1,0 +1,24 @@
+#pragma once
+/// \file tool_output.h
+/// \brief Console output shared by the pcl_ls3d_* tools.
+
+#include <pcl/console/print.h>
+
+#include <Eigen/Core>
+
+namespace pcl_ls3d {
+namespace tools {
+
+/// \brief Prints a 4x4 transformation of input coordinates under `title`. The coordinates may be
+///        projected (10^6 m): the rotation needs 15 decimals for its product with them to hold
+///        to 1e-8 m, so that the printed matrix can be copied into another program.
+inline void
+printTransformation(const char* title, const Eigen::Matrix4d& T)
+{
+  pcl::console::print_info("%s\n", title);
+  for (int i = 0; i < 4; ++i)
+    pcl::console::print_info("  %18.15f %18.15f %18.15f %21.9f\n", T(i, 0), T(i, 1), T(i, 2), T(i, 3));
+}
+
+}  // namespace tools
+}  // namespace pcl_ls3d
