@@ -4,6 +4,7 @@
 
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/las_rewrite.h>
 #include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 
@@ -34,7 +35,9 @@ printHelp(const char* prog)
              "Usage: %s SOURCE TARGET [options]\n"
              "  SOURCE, TARGET       .las .pcd .ply .xyz/.txt (target loaded first; the source uses\n"
              "                       the target's local origin)\n"
-             "  -o ALIGNED           write the transformed source (input coordinates)\n"
+             "  -o ALIGNED           write the transformed source (input coordinates); a LAS source\n"
+             "                       written as .las keeps its version, point format, VLRs (CRS)\n"
+             "                       and every attribute: only X, Y, Z and the bounds change\n"
              "  -rule lnd|lzd|icp    conjugate-point rule (default lnd)\n"
              "  -params 7|6|3|1      similarity, rigid (m fixed), translation, height only (default 6)\n"
              "  -fix tx,ty,...       also fix these parameters (tx ty tz phi omega kappa m)\n"
@@ -204,6 +207,24 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
 
 }  // namespace
 
+/// A LAS source written as LAS keeps what a surveyor relies on: the header's version and point
+/// format, every VLR (the CRS) and every record byte but X, Y, Z (io::rewriteLas); all records,
+/// in file order, moved by T (input coordinates).
+bool
+writeMovedLas(const std::string& source_path, const Eigen::Matrix4d& T, const std::string& out_path,
+              bool overwrite, std::string& error)
+{
+  pcl_ls3d::io::LasRecordFile las;
+  if (!las.open(source_path, error))
+    return false;
+  pcl_ls3d::io::LasRewriteSummary summary;
+  const auto move = [&T](std::size_t, Eigen::Vector3d& x) {
+    x = (T * x.homogeneous()).head<3>();
+    return true;
+  };
+  return pcl_ls3d::io::rewriteLas(las, nullptr, move, out_path, summary, error, overwrite);
+}
+
 int
 main(int argc, char** argv)
 {
@@ -350,7 +371,9 @@ main(int argc, char** argv)
     tt.tic();
     pcl_ls3d::io::SaveOptions so;
     so.overwrite = overwrite;
-    if (!pcl_ls3d::io::saveCloud(out_path, aligned, tinfo.origin, error, so))
+    const bool las_to_las = sinfo.format == "las" && pcl_ls3d::io::fileExtension(out_path) == "las";
+    if (las_to_las ? !writeMovedLas(source_path, T_input, out_path, overwrite, error)
+                   : !pcl_ls3d::io::saveCloud(out_path, aligned, tinfo.origin, error, so))
       return fail(error), 1;
     print_info("Wrote %s in %.0f ms\n", out_path.c_str(), tt.toc());
   }

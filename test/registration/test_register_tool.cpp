@@ -3,11 +3,13 @@
 #include "ls3d_test_utils.h"
 
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/las_records.h>
 
 #include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -242,4 +244,41 @@ TEST(RegisterToolRealData, AMoveTheDataDoNotDetermineIsRefused)
   EXPECT_TRUE(j["quality"]["trustworthy"].get<bool>());
   EXPECT_LT(j["quality"]["position_sigma"].get<double>(), j["quality"]["expected_noise"].get<double>());
   std::remove(json.c_str());
+}
+
+// A georeferenced LAS source written as LAS keeps its version, point format and VLRs (the CRS)
+// byte for byte; every record is the input's moved by the reported 4x4 (to half the LAS scale).
+// It was written as LAS 1.2 format 3 without any VLR.
+TEST(RegisterToolRealData, LasOutputKeepsTheSourcesHeaderAndCrs)
+{
+  const std::string pdal = std::string(PCL_LS3D_SHARED_DATA_DIR) + "/registration/pdal/";
+  if (!std::ifstream(pdal + "autzen_trim_7.las").good())
+    GTEST_SKIP() << "shared data not found under " << PCL_LS3D_SHARED_DATA_DIR << "; skipped";
+  const fs::path dir = fs::temp_directory_path() / ("pcl_ls3d_las_out_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string out = (dir / "aligned.las").string(), json = (dir / "r.json").string();
+  const ToolRun r = runTool(pdal + "autzen_trim_7.las " + pdal + "autzen_trim.las -o " + out + " -json " + json);
+  ASSERT_EQ(r.code, 0) << r.output;
+  pcl_ls3d::io::LasRecordFile in, moved;
+  std::string error;
+  ASSERT_TRUE(in.open(pdal + "autzen_trim_7.las", error)) << error;
+  ASSERT_TRUE(moved.open(out, error)) << error;
+  const auto &a = in.header(), &b = moved.header();
+  EXPECT_EQ(b.version_minor, a.version_minor);
+  EXPECT_EQ(b.point_format, a.point_format);
+  EXPECT_EQ(b.number_of_vlrs, a.number_of_vlrs);
+  ASSERT_EQ(b.offset_to_points, a.offset_to_points);
+  ASSERT_EQ(moved.size(), in.size());
+  EXPECT_TRUE(std::equal(in.data() + a.header_size, in.data() + a.offset_to_points, moved.data() + b.header_size));
+  std::ifstream js(json);
+  const nlohmann::json j = nlohmann::json::parse(js);
+  Eigen::Matrix4d T;
+  for (int p = 0; p < 4; ++p)
+    for (int q = 0; q < 4; ++q)
+      T(p, q) = j["transformation"][static_cast<std::size_t>(p)][static_cast<std::size_t>(q)].get<double>();
+  double worst = 0.0;
+  for (std::size_t i = 0; i < in.size(); i += 97)
+    worst = std::max(worst, ((T * in.coordinates(i).homogeneous()).head<3>() - moved.coordinates(i)).cwiseAbs().maxCoeff());
+  EXPECT_LE(worst, 0.5 * b.scale.maxCoeff() + 1e-9);
+  fs::remove_all(dir);
 }
