@@ -54,7 +54,10 @@ printHelp(const char* prog)
              "  -truth TRUTH.json    compare with a known transform (key \"transformation\": 4x4\n"
              "                       row-major, SOURCE -> TARGET, input coordinates)\n"
              "  -overwrite           allow replacing existing output files\n"
-             "  -h                   this help\n",
+             "  -h                   this help\n\n"
+             "Exit status: 0 a trusted estimate; 1 bad input or options, or no estimate (the -json\n"
+             "report says why); 3 an estimate the quality gate refused (UNRELIABLE, STALLED,\n"
+             "IMPLAUSIBLE_SCALE: in the report and -json, not written to -o).\n",
              prog);
 }
 
@@ -207,6 +210,13 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
 
 }  // namespace
 
+bool
+writeJson(const std::string& path, const nlohmann::json& j)
+{
+  std::ofstream out(path);
+  return static_cast<bool>(out << pcl_ls3d::io::toJsonText(j, 2) << "\n");
+}
+
 /// A LAS source written as LAS keeps what a surveyor relies on: the header's version and point
 /// format, every VLR (the CRS) and every record byte but X, Y, Z (io::rewriteLas); all records,
 /// in file order, moved by T (input coordinates).
@@ -342,9 +352,17 @@ main(int argc, char** argv)
   }
   const double t_align = tt.toc();
   const pcl_ls3d::AdjustmentReport& r = ls3d.getReport();
-  if (!r.hasEstimate())
+  if (!r.hasEstimate()) {  // a pipeline reading the report still finds why
+    const nlohmann::json j = {{"converged", false},
+                              {"termination", pcl_ls3d::terminationTypeToString(r.termination)},
+                              {"message", r.message},
+                              {"iterations", r.iterations},
+                              {"transformation", nullptr}};
+    if (!json_path.empty() && !writeJson(json_path, j))
+      return fail("cannot write " + json_path), 1;
     return fail(std::string("registration failed: ") + pcl_ls3d::terminationTypeToString(r.termination) +
                 ": " + r.message), 1;
+  }
   // An estimate that failed the quality gate is shown (and in the JSON) but not written out.
   const bool trusted = r.isSolutionUsable();
 
@@ -377,11 +395,8 @@ main(int argc, char** argv)
       return fail(error), 1;
     print_info("Wrote %s in %.0f ms\n", out_path.c_str(), tt.toc());
   }
-  if (!json_path.empty()) {
-    std::ofstream out(json_path);
-    if (!(out << pcl_ls3d::io::toJsonText(j, 2) << "\n"))
-      return fail("cannot write " + json_path), 1;
-  }
+  if (!json_path.empty() && !writeJson(json_path, j))
+    return fail("cannot write " + json_path), 1;
   if (!trusted)
     return fail(std::string("registration not trustworthy: ") +
                 pcl_ls3d::terminationTypeToString(r.termination) + ": " + r.message +

@@ -181,6 +181,17 @@ TEST_F(RegisterTool, NanOnlyAndNoOverlapGiveOneErrorLine)
     EXPECT_NE(r.code, 0) << args;
     EXPECT_EQ(errorLines(r.output), 1) << args << "\n" << r.output;
   }
+  // A registration that found no estimate still writes its -json report: the reason for a
+  // pipeline, no transformation.
+  const ToolRun r = runTool(s + " " + path("far.pcd") + " -json " + path("failed.json"), true);
+  EXPECT_EQ(r.code, 1) << r.output;
+  std::ifstream in(path("failed.json"));
+  ASSERT_TRUE(in.good());
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_FALSE(j["converged"].get<bool>());
+  EXPECT_TRUE(j["transformation"].is_null());
+  EXPECT_FALSE(j["message"].get<std::string>().empty());
+  EXPECT_NE(r.output.find(j["termination"].get<std::string>()), std::string::npos) << r.output;
 }
 
 // -params 6 fixes m and -fix tz fixes tz exactly at the guess (identity); the report carries
