@@ -18,6 +18,7 @@
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/segmentation/dimensionality_features.h>
 #include <pcl_ls3d/io/json_text.h>
 
 #include <pcl/common/time.h>
@@ -61,7 +62,8 @@ printHelp(const char* prog)
              "                     (file coordinate = x + origin; origin in the header line\n"
              "                     '# pcl_ls3d origin X Y Z' and the JSON), label = segment + 1\n"
              "                     (a header line marks the file: -evaluate refuses it)\n"
-             "                     (0 = none, also for non-finite input points), rgba per\n"
+             "                     (0 = none, also for non-finite input points and pcl_rg's\n"
+             "                     points in clusters under its minimum size), rgba per\n"
              "                     segment; pcl::io::loadPCDFile into pcl::PointXYZRGBL reads it\n"
              "  -mode imrg|mrg|pcl_rg   method for -o and the JSON report (default imrg)\n"
              "  -level objects|planes   IMRG/MRG output: whole objects (default) or the planes\n"
@@ -95,30 +97,16 @@ printHelp(const char* prog)
 bool
 checkArguments(int argc, char** argv, std::string& input, std::string& error)
 {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (kValueOptions.count(a)) {
-      if (++i >= argc) {
-        error = "option " + a + " needs a value";
-        return false;
-      }
-    }
-    else if (kFlagOptions.count(a))
-      continue;
-    else if (!a.empty() && a[0] == '-') {
-      error = "unknown option " + a + " (see -h)";
-      return false;
-    }
-    else if (!input.empty()) {
-      error = "more than one input given ('" + input + "', '" + a + "')";
-      return false;
-    }
-    else
-      input = a;
-  }
-  if (input.empty())
+  std::vector<std::string> positional;  // unknown, repeated or value-less options are refused
+  if (!tools::splitArguments(argc, argv, 1, kValueOptions, kFlagOptions, positional, error))
+    return false;
+  if (positional.size() > 1)
+    error = "more than one input given ('" + positional[0] + "', '" + positional[1] + "')";
+  else if (positional.empty())
     error = "no input file given (see -h)";
-  return !input.empty();
+  else
+    input = positional[0];
+  return error.empty();
 }
 
 /// Strict number (tool_arguments.h): the whole string must parse and be finite.
@@ -182,12 +170,16 @@ parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string
     return false;
   }
   s.threads = static_cast<int>(threads);
-  if (min_fragment >= 0) {
-    if (min_fragment != std::floor(min_fragment) || min_fragment > 1e9) {
+  if (tools::optionValue(argc, argv, "-min_fragment")) {
+    if (min_fragment < 0 || min_fragment != std::floor(min_fragment) || min_fragment > 1e9) {
       error = "-min_fragment must be a non-negative integer";
       return false;
     }
     s.min_fragment_size = static_cast<int>(min_fragment);
+  }
+  if (s.method == ev::SegmentationMethod::PclRegionGrowing && tools::optionValue(argc, argv, "-level")) {
+    error = "-level applies to imrg and mrg, not to -mode pcl_rg";
+    return false;
   }
   return s.isValid(&error);
 }
@@ -336,6 +328,11 @@ main(int argc, char** argv)
   print_info("Loaded %s: %zu points (%zu non-finite dropped), origin (%.3f, %.3f, %.3f) in %.3f s\n",
              input.c_str(), cloud.size(), info.points_dropped_nonfinite, info.origin.x(),
              info.origin.y(), info.origin.z(), t_load);
+  // The multi-rule methods' smallest neighbourhood (pcl_rg runs on fewer: its clusters say so).
+  const int k_min = settings.k_min > 0 ? settings.k_min : segmentation::NeighbourhoodSettings().k_min;
+  if (settings.method != ev::SegmentationMethod::PclRegionGrowing && cloud.size() < static_cast<std::size_t>(k_min))
+    return fail("need at least k_min = " + std::to_string(k_min) + " finite points (-k) for " +
+                ev::toString(settings.method) + ", got " + std::to_string(cloud.size()));
   if (cloud.size() < 3)
     return fail("need at least 3 finite points, got " + std::to_string(cloud.size()));
 
@@ -443,8 +440,14 @@ main(int argc, char** argv)
     if (m == ev::SegmentationMethod::PclRegionGrowing)
       rj["rest_points"] = run.rest_points;
     report["runs"].push_back(rj);
-    if (m == settings.method)
+    if (m == settings.method) {
       selected = run.segments;
+      if (run.rest_points > 0)  // pcl_rg's rest is for the evaluation only: no segment, label 0
+        selected.pop_back();
+      if (selected.empty())
+        print_warn("%s: every point lies in a cluster under the minimum size: all labels 0\n",
+                   ev::toString(m).c_str());
+    }
     if (evaluate) {
       ev::SegmentationEvaluation e;
       e.method = ev::toString(m);

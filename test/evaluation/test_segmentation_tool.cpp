@@ -187,6 +187,8 @@ TEST_F(SegmentTool, BadInputExitsNonZeroWithOneErrorLine)
          "WIDTH 3\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 3\nDATA ascii\n"
          "nan nan nan\nnan nan nan\nnan nan nan\n";
   }
+  const fs::path few = dir_ / "few.xyz";
+  std::ofstream(few) << "0 0 0\n1 0 0\n0 1 0\n1 1 0.1\n2 0 0\n";
   const std::string cases[] = {
       (dir_ / "missing.las").string(),               // missing file
       nan_file.string(),                             // no finite point
@@ -196,6 +198,12 @@ TEST_F(SegmentTool, BadInputExitsNonZeroWithOneErrorLine)
       input_.string() + " -k 50,10",                 // impossible range
       input_.string() + " -o " + input_.string(),    // output = input
       input_.string() + " -classes ground",          // bad class spec
+      input_.string() + " -min_fragment -5",         // negative count (was silently the default)
+      input_.string() + " -threads 1 -threads abc",  // repeated option (was: first value used)
+      input_.string() + " -mode pcl_rg -level planes",  // -level means nothing to pcl_rg
+      input_.string() + " -o /proc/pcl_ls3d_seg.pcd",   // no file can be created there, even as root
+      input_.string() + " -json /proc/pcl_ls3d_seg.json",
+      few.string(),                                  // fewer points than the smallest neighbourhood
       "",                                            // no input at all -> help, exit 1
   };
   for (const auto& args : cases) {
@@ -443,4 +451,33 @@ TEST_F(SegmentTool, EvaluateRefusesItsOwnSegmentsFile)
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("segment ids"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("F1"), std::string::npos) << r.out;
+}
+
+// pcl::RegionGrowing leaves the points of clusters under its minimum size unassigned: they are
+// one "rest" segment for the evaluation only; SEGMENTS.pcd gives them label 0 (no segment).
+TEST_F(SegmentTool, PclRegionGrowingRestIsLabelZero)
+{
+  const fs::path out = dir_ / "rg.pcd", json = dir_ / "rg.json";
+  const ToolResult r = run(input_.string() + " -mode pcl_rg -o " + out.string() + " -json " + json.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  std::size_t rest = 0, segments = 0;
+  for (const auto& run : j["runs"])
+    if (run["method"] == "pcl_rg") {
+      rest = run["rest_points"].get<std::size_t>();
+      segments = run["segments"].get<std::size_t>();
+    }
+  ASSERT_GT(rest, 0u) << "the scene should leave some points to PCL's rest";
+  pcl::PointCloud<pcl::PointXYZL> labelled;
+  ASSERT_EQ(pcl::io::loadPCDFile(out.string(), labelled), 0);
+  std::size_t unlabelled = 0;
+  std::set<std::uint32_t> ids;
+  for (const auto& p : labelled) {
+    unlabelled += p.label == 0;
+    if (p.label)
+      ids.insert(p.label);
+  }
+  EXPECT_EQ(unlabelled, rest);
+  EXPECT_EQ(ids.size(), segments - 1);
 }
