@@ -101,6 +101,9 @@ printHelp(const char* prog)
       prog);
 }
 
+/// -lod95's significance threshold in sigmas of the level of detection (residual_field.cpp).
+constexpr double kLod95Factor = 1.96;
+
 /// Options that contradict each other, refused before any work: -k has no use with -lod95 (its
 /// threshold is the level of detection), and growing at or above the detection threshold adds
 /// no point to a region.
@@ -113,11 +116,12 @@ optionConflict(int argc, char** argv, bool lod95, double k, double grow_k, std::
     why = "-k and -lod95 exclude each other: -lod95 tests the 95 % level of detection, not K sigma";
     return false;
   }
-  if (lod95 || !grow_text || !(grow_k > 0.0 && grow_k >= k))
+  const double detection = lod95 ? kLod95Factor : k;  // the significance threshold in sigmas
+  if (!grow_text || !(grow_k > 0.0 && grow_k >= detection))
     return true;
   char buf[160];
-  std::snprintf(buf, sizeof(buf), "-grow_k %g must be below -k (%g): regions grow into weaker neighbours "
-                "(-grow_k 0: off)", grow_k, k);
+  std::snprintf(buf, sizeof(buf), "-grow_k %g must be below %s (%g): regions grow into weaker neighbours "
+                "(-grow_k 0: off)", grow_k, lod95 ? "-lod95's threshold" : "-k", detection);
   why = buf;
   return false;
 }
@@ -228,7 +232,7 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
 bool
 writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, const def::DeformationResult& r,
          const Eigen::Vector3d& origin, const std::string& crs_wkt, const std::string& reference_path,
-         const std::string& epoch_path, double k, double cell, bool overwrite, std::string& error)
+         const std::string& epoch_path, double k, bool lod95, double cell, bool overwrite, std::string& error)
 {
   def::DeformationMapSettings ms;
   ms.title = "Deformation: " + std::filesystem::path(epoch_path).filename().string() + " against " +
@@ -236,6 +240,7 @@ writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, 
   ms.origin = origin;
   ms.crs_wkt = crs_wkt;
   ms.k = k;
+  ms.lod95 = lod95;
   ms.cell = cell;
   return def::writeDeformationMap(prefix, def::makeDeformationMap(points, r, ms), crs_wkt, overwrite, error);
 }
@@ -292,9 +297,9 @@ main(int argc, char** argv)
   const bool lod95 = find_switch(argc, argv, "-lod95");
   if (!optionConflict(argc, argv, lod95, k, grow_k, why))
     return fail(why), 1;
-  if (!lod95 && !optionValue(argc, argv, "-grow_k") && grow_k >= k)
-    print_warn("Warning: -k %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
-               "below K, or 0)\n", k, grow_k);
+  if (!optionValue(argc, argv, "-grow_k") && grow_k >= (lod95 ? kLod95Factor : k))
+    print_warn("Warning: %s %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
+               "below it, or 0)\n", lod95 ? "-lod95's threshold" : "-k", lod95 ? kLod95Factor : k, grow_k);
 
   def::DeformationSettings settings;
   pcl_ls3d::RobustMatchingSettings& m = settings.matching;
@@ -444,7 +449,7 @@ main(int argc, char** argv)
     if (crs_wkt.empty() && rinfo.format == "las")
       crs_wkt = pcl_ls3d::maps::crsFromLasVlrs(rinfo.las.vlrs);
     if (!writeMap(map_prefix, points, result, rinfo.origin, crs_wkt, reference_path, epoch_path,
-                  settings.residuals.k, map_cell, overwrite, error))
+                  settings.residuals.k, lod95, map_cell, overwrite, error))
       return fail(error), 1;
     print_info("Wrote %s and %s%s\n", png_path.c_str(), tif_path.c_str(),
                crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");

@@ -91,9 +91,11 @@ mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps
   const std::string unit = crs_unit.empty() ? "input units" : crs_unit;
   maps::MapStyle style;
   style.title = s.title;
-  style.subtitle = wrapped(format("%s; robust scale %.3g %s, %zu of %zu points significant (|r| > %g sigma)",
+  const std::string test = s.lod95 ? "neighbourhood mean beyond its 95 % level of detection"
+                                    : format("|r| > %g sigma", s.k);
+  style.subtitle = wrapped(format("%s; robust scale %.3g %s, %zu of %zu points significant (%s)",
                                   r.matching.estimator.c_str(), r.matching.scale, unit.c_str(),
-                                  r.field.significant_count, r.field.observed, s.k),
+                                  r.field.significant_count, r.field.observed, test.c_str()),
                            kSubtitleWidth);
   style.subtitle.push_back(format("%.1f %% of the area in %zu deformed regions (outlined), %zu noise clusters",
                                   r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size()));

@@ -426,6 +426,7 @@ TEST(DeformationTool, ConflictingOptionsAreRefused)
       {a + " -k 2 -grow_k 2.5", "-grow_k 2.5 must be below -k (2)"},
       {a + " -k 2 -grow_k 2", "must be below -k"},
       {a + " -lod95 -k 3", "-k and -lod95 exclude each other"},
+      {a + " -lod95 -grow_k 2", "-grow_k 2 must be below -lod95's threshold (1.96)"},
       {a + " -params 6x", "-params expects 6, 7 or 3, got '6x'"},
       {a + " -params 5", "-params expects 6, 7 or 3, got '5'"},
       {a + " -params 1", "-params expects 6, 7 or 3, got '1'"},
@@ -440,9 +441,11 @@ TEST(DeformationTool, ConflictingOptionsAreRefused)
     EXPECT_FALSE(fs::exists(s.file("r.json"))) << args;  // refused before any work
   }
   // Below -k, or off, hysteresis is accepted.
-  for (const char* ok : {" -k 2 -grow_k 1.5", " -grow_k 0", " -lod95"}) {
+  for (const char* ok : {" -k 2 -grow_k 1.5", " -grow_k 0", " -lod95", " -lod95 -grow_k 1.3"}) {
     const auto r = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("ref.pcd") + ok, s.dir.string());
     EXPECT_EQ(r.code, 0) << ok << ": " << r.err;
+    // -lod95 with the default -grow_k 2 (above its 1.96): runs, and says the regions do not grow.
+    EXPECT_EQ(r.err.find("do not grow") != std::string::npos, std::string(ok) == " -lod95") << ok << ": " << r.err;
   }
 }
 

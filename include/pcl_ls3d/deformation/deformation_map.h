@@ -32,6 +32,7 @@ struct DeformationMapSettings
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< added to the points (file coordinates)
   std::string crs_wkt;   ///< CRS of the inputs (empty: none; the GeoTIFF then has no CRS)
   double k = 3.0;        ///< significance factor used (the colour range covers 2 k σ̂)
+  bool lod95 = false;    ///< significance by the 95 % level of detection instead of k σ
   double cell = 0.0;     ///< cell edge; 0: 1.5 × the regions' point spacing
 };
 
