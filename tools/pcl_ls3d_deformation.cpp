@@ -71,7 +71,7 @@ printHelp(const char* prog)
       "                       (not with -k)\n"
       "  -min_region N        smaller connected detections are noise (default 10 points)\n"
       "  -grow_k G            regions grow into adjacent points of their sign with |r| > G sigma\n"
-      "                       (hysteresis; default 2, 0: off; below K)\n"
+      "                       (hysteresis; default 2, 0: off; below K, with -lod95 below 1.96)\n"
       "  -refine N            rounds of the stable-part refinement: the regions and their rim\n"
       "                       left out, the rest matched again until that set repeats (default at\n"
       "                       most 10; 0: the estimator's\n"
