@@ -45,9 +45,9 @@ printHelp(const char* prog)
       "  -rule lnd|lzd|icp      conjugate-point rule (default lnd)\n"
       "  -estimator E           zuo[:K] (default zuo:6), huber[:k], tukey[:c], md, ls\n"
       "  -classes 2,6           stable-surface classes of classified strips (default 2,6)\n"
-      "  -spacing S             one observation per S x S cell (default: 2x the point spacing,\n"
-      "                         at most -max_obs per overlap and direction)\n"
-      "  -max_obs N             default 60000\n"
+      "  -spacing S             one observation per S x S cell (default, or 0: 2x the point\n"
+      "                         spacing, at most -max_obs per overlap and direction)\n"
+      "  -max_obs N             default 60000 (at least 10)\n"
       "  -max_dist D            farthest conjugate point (default 10, data units)\n"
       "  -min_area A            skip overlaps with a smaller common area (default 100 footprint cells)\n"
       "  -max_iter N            iteration limit (default 30)\n"
@@ -128,16 +128,19 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   }
   // Numbers parsed strictly (tool_arguments.h): "6x" or "abc" is an error, not 6 or 0.
   long long count = -1;
+  // Ranges stated here, in the options' own names (the settings' isValid() speaks of fields).
   if (!tools::numberOption(argc, argv, "-spacing", s.observation_spacing, why, 0.0) ||
-      !tools::integerOption(argc, argv, "-max_obs", count, why, 0, 2147483647) ||
+      !tools::integerOption(argc, argv, "-max_obs", count, why, 10, 2147483647) ||
       !tools::numberOption(argc, argv, "-max_dist", s.max_distance, why) ||
-      !tools::numberOption(argc, argv, "-min_area", s.min_overlap_area, why) ||
-      !tools::integerOption(argc, argv, "-max_iter", s.max_iterations, why, 0, 1000000) ||
+      !tools::numberOption(argc, argv, "-min_area", s.min_overlap_area, why, 0.0) ||
+      !tools::integerOption(argc, argv, "-max_iter", s.max_iterations, why, 1, 1000000) ||
       !tools::integerOption(argc, argv, "-job", o.job, why, 0, 2147483647) ||
       !tools::integerOption(argc, argv, "-unit", o.unit, why, 0, 2147483647))
     return false;
   if (count >= 0)
     s.max_observations = static_cast<std::size_t>(count);
+  if (tools::optionValue(argc, argv, "-max_dist") && !(s.max_distance > 0.0))
+    return (why = "-max_dist must be > 0").empty();
   if (parse_argument(argc, argv, "-bands", text) >= 0) {
     if (!tools::parseNumberList(text, v) || v.size() != 2 || !(v[0] > 0 && v[1] > v[0]))
       return (why = "-bands takes two increasing positive limits, e.g. 0.10,0.20").empty();
@@ -236,6 +239,23 @@ clearOutputs(const Options& o, const std::vector<strips::OutputUnit>& units)
         fs::remove(e.path(), ec);
 }
 
+// Without -split, inputs that each hold several flight lines (point-source ids) overlap as files
+// only where the files do: the likely fix, said with the error.
+std::string
+splitHint(const Options& o, const strips::LoadedStrips& block)
+{
+  if (o.request.load.split_by_point_source)
+    return "";
+  for (const auto& f : block.inputs) {
+    std::size_t ids = 0;
+    for (const auto& kv : f.point_sources)
+      ids += kv.first != 0;
+    if (ids > 1)
+      return " (" + f.path + " holds " + std::to_string(ids) + " point-source ids: -split psid makes each a strip)";
+  }
+  return "";
+}
+
 // The length unit's label in the summary: the CRS's, or "units" (the input's) without one.
 std::string
 unitName(const std::string& wkt)
@@ -269,7 +289,7 @@ runSingle(Options& o)
     adjustment.setProgress([](const std::string& line) { print_info("  %s\n", line.c_str()); });
   strips::StripAdjustmentReport report;
   if (!adjustment.run(block.strips, report, error))
-    return fail(error);
+    return fail(error + splitHint(o, block));
   report.notes.insert(report.notes.begin(), block.notes.begin(), block.notes.end());
   if (!o.quiet)
     print_info("\n%s\n", strips::reportSummary(report, unitName(block.crs_wkt)).c_str());

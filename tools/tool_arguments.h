@@ -105,8 +105,13 @@ numberOption(int argc, char** argv, const std::string& name, double& value, std:
   if (!parseStrictDouble(text, v) || v < lo || v > hi) {
     std::ostringstream s;
     s << name << " expects a number";
-    if (lo > -std::numeric_limits<double>::max() || hi < std::numeric_limits<double>::max())
+    const bool low = lo > -std::numeric_limits<double>::max(), high = hi < std::numeric_limits<double>::max();
+    if (low && high)
       s << " in [" << lo << ", " << hi << "]";
+    else if (low)  // no machine limits in a user's message
+      s << " >= " << lo;
+    else if (high)
+      s << " <= " << hi;
     s << ", got '" << text << "'";
     why = s.str();
     return false;
@@ -127,8 +132,10 @@ integerOption(int argc, char** argv, const std::string& name, Int& value, std::s
   double v = 0.0;
   if (!parseStrictDouble(text, v) || v != std::floor(v) || v < static_cast<double>(lo) ||
       v > static_cast<double>(hi)) {
-    why = name + " expects an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) +
-          "], got '" + text + "'";
+    why = name + " expects an integer " +
+          (hi >= 2147483647 ? ">= " + std::to_string(lo)
+                            : "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]") +
+          ", got '" + text + "'";
     return false;
   }
   value = static_cast<Int>(v);

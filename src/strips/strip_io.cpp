@@ -59,7 +59,8 @@ openInput(const std::string& path, OpenInput& in, InputFile& info, std::string& 
   }
   io::CloudInfo ci;
   if (!io::loadCloud(path, in.cloud, ci, error)) {
-    error = path + ": " + error;
+    if (error.rfind(path, 0) != 0)  // loadCloud names the file itself in most of its reasons
+      error = path + ": " + error;
     return false;
   }
   info.format = ci.format;
@@ -173,6 +174,9 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
     if (out.unassigned > 0)
       out.notes.push_back(std::to_string(out.unassigned) +
                           " points with point-source id 0 belong to no strip: not observed, written unchanged");
+    for (const InputFile& f : out.inputs)
+      if (f.points == 0)
+        out.notes.push_back(f.path + " has no points: no strip from it");
   }
   else
     for (std::size_t f = 0; f < out.inputs.size(); ++f)

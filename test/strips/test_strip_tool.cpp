@@ -257,3 +257,38 @@ TEST(StripToolRealData, CorrectionsTheDiscrepanciesDoNotConfirmAreUnreliable)
   EXPECT_EQ(five.code, 0) << five.out << five.err;
   EXPECT_NE(five.out.find("CONVERGED"), std::string::npos) << five.out;
 }
+
+// Option errors name the option the user typed and a range a user reads (no field names of the
+// settings, no machine limits).
+TEST_F(StripTool, OptionErrorsNameTheOption)
+{
+  const std::string both = in("strip_1.las") + " " + in("strip_2.las");
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {" -max_iter 0", "-max_iter expects an integer in [1, 1000000], got '0'"},
+      {" -max_obs 5", "-max_obs expects an integer >= 10, got '5'"},
+      {" -max_dist -5", "-max_dist must be > 0"},
+      {" -min_area -1", "-min_area expects a number >= 0, got '-1'"},
+  };
+  for (const auto& c : cases) {
+    const auto r = runTool("pcl_ls3d_strip_adjust", both + c.first + " -q", dir);
+    EXPECT_EQ(r.code, 1) << c.first;
+    EXPECT_EQ(pcl_ls3d_test::lineCount(r.err), 1u) << c.first << ":\n" << r.err;
+    EXPECT_NE(r.err.find(c.second), std::string::npos) << c.first << ":\n" << r.err;
+  }
+}
+
+// Two IGN tiles that do not touch, each holding two flight lines: without -split the files do not
+// overlap, and the error says how each line becomes a strip.
+TEST(StripToolRealData, FilesOfSeveralFlightLinesGetTheSplitHint)
+{
+  const std::string ign = std::string(PCL_LS3D_SHARED_DATA_DIR) + "/registration/ign_lidarhd/";
+  if (!std::ifstream(ign + "test_data_77050_627755_LA93_IGN69.las").good())
+    GTEST_SKIP() << "shared data not found under " << PCL_LS3D_SHARED_DATA_DIR << "; skipped";
+  const auto r = runTool("pcl_ls3d_strip_adjust",
+                         "'" + ign + "test_data_77050_627755_LA93_IGN69.las' '" + ign +
+                             "test_data_77060_627760_LA93_IGN69.las' -q",
+                         fs::temp_directory_path().string());
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_NE(r.err.find("no two strips overlap"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("-split psid makes each a strip"), std::string::npos) << r.err;
+}
