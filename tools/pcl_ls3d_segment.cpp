@@ -262,6 +262,38 @@ objectEvaluationToJson(const ev::ObjectEvaluation& e)
   return j;
 }
 
+/// Points far outside the data's dense core (a stray return kilometres away) stretch the
+/// extent that the ground grid and the origin are taken from and change the segmentation: said,
+/// not hidden. "" when the extent is within 4 × that of the central 99.8 % of the points.
+std::string
+farOutlierWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud)
+{
+  if (cloud.size() < 1000)
+    return "";
+  double core = 0.0, full = 0.0;
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<float> v;
+    v.reserve(cloud.size());
+    for (const auto& p : cloud)
+      v.push_back(axis == 0 ? p.x : p.y);
+    const auto at = [&v](double q) {
+      auto it = v.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
+      std::nth_element(v.begin(), it, v.end());
+      return static_cast<double>(*it);
+    };
+    core = std::max(core, at(0.999) - at(0.001));
+    full = std::max(full, at(1.0) - at(0.0));
+  }
+  if (!(full > 4.0 * core))
+    return "";
+  char buf[240];
+  std::snprintf(buf, sizeof(buf),
+                "the points span %.0f m, but 99.8 %% of them lie within %.0f m: far outliers change the "
+                "grid and the segmentation; crop them first",
+                full, core);
+  return buf;
+}
+
 int
 fail(const std::string& msg)
 {
@@ -353,6 +385,10 @@ main(int argc, char** argv)
     if (labelled == 0)
       return fail("-evaluate: no point of '" + input + "' carries a label of the evaluated classes");
   }
+
+  const std::string far = farOutlierWarning(*xyz);
+  if (!far.empty())
+    print_warn("Warning: %s\n", far.c_str());
 
   // ---- segment (one method, or all four for -evaluate) ----------------------------------
   std::vector<ev::SegmentationMethod> methods{settings.method};

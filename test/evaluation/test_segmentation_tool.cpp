@@ -481,3 +481,23 @@ TEST_F(SegmentTool, PclRegionGrowingRestIsLabelZero)
   EXPECT_EQ(unlabelled, rest);
   EXPECT_EQ(ids.size(), segments - 1);
 }
+
+// One stray point 30 km away stretches the extent that the ground grid and the origin come
+// from: the tool says so (stderr) instead of segmenting silently differently; the clean scene
+// gets no such warning.
+TEST_F(SegmentTool, FarOutlierIsWarnedAbout)
+{
+  ASSERT_GE(scene_.size(), 1000u);
+  pcl::PointCloud<pcl::PointXYZL> stray = scene_;
+  pcl::PointXYZL far = stray[0];
+  far.x += 30000.0f;
+  stray.push_back(far);
+  const fs::path in = dir_ / "stray.pcd";
+  ASSERT_EQ(pcl::io::savePCDFileBinary(in.string(), stray), 0);
+  const ToolResult with = run(in.string());
+  EXPECT_EQ(with.code, 0) << with.err;
+  EXPECT_NE(with.err.find("far outliers"), std::string::npos) << with.err;
+  const ToolResult clean = run(input_.string());
+  EXPECT_EQ(clean.code, 0) << clean.err;
+  EXPECT_EQ(clean.err.find("far outliers"), std::string::npos) << clean.err;
+}
