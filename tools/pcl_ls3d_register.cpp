@@ -5,9 +5,11 @@
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_rewrite.h>
+#include <pcl_ls3d/io/strip_tools.h>
 #include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 
+#include <pcl/common/transforms.h>
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
@@ -35,6 +37,9 @@ printHelp(const char* prog)
              "Usage: %s SOURCE TARGET [options]\n"
              "  SOURCE, TARGET       .las .pcd .ply .xyz/.txt (target loaded first; the source uses\n"
              "                       the target's local origin)\n"
+             "  -classes C1,C2       match on these LAS classes only (e.g. 2,6: ground and buildings,\n"
+             "                       the stable surfaces of airborne strips; vegetation seen from two\n"
+             "                       flight lines biases the shift); -o still moves every point\n"
              "  -o ALIGNED           write the transformed source (input coordinates); a LAS source\n"
              "                       written as .las keeps its version, point format, VLRs (CRS)\n"
              "                       and every attribute: only X, Y, Z and the bounds change\n"
@@ -210,6 +215,22 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
 
 }  // namespace
 
+/// Keeps the points of `classes` (all when empty); false when none is left.
+bool
+keepClasses(Cloud::Ptr& cloud, const std::set<std::uint8_t>& classes, const std::string& path, std::string& error)
+{
+  if (classes.empty())
+    return true;
+  const pcl::Indices kept = pcl_ls3d::io::filterByClassification(*cloud, classes, true);
+  if (kept.empty()) {
+    error = path + ": no point of the -classes given";
+    return false;
+  }
+  Cloud::Ptr selected(new Cloud(*cloud, kept));
+  cloud = selected;
+  return true;
+}
+
 bool
 writeJson(const std::string& path, const nlohmann::json& j)
 {
@@ -244,7 +265,8 @@ main(int argc, char** argv)
   }
   // Positional files and the known options (anything else starting with '-' is an error).
   static const std::set<std::string> valued = {"-o", "-rule", "-params", "-fix", "-max_iter",
-                                               "-K", "-thin", "-max_dist", "-guess", "-json", "-truth"};
+                                               "-K", "-thin", "-max_dist", "-guess", "-json", "-truth",
+                                               "-classes"};
   std::vector<std::string> files;
   std::string why;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite"}, files, why))
@@ -262,6 +284,11 @@ main(int argc, char** argv)
   parse_argument(argc, argv, "-fix", fix_text);
   parse_argument(argc, argv, "-json", json_path);
   parse_argument(argc, argv, "-truth", truth_path);
+  std::set<std::uint8_t> classes;
+  std::string classes_text;
+  if (parse_argument(argc, argv, "-classes", classes_text) >= 0 &&
+      !pcl_ls3d::tools::parseClassList("-classes", classes_text, classes, why))
+    return fail(why), 1;
   using pcl_ls3d::tools::integerOption;
   using pcl_ls3d::tools::numberOption;
   if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
@@ -330,6 +357,13 @@ main(int argc, char** argv)
   sopt.origin = tinfo.origin;
   if (!pcl_ls3d::io::loadCloud(source_path, *source, sinfo, error, sopt))
     return fail(error), 1;
+  const Cloud::Ptr whole_source = source;  // -o moves every point, whatever -classes matched
+  const std::size_t target_points = target->size();
+  if (!keepClasses(target, classes, target_path, error) || !keepClasses(source, classes, source_path, error))
+    return fail(error), 1;
+  if (!classes.empty())
+    print_info("Matching on classes %s: %zu of %zu target and %zu of %zu source points\n", classes_text.c_str(),
+               target->size(), target_points, source->size(), whole_source->size());
   const double t_load = tt.toc();
   print_info("Loaded target %s (%zu points) and source %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
              target_path.c_str(), target->size(), source_path.c_str(), source->size(),
@@ -390,6 +424,8 @@ main(int argc, char** argv)
     pcl_ls3d::io::SaveOptions so;
     so.overwrite = overwrite;
     const bool las_to_las = sinfo.format == "las" && pcl_ls3d::io::fileExtension(out_path) == "las";
+    if (!classes.empty() && !las_to_las)
+      pcl::transformPointCloud(*whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));
     if (las_to_las ? !writeMovedLas(source_path, T_input, out_path, overwrite, error)
                    : !pcl_ls3d::io::saveCloud(out_path, aligned, tinfo.origin, error, so))
       return fail(error), 1;

@@ -19,6 +19,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -157,6 +158,27 @@ parseNumberList(const std::string& text, std::vector<double>& values)
     values.push_back(v);
   }
   return !values.empty() && text.back() != ',';
+}
+
+/// \brief "2,6" into LAS class codes (whole numbers 0–255); false with a one-line reason naming
+///        `option`.
+inline bool
+parseClassList(const std::string& option, const std::string& text, std::set<std::uint8_t>& classes,
+               std::string& why)
+{
+  std::vector<double> values;
+  if (!parseNumberList(text, values)) {
+    why = option + " expects a comma list of class codes, e.g. 2,6, got '" + text + "'";
+    return false;
+  }
+  for (double v : values) {
+    if (v < 0 || v > 255 || v != std::floor(v)) {
+      why = option + ": '" + text + "' holds a value that is not a class code 0-255";
+      return false;
+    }
+    classes.insert(static_cast<std::uint8_t>(v));
+  }
+  return true;
 }
 
 /// \brief Can a file be created at `path` (absent) or written (present)? Tried, not guessed

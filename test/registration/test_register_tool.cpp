@@ -194,6 +194,44 @@ TEST_F(RegisterTool, NanOnlyAndNoOverlapGiveOneErrorLine)
   EXPECT_NE(r.output.find(j["termination"].get<std::string>()), std::string::npos) << r.output;
 }
 
+// -classes 2 matches on the ground only: a source whose class-5 points (vegetation, 1–4 m above
+// the ground, nothing like them in the target) would pull the fit still lands within 3 cm of
+// the truth, the console says what was matched, and -o moves every point, class 5 included.
+TEST_F(RegisterTool, ClassesSelectWhatIsMatchedAndOutputKeepsEveryPoint)
+{
+  Cloud source = *pair_.source, target = *pair_.target;
+  for (auto& p : source)
+    p.classification = 2;
+  for (auto& p : target)
+    p.classification = 2;
+  const std::size_t ground = source.size();
+  for (std::size_t k = 0; k < ground; k += 4) {  // a canopy over a quarter of the ground points
+    PointT v = source[k];
+    v.z += 1.0f + 3.0f * static_cast<float>(k % 7) / 7.0f;
+    v.classification = 5;
+    source.push_back(v);
+  }
+  const Eigen::Vector3d origin(500000.0, 5000000.0, 100.0);
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(path("veg_source.pcd"), source, origin, error)) << error;
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(path("veg_target.pcd"), target, origin, error)) << error;
+  const ToolRun r = runTool(path("veg_source.pcd") + " " + path("veg_target.pcd") + " -classes 2 -o " +
+                            path("veg_aligned.pcd") + " -truth " + path("truth.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("Matching on classes 2: " + std::to_string(target.size()) + " of " +
+                          std::to_string(target.size()) + " target and " + std::to_string(ground) + " of " +
+                          std::to_string(source.size()) + " source points"),
+            std::string::npos)
+      << r.output;
+  const std::size_t at = r.output.find("mean displacement ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_LT(std::stod(r.output.substr(at + 18)), 0.03) << r.output;
+  pcl::PointCloud<PointT> written;
+  pcl_ls3d::io::CloudInfo info;
+  ASSERT_TRUE(pcl_ls3d::io::loadCloud(path("veg_aligned.pcd"), written, info, error)) << error;
+  EXPECT_EQ(written.size(), source.size());
+}
+
 // -params 6 fixes m and -fix tz fixes tz exactly at the guess (identity); the report carries
 // Qxx, the covariance behind the σ_i, the formal σ and one log record per iteration. The truth
 // has a height offset, so holding tz at 0 leaves a misfit (σ0 ≈ 6 × the surfaces' noise): the
