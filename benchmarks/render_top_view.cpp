@@ -4,17 +4,20 @@
 ///        another segment are darkened so segment borders (and fragmentation) are visible.
 ///
 /// Usage: render_top_view INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class]
-///                       [-crop x0,x1,y0,y1] [-view top|north|east|south|west]
+///                       [-crop x0,x1,y0,y1] [-view top|north|east|south|west] [-overwrite]
 ///   INPUT  SEGMENTS.pcd of pcl_ls3d_segment (x y z rgba label), or any cloud pcl_ls3d reads
 ///          (-by class colours by the LAS classification / PCD label with a fixed palette)
 ///   -pixel pixel size in cloud units (default 0.25)
 ///   -splat each point also paints the pixels within n of its own (default 1: 3 × 3)
-///   -by    rgb: the file's colours (default for PCD with rgba); label: a colour per label;
-///          class: ASPRS palette (ground brown, vegetation greens, building red, wire yellow)
+///   -by    rgb: the file's colours (default; a PCD without rgb/rgba: by label); label: a colour
+///          per label (LAS, PLY, XYZ: per class); class: ASPRS palette (ground brown,
+///          vegetation greens, building red, wire yellow)
 ///   -crop  keep only points with x0 ≤ x ≤ x1 and y0 ≤ y ≤ y1 (the file's local coordinates)
 ///   -view  top (default); or a side view looking north, east, south or west, the nearest
 ///          point per pixel shown (facades, storeys, what hangs under a roof)
 /// Not run by CTest: a viewing aid for docs/BENCHMARKS.md.
+
+#include "../tools/tool_arguments.h"
 
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/io/cloud_io.h>
@@ -59,6 +62,21 @@ classColour(std::uint32_t c)
 }
 
 bool
+pcdHasField(const std::string& path, const std::string& field)
+{
+  pcl::PCLPointCloud2 header;
+  pcl::PCDReader reader;
+  Eigen::Vector4f origin;
+  Eigen::Quaternionf orientation;
+  int version = 0, type = 0;
+  unsigned int offset = 0;
+  if (reader.readHeader(path, header, origin, orientation, version, type, offset) < 0)
+    return false;
+  return std::any_of(header.fields.begin(), header.fields.end(),
+                     [&field](const pcl::PCLPointField& f) { return f.name == field; });
+}
+
+bool
 loadSamples(const std::string& path, const std::string& by, std::vector<Sample>& out)
 {
   // pcl_ls3d's reader first: it refuses empty, truncated and foreign files with one line
@@ -71,20 +89,31 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
     return false;
   }
   if (by != "class" && pcl_ls3d::io::fileExtension(path) == "pcd") {
-    // Its rgba and label fields, which PointLiDAR does not carry.
+    // Its rgba and label fields, which PointLiDAR does not carry; without colours, by label.
+    const bool has_rgb = pcdHasField(path, "rgba") || pcdHasField(path, "rgb");
+    if (by == "rgb" && !has_rgb)
+      std::fprintf(stderr, "render_top_view: %s has no rgb/rgba field: coloured by label\n", path.c_str());
     pcl::PointCloud<pcl::PointXYZRGBL> coloured;
-    if (pcl::io::loadPCDFile(path, coloured) < 0)
+    const auto verbosity = pcl::console::getVerbosityLevel();
+    pcl::console::setVerbosityLevel(pcl::console::L_ERROR);  // a missing field is said above
+    const bool read = pcl::io::loadPCDFile(path, coloured) >= 0;
+    pcl::console::setVerbosityLevel(verbosity);
+    if (!read)
       return false;
     for (const auto& p : coloured.points)
       if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
         out.push_back({p.x, p.y, p.z,
-                       by == "label" ? pcl_ls3d::evaluation::segmentColour(p.label)
-                                     : (p.rgba & 0xffffffu),
+                       by == "label" || !has_rgb ? pcl_ls3d::evaluation::segmentColour(p.label)
+                                                 : (p.rgba & 0xffffffu),
                        p.label});
     return true;
   }
+  // LAS, PLY, XYZ: the classification is the label.
   for (const auto& p : lidar.points)
-    out.push_back({p.x, p.y, p.z, classColour(p.classification), p.classification});
+    out.push_back({p.x, p.y, p.z,
+                   by == "label" ? pcl_ls3d::evaluation::segmentColour(p.classification)
+                                 : classColour(p.classification),
+                   p.classification});
   return true;
 }
 
@@ -120,35 +149,78 @@ toView(const std::string& view, std::vector<Sample>& pts)
   return true;
 }
 
+struct Options
+{
+  std::string input, output, by = "rgb", view = "top";
+  double pixel = 0.25;
+  int splat = 1;
+  std::vector<double> crop;  ///< x0, x1, y0, y1, or empty
+};
+
+constexpr const char* kUsage =
+    "Usage: %s INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class] [-crop x0,x1,y0,y1]\n"
+    "       [-view top|north|east|south|west] [-overwrite]\n";
+
+/// The options, checked before the input is read; false with a one-line reason.
+bool
+parseOptions(int argc, char** argv, Options& o, std::string& why)
+{
+  namespace tools = pcl_ls3d::tools;
+  std::vector<std::string> files;
+  if (!tools::splitArguments(argc, argv, 1, {"-pixel", "-splat", "-by", "-crop", "-view"}, {"-overwrite"},
+                             files, why))
+    return false;
+  if (files.size() != 2 || pcl_ls3d::io::fileExtension(files[1]) != "png")
+    return (why = "expected INPUT OUT.png (see -h)").empty();
+  o.input = files[0];
+  o.output = files[1];
+  long long splat = o.splat;
+  if (!tools::numberOption(argc, argv, "-pixel", o.pixel, why) ||
+      !tools::integerOption(argc, argv, "-splat", splat, why, 0, 50))
+    return false;
+  o.splat = static_cast<int>(splat);
+  if (!(o.pixel > 0.0))
+    return (why = "-pixel must be > 0").empty();
+  pcl::console::parse_argument(argc, argv, "-by", o.by);
+  if (o.by != "rgb" && o.by != "label" && o.by != "class")
+    return (why = "-by takes rgb, label or class, got '" + o.by + "'").empty();
+  pcl::console::parse_argument(argc, argv, "-view", o.view);
+  if (o.view != "top" && o.view != "north" && o.view != "east" && o.view != "south" && o.view != "west")
+    return (why = "-view takes top, north, east, south or west, got '" + o.view + "'").empty();
+  std::string crop_text;
+  if (pcl::console::parse_argument(argc, argv, "-crop", crop_text) >= 0 &&
+      (!tools::parseNumberList(crop_text, o.crop) || o.crop.size() != 4 || !(o.crop[0] < o.crop[1]) ||
+       !(o.crop[2] < o.crop[3])))
+    return (why = "-crop takes x0,x1,y0,y1 with x0 < x1 and y0 < y1, got '" + crop_text + "'").empty();
+  return tools::checkOutputFile(o.output, {o.input}, pcl::console::find_switch(argc, argv, "-overwrite"), why);
+}
+
 }  // namespace
 
 int
 main(int argc, char** argv)
 {
-  std::vector<int> files = pcl::console::parse_file_extension_argument(argc, argv, ".png");
-  if (argc < 3 || files.empty()) {
-    std::printf("Usage: %s INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class] "
-                "[-crop x0,x1,y0,y1] [-view top|north|east|south|west]\n", argv[0]);
+  if (pcl::console::find_switch(argc, argv, "-h") || pcl::console::find_switch(argc, argv, "--help")) {
+    std::printf(kUsage, argv[0]);
+    return 0;
+  }
+  Options o;
+  std::string why;
+  if (!parseOptions(argc, argv, o, why)) {
+    std::fprintf(stderr, "render_top_view: %s\n", why.c_str());
     return 1;
   }
-  double pixel = 0.25;
-  int splat = 1;
-  std::string by = "rgb";
-  pcl::console::parse_argument(argc, argv, "-pixel", pixel);
-  pcl::console::parse_argument(argc, argv, "-splat", splat);
-  pcl::console::parse_argument(argc, argv, "-by", by);
-  std::vector<float> box;
-  pcl::console::parse_x_arguments(argc, argv, "-crop", box);
-  std::string view = "top";
-  pcl::console::parse_argument(argc, argv, "-view", view);
-  const std::string input = argv[1], output = argv[files.front()];
+  const double pixel = o.pixel;
+  const int splat = o.splat;
+  const std::string& output = o.output;
   std::vector<Sample> pts;
-  if (!loadSamples(input, by, pts))
+  if (!loadSamples(o.input, o.by, pts))
     return 1;
+  const std::vector<float> box(o.crop.begin(), o.crop.end());
   crop(box, pts);
-  if (!(pixel > 0.0) || splat < 0 || !toView(view, pts) || pts.empty()) {
-    std::fprintf(stderr, "render_top_view: bad options for '%s' (-pixel > 0, -splat >= 0, -view "
-                 "top|north|east|south|west, a -crop holding points)\n", input.c_str());
+  toView(o.view, pts);
+  if (pts.empty()) {
+    std::fprintf(stderr, "render_top_view: no point of '%s' inside -crop\n", o.input.c_str());
     return 1;
   }
   float x0 = pts[0].x, x1 = x0, y0 = pts[0].y, y1 = y0;

@@ -436,6 +436,16 @@ TEST_F(SegmentTool, TopViewRefusesEmptyInputAndUnwritableOutput)
   r = run(seg.string() + " " + (dir_ / "no_such_folder" / "x.png").string());
   EXPECT_EQ(r.code, 1) << r.out;
   EXPECT_EQ(r.out.find("Wrote"), std::string::npos) << r.out;
+  // Options are checked like every tool's: one line, exit 1, the existing PNG kept.
+  const auto before = fs::last_write_time(png);
+  for (const std::string& bad : {" -foo", " -by colour", " -pixel 0.1x", " -crop 5,1,0,1", ""}) {
+    r = run(seg.string() + " " + png.string() + bad);  // "": exists, no -overwrite
+    EXPECT_EQ(r.code, 1) << bad;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;
+  }
+  EXPECT_EQ(fs::last_write_time(png), before);
+  EXPECT_EQ(run(seg.string() + " " + png.string() + " -overwrite -crop 1e6,2e6,0,1").code, 1);
+  EXPECT_EQ(run("-h").code, 0);
 }
 
 // The tool's own SEGMENTS.pcd holds segment ids in its label field: -evaluate on it scored them
