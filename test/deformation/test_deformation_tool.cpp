@@ -121,6 +121,20 @@ largestDifference(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B, const std:
   return worst;
 }
 
+/// A small Li reference surface (20 × 20 grid) saved as ref.pcd in the scratch folder.
+pcl::PointCloud<pcl::PointXYZ>
+smallReference(const Scratch& s)
+{
+  synth::LiSurfaceSettings ls;
+  ls.grid_size = 20;
+  const synth::LiSurface li = synth::makeLiSurface(ls);
+  pcl::PointCloud<pcl::PointXYZ> ref;
+  pcl::copyPointCloud(*li.reference, ref);
+  if (pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref) != 0)
+    ref.clear();
+  return ref;
+}
+
 }  // namespace
 
 TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
@@ -210,12 +224,8 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
 TEST(DeformationTool, BadInputGivesOneErrorLine)
 {
   const Scratch s;
-  synth::LiSurfaceSettings ls;
-  ls.grid_size = 20;
-  const synth::LiSurface li = synth::makeLiSurface(ls);
-  pcl::PointCloud<pcl::PointXYZ> ref;
-  pcl::copyPointCloud(*li.reference, ref);
-  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  const pcl::PointCloud<pcl::PointXYZ> ref = smallReference(s);
+  ASSERT_FALSE(ref.empty());
   pcl::PointCloud<pcl::PointXYZ> few;
   for (int i = 0; i < 4; ++i)
     few.push_back(ref[static_cast<std::size_t>(200 + i)]);
@@ -414,12 +424,8 @@ TEST(DeformationTool, HelpStatesTheSubsetsARunDraws)
 TEST(DeformationTool, ConflictingOptionsAreRefused)
 {
   const Scratch s;
-  synth::LiSurfaceSettings ls;
-  ls.grid_size = 20;
-  const synth::LiSurface li = synth::makeLiSurface(ls);
-  pcl::PointCloud<pcl::PointXYZ> ref;
-  pcl::copyPointCloud(*li.reference, ref);
-  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  const pcl::PointCloud<pcl::PointXYZ> ref = smallReference(s);
+  ASSERT_FALSE(ref.empty());
   const std::string a = s.file("ref.pcd") + " " + s.file("ref.pcd") + " -json " + s.file("r.json");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {a + " -grow_k 4", "-grow_k 4 must be below -k (3)"},
