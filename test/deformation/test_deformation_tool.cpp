@@ -319,6 +319,17 @@ TEST(DeformationTool, UnwritableOutputsFailWithOneLine)
   EXPECT_FALSE(fs::exists(s.file("m.png")));
 }
 
+namespace {
+/// The tool on the pair writeLiPairAtUtm() wrote, with a JSON report (report.json).
+auto
+analyseUtmPair(const Scratch& s)
+{
+  return runTool("pcl_ls3d_deformation",
+                 s.file("ref.xyz") + " " + s.file("epoch.xyz") + " -json " + s.file("report.json"), s.dir.string());
+}
+
+}  // namespace
+
 // The 4x4 matrix printed on the console acts on input coordinates; at UTM-like coordinates
 // (5e6 m) 8 decimals in the rotation put the points 1-2 cm off. Applied to the data, the printed
 // matrix must give what the JSON's full-precision matrix gives, to well under a millimetre.
@@ -326,9 +337,7 @@ TEST(DeformationTool, PrintedMatrixReproducesTheJsonAtProjectedCoordinates)
 {
   const Scratch s;
   const std::vector<Eigen::Vector3d> epoch = writeLiPairAtUtm(s);
-  const auto run = runTool("pcl_ls3d_deformation",
-                           s.file("ref.xyz") + " " + s.file("epoch.xyz") + " -json " + s.file("report.json"),
-                           s.dir.string());
+  const auto run = analyseUtmPair(s);
   ASSERT_EQ(run.code, 0) << run.err << run.out;
   std::istringstream out(run.out);
   std::string line;
@@ -356,9 +365,7 @@ TEST(DeformationTool, JsonParametersRebuildTheTransformation)
 {
   const Scratch s;
   const std::vector<Eigen::Vector3d> epoch = writeLiPairAtUtm(s);
-  const auto run = runTool("pcl_ls3d_deformation",
-                           s.file("ref.xyz") + " " + s.file("epoch.xyz") + " -json " + s.file("report.json"),
-                           s.dir.string());
+  const auto run = analyseUtmPair(s);
   ASSERT_EQ(run.code, 0) << run.err << run.out;
   std::ifstream in(s.file("report.json"));
   const nlohmann::json j = nlohmann::json::parse(in);
