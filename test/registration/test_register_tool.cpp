@@ -293,3 +293,15 @@ TEST(RegisterToolRealData, LasOutputKeepsTheSourcesHeaderAndCrs)
   EXPECT_LE(worst, 0.5 * b.scale.maxCoeff() + 1e-9);
   fs::remove_all(dir);
 }
+
+// A thinning voxel far finer than the coordinates resolve keeps every source point: the voxel
+// coordinates overflowed before and put every point into one voxel (1 point, TOO_FEW_...).
+TEST_F(RegisterTool, ThinningFinerThanTheDataKeepsEveryPoint)
+{
+  const ToolRun r = runTool(path("source.pcd") + " " + path("target.pcd") + " -thin 1e-25 -json " +
+                            path("thin.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(path("thin.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["source_points_used"].get<std::size_t>(), pair_.source->size());
+}
