@@ -305,3 +305,30 @@ TEST_F(RegisterTool, ThinningFinerThanTheDataKeepsEveryPoint)
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_EQ(j["source_points_used"].get<std::size_t>(), pair_.source->size());
 }
+
+// Degenerate inputs fail, with their cause: two parallel lines, or coincident points, give the
+// rule no surface to fit; that is not "no overlap" (the source lies over the target).
+TEST_F(RegisterTool, DegenerateTargetIsNamedNotNoOverlap)
+{
+  {
+    std::ofstream a(path("line.xyz")), b(path("line2.xyz")), c(path("same.xyz"));
+    for (int i = 0; i < 2000; ++i) {
+      const double t = 0.01 * i;
+      a << t << " " << 2 * t << " " << 3 * t << "\n";
+      b << t + 0.105 << " " << 2 * t + 0.01 << " " << 3 * t + 0.015 << "\n";
+    }
+    for (int i = 0; i < 100; ++i)
+      c << "1 2 3\n";
+  }
+  const std::pair<std::string, std::string> cases[] = {
+      {path("line.xyz") + " " + path("line2.xyz"), "collinear"},
+      {path("same.xyz") + " " + path("same.xyz"), "coincident"}};
+  for (const auto& [args, kind] : cases) {
+    const ToolRun r = runTool(args, true);
+    EXPECT_EQ(r.code, 1) << args;
+    EXPECT_EQ(errorLines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find("no surface the rule can fit"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(kind), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("no overlap"), std::string::npos) << r.output;
+  }
+}
