@@ -291,6 +291,8 @@ main(int argc, char** argv)
   default: return fail("-params must be 7, 6, 3 or 1"), 1;
   }
   std::vector<int> fixes;
+  if (pcl_ls3d::tools::optionValue(argc, argv, "-fix") && fix_text.empty())
+    return fail("-fix needs a comma list of tx,ty,tz,phi,omega,kappa,m (leave it out to fix none)"), 1;
   if (!fix_text.empty() && !parseFixList(fix_text, fixes))
     return fail("-fix expects a comma list of tx,ty,tz,phi,omega,kappa,m"), 1;
   for (int i : fixes)

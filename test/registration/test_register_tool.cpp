@@ -150,6 +150,7 @@ TEST_F(RegisterTool, BadInputGivesOneErrorLineAndNonZeroExit)
       s + " " + t + " -rule nearest",             // unknown rule
       s + " " + t + " -params 5",                 // impossible model
       s + " " + t + " -fix tx,psi",               // unknown parameter
+      s + " " + t + " -fix \"\"",                  // empty list
       s + " " + t + " -max_iter 0",               // impossible value
       s + " " + t + " -bogus 3",                  // unknown option
       s + " " + t + " -o " + s,                   // output would overwrite an input
@@ -292,6 +293,15 @@ TEST(RegisterToolRealData, LasOutputKeepsTheSourcesHeaderAndCrs)
     worst = std::max(worst, ((T * in.coordinates(i).homogeneous()).head<3>() - moved.coordinates(i)).cwiseAbs().maxCoeff());
   EXPECT_LE(worst, 0.5 * b.scale.maxCoeff() + 1e-9);
   fs::remove_all(dir);
+}
+
+// -fix "" is refused with one line saying what is expected, not taken as "fix nothing".
+TEST_F(RegisterTool, EmptyFixListIsRefused)
+{
+  const ToolRun r = runTool(path("source.pcd") + " " + path("target.pcd") + " -fix \"\"", true);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(errorLines(r.output), 1) << r.output;
+  EXPECT_NE(r.output.find("-fix needs a comma list"), std::string::npos) << r.output;
 }
 
 // A thinning voxel far finer than the coordinates resolve keeps every source point: the voxel
