@@ -342,3 +342,25 @@ TEST_F(RegisterTool, DegenerateTargetIsNamedNotNoOverlap)
     EXPECT_EQ(r.output.find("no overlap"), std::string::npos) << r.output;
   }
 }
+
+// The error vs truth keeps its significant digits: a cloud matched to itself against a truth
+// 2e-5 away reports 2e-05, not 0.0000.
+TEST_F(RegisterTool, TruthErrorShowsSmallErrors)
+{
+  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
+  truth(0, 3) = 2e-5;
+  {
+    nlohmann::json j;
+    nlohmann::json rows = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r)
+      rows.push_back({truth(r, 0), truth(r, 1), truth(r, 2), truth(r, 3)});
+    j["transformation"] = rows;
+    std::ofstream(path("tiny_truth.json")) << j.dump();
+  }
+  const ToolRun r = runTool(path("target.pcd") + " " + path("target.pcd") + " -truth " +
+                            path("tiny_truth.json"));
+  const std::string key = "Error vs truth: mean displacement ";
+  const std::size_t at = r.output.find(key);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_NEAR(std::stod(r.output.substr(at + key.size())), 2e-5, 2e-6) << r.output;
+}
