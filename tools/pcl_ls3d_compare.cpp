@@ -11,6 +11,7 @@
 #include <pcl_ls3d/evaluation/pcl_methods.h>
 #include <pcl_ls3d/evaluation/robust_method.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
@@ -51,7 +52,8 @@ printHelp(const char* name)
       "  from the identity with every method and prints one comparison table. Columns: conv =\n"
       "  stopped by its own criterion before the iteration limit with a finite result; trust =\n"
       "  LS3D's quality gate (- for PCL's methods: their hasConverged() is no such check).\n"
-      "  Exits 1 when no method converged.\n"
+      "  Exits 1 when no method converged. Lengths are in the data's unit: the CRS's of a LAS\n"
+      "  input (m, ft), else \"units\"; a run without an estimate shows \"-\" (JSON null).\n"
       "  -truth FILE   : truth JSON with \"transformation\": 4x4 row-major source->target in file\n"
       "                  coordinates (as written by pcl_ls3d_synth); adds displacement errors\n"
       "                  (mean/max over the source points, max over its bbox corners) and the\n"
@@ -62,14 +64,41 @@ printHelp(const char* name)
       "                  pcl_ls3d_deformation robust-m,robust-md,robust-lms,robust-mm (also:\n"
       "                  robust; LZD rule, 6 parameters, their own defaults: -max_corr and\n"
       "                  -iter do not apply; the sigma0 column is their robust scale)\n"
-      "  -max_corr D   : max correspondence distance [m] for every method (default 2)\n"
+      "  -max_corr D   : max correspondence distance for every method (default 2)\n"
       "  -iter N       : max iterations: LS3D (default 30) and PCL (default 50) both set to N\n"
-      "  -ndt_res R    : NDT voxel edge [m] (default 2)\n"
-      "  -thinning S   : LS3D source thinning voxel [m] (default 0 = all points)\n"
+      "  -ndt_res R    : NDT voxel edge (default 2)\n"
+      "  -thinning S   : LS3D source thinning voxel (default 0 = all points)\n"
       "  -gicp_grad G  : GICP inner BFGS gradient tolerance (see pcl_methods.h)\n"
-      "  -rms_dist D   : NN distance cut-off of the RMS column [m] (default 1)\n"
+      "  -rms_dist D   : NN distance cut-off of the RMS column (default 1)\n"
       "  -overwrite    : replace an existing -json file (never an input)\n"
       "  -h            : this help\n");
+}
+
+/// A length option: a finite number > 0 (>= 0 with `zero_ok`), said plainly when it is not.
+bool
+lengthOption(int argc, char** argv, const std::string& name, double& value, bool zero_ok,
+             std::string& why)
+{
+  if (!pcl_ls3d::tools::numberOption(argc, argv, name, value, why))
+    return false;
+  if (value > 0.0 || (zero_ok && value == 0.0))
+    return true;
+  why = name + (zero_ok ? " must be >= 0" : " must be > 0");
+  return false;
+}
+
+/// The data's length unit for labels: the CRS's of a LAS input (target first), else "units".
+std::string
+lengthUnit(const pcl_ls3d::io::CloudInfo& target, const pcl_ls3d::io::CloudInfo& source)
+{
+  for (const pcl_ls3d::io::CloudInfo* info : {&target, &source})
+    if (info->format == "las") {
+      const std::string wkt = pcl_ls3d::maps::crsFromLasVlrs(info->las.vlrs);
+      const std::string name = pcl_ls3d::maps::crsLinearUnitName(wkt);
+      if (!name.empty())
+        return name;
+    }
+  return "units";
 }
 
 /// Expands the -methods list; false on an unknown name.
@@ -198,13 +227,11 @@ main(int argc, char** argv)
   double max_corr = ps.max_correspondence_distance, ndt_res = ps.ndt_resolution, rms_dist = 1.0;
   double thinning = 0.0;
   int iterations = 0;
-  const double tiny = std::numeric_limits<double>::min();
-  using pcl_ls3d::tools::numberOption;
-  if (!numberOption(argc, argv, "-max_corr", max_corr, why, tiny) ||
-      !numberOption(argc, argv, "-ndt_res", ndt_res, why, tiny) ||
-      !numberOption(argc, argv, "-rms_dist", rms_dist, why, tiny) ||
-      !numberOption(argc, argv, "-thinning", thinning, why, 0.0) ||
-      !numberOption(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance, why, tiny) ||
+  if (!lengthOption(argc, argv, "-max_corr", max_corr, false, why) ||
+      !lengthOption(argc, argv, "-ndt_res", ndt_res, false, why) ||
+      !lengthOption(argc, argv, "-rms_dist", rms_dist, false, why) ||
+      !lengthOption(argc, argv, "-thinning", thinning, true, why) ||
+      !lengthOption(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance, false, why) ||
       !pcl_ls3d::tools::integerOption(argc, argv, "-iter", iterations, why, 1, 1000000))
     return fail(why);
   const bool iterations_given = iterations > 0;
@@ -248,8 +275,9 @@ main(int argc, char** argv)
       has_truth ? pcl_ls3d::globalToLocal(truth_file, target_info.origin, target_info.origin)
                 : Eigen::Matrix4d::Identity();
 
-  print_info("PCL settings : %s\nLS3D settings: %s\n", ps.describe().c_str(),
-             ls.describe().c_str());
+  const std::string unit = lengthUnit(target_info, source_info);
+  print_info("PCL settings : %s\nLS3D settings: %s\n", ps.describe(unit).c_str(),
+             ls.describe(unit).c_str());
   RunEvaluation evaluation(source, target, rms_dist);
   std::vector<RegistrationRun> runs;
   std::size_t usable = 0;
@@ -269,8 +297,8 @@ main(int argc, char** argv)
     usable += ok;
     print_info("%.3f s%s%s\n", r.time_s, ok ? "" : ", failed: ", ok ? "" : r.message.c_str());
   }
-  std::printf("\n%s", formatComparisonTable(runs, has_truth).c_str());
-  std::printf("RMS: nearest-neighbour distances within %g m. %s\n", rms_dist,
+  std::printf("\n%s", formatComparisonTable(runs, has_truth, unit).c_str());
+  std::printf("RMS: nearest-neighbour distances within %g %s. %s\n", rms_dist, unit.c_str(),
               has_truth ? "Errors vs truth; parameter errors in the local frame "
                           "(rotation about the local origin)."
                         : "");
@@ -284,8 +312,9 @@ main(int argc, char** argv)
     c.target_points = target->size();
     c.has_truth = has_truth;
     c.rms_max_distance = rms_dist;
-    c.pcl_settings = ps.describe();
-    c.ls3d_settings = ls.describe();
+    c.unit = unit;
+    c.pcl_settings = ps.describe(unit);
+    c.ls3d_settings = ls.describe(unit);
     std::ofstream out(json_path);
     out << comparisonJson(runs, c) << "\n";
     if (!out)

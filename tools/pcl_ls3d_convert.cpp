@@ -157,11 +157,11 @@ main(int argc, char** argv)
 {
   if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
-    return argc < 2 ? -1 : 0;
+    return argc < 2 ? 1 : 0;
   }
   std::vector<std::string> files;
   if (!checkOptions(argc, argv, files))
-    return -1;
+    return 1;
   std::string split_dir, format, classes_text, origin_text, columns;
   parse_argument(argc, argv, "-split_strips", split_dir);
   parse_argument(argc, argv, "-format", format);
@@ -173,7 +173,7 @@ main(int argc, char** argv)
     print_error("Expected %s, got %zu file names (see -h).\n",
                 splitting ? "one input file with -split_strips" : "an input and an output file",
                 files.size());
-    return -1;
+    return 1;
   }
   const std::string input = files[0];
 
@@ -183,7 +183,7 @@ main(int argc, char** argv)
   if (!origin_text.empty()) {
     if (!pcl_ls3d::tools::parseNumberList(origin_text, values) || values.size() != 3) {
       print_error("-origin needs three finite numbers x,y,z, got '%s'.\n", origin_text.c_str());
-      return -1;
+      return 1;
     }
     load.use_origin = true;
     load.origin = Eigen::Vector3d(values[0], values[1], values[2]);
@@ -193,12 +193,12 @@ main(int argc, char** argv)
     if (!pcl_ls3d::tools::parseNumberList(classes_text, values)) {
       print_error("-classes needs a comma-separated list of class codes, got '%s'.\n",
                   classes_text.c_str());
-      return -1;
+      return 1;
     }
     for (double v : values) {
       if (v < 0 || v > 255 || v != std::floor(v)) {
         print_error("-classes: %g is not a class code 0-255.\n", v);
-        return -1;
+        return 1;
       }
       classes.insert(static_cast<std::uint8_t>(v));
     }
@@ -208,26 +208,26 @@ main(int argc, char** argv)
   OutputOverrides overrides;
   if (!parseOverrides(argc, argv, overrides, why)) {
     print_error("%s\n", why.c_str());
-    return -1;
+    return 1;
   }
   if (splitting && format.empty())
     format = pcl_ls3d::io::fileExtension(input);
   if (splitting && format != "las" && format != "pcd" && format != "ply" && format != "xyz" &&
       format != "txt") {
     print_error("-format must be las, pcd, ply, xyz or txt, got '%s'.\n", format.c_str());
-    return -1;
+    return 1;
   }
 
   // Outputs are checked before the input is read (which can take long).
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   if (!splitting && pcl_ls3d::io::isSameFile(input, files[1])) {
     print_error("Output %s is the input file; refusing to overwrite it.\n", files[1].c_str());
-    return -1;
+    return 1;
   }
   if (splitting ? !pcl_ls3d::tools::checkOutputFolder(split_dir, why)
                 : !pcl_ls3d::tools::checkOutputFile(files[1], {input}, overwrite, why, true)) {
     print_error("%s\n", why.c_str());
-    return -1;
+    return 1;
   }
 
   // Load.
@@ -238,7 +238,7 @@ main(int argc, char** argv)
   std::string error;
   if (!pcl_ls3d::io::loadCloud(input, *cloud, info, error, load)) {
     print_error("Cannot load %s\n", error.c_str());
-    return -1;
+    return 1;
   }
   print_info("Loaded ");
   print_value("%s", input.c_str());
@@ -264,7 +264,7 @@ main(int argc, char** argv)
                classes_text.c_str());
     if (filtered->empty()) {
       print_error("No point of %s is in classes %s.\n", input.c_str(), classes_text.c_str());
-      return -1;
+      return 1;
     }
     cloud = filtered;
   }
@@ -274,7 +274,7 @@ main(int argc, char** argv)
   save_options.binary = !find_switch(argc, argv, "-ascii");
 
   if (!splitting) {
-    return save(files[1], *cloud, info, save_options) ? 0 : -1;
+    return save(files[1], *cloud, info, save_options) ? 0 : 1;
   }
 
   // -split_strips DIR: one file per point-source id.
@@ -282,7 +282,7 @@ main(int argc, char** argv)
   fs::create_directories(split_dir, ec);
   if (!fs::is_directory(split_dir, ec)) {
     print_error("Cannot create the output directory %s.\n", split_dir.c_str());
-    return -1;
+    return 1;
   }
   const auto strips = pcl_ls3d::io::splitByPointSource(*cloud);
   print_info("Splitting into %zu strips\n", strips.size());
@@ -292,12 +292,12 @@ main(int argc, char** argv)
         (fs::path(split_dir) / (stem + "_psid" + std::to_string(id) + "." + format)).string();
     if (pcl_ls3d::io::isSameFile(input, path)) {
       print_error("Output %s is the input file; refusing to overwrite it.\n", path.c_str());
-      return -1;
+      return 1;
     }
     Cloud strip;
     pcl::copyPointCloud(*cloud, indices, strip);
     if (!save(path, strip, info, save_options))
-      return -1;
+      return 1;
   }
   return 0;
 }

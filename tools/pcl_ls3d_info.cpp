@@ -1,9 +1,11 @@
 /// \file pcl_ls3d_info.cpp
 /// \brief Prints what pcl_ls3d's readers see in a point-cloud file: format, counts, local origin,
-///        bounds, the LAS header, the classification histogram and the flight strips.
+///        bounds, the LAS header, the classification histogram (a SEGMENTS.pcd: its segment
+///        count) and the flight strips. Every file is reported; exit 1 if any failed to load.
 
 #include "tool_arguments.h"
 
+#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/io/strip_tools.h>
@@ -11,6 +13,7 @@
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
+#include <pcl/io/pcd_io.h>
 
 #include <nlohmann/json.hpp>
 
@@ -32,6 +35,29 @@ printHelp(const char* name)
   print_info("    -columns x,y,z,... : column names of ASCII XYZ inputs (see pcl_ls3d_convert -h)\n");
   print_info("    -json              : print one JSON object per file instead of text\n");
   print_info("    -h                 : this help\n");
+  print_info("  Every file is described; one error line per file that cannot be read (exit 1).\n");
+}
+
+// A SEGMENTS.pcd's labels are segment ids + 1 (0: in no segment), not classes; read as
+// uint32 (the loader's classification is a byte and would wrap ids above 255).
+nlohmann::json
+describeSegments(const std::string& path)
+{
+  pcl::PointCloud<pcl::PointXYZRGBL> cloud;
+  nlohmann::json s = {{"count", nullptr}, {"points_in_none", nullptr}};
+  if (pcl::io::loadPCDFile(path, cloud) != 0)
+    return s;
+  std::set<std::uint32_t> ids;
+  std::size_t none = 0;
+  for (const auto& p : cloud) {
+    if (p.label == 0)
+      ++none;
+    else
+      ids.insert(p.label);
+  }
+  s["count"] = ids.size();
+  s["points_in_none"] = none;
+  return s;
 }
 
 nlohmann::json
@@ -75,11 +101,15 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
     l["vlrs"] = vlrs;
     j["las"] = l;
   }
-  std::map<int, std::size_t> classes;
-  for (const auto& p : cloud)
-    ++classes[p.classification];
-  for (const auto& [c, n] : classes)
-    j["classes"][std::to_string(c)] = n;
+  if (info.format == "pcd" && pcl_ls3d::evaluation::isSegmentsFile(path)) {
+    j["segments"] = describeSegments(path);
+  } else {
+    std::map<int, std::size_t> classes;
+    for (const auto& p : cloud)
+      ++classes[p.classification];
+    for (const auto& [c, n] : classes)
+      j["classes"][std::to_string(c)] = n;
+  }
   for (const auto& [id, idx] : pcl_ls3d::io::splitByPointSource(cloud))
     j["point_source_ids"][std::to_string(id)] = idx.size();
   return j;
@@ -118,10 +148,20 @@ printText(const nlohmann::json& j)
     for (const auto& v : l["vlrs"])
       print_info("  VLR %s\n", v.get<std::string>().c_str());
   }
-  std::string classes;
-  for (const auto& [c, n] : j["classes"].items())
-    classes += " " + c + ":" + std::to_string(n.get<std::size_t>());
-  print_info("  classes:%s\n", classes.c_str());
+  if (j.contains("segments")) {
+    const auto& s = j["segments"];
+    if (s["count"].is_null())
+      print_info("  labels are segment ids (pcl_ls3d_segment output), not classes\n");
+    else
+      print_info("  labels are segment ids (pcl_ls3d_segment output), not classes: %zu segments, "
+                 "%zu points in none\n", s["count"].get<std::size_t>(),
+                 s["points_in_none"].get<std::size_t>());
+  } else {
+    std::string classes;
+    for (const auto& [c, n] : j["classes"].items())
+      classes += " " + c + ":" + std::to_string(n.get<std::size_t>());
+    print_info("  classes:%s\n", classes.c_str());
+  }
   std::string strips;
   for (const auto& [id, n] : j["point_source_ids"].items())
     strips += " " + id + ":" + std::to_string(n.get<std::size_t>());
@@ -135,21 +175,22 @@ main(int argc, char** argv)
 {
   if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
-    return argc < 2 ? -1 : 0;
+    return argc < 2 ? 1 : 0;
   }
   pcl_ls3d::io::LoadOptions options;
   std::vector<std::string> files;
   std::string why;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, {"-columns"}, {"-json"}, files, why)) {
     print_error("%s\n", why.c_str());
-    return -1;
+    return 1;
   }
   parse_argument(argc, argv, "-columns", options.xyz_columns);
   const bool json = find_switch(argc, argv, "-json");
   if (files.empty()) {
     print_error("No input file given (see -h).\n");
-    return -1;
+    return 1;
   }
+  std::size_t failed = 0;  // a bad file does not hide the others
   for (const auto& path : files) {
     pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud;
     pcl_ls3d::io::CloudInfo info;
@@ -158,7 +199,8 @@ main(int argc, char** argv)
     tt.tic();
     if (!pcl_ls3d::io::loadCloud(path, cloud, info, error, options)) {
       print_error("Cannot load %s\n", error.c_str());
-      return -1;
+      ++failed;
+      continue;
     }
     const nlohmann::json j = describe(path, cloud, info, tt.toc());
     if (json)
@@ -166,5 +208,5 @@ main(int argc, char** argv)
     else
       printText(j);
   }
-  return 0;
+  return failed > 0 ? 1 : 0;
 }

@@ -2,6 +2,8 @@
 
 #include <pcl_ls3d/adjustment/surface_noise.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -71,6 +73,57 @@ setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& targe
     setup.source_box.extend(reduced[i]);
   }
   return true;
+}
+
+namespace {
+
+// "collinear", "coincident" or "" for the k nearest target points of `query`. Below 1e-5 of
+// the neighbourhood's length or coordinates a direction is rounding (float clouds: ~1e-7).
+std::string
+neighbourhoodDegeneracy(const TargetSurface& target, const Eigen::Vector3d& query)
+{
+  std::vector<int> idx;
+  std::vector<float> sq;
+  const int n = target.nearestKSearch(query, 16, idx, sq);
+  if (n <= 0)
+    return "";
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (int i = 0; i < n; ++i)
+    mean += target.point(idx[static_cast<std::size_t>(i)]);
+  mean /= n;
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d d = target.point(idx[static_cast<std::size_t>(i)]) - mean;
+    cov += d * d.transpose();
+  }
+  const Eigen::Vector3d spread =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov / n, Eigen::EigenvaluesOnly)
+          .eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
+  const double tolerance = 1e-5 * std::max(spread[2], mean.cwiseAbs().maxCoeff());
+  if (spread[2] <= tolerance)
+    return "coincident";
+  return spread[1] <= tolerance ? "collinear" : "";
+}
+
+}  // namespace
+
+std::string
+degenerateTarget(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& inside,
+                 const Eigen::Matrix4d& guess, const TargetSurface& target)
+{
+  if (inside.empty())
+    return "";
+  // Up to 64 source points spread over the overlap; all must meet a degenerate target.
+  const std::size_t step = std::max<std::size_t>(1, inside.size() / 64);
+  bool collinear = false;
+  for (std::size_t i = 0; i < inside.size(); i += step) {
+    const Eigen::Vector3d q = (guess * source[static_cast<std::size_t>(inside[i])].homogeneous()).head<3>();
+    const std::string kind = neighbourhoodDegeneracy(target, q);
+    if (kind.empty())
+      return "";
+    collinear = collinear || kind == "collinear";
+  }
+  return collinear ? "collinear" : "coincident";
 }
 
 Vector7d

@@ -47,6 +47,13 @@ setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& targe
           const Eigen::Matrix4d& guess, const AdjustmentSettings& settings, PairSetup& setup,
           std::vector<Eigen::Vector3d>& reduced);
 
+/// Why no rule found a conjugate point although source points lie over the target: "collinear"
+/// or "coincident" when the target's points nearest to every sampled source point (under the
+/// guess) are so, and no local surface can be fitted there; "" when they span a surface.
+std::string
+degenerateTarget(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& inside,
+                 const Eigen::Matrix4d& guess, const TargetSurface& target);
+
 /// Column scaling of the rank test: a unit change of each scaled parameter displaces the edge
 /// of the data by about one unit.
 Vector7d

@@ -1,31 +1,62 @@
 // Regular thinning of the source observations (declared in surface_matching_core.h).
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
+#include <pcl_ls3d/common/voxel_index.h>
 
-#include <cmath>
+#include <Eigen/Geometry>
+
+#include <array>
 #include <cstdint>
+#include <numeric>
 #include <unordered_set>
 
 namespace pcl_ls3d {
 
+namespace {
+
+using VoxelKey = std::array<std::int64_t, 3>;
+
+struct VoxelKeyHash
+{
+  std::size_t
+  operator()(const VoxelKey& k) const
+  {
+    const auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };  // wraps, no UB
+    return static_cast<std::size_t>(u(k[0]) * 73856093u ^ u(k[1]) * 19349663u ^ u(k[2]) * 83492791u);
+  }
+};
+
+std::vector<int>
+everyIndex(std::size_t n)
+{
+  std::vector<int> all(n);
+  std::iota(all.begin(), all.end(), 0);
+  return all;
+}
+
+}  // namespace
+
 std::vector<int>
 thinByVoxel(const std::vector<Eigen::Vector3d>& points, double step)
 {
+  if (!(step > 0.0))
+    return everyIndex(points.size());
+  Eigen::AlignedBox3d box;
+  for (const Eigen::Vector3d& p : points)
+    if (p.allFinite())
+      box.extend(p);
+  // Voxels finer than the coordinates resolve would only merge identical points: keep all
+  // (voxel coordinates would saturate there and merge everything instead).
+  if (box.isEmpty() || box.sizes().maxCoeff() / step >= static_cast<double>(kVoxelCoordinateLimit))
+    return everyIndex(points.size());
+  // Full coordinates from the box's corner: no wrapped keys merging far-apart voxels.
   std::vector<int> kept;
-  kept.reserve(step > 0.0 ? points.size() / 4 : points.size());
-  if (!(step > 0.0)) {
-    for (std::size_t i = 0; i < points.size(); ++i)
-      kept.push_back(static_cast<int>(i));
-    return kept;
-  }
-  std::unordered_set<std::uint64_t> seen;
+  kept.reserve(points.size() / 4);
+  std::unordered_set<VoxelKey, VoxelKeyHash> seen;
   seen.reserve(points.size() / 2);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    // 21 bits per axis (wraps for huge extents, which only merges far-apart voxels rarely).
-    std::uint64_t key = 0;
-    for (int a = 0; a < 3; ++a)
-      key = (key << 21) |
-            (static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(points[i][a] / step))) &
-             0x1FFFFF);
+    const Eigen::Vector3d d = points[i] - box.min();
+    const VoxelKey key{voxelCoordinate(d.x(), step), voxelCoordinate(d.y(), step),
+                       voxelCoordinate(d.z(), step)};
     if (seen.insert(key).second)
       kept.push_back(static_cast<int>(i));
   }

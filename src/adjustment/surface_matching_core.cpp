@@ -84,14 +84,24 @@ annealedCut(double guess_uncertainty, int it)
   return std::ldexp(guess_uncertainty, 1 - it);
 }
 
+// No conjugate point at the start although source points lie over the target's extent: a
+// target with no surface there (its points collinear or coincident) is not a lack of overlap.
+AdjustmentReport&
+noConjugatePoint(const std::vector<Eigen::Vector3d>& source, const Eigen::Matrix4d& guess,
+                 const TargetSurface& target, const PairSetup& setup, AdjustmentReport& report)
+{
+  const std::string degenerate = degenerateTarget(source, setup.inside, guess, target);
+  if (!degenerate.empty())
+    return fail(report, TerminationType::TOO_FEW_OBSERVATIONS,
+                "no observation: the target has no surface the rule can fit where the source lies "
+                "over it (degenerate: its points there are " + degenerate + ")");
+  return fail(report, TerminationType::NO_OVERLAP, "the rule found no conjugate point on the target (no overlap)");
+}
+
 // Too few conjugate points to go on (sets the report's failure).
 bool
 tooFewObservations(std::size_t m, int it, const AdjustmentSettings& settings, AdjustmentReport& report)
 {
-  if (m == 0 && it == 1) {
-    fail(report, TerminationType::NO_OVERLAP, "the rule found no conjugate point on the target (no overlap)");
-    return true;
-  }
   if (m >= static_cast<std::size_t>(settings.min_observations))
     return false;
   report.iterations = it - 1;
@@ -260,6 +270,8 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       }
     }
     report.correspondences = obs.size();
+    if (obs.empty() && it == 1)
+      return noConjugatePoint(source, guess, target, pair.setup, report);
     if (tooFewObservations(obs.size(), it, settings, report))
       return report;
     if (it == 1)

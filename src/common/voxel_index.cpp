@@ -36,14 +36,24 @@ cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis)
     std::unordered_set<std::int64_t> cells;
     for (const Eigen::Vector3d& p : points)
       if (p.allFinite()) {
-        const auto u = static_cast<std::int64_t>(std::floor(p[a] / out.spacing));
-        const auto v = static_cast<std::int64_t>(std::floor(p[b] / out.spacing));
+        const std::int64_t u = voxelCoordinate(p[a], out.spacing);
+        const std::int64_t v = voxelCoordinate(p[b], out.spacing);
         cells.insert(static_cast<std::int64_t>((static_cast<std::uint64_t>(u) << 32) ^
                                                 (static_cast<std::uint64_t>(v) & 0xffffffffu)));  // no UB for u < 0
       }
     out.spacing = std::sqrt(static_cast<double>(cells.size()) * out.spacing * out.spacing / static_cast<double>(n));
   }
   return out;
+}
+
+std::int64_t
+voxelCoordinate(double x, double cell)
+{
+  const double c = std::floor(x / cell);
+  if (!(c == c))
+    return 0;
+  const auto limit = static_cast<double>(kVoxelCoordinateLimit);
+  return static_cast<std::int64_t>(std::max(-limit, std::min(c, limit)));
 }
 
 VoxelIndex::VoxelIndex(const std::vector<Eigen::Vector3d>& points, double cell)
@@ -68,8 +78,7 @@ VoxelIndex::key(std::int64_t x, std::int64_t y, std::int64_t z)
 std::int64_t
 VoxelIndex::key(const Eigen::Vector3d& p) const
 {
-  return key(static_cast<std::int64_t>(std::floor(p.x() / cell_)), static_cast<std::int64_t>(std::floor(p.y() / cell_)),
-             static_cast<std::int64_t>(std::floor(p.z() / cell_)));
+  return key(voxelCoordinate(p.x(), cell_), voxelCoordinate(p.y(), cell_), voxelCoordinate(p.z(), cell_));
 }
 
 void
@@ -78,8 +87,11 @@ VoxelIndex::radiusSearch(const Eigen::Vector3d& q, double radius, std::vector<in
   out.clear();
   if (!q.allFinite() || !(radius >= 0.0))
     return;
-  const auto lo = ((q.array() - radius) / cell_).floor().cast<std::int64_t>().eval();
-  const auto hi = ((q.array() + radius) / cell_).floor().cast<std::int64_t>().eval();
+  std::int64_t lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = voxelCoordinate(q[a] - radius, cell_);
+    hi[a] = voxelCoordinate(q[a] + radius, cell_);
+  }
   const double r2 = radius * radius;
   const double span = static_cast<double>(hi[0] - lo[0] + 1) * static_cast<double>(hi[1] - lo[1] + 1) *
                       static_cast<double>(hi[2] - lo[2] + 1);

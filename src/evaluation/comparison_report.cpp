@@ -41,19 +41,47 @@ cell(double v, int width, int decimals)
   return buf;
 }
 
+/// "%*.3g" or "-" for NaN: lengths in a unit whose size is not known (feet, "units").
+std::string
+significant(double v, int width)
+{
+  char buf[64];
+  if (std::isfinite(v))
+    std::snprintf(buf, sizeof(buf), "%*.3g", width, v);
+  else
+    std::snprintf(buf, sizeof(buf), "%*s", width, "-");
+  return buf;
+}
+
+/// "name[unit]" as a column header.
+std::string
+header(const char* name, const std::string& unit)
+{
+  return std::string(name) + "[" + unit + "]";
+}
+
 }  // namespace
 
 std::string
-formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth)
+formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth, const std::string& unit)
 {
+  // Error lengths: mm for metres; another unit is printed as is, with 3 significant digits.
+  const bool metres = unit == "m";
+  const std::string small = metres ? "mm" : unit;
+  const auto length = [metres](double v, int width) {
+    return metres ? cell(v * 1e3, width, 2) : significant(v, width);
+  };
   std::string out;
   char buf[256];
   std::snprintf(buf, sizeof(buf), "%-10s %5s %8s %8s %5s %-10s %5s %8s %8s", "method", "iter",
-                "time[s]", "cpu[s]", "conv", "stop", "trust", "RMS[m]", "s0[m]");
+                "time[s]", "cpu[s]", "conv", "stop", "trust", header("RMS", unit).c_str(),
+                header("s0", unit).c_str());
   out += buf;
   if (with_truth) {
-    std::snprintf(buf, sizeof(buf), " %9s %9s %9s | %8s %8s %8s %8s %8s %8s %8s", "mean[mm]",
-                  "max[mm]", "bbox[mm]", "tx[mm]", "ty[mm]", "tz[mm]", "phi[ur]", "om[ur]",
+    std::snprintf(buf, sizeof(buf), " %9s %9s %9s | %8s %8s %8s %8s %8s %8s %8s",
+                  header("mean", small).c_str(), header("max", small).c_str(),
+                  header("bbox", small).c_str(), header("tx", small).c_str(),
+                  header("ty", small).c_str(), header("tz", small).c_str(), "phi[ur]", "om[ur]",
                   "ka[ur]", "m[ppm]");
     out += buf;
   }
@@ -68,12 +96,12 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth)
     if (with_truth) {
       const bool ok = r.ran && r.error.valid;
       const double nan = std::nan("");
-      out += " " + cell(ok ? r.error.mean * 1e3 : nan, 9, 2) + " " +
-             cell(ok ? r.error.max * 1e3 : nan, 9, 2) + " " +
-             cell(ok ? r.error.max_bbox * 1e3 : nan, 9, 2) + " |";
-      const double scale[7] = {1e3, 1e3, 1e3, 1e6, 1e6, 1e6, 1e6};
-      for (int i = 0; i < 7; ++i)
-        out += " " + cell(ok ? r.error.parameters[i] * scale[i] : nan, 8, 2);
+      out += " " + length(ok ? r.error.mean : nan, 9) + " " + length(ok ? r.error.max : nan, 9) +
+             " " + length(ok ? r.error.max_bbox : nan, 9) + " |";
+      for (int i = 0; i < 3; ++i)
+        out += " " + length(ok ? r.error.parameters[i] : nan, 8);
+      for (int i = 3; i < 7; ++i)  // angles [µrad], scale [ppm]
+        out += " " + cell(ok ? r.error.parameters[i] * 1e6 : nan, 8, 2);
     }
     if (!r.ran)
       out += "  (" + r.message + ")";
@@ -95,7 +123,8 @@ comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext
                   {"rms_max_distance", c.rms_max_distance},
                   {"pcl_settings", c.pcl_settings},
                   {"ls3d_settings", c.ls3d_settings},
-                  {"units", "m, s, rad; transformation maps source to target"}};
+                  {"unit", c.unit},
+                  {"units", c.unit + ", s, rad; transformation maps source to target"}};
   json methods = json::array();
   for (const auto& r : runs) {
     Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
@@ -130,6 +159,8 @@ comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext
                     {"max_bbox", num(r.error.max_bbox)},
                     {"parameters", p},
                     {"parameters_frame", "common local frame (rotation about origin)"}};
+    } else if (c.has_truth) {
+      m["error"] = nullptr;  // no estimate to compare with the truth
     }
     methods.push_back(m);
   }

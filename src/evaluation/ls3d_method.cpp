@@ -22,22 +22,23 @@ ls3dMethodName(ConjugateRuleType rule)
 }
 
 std::string
-Ls3dMethodSettings::describe() const
+Ls3dMethodSettings::describe(const std::string& unit) const
 {
+  const char* u = unit.c_str();
   char corr[64], iter[32];
   if (max_correspondence_distance > 0.0)
-    std::snprintf(corr, sizeof(corr), "%g m", max_correspondence_distance);
+    std::snprintf(corr, sizeof(corr), "%g %s", max_correspondence_distance, u);
   else
     std::snprintf(corr, sizeof(corr), "default (automatic reach)");
   if (max_iterations > 0)
     std::snprintf(iter, sizeof(iter), "%d", max_iterations);
   else
     std::snprintf(iter, sizeof(iter), "default");
-  char buf[320];
+  char buf[400];
   std::snprintf(buf, sizeof(buf),
-                "max_corr=%s, max_iter=%s, thinning=%g m, angle_eps=1e-6 rad, trans_eps=1e-5 m, "
+                "max_corr=%s, max_iter=%s, thinning=%g %s, angle_eps=1e-6 rad, trans_eps=1e-5 %s, "
                 "%s, Zuo 0/1 weight at 6 sigma0, quality gate on",
-                corr, iter, source_thinning,
+                corr, iter, source_thinning, u, u,
                 model == ParameterModel::SIMILARITY_7 ? "7 parameters (similarity)"
                 : model == ParameterModel::RIGID_6    ? "6 parameters (rigid)"
                                                       : "reduced parameter model");
@@ -82,9 +83,11 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     run.hit_limit = report.termination == TerminationType::MAX_ITERATIONS;
     run.stop = terminationTypeToString(report.termination);
     run.sigma0 = report.isSolutionUsable() ? report.sigma0 : std::numeric_limits<double>::quiet_NaN();
-    run.transformation = report.isSolutionUsable()
-                             ? report.transformation
-                             : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
+    // No estimate (e.g. TOO_FEW_OBSERVATIONS): no transformation either, so the RMS and the
+    // errors vs truth read "-" rather than those of the identity (a perfect run for no motion).
+    run.transformation = !report.hasEstimate()      ? kNoTransformation
+                         : report.isSolutionUsable() ? report.transformation
+                                                     : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
     run.message = terminationTypeToString(report.termination);
     if (!report.message.empty())
       run.message += ": " + report.message;

@@ -177,18 +177,19 @@ allPclMethods()
 }
 
 std::string
-PclMethodSettings::describe() const
+PclMethodSettings::describe(const std::string& unit) const
 {
-  char buf[512];
+  const char* u = unit.c_str();
+  char buf[640];
   std::snprintf(buf, sizeof(buf),
-                "max_corr=%g m, max_iter=%d, ICP/ICP-N/NDT trans_eps=%g m^2 (squared step), "
-                "ICP/ICP-N rot_eps(cos)=1-%.0e, GICP eps=%g m / %g rad, GICP k=%d grad_tol=%g, "
-                "ICP-N normals k=%d (target only, NormalEstimationOMP), NDT res=%g m step=%g m "
+                "max_corr=%g %s, max_iter=%d, ICP/ICP-N/NDT trans_eps=%g %s^2 (squared step), "
+                "ICP/ICP-N rot_eps(cos)=1-%.0e, GICP eps=%g %s / %g rad, GICP k=%d grad_tol=%g, "
+                "ICP-N normals k=%d (target only, NormalEstimationOMP), NDT res=%g %s step=%g %s "
                 "outlier=%g",
-                max_correspondence_distance, max_iterations, transformation_epsilon,
-                1.0 - rotation_epsilon, gicp_translation_epsilon, gicp_rotation_epsilon,
-                gicp_k_correspondences, gicp_gradient_tolerance, normal_k, ndt_resolution, ndt_step_size,
-                ndt_outlier_ratio);
+                max_correspondence_distance, u, max_iterations, transformation_epsilon, u,
+                1.0 - rotation_epsilon, gicp_translation_epsilon, u, gicp_rotation_epsilon,
+                gicp_k_correspondences, gicp_gradient_tolerance, normal_k, ndt_resolution, u,
+                ndt_step_size, u, ndt_outlier_ratio);
   return buf;
 }
 

@@ -59,9 +59,9 @@ runRobust(RobustMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& s
     run.quality_checked = true;
     run.hit_limit = r.termination == TerminationType::MAX_ITERATIONS;
     run.stop = terminationTypeToString(r.termination);
-    run.sigma0 = r.scale;
-    if (r.isSolutionUsable())
-      run.transformation = r.adjustment.transformation;
+    // Without a usable estimate there is no transformation to evaluate (not the identity).
+    run.sigma0 = r.isSolutionUsable() ? r.scale : std::numeric_limits<double>::quiet_NaN();
+    run.transformation = r.isSolutionUsable() ? r.adjustment.transformation : kNoTransformation;
     run.message = r.estimator + ": " + terminationTypeToString(r.termination);
     if (!r.message.empty())
       run.message += ": " + r.message;

@@ -1,6 +1,7 @@
 // Runs pcl_ls3d_compare on a tiny generated, georeferenced pair: every method reports finite
 // numbers, LS3D-LND recovers the known truth, and bad input exits non-zero without writing.
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/synth/registration_pair.h>
 #include <pcl_ls3d/synth/truth_json.h>
 
@@ -11,7 +12,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -27,6 +30,29 @@ run(const std::string& args)
 {
   const std::string cmd = kTool + " " + args + " > /dev/null 2>&1";
   return std::system(cmd.c_str());
+}
+
+/// Runs the tool; returns the exit code and fills `output` (stdout + stderr).
+int
+run(const std::string& args, const fs::path& log, std::string& output)
+{
+  const int status = std::system((kTool + " " + args + " > " + log.string() + " 2>&1").c_str());
+  std::ifstream in(log);
+  std::stringstream s;
+  s << in.rdbuf();
+  output = s.str();
+  return status;
+}
+
+/// The text table's row of `method` ("" if absent).
+std::string
+tableRow(const std::string& output, const std::string& method)
+{
+  std::istringstream lines(output);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind(method + " ", 0) == 0)
+      return line;
+  return "";
 }
 
 /// A 120 m × 120 m pair (≈14k source / 58k target points, 1 vs 4 pts/m², 70 % overlap, σ = 5 cm)
@@ -218,4 +244,100 @@ TEST_F(CompareTool, NonFiniteTransformationIsAFailure)
   ASSERT_FALSE(finite) << "PCL-ICP-N no longer returns NaN on a line: the test needs another case";
   EXPECT_FALSE(m["converged"].get<bool>());
   EXPECT_EQ(m["stop"], "NaN");
+}
+
+// A run without an estimate (LS3D: 10 source points, TOO_FEW_OBSERVATIONS) has no RMS, σ0,
+// errors or transformation: "-" in the table and null in the JSON, not the 0.00 of the
+// identity it never moved from (the truth here is the identity).
+TEST_F(CompareTool, FailedRunShowsNoFigures)
+{
+  if (!fs::exists(kTool))
+    FAIL() << kTool << " not built";
+  const fs::path src = dir_ / "few.xyz", tgt = dir_ / "grid.xyz", truth = dir_ / "ident.json";
+  {
+    std::ofstream fs_(src), ft(tgt), fj(truth);
+    for (int i = 0; i < 40; ++i)
+      for (int k = 0; k < 40; ++k)
+        ft << i << " " << k << " " << 0.1 * std::sin(0.3 * i) * std::cos(0.2 * k) << "\n";
+    for (int i = 0; i < 10; ++i)
+      fs_ << 10 + i << " " << 15 + i << " " << 0.1 * std::sin(0.3 * (10 + i)) * std::cos(0.2 * (15 + i)) << "\n";
+    fj << R"({"transformation": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})";
+  }
+  const fs::path out = dir_ / "few.json";
+  fs::remove(out);
+  std::string text;
+  run(src.string() + " " + tgt.string() + " -methods ls3d-lnd -truth " + truth.string() +
+          " -json " + out.string(),
+      dir_ / "few.log", text);
+  const std::string row = tableRow(text, "LS3D-LND");
+  ASSERT_NE(row.find("TOO_FEW"), std::string::npos) << text;
+  // method iter time cpu conv stop trust, then RMS s0 mean max bbox | tx ty tz phi om ka m
+  std::istringstream cells(row);
+  std::vector<std::string> cell;
+  for (std::string c; cells >> c;)
+    cell.push_back(c);
+  ASSERT_EQ(cell.size(), 20u) << row;
+  for (std::size_t i = 7; i < cell.size(); ++i)
+    EXPECT_TRUE(cell[i] == "-" || cell[i] == "|") << i << ": " << row;
+  std::ifstream in(out);
+  const auto j = nlohmann::json::parse(in);
+  const auto& m = j["methods"][0];
+  EXPECT_TRUE(m["rms"].is_null());
+  EXPECT_TRUE(m["sigma0"].is_null());
+  EXPECT_TRUE(m["error"].is_null());
+  for (const auto& r : m["transformation"])
+    for (const auto& v : r)
+      EXPECT_TRUE(v.is_null());
+}
+
+// Lengths are labelled in the data's unit: the CRS's of a LAS input (international feet
+// here), "units" without a CRS; never a fixed [m] / [mm].
+TEST_F(CompareTool, UnitsFollowTheCrs)
+{
+  if (!fs::exists(kTool))
+    FAIL() << kTool << " not built";
+  io::SaveOptions feet;
+  io::LasVlr wkt_vlr;
+  wkt_vlr.user_id = "LASF_Projection";
+  wkt_vlr.record_id = 2112;
+  const std::string wkt = maps::crsFromUserInput("EPSG:2994");  // NAD83(CORS96) / Oregon Lambert (ft)
+  ASSERT_EQ(maps::crsLinearUnitName(wkt), "ft");
+  wkt_vlr.data.assign(wkt.begin(), wkt.end());
+  wkt_vlr.data.push_back(0);
+  feet.las_vlrs = {wkt_vlr};
+  for (const char* name : {"source", "target"}) {
+    pcl::PointCloud<PointLiDAR> cloud;
+    io::CloudInfo info;
+    std::string error;
+    ASSERT_TRUE(io::loadCloud((dir_ / (std::string(name) + ".pcd")).string(), cloud, info, error));
+    ASSERT_TRUE(io::saveCloud((dir_ / (std::string(name) + ".las")).string(), cloud, info.origin,
+                              error, feet))
+        << error;
+  }
+  std::string text;
+  run((dir_ / "source.las").string() + " " + (dir_ / "target.las").string() +
+          " -methods icp -iter 2 -truth " + (dir_ / "truth.json").string(),
+      dir_ / "ft.log", text);
+  EXPECT_NE(text.find("RMS[ft]"), std::string::npos) << text;
+  EXPECT_NE(text.find("mean[ft]"), std::string::npos) << text;
+  EXPECT_NE(text.find("max_corr=2 ft"), std::string::npos) << text;
+  EXPECT_EQ(text.find("[m]"), std::string::npos) << text;
+  EXPECT_EQ(text.find("[mm]"), std::string::npos) << text;
+
+  run(inputs() + " -methods icp -iter 2", dir_ / "units.log", text);
+  EXPECT_NE(text.find("RMS[units]"), std::string::npos) << text;
+  EXPECT_EQ(text.find("[m]"), std::string::npos) << text;
+}
+
+// A bad length says what is allowed, not the machine's double limits.
+TEST_F(CompareTool, BadLengthSaysItMustBePositive)
+{
+  if (!fs::exists(kTool))
+    FAIL() << kTool << " not built";
+  std::string text;
+  EXPECT_NE(run(inputs() + " -max_corr -1", dir_ / "neg.log", text), 0);
+  EXPECT_NE(text.find("-max_corr must be > 0"), std::string::npos) << text;
+  EXPECT_EQ(text.find("e+308"), std::string::npos) << text;
+  EXPECT_NE(run(inputs() + " -thinning -1", dir_ / "neg.log", text), 0);
+  EXPECT_NE(text.find("-thinning must be >= 0"), std::string::npos) << text;
 }

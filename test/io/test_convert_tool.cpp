@@ -2,6 +2,7 @@
 /// \brief pcl_ls3d_convert end to end: conversion, -split_strips, -classes, -origin, refusal to
 ///        overwrite the input or an existing output, one-line errors with a non-zero exit.
 
+#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 
 #include "io/io_test_utils.h"
@@ -21,6 +22,29 @@ namespace fs = std::filesystem;
 namespace {
 
 const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_convert";
+const std::string kInfoTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_info";
+
+/// Runs pcl_ls3d_info with `args`; returns the exit code and fills `output` (stdout + stderr).
+int
+runInfo(const std::string& args, std::string& output, const pcl_ls3d_test::TempDir& dir)
+{
+  const std::string log = dir.file("info_log.txt");
+  const int status = std::system((kInfoTool + " " + args + " > " + log + " 2>&1").c_str());
+  std::ifstream in(log);
+  std::stringstream s;
+  s << in.rdbuf();
+  output = s.str();
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::size_t
+occurrences(const std::string& text, const std::string& what)
+{
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1))
+    ++n;
+  return n;
+}
 
 /// Runs the tool with `args`; returns the exit code and fills `output` (stdout + stderr).
 int
@@ -165,4 +189,63 @@ TEST_F(ConvertTool, InfoToolReportsCountsStripsAndErrors)
   EXPECT_NE(runInfo(dir_.file("in.las") + " -bogus", out), 0);
   EXPECT_NE(runInfo(dir_.file("none.las"), out), 0);
   EXPECT_NE(out.find("does not exist"), std::string::npos) << out;
+}
+
+// Bad input exits 1 as in every other tool (not 255 from `return -1`).
+TEST_F(ConvertTool, BadInputExitsOne)
+{
+  if (!fs::exists(kInfoTool))
+    FAIL() << kInfoTool << " is not built";
+  std::string out;
+  EXPECT_EQ(run(dir_.file("missing.las") + " " + dir_.file("o.pcd"), out, dir_), 1) << out;
+  EXPECT_EQ(run(dir_.file("in.las") + " " + dir_.file("o.pcd") + " -bogus", out, dir_), 1) << out;
+  EXPECT_EQ(runInfo(dir_.file("none.las"), out, dir_), 1) << out;
+  EXPECT_EQ(runInfo(dir_.file("in.las") + " -bogus", out, dir_), 1) << out;
+}
+
+// Several files with a bad one among them: every good file is still described, the bad one
+// gets one error line, and the exit status says that one failed.
+TEST_F(ConvertTool, InfoReportsEveryFile)
+{
+  if (!fs::exists(kInfoTool))
+    FAIL() << kInfoTool << " is not built";
+  {
+    std::ofstream bad(dir_.file("bad.las"));
+    bad << "not a LAS file\n";
+  }
+  std::string out;
+  EXPECT_EQ(runInfo(dir_.file("in.las") + " " + dir_.file("bad.las") + " " + dir_.file("in.las"),
+                    out, dir_),
+            1)
+      << out;
+  EXPECT_EQ(occurrences(out, "points in file 300, loaded 300"), 2u) << out;
+  EXPECT_EQ(occurrences(out, "bad.las"), 1u) << out;
+}
+
+// A SEGMENTS.pcd's labels are segment ids, not classes: its segments are counted (ids above
+// 255 too, which a byte-sized class would wrap) and no class histogram is printed.
+TEST_F(ConvertTool, InfoCountsSegmentsOfASegmentsFile)
+{
+  if (!fs::exists(kInfoTool))
+    FAIL() << kInfoTool << " is not built";
+  pcl::PointCloud<pcl::PointXYZ> xyz;
+  for (const auto& p : cloud_)
+    xyz.push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  std::vector<pcl::PointIndices> segments(260);  // one point each; 40 points in none
+  for (std::size_t s = 0; s < segments.size(); ++s)
+    segments[s].indices = {static_cast<int>(s)};
+  evaluation::InputLayout layout;
+  layout.points_in_file = xyz.size();
+  layout.origin = origin_;
+  std::string error;
+  ASSERT_TRUE(evaluation::saveSegmentsPcd(dir_.file("SEGMENTS.pcd"), xyz, segments, layout, error))
+      << error;
+  std::string out;
+  ASSERT_EQ(runInfo(dir_.file("SEGMENTS.pcd"), out, dir_), 0) << out;
+  EXPECT_NE(out.find("segment ids"), std::string::npos) << out;
+  EXPECT_NE(out.find("260 segments, 40 points in none"), std::string::npos) << out;
+  EXPECT_EQ(out.find("\n  classes:"), std::string::npos) << out;  // no histogram line
+  ASSERT_EQ(runInfo("-json " + dir_.file("SEGMENTS.pcd"), out, dir_), 0) << out;
+  EXPECT_NE(out.find("\"segments\":{\"count\":260,\"points_in_none\":40}"), std::string::npos) << out;
+  EXPECT_EQ(out.find("\"classes\""), std::string::npos) << out;
 }

@@ -150,6 +150,7 @@ TEST_F(RegisterTool, BadInputGivesOneErrorLineAndNonZeroExit)
       s + " " + t + " -rule nearest",             // unknown rule
       s + " " + t + " -params 5",                 // impossible model
       s + " " + t + " -fix tx,psi",               // unknown parameter
+      s + " " + t + " -fix \"\"",                  // empty list
       s + " " + t + " -max_iter 0",               // impossible value
       s + " " + t + " -bogus 3",                  // unknown option
       s + " " + t + " -o " + s,                   // output would overwrite an input
@@ -330,4 +331,74 @@ TEST(RegisterToolRealData, LasOutputKeepsTheSourcesHeaderAndCrs)
     worst = std::max(worst, ((T * in.coordinates(i).homogeneous()).head<3>() - moved.coordinates(i)).cwiseAbs().maxCoeff());
   EXPECT_LE(worst, 0.5 * b.scale.maxCoeff() + 1e-9);
   fs::remove_all(dir);
+}
+
+// -fix "" is refused with one line saying what is expected, not taken as "fix nothing".
+TEST_F(RegisterTool, EmptyFixListIsRefused)
+{
+  const ToolRun r = runTool(path("source.pcd") + " " + path("target.pcd") + " -fix \"\"", true);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_EQ(errorLines(r.output), 1) << r.output;
+  EXPECT_NE(r.output.find("-fix needs a comma list"), std::string::npos) << r.output;
+}
+
+// A thinning voxel far finer than the coordinates resolve keeps every source point: the voxel
+// coordinates overflowed before and put every point into one voxel (1 point, TOO_FEW_...).
+TEST_F(RegisterTool, ThinningFinerThanTheDataKeepsEveryPoint)
+{
+  const ToolRun r = runTool(path("source.pcd") + " " + path("target.pcd") + " -thin 1e-25 -json " +
+                            path("thin.json"));
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(path("thin.json"));
+  const nlohmann::json j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["source_points_used"].get<std::size_t>(), pair_.source->size());
+}
+
+// Degenerate inputs fail, with their cause: two parallel lines, or coincident points, give the
+// rule no surface to fit; that is not "no overlap" (the source lies over the target).
+TEST_F(RegisterTool, DegenerateTargetIsNamedNotNoOverlap)
+{
+  {
+    std::ofstream a(path("line.xyz")), b(path("line2.xyz")), c(path("same.xyz"));
+    for (int i = 0; i < 2000; ++i) {
+      const double t = 0.01 * i;
+      a << t << " " << 2 * t << " " << 3 * t << "\n";
+      b << t + 0.105 << " " << 2 * t + 0.01 << " " << 3 * t + 0.015 << "\n";
+    }
+    for (int i = 0; i < 100; ++i)
+      c << "1 2 3\n";
+  }
+  const std::pair<std::string, std::string> cases[] = {
+      {path("line.xyz") + " " + path("line2.xyz"), "collinear"},
+      {path("same.xyz") + " " + path("same.xyz"), "coincident"}};
+  for (const auto& [args, kind] : cases) {
+    const ToolRun r = runTool(args, true);
+    EXPECT_EQ(r.code, 1) << args;
+    EXPECT_EQ(errorLines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find("no surface the rule can fit"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(kind), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("no overlap"), std::string::npos) << r.output;
+  }
+}
+
+// The error vs truth keeps its significant digits: a cloud matched to itself against a truth
+// 2e-5 away reports 2e-05, not 0.0000.
+TEST_F(RegisterTool, TruthErrorShowsSmallErrors)
+{
+  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
+  truth(0, 3) = 2e-5;
+  {
+    nlohmann::json j;
+    nlohmann::json rows = nlohmann::json::array();
+    for (int r = 0; r < 4; ++r)
+      rows.push_back({truth(r, 0), truth(r, 1), truth(r, 2), truth(r, 3)});
+    j["transformation"] = rows;
+    std::ofstream(path("tiny_truth.json")) << j.dump();
+  }
+  const ToolRun r = runTool(path("target.pcd") + " " + path("target.pcd") + " -truth " +
+                            path("tiny_truth.json"));
+  const std::string key = "Error vs truth: mean displacement ";
+  const std::size_t at = r.output.find(key);
+  ASSERT_NE(at, std::string::npos) << r.output;
+  EXPECT_NEAR(std::stod(r.output.substr(at + key.size())), 2e-5, 2e-6) << r.output;
 }

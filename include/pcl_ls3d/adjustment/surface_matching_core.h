@@ -21,7 +21,8 @@
 namespace pcl_ls3d {
 
 /// \brief Regular thinning: indices of one point per cubic voxel of edge `step` (the first one
-///        met). step ≤ 0 returns every index.
+///        met). step ≤ 0 returns every index, and so does a step too fine for the points'
+///        extent (over 2^52 voxels along an axis: finer than the coordinates resolve).
 std::vector<int>
 thinByVoxel(const std::vector<Eigen::Vector3d>& points, double step);
 

@@ -27,6 +27,15 @@ struct CloudSpacing
 CloudSpacing
 cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis = -1);
 
+/// Beyond 2^52 cells a double no longer resolves a whole cell, so coordinates stop there.
+constexpr std::int64_t kVoxelCoordinateLimit = std::int64_t{1} << 52;
+
+/// \brief floor(x / cell), saturated at ±kVoxelCoordinateLimit (and 0 for NaN). A plain cast
+///        overflows (undefined behaviour) once x / cell passes 9.2e18, e.g. a 1e-25 m cell on
+///        metre coordinates; saturation keeps the order, so range searches stay correct.
+std::int64_t
+voxelCoordinate(double x, double cell);
+
 /// \brief Points hashed into cubic voxels of edge `cell` (non-finite points are left out).
 class VoxelIndex
 {

@@ -21,20 +21,25 @@ struct ComparisonContext
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();   ///< common local origin (file = local + origin)
   std::size_t source_points = 0, target_points = 0;
   bool has_truth = false;
-  double rms_max_distance = 0.0;                      ///< [m] neighbour cut-off of the RMS column
+  double rms_max_distance = 0.0;                      ///< [unit] neighbour cut-off of the RMS column
+  std::string unit = "m";                             ///< the data's length unit (CRS), or "units"
   std::string pcl_settings, ls3d_settings;            ///< describe() of the settings used
 };
 
 /// \brief Fixed-width text table, one row per run. Columns: method, iterations, wall time [s],
 ///        CPU time [s] (all threads), converged, how it stopped (RegistrationRun::stop, cut to
-///        10 characters), trusted (the method's hasConverged()), RMS of NN distances [m], σ0 [m]; with truth also mean / max displacement
-///        error over the source points [mm], max over the source bbox corners [mm], and the
-///        parameter errors (tx, ty, tz [mm], φ, ω, κ [µrad], m [ppm]).
+///        10 characters), trusted (the method's hasConverged()), RMS of NN distances [unit],
+///        σ0 [unit]; with truth also mean / max displacement error over the source points, max
+///        over the source bbox corners, and the parameter errors (tx, ty, tz, φ, ω, κ [µrad],
+///        m [ppm]); lengths of errors in mm when `unit` is "m", else in `unit` (3 digits).
+///        A figure a run does not have (no estimate, no σ0) is "-".
 std::string
-formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth);
+formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth,
+                      const std::string& unit = "m");
 
-/// \brief JSON document {"context": {...}, "methods": [...]} with SI units (m, s, rad); each method
-///        has its transformation in local and in file coordinates (4×4 row-major). NaN → null.
+/// \brief JSON document {"context": {...}, "methods": [...]} in context.unit, s and rad; each
+///        method has its transformation in local and in file coordinates (4×4 row-major). A
+///        figure a run does not have is null (a run without an estimate: every figure).
 std::string
 comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext& context);
 

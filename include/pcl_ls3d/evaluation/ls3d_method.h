@@ -31,9 +31,9 @@ struct Ls3dMethodSettings
   /// RIGID_6 is the class default (like the ICP it replaces); SIMILARITY_7 frees the scale.
   ParameterModel model = ParameterModel::RIGID_6;
 
-  /// One line listing every value, for tables and docs.
+  /// One line listing every value, for tables and docs; lengths labelled `unit` (the data's).
   std::string
-  describe() const;
+  describe(const std::string& unit = "m") const;
 };
 
 /// \brief Aligns source to target from the identity; never throws. The transform is taken from

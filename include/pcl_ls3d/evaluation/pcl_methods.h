@@ -65,9 +65,9 @@ struct PclMethodSettings
   double ndt_outlier_ratio = 0.55;           ///< NDT (PCL default)
   unsigned int threads = 0;                  ///< NormalEstimationOMP threads (0 = all cores)
 
-  /// One line listing every value, for tables and docs.
+  /// One line listing every value, for tables and docs; lengths labelled `unit` (the data's).
   std::string
-  describe() const;
+  describe(const std::string& unit = "m") const;
 };
 
 /// \brief Runs one PCL method from the identity guess. Never throws; on failure run.ran is false

@@ -19,6 +19,10 @@
 namespace pcl_ls3d {
 namespace evaluation {
 
+/// The transformation of a run without an estimate: its RMS and errors are "-" / null.
+inline const Eigen::Matrix4d kNoTransformation =
+    Eigen::Matrix4d::Constant(std::numeric_limits<double>::quiet_NaN());
+
 /// \brief What one method did on one input (all clouds in their common local frame).
 struct RegistrationRun
 {
@@ -51,7 +55,8 @@ struct RegistrationRun
   double rms = std::numeric_limits<double>::quiet_NaN();
   std::size_t rms_points = 0;       ///< source points inside that distance
   double sigma0 = std::numeric_limits<double>::quiet_NaN();  ///< LS3D's σ̂0 (NaN for PCL)
-  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();  ///< source → target, local
+  /// Source → target, local; all NaN (kNoTransformation) when the method gave no estimate.
+  Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
   TransformError error;             ///< against the truth, when one was given (error.valid)
 };
 
