@@ -5,6 +5,7 @@
 ///        On request also the robust estimators of issue 9 (-methods robust).
 
 #include "tool_arguments.h"
+#include "tool_output.h"
 
 #include <pcl_ls3d/evaluation/comparison_report.h>
 #include <pcl_ls3d/evaluation/ls3d_method.h>
@@ -203,6 +204,7 @@ fail(const std::string& why)
 int
 main(int argc, char** argv)
 {
+  pcl_ls3d::tools::lineBufferedStdout();
   if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help") || argc < 2) {
     printHelp(argv[0]);
     return argc < 2 ? 1 : 0;

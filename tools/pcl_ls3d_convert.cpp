@@ -3,6 +3,7 @@
 ///        georeferenced origin restored on output; splits by flight strip and filters by class.
 
 #include "tool_arguments.h"
+#include "tool_output.h"
 
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_io.h>
@@ -155,6 +156,7 @@ saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const Outpu
 int
 main(int argc, char** argv)
 {
+  pcl_ls3d::tools::lineBufferedStdout();
   if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
     return argc < 2 ? 1 : 0;

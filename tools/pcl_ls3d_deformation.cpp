@@ -250,6 +250,7 @@ writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, 
 int
 main(int argc, char** argv)
 {
+  pcl_ls3d::tools::lineBufferedStdout();
   if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
     return 0;

@@ -4,6 +4,7 @@
 ///        count) and the flight strips. Every file is reported; exit 1 if any failed to load.
 
 #include "tool_arguments.h"
+#include "tool_output.h"
 
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
@@ -173,6 +174,7 @@ printText(const nlohmann::json& j)
 int
 main(int argc, char** argv)
 {
+  pcl_ls3d::tools::lineBufferedStdout();
   if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
     return argc < 2 ? 1 : 0;

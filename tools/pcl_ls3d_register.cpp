@@ -259,6 +259,7 @@ writeMovedLas(const std::string& source_path, const Eigen::Matrix4d& T, const st
 int
 main(int argc, char** argv)
 {
+  pcl_ls3d::tools::lineBufferedStdout();
   if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
     return 0;

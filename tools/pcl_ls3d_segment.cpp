@@ -8,6 +8,7 @@
 /// that pcl::io::loadPCDFile into pcl::PointXYZRGBL reads it.
 
 #include "tool_arguments.h"
+#include "tool_output.h"
 
 #include <pcl_ls3d/evaluation/object_metrics.h>
 #include <pcl_ls3d/evaluation/reference_objects.h>
@@ -306,6 +307,7 @@ fail(const std::string& msg)
 int
 main(int argc, char** argv)
 {
+  pcl_ls3d::tools::lineBufferedStdout();
   if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help") ||
       find_switch(argc, argv, "-help")) {
     printHelp(argv[0]);

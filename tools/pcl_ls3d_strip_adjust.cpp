@@ -6,6 +6,7 @@
 #include <pcl_ls3d/strips/strip_stages.h>
 
 #include "tool_arguments.h"
+#include "tool_output.h"
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
@@ -362,6 +363,7 @@ runStage(const std::string& stage, Options& o)
 int
 main(int argc, char** argv)
 {
+  pcl_ls3d::tools::lineBufferedStdout();
   const std::set<std::string> stages = {"plan", "match", "solve", "apply", "counts"};
   const std::string stage = argc > 1 && stages.count(argv[1]) ? argv[1] : "";
   Options o;

@@ -3,6 +3,7 @@
 ///        a block of flight strips, or Li et al.'s deformation surface, plus truth.json.
 
 #include "tool_arguments.h"
+#include "tool_output.h"
 
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/synth/truth_json.h>
@@ -455,6 +456,7 @@ runLi(int argc, char** argv, const Context& ctx)
 int
 main(int argc, char** argv)
 {
+  pcl_ls3d::tools::lineBufferedStdout();
   if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
     return argc < 2 ? -1 : 0;

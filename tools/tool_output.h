@@ -6,8 +6,19 @@
 
 #include <Eigen/Core>
 
+#include <cstdio>
+
 namespace pcl_ls3d {
 namespace tools {
+
+/// \brief Line-buffered stdout, so that a log holding stdout and stderr (2>&1 into a file) keeps
+///        each error and warning next to the progress line it belongs to: the first call of
+///        every tool's main.
+inline void
+lineBufferedStdout()
+{
+  std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+}
 
 /// \brief Prints a 4x4 transformation of input coordinates under `title`. The coordinates may be
 ///        projected (10^6 m): the rotation needs 15 decimals for its product with them to hold

@@ -46,17 +46,19 @@ thinByVoxel(const std::vector<Eigen::Vector3d>& points, double step)
       box.extend(p);
   // Voxels finer than the coordinates resolve would only merge identical points: keep all
   // (voxel coordinates would saturate there and merge everything instead).
-  if (box.isEmpty() || box.sizes().maxCoeff() / step >= static_cast<double>(kVoxelCoordinateLimit))
+  const double reach = box.isEmpty() ? 0.0 : box.min().cwiseAbs().cwiseMax(box.max().cwiseAbs()).maxCoeff();
+  if (box.isEmpty() || reach / step >= static_cast<double>(kVoxelCoordinateLimit))
     return everyIndex(points.size());
-  // Full coordinates from the box's corner: no wrapped keys merging far-apart voxels.
+  // Full voxel coordinates (the same voxels as ever, about the coordinate origin): no wrapped
+  // keys merging far-apart voxels.
   std::vector<int> kept;
   kept.reserve(points.size() / 4);
   std::unordered_set<VoxelKey, VoxelKeyHash> seen;
   seen.reserve(points.size() / 2);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector3d d = points[i] - box.min();
-    const VoxelKey key{voxelCoordinate(d.x(), step), voxelCoordinate(d.y(), step),
-                       voxelCoordinate(d.z(), step)};
+    const Eigen::Vector3d& p = points[i];
+    const VoxelKey key{voxelCoordinate(p.x(), step), voxelCoordinate(p.y(), step),
+                       voxelCoordinate(p.z(), step)};
     if (seen.insert(key).second)
       kept.push_back(static_cast<int>(i));
   }

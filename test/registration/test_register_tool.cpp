@@ -193,6 +193,13 @@ TEST_F(RegisterTool, NanOnlyAndNoOverlapGiveOneErrorLine)
   EXPECT_TRUE(j["transformation"].is_null());
   EXPECT_FALSE(j["message"].get<std::string>().empty());
   EXPECT_NE(r.output.find(j["termination"].get<std::string>()), std::string::npos) << r.output;
+  // In a log holding both streams the error comes after the progress it follows (stdout is
+  // line-buffered, not held back until exit).
+  const ToolRun both = runTool(s + " " + path("far.pcd"));
+  const std::size_t loaded = both.output.find("Loaded"), failed = both.output.find("registration failed");
+  ASSERT_NE(loaded, std::string::npos) << both.output;
+  ASSERT_NE(failed, std::string::npos) << both.output;
+  EXPECT_LT(loaded, failed) << both.output;
 }
 
 // -classes 2 matches on the ground only: a source whose class-5 points (vegetation, 1–4 m above
