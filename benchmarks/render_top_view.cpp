@@ -220,7 +220,8 @@ main(int argc, char** argv)
   crop(box, pts);
   toView(o.view, pts);
   if (pts.empty()) {
-    std::fprintf(stderr, "render_top_view: no point of '%s' inside -crop\n", o.input.c_str());
+    std::fprintf(stderr, "render_top_view: no finite point of '%s'%s\n", o.input.c_str(),
+                 o.crop.empty() ? "" : " inside -crop");
     return 1;
   }
   float x0 = pts[0].x, x1 = x0, y0 = pts[0].y, y1 = y0;

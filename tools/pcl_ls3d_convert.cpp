@@ -191,22 +191,12 @@ main(int argc, char** argv)
     load.origin = Eigen::Vector3d(values[0], values[1], values[2]);
   }
   std::set<std::uint8_t> classes;
-  if (!classes_text.empty()) {
-    if (!pcl_ls3d::tools::parseNumberList(classes_text, values)) {
-      print_error("-classes needs a comma-separated list of class codes, got '%s'.\n",
-                  classes_text.c_str());
-      return 1;
-    }
-    for (double v : values) {
-      if (v < 0 || v > 255 || v != std::floor(v)) {
-        print_error("-classes: %g is not a class code 0-255.\n", v);
-        return 1;
-      }
-      classes.insert(static_cast<std::uint8_t>(v));
-    }
+  std::string why;
+  if (!classes_text.empty() && !pcl_ls3d::tools::parseClassList("-classes", classes_text, classes, why)) {
+    print_error("%s\n", why.c_str());
+    return 1;
   }
 
-  std::string why;
   OutputOverrides overrides;
   if (!parseOverrides(argc, argv, overrides, why)) {
     print_error("%s\n", why.c_str());

@@ -412,9 +412,9 @@ main(int argc, char** argv)
   nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), tinfo.origin);
   j["timings_ms"] = {{"load", t_load}, {"adjust", t_align}};
   if (!truth_path.empty()) {
-    Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(source->size()));
-    for (std::size_t i = 0; i < source->size(); ++i)
-      pts.col(static_cast<Eigen::Index>(i)) = (*source)[i].getVector3fMap().cast<double>() + tinfo.origin;
+    Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(whole_source->size()));  // every point -o moves
+    for (std::size_t i = 0; i < whole_source->size(); ++i)
+      pts.col(static_cast<Eigen::Index>(i)) = (*whole_source)[i].getVector3fMap().cast<double>() + tinfo.origin;
     const auto e = pcl_ls3d::evaluation::computeTransformError(T_input, truth, pts);
     // Significant digits: a fixed 4 decimals would show a 0.05 mm error on metre data as 0.
     print_info("Error vs truth: mean displacement %.3g, max %.3g, max over bbox %.3g\n", e.mean, e.max,

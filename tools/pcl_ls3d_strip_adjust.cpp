@@ -167,13 +167,13 @@ checkOutputs(const Options& o, std::string& why)
   const std::string& dir = o.request.output_dir;
   for (std::size_t k = 0; k < o.inputs.size(); ++k) {
     const std::string& in = o.inputs[k];
-    if (!fs::exists(in))
+    std::error_code ec;  // no std::filesystem exception escapes: a refused path is one line
+    if (!fs::exists(in, ec))
       return (why = in + ": file does not exist").empty();
     for (std::size_t l = 0; l < k; ++l)
       if (io::isSameFile(in, o.inputs[l]))
         return (why = "input " + in + " is given twice (as " + o.inputs[l] + ")").empty();
-    std::error_code ec;
-    if (!dir.empty() && fs::exists(dir) && fs::equivalent(fs::absolute(in).parent_path(), dir, ec))
+    if (!dir.empty() && fs::exists(dir, ec) && fs::equivalent(fs::absolute(in, ec).parent_path(), dir, ec))
       return (why = "the output directory " + dir + " holds the input " + in + ": choose another -o").empty();
   }
   if (!dir.empty() && !tools::checkOutputFolder(dir, why))
@@ -195,11 +195,12 @@ checkCorrectedOutputs(const Options& o, const std::vector<strips::OutputUnit>& u
     if (fs::exists(u.path, ec) && !o.overwrite)
       return (why = u.path + " exists (use -overwrite to replace it)").empty();
   }
-  if (!o.request.maps_dir.empty() && !o.overwrite)
-    for (const auto& e : fs::directory_iterator(o.request.maps_dir, ec))
-      if (e.path().extension() == ".tif" || e.path().extension() == ".png")
-        return (why = "the maps folder " + o.request.maps_dir + " holds maps already (" +
-                      e.path().filename().string() + "; use -overwrite to replace them)").empty();
+  if (o.request.maps_dir.empty() || o.overwrite)
+    return true;
+  for (fs::directory_iterator it(o.request.maps_dir, ec), end; !ec && it != end; it.increment(ec))
+    if (it->path().extension() == ".tif" || it->path().extension() == ".png")
+      return (why = "the maps folder " + o.request.maps_dir + " holds maps already (" +
+                    it->path().filename().string() + "; use -overwrite to replace them)").empty();
   return true;
 }
 
@@ -235,9 +236,9 @@ clearOutputs(const Options& o, const std::vector<strips::OutputUnit>& units)
   for (const auto& u : units)
     fs::remove(u.path, ec);
   if (!o.request.maps_dir.empty())
-    for (const auto& e : fs::directory_iterator(o.request.maps_dir, ec))
-      if (e.path().extension() == ".tif" || e.path().extension() == ".png")
-        fs::remove(e.path(), ec);
+    for (fs::directory_iterator it(o.request.maps_dir, ec), end; !ec && it != end; it.increment(ec))
+      if (it->path().extension() == ".tif" || it->path().extension() == ".png")
+        fs::remove(it->path(), ec);
 }
 
 // Without -split, inputs that each hold several flight lines (point-source ids) overlap as files
@@ -263,6 +264,15 @@ unitName(const std::string& wkt)
 {
   const std::string name = maps::crsLinearUnitName(wkt);
   return name.empty() ? "units" : name;
+}
+
+// -h's exit status of a finished adjustment: 0 a solution, 3 one the checks refused, 2 none.
+int
+exitStatus(TerminationType t)
+{
+  if (t == TerminationType::UNRELIABLE)
+    return 3;
+  return t == TerminationType::CONVERGED || t == TerminationType::MAX_ITERATIONS ? 0 : 2;
 }
 
 int
@@ -314,9 +324,7 @@ runSingle(Options& o)
   if (!o.quiet)
     print_info("Wrote %zu corrected files, %zu map files%s in %.1f s total\n", units.size(), maps.size(),
                o.request.json_path.empty() ? "" : (", " + o.request.json_path).c_str(), tt.toc() / 1000.0);
-  if (report.termination == TerminationType::UNRELIABLE)
-    return 3;
-  return report.termination == TerminationType::CONVERGED || report.termination == TerminationType::MAX_ITERATIONS ? 0 : 2;
+  return exitStatus(report.termination);
 }
 
 int
@@ -352,10 +360,11 @@ runStage(const std::string& stage, Options& o)
   if (stage == "apply")
     return o.unit >= 0 ? (strips::stageApply(work, o.unit, error) ? 0 : fail(error)) : fail("apply needs -unit K");
   std::string phase;
-  if (!strips::stageSolve(work, phase, error))
+  TerminationType termination = TerminationType::CONVERGED;
+  if (!strips::stageSolve(work, phase, error, &termination))
     return fail(error);
   print_info("%s\n", phase.c_str());
-  return 0;
+  return exitStatus(termination);
 }
 
 }  // namespace

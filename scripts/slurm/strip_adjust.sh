@@ -24,10 +24,17 @@ run_array() {  # stage count
   fi
 }
 
+# The last solve's exit status is the run's (3: UNRELIABLE, 2: no solution), after the outputs
+# are written, as in a single-process run; an error before the end stops the run.
 phase=iterate
+final=0
 while [ "$phase" != done ]; do
   run_array match "$jobs"
-  phase="$("$tool" solve -work "$work")"
+  code=0
+  phase="$("$tool" solve -work "$work")" || code=$?
+  if [ "$code" -ne 0 ] && [ "$phase" != done ]; then exit "$code"; fi
+  final=$code
   echo "solve: $phase"
 done
 run_array apply "$units"
+exit "$final"

@@ -77,8 +77,8 @@ setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& targe
 
 namespace {
 
-// "collinear", "coincident" or "" for the k nearest target points of `query`. Below 1e-5 of
-// the neighbourhood's length or coordinates a direction is rounding (float clouds: ~1e-7).
+// "collinear", "coincident" or "" for the k nearest target points of `query`: a direction
+// within the tolerance below is rounding.
 std::string
 neighbourhoodDegeneracy(const TargetSurface& target, const Eigen::Vector3d& query)
 {
@@ -99,7 +99,9 @@ neighbourhoodDegeneracy(const TargetSurface& target, const Eigen::Vector3d& quer
   const Eigen::Vector3d spread =
       Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov / n, Eigen::EigenvaluesOnly)
           .eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
-  const double tolerance = 1e-5 * std::max(spread[2], mean.cwiseAbs().maxCoeff());
+  // 1e-5 of the neighbourhood's length, plus the rounding of float coordinates (~1e-7 of their
+  // size: not 1e-5 of it, which is metres at projected coordinates).
+  const double tolerance = 1e-5 * spread[2] + 1e-7 * mean.cwiseAbs().maxCoeff();
   if (spread[2] <= tolerance)
     return "coincident";
   return spread[1] <= tolerance ? "collinear" : "";

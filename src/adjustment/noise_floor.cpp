@@ -1,6 +1,7 @@
 #include <pcl_ls3d/adjustment/noise_floor.h>
 #include <pcl_ls3d/rules/local_tin.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -100,6 +101,10 @@ noiseDominated(const Matrix7d& N, const Matrix7d& M, const Vector7d& apriori_wei
         Ns(a, b) = s * (N(qa, qb) + (a == b ? apriori_weights[qa] : 0.0));
         Ms(a, b) = s * M(qa, qb);
       }
+    // The solver factorises N without telling whether it could: a singular N (a column the
+    // geometry leaves empty) is the rank test's to flag, not this one's.
+    if (Eigen::LLT<Eigen::MatrixXd>(Ns).info() != Eigen::Success)
+      break;
     Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Ms, Ns);
     if (es.info() != Eigen::Success)
       break;

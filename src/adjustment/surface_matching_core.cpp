@@ -55,6 +55,7 @@ struct PairRun
   double spacing = 0.0;            // the target's point spacing (nearest-neighbour median)
   double guess_uncertainty = 0.0;  // the annealed cut's floor in the first iteration
   double normal_variance = -1.0;   // σ_u² of the target's normals where observed (< 0: not yet)
+  bool reset = false;              // this iteration moved a newly held parameter back to its start
 
   void
   prepare(const AdjustmentSettings& settings, const std::vector<Eigen::Vector3d>& reduced)
@@ -141,9 +142,12 @@ solveAndUpdate(PairRun& run, const NormalEquations& ne, const std::vector<bool>&
     return false;
   }
   ParameterBlock& block = run.setup.source;
+  run.reset = false;  // a held parameter moved back to its start: the observations are stale
   for (int q = 0; q < 7; ++q)
-    if (held[static_cast<std::size_t>(q)])
+    if (held[static_cast<std::size_t>(q)] && block.values[q] != run.start[q]) {
       block.values[q] = run.start[q];
+      run.reset = true;
+    }
   run.problem.current = block.values;
   GaussMarkovProblem problem = run.problem;
   holdAtStart(held, run.start, problem);
@@ -302,7 +306,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
                       hooks_.after_iteration(rec, pair.setup.source.matrix(), obs);
     // Converged while the annealed floor still set the cut: the estimate is the floor's, not
     // the estimator's. Go on while the floor keeps halving, until the estimator's own cut rules.
-    const bool settled = next.converged && !weighting_.floorBound();
+    const bool settled = next.converged && !weighting_.floorBound() && !pair.reset;
     if (settled || stop) {
       report.termination = TerminationType::CONVERGED;
       break;

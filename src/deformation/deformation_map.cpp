@@ -102,7 +102,7 @@ mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps
   style.unit = unit;
   style.tick_format = limit >= 10 ? "%+.0f" : limit >= 1 ? "%+.1f" : "%+.2f";
   style.legend = {"epoch minus reference", "(mean per cell)", "outline: deformed region"};
-  style.length_unit = crs_unit;  // no scale bar in unknown units
+  style.length_unit = crs_unit;  // no scale bar without a CRS (its unit unknown)
   const std::string crs = maps::crsName(s.crs_wkt);
   style.footer = format("cell %.3g %s, %d x %d cells, %s", grid.cell, unit.c_str(), grid.cols, grid.rows,
                         crs.empty() ? "no coordinate reference known" : crs.c_str());

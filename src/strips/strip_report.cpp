@@ -135,7 +135,7 @@ confirmByDiscrepancies(StripAdjustmentReport& report)
   std::size_t used = 0, grew = 0;
   std::vector<double> noise;
   for (const OverlapResult& o : report.overlaps) {
-    if (!o.used || o.before.count == 0 || o.after.count == 0)
+    if (!o.used || o.before.count == 0 || o.after.count == 0 || o.noise_i.count == 0 || o.noise_j.count == 0)
       continue;
     ++used;
     grew += o.after.sigma_mad > o.before.sigma_mad ? 1 : 0;

@@ -160,7 +160,7 @@ stageMatch(const WorkDir& work, int job, std::string& error)
 }
 
 bool
-stageSolve(const WorkDir& work, std::string& phase, std::string& error)
+stageSolve(const WorkDir& work, std::string& phase, std::string& error, TerminationType* termination)
 {
   PlanFile f;
   BlockState state;
@@ -170,7 +170,7 @@ stageSolve(const WorkDir& work, std::string& phase, std::string& error)
   std::vector<OverlapContribution> contributions(jobs.size());
   if (state.phase == BlockState::Phase::DONE) {
     phase = "done";
-    return true;
+    return true;  // the verdict was given when the report was made
   }
   for (std::size_t k = 0; k < jobs.size(); ++k) {
     const std::string path = state.phase == BlockState::Phase::ITERATE
@@ -182,6 +182,8 @@ stageSolve(const WorkDir& work, std::string& phase, std::string& error)
   if (state.phase == BlockState::Phase::ITERATE) {
     solveIteration(f.plan, contributions, state);
     phase = phaseName(state.phase);
+    if (termination && state.phase == BlockState::Phase::DONE)  // stopped: singular, too few
+      *termination = state.termination;
     return writeState(work.state(), state, error);
   }
   // Final pass done: report and maps.
@@ -191,6 +193,8 @@ stageSolve(const WorkDir& work, std::string& phase, std::string& error)
       return false;
   state.phase = BlockState::Phase::DONE;
   const StripAdjustmentReport report = makeReport(f.plan, state, contributions, samples);
+  if (termination)
+    *termination = report.termination;
   std::vector<std::string> written;
   if (!writeReportAndMaps(f, report, samples, written, error))
     return false;

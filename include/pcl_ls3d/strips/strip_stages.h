@@ -68,9 +68,11 @@ bool
 stageMatch(const WorkDir& work, int job, std::string& error);
 
 /// Stage solve: one solve (phase ITERATE) or, after the final pass, the report and the maps.
-/// `phase` receives the state's phase afterwards: "iterate", "evaluate" or "done".
+/// `phase` receives the state's phase afterwards: "iterate", "evaluate" or "done"; at "done",
+/// `termination` (when given) the report's verdict, as a single-process run gives it.
 bool
-stageSolve(const WorkDir& work, std::string& phase, std::string& error);
+stageSolve(const WorkDir& work, std::string& phase, std::string& error,
+           TerminationType* termination = nullptr);
 
 /// Stage apply: writes output unit `unit` (see outputUnits()).
 bool
