@@ -124,11 +124,11 @@ overlapResult(const Overlap& o, const OverlapContribution* c, const OverlapSampl
   return r;
 }
 
-// An adjustment that moves a strip by more than the strips' own noise must show it in the data:
-// when the normal discrepancies' σMAD grew on more than half of the used overlaps, the
-// corrections are not confirmed and the result is UNRELIABLE (the estimate stays in the report).
+// An adjustment that moves a strip (at its edge) by more than the strips' own noise must show it
+// in the data: when the normal discrepancies' σMAD grew on more than half of the used overlaps,
+// the corrections are not confirmed and the result is UNRELIABLE (the estimate stays in the report).
 void
-confirmByDiscrepancies(StripAdjustmentReport& report)
+confirmByDiscrepancies(StripAdjustmentReport& report, const StripPlan& plan)
 {
   if (report.termination != TerminationType::CONVERGED && report.termination != TerminationType::MAX_ITERATIONS)
     return;
@@ -141,9 +141,14 @@ confirmByDiscrepancies(StripAdjustmentReport& report)
     grew += o.after.sigma_mad > o.before.sigma_mad ? 1 : 0;
     noise.push_back(std::max(o.noise_i.sigma_mad, o.noise_j.sigma_mad));
   }
+  // How far a correction moves a strip at its edge (radius r from its origin): the shift, plus
+  // r times the rotation and the scale change.
   double moved = 0.0;
-  for (const StripResult& s : report.strips)
-    moved = std::max(moved, s.parameters.head<3>().norm());
+  for (std::size_t k = 0; k < report.strips.size() && k < plan.strips.size(); ++k) {
+    const Vector7d& p = report.strips[k].parameters;
+    const double turn = p.segment<3>(PHI).norm() + std::abs(p[SCALE] - 1.0);
+    moved = std::max(moved, p.head<3>().norm() + plan.strips[k].radius * turn);
+  }
   if (used == 0 || 2 * grew <= used)
     return;
   std::nth_element(noise.begin(), noise.begin() + static_cast<std::ptrdiff_t>(noise.size() / 2), noise.end());
@@ -198,7 +203,7 @@ makeReport(const StripPlan& plan, const BlockState& state,
         c = &f;
     report.overlaps.push_back(overlapResult(plan.overlaps[k], c, k < samples.size() ? &samples[k] : nullptr));
   }
-  confirmByDiscrepancies(report);
+  confirmByDiscrepancies(report, plan);
   return report;
 }
 
