@@ -520,8 +520,7 @@ main(int argc, char** argv)
     const Eigen::Vector3d o = rinfo.origin;
     j["local_origin"] = {o.x(), o.y(), o.z()};
     j["timings_ms"] = {{"load", t_load}, {"deformation", t_run}};
-    std::ofstream out(json_path);
-    if (!(out << pcl_ls3d::io::toJsonText(j, 2) << "\n"))
+    if (!pcl_ls3d::tools::writeJsonFile(json_path, j))
       return fail("cannot write " + json_path), 1;
   }
   if (!converged) {

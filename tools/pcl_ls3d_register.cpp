@@ -231,13 +231,6 @@ keepClasses(Cloud::Ptr& cloud, const std::set<std::uint8_t>& classes, const std:
   return true;
 }
 
-bool
-writeJson(const std::string& path, const nlohmann::json& j)
-{
-  std::ofstream out(path);
-  return static_cast<bool>(out << pcl_ls3d::io::toJsonText(j, 2) << "\n");
-}
-
 /// A LAS source written as LAS keeps what a surveyor relies on: the header's version and point
 /// format, every VLR (the CRS) and every record byte but X, Y, Z (io::rewriteLas); all records,
 /// in file order, moved by T (input coordinates).
@@ -395,7 +388,7 @@ main(int argc, char** argv)
                               {"message", r.message},
                               {"iterations", r.iterations},
                               {"transformation", nullptr}};
-    if (!json_path.empty() && !writeJson(json_path, j))
+    if (!json_path.empty() && !pcl_ls3d::tools::writeJsonFile(json_path, j))
       return fail("cannot write " + json_path), 1;
     return fail(std::string("registration failed: ") + pcl_ls3d::terminationTypeToString(r.termination) +
                 ": " + r.message), 1;
@@ -435,7 +428,7 @@ main(int argc, char** argv)
       return fail(error), 1;
     print_info("Wrote %s in %.0f ms\n", out_path.c_str(), tt.toc());
   }
-  if (!json_path.empty() && !writeJson(json_path, j))
+  if (!json_path.empty() && !pcl_ls3d::tools::writeJsonFile(json_path, j))
     return fail("cannot write " + json_path), 1;
   if (!trusted)
     return fail(std::string("registration not trustworthy: ") +

@@ -20,6 +20,7 @@
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/segmentation/dimensionality_features.h>
+#include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/io/json_text.h>
 
 #include <pcl/common/time.h>
@@ -273,17 +274,13 @@ farOutlierWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud)
     return "";
   double core = 0.0, full = 0.0;
   for (int axis = 0; axis < 2; ++axis) {
-    std::vector<float> v;
+    std::vector<double> v;
     v.reserve(cloud.size());
     for (const auto& p : cloud)
       v.push_back(axis == 0 ? p.x : p.y);
-    const auto at = [&v](double q) {
-      auto it = v.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(v.size() - 1));
-      std::nth_element(v.begin(), it, v.end());
-      return static_cast<double>(*it);
-    };
-    core = std::max(core, at(0.999) - at(0.001));
-    full = std::max(full, at(1.0) - at(0.0));
+    const std::vector<double> q = stats::quantiles(std::move(v), {0.0, 0.001, 0.999, 1.0});
+    core = std::max(core, q[2] - q[1]);
+    full = std::max(full, q[3] - q[0]);
   }
   if (!(full > 4.0 * core))
     return "";
@@ -552,9 +549,7 @@ main(int argc, char** argv)
                info.origin.x(), info.origin.y(), info.origin.z(), t_write);
   }
   if (!out_json.empty()) {
-    std::ofstream f(out_json);
-    f << io::toJsonText(report, 2) << '\n';
-    if (!f)
+    if (!tools::writeJsonFile(out_json, report))
       return fail("cannot write '" + out_json + "'");
     print_info("Wrote %s\n", out_json.c_str());
   }

@@ -2,11 +2,15 @@
 /// \file tool_output.h
 /// \brief Console output shared by the pcl_ls3d_* tools.
 
+#include <pcl_ls3d/io/json_text.h>
+
 #include <pcl/console/print.h>
 
 #include <Eigen/Core>
 
 #include <cstdio>
+#include <fstream>
+#include <string>
 
 namespace pcl_ls3d {
 namespace tools {
@@ -18,6 +22,16 @@ inline void
 lineBufferedStdout()
 {
   std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+}
+
+/// \brief Writes a JSON report (io::toJsonText, indent 2, a final newline); false when it could
+///        not be written.
+template <typename Json>
+inline bool
+writeJsonFile(const std::string& path, const Json& json)
+{
+  std::ofstream out(path);
+  return static_cast<bool>(out << io::toJsonText(json, 2) << "\n");
 }
 
 /// \brief Prints a 4x4 transformation of input coordinates under `title`. The coordinates may be

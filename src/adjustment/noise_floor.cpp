@@ -12,9 +12,10 @@ namespace pcl_ls3d {
 
 namespace {
 
-// Median of a copy (nth_element).
+// The upper of the two middle values for an even count (nth_element at n/2), as the strips' noise
+// floor has always taken it; stats::median() averages the two and would move their figures.
 double
-median(std::vector<double> v)
+upperMedian(std::vector<double> v)
 {
   auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
   std::nth_element(v.begin(), mid, v.end());
@@ -61,7 +62,7 @@ fittedNormalVariance(const TargetSurface& target, const ObservationSet& set, int
                           nullptr, &slope_variance) && slope_variance.allFinite())
       variance.push_back(0.5 * slope_variance.sum());
   }
-  return variance.size() < 20 ? 0.0 : median(std::move(variance));
+  return variance.size() < 20 ? 0.0 : upperMedian(std::move(variance));
 }
 
 double
@@ -77,7 +78,7 @@ normalNoiseVariance(const ObservationSet& set, const NeighbourPairs& neighbours)
   }
   if (d2.size() < 20)
     return 0.0;
-  return median(std::move(d2)) / (4.0 * std::log(2.0));
+  return upperMedian(std::move(d2)) / (4.0 * std::log(2.0));
 }
 
 std::vector<bool>

@@ -24,18 +24,6 @@ namespace {
 const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_convert";
 const std::string kInfoTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_info";
 
-/// Runs pcl_ls3d_info with `args`; returns the exit code and fills `output` (stdout + stderr).
-int
-runInfo(const std::string& args, std::string& output, const pcl_ls3d_test::TempDir& dir)
-{
-  const std::string log = dir.file("info_log.txt");
-  const int status = std::system((kInfoTool + " " + args + " > " + log + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream s;
-  s << in.rdbuf();
-  output = s.str();
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
 
 std::size_t
 occurrences(const std::string& text, const std::string& what)
@@ -46,17 +34,32 @@ occurrences(const std::string& text, const std::string& what)
   return n;
 }
 
-/// Runs the tool with `args`; returns the exit code and fills `output` (stdout + stderr).
+/// Runs `tool` with `args`; returns the exit code and fills `output` (stdout + stderr).
 int
-run(const std::string& args, std::string& output, const pcl_ls3d_test::TempDir& dir)
+runProgram(const std::string& tool, const std::string& args, std::string& output,
+           const pcl_ls3d_test::TempDir& dir)
 {
   const std::string log = dir.file("log.txt");
-  const int status = std::system((kTool + " " + args + " > " + log + " 2>&1").c_str());
+  const int status = std::system((tool + " " + args + " > " + log + " 2>&1").c_str());
   std::ifstream in(log);
   std::stringstream s;
   s << in.rdbuf();
   output = s.str();
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// pcl_ls3d_convert with `args`.
+int
+run(const std::string& args, std::string& output, const pcl_ls3d_test::TempDir& dir)
+{
+  return runProgram(kTool, args, output, dir);
+}
+
+/// pcl_ls3d_info with `args`.
+int
+runInfo(const std::string& args, std::string& output, const pcl_ls3d_test::TempDir& dir)
+{
+  return runProgram(kInfoTool, args, output, dir);
 }
 
 class ConvertTool : public ::testing::Test
