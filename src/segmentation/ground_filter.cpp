@@ -3,6 +3,8 @@
 
 #include <pcl_ls3d/segmentation/ground_filter.h>
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -157,6 +159,62 @@ groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSetti
     previous_window = window;
   }
   return ground;
+}
+
+std::vector<float>
+heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
+                   const std::vector<char>& wanted, double radius)
+{
+  std::vector<float> height(points.size(), std::numeric_limits<float>::quiet_NaN());
+  if (points.empty() || radius <= 0.0)
+    return height;
+  // Ground points bucketed by cells of one radius: a query reads its own and the 8 around it.
+  const LowestPointGrid grid(points, radius);
+  const auto cells = static_cast<std::size_t>(grid.rows()) * static_cast<std::size_t>(grid.cols());
+  std::vector<std::size_t> start(cells + 1, 0);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (ground[i])
+      ++start[static_cast<std::size_t>(grid.cellOf(points[i])) + 1];
+  for (std::size_t c = 0; c < cells; ++c)
+    start[c + 1] += start[c];
+  std::vector<int> bucket(start.back());
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (ground[i])
+      bucket[fill[static_cast<std::size_t>(grid.cellOf(points[i]))]++] = static_cast<int>(i);
+
+  const double r2 = radius * radius;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!wanted[i])
+      continue;
+    // Plane z = a + b·dx + c·dy about the point: its height is z − a.
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    int used = 0;
+    const int c = grid.cellOf(points[i]), row = c / grid.cols(), col = c % grid.cols();
+    for (int r = std::max(0, row - 1); r <= std::min(grid.rows() - 1, row + 1); ++r)
+      for (int k = std::max(0, col - 1); k <= std::min(grid.cols() - 1, col + 1); ++k) {
+        const auto cell = static_cast<std::size_t>(r) * static_cast<std::size_t>(grid.cols()) +
+                          static_cast<std::size_t>(k);
+        for (std::size_t b = start[cell]; b < start[cell + 1]; ++b) {
+          const Eigen::Vector3f& q = points[static_cast<std::size_t>(bucket[b])];
+          const Eigen::Vector2d d = (q.head<2>() - points[i].head<2>()).cast<double>();
+          if (d.squaredNorm() > r2)
+            continue;
+          const Eigen::Vector3d a(1.0, d.x(), d.y());
+          normal += a * a.transpose();
+          rhs += a * static_cast<double>(q.z());
+          ++used;
+        }
+      }
+    if (used < 6)
+      continue;
+    const Eigen::LDLT<Eigen::Matrix3d> fit(normal);
+    if (fit.info() != Eigen::Success || fit.vectorD().minCoeff() <= 1e-9 * normal(0, 0) * r2)
+      continue;  // collinear ground points: no plane
+    height[i] = static_cast<float>(static_cast<double>(points[i].z()) - fit.solve(rhs)(0));
+  }
+  return height;
 }
 
 }  // namespace segmentation

@@ -3,6 +3,8 @@
 
 #include <pcl_ls3d/segmentation/object_assembly.h>
 
+#include <pcl_ls3d/segmentation/ground_filter.h>
+
 #include "assembly_groups.h"
 #include "roof_footprints.h"
 
@@ -182,14 +184,14 @@ attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<Segm
 /// \return points detached
 std::size_t
 detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
-                   int graph_k, const std::vector<char>& ground,
+                   int graph_k, const std::vector<char>& raised_point,
                    const std::vector<SegmentKind>& kind, double max_length,
                    std::vector<int>& labels, std::vector<int>& origin)
 {
   origin.clear();
   const double max_sq = max_length * max_length;
   const auto raised = [&](std::size_t p) {
-    return labels[p] >= 0 && !ground[p] &&
+    return labels[p] >= 0 && raised_point[p] &&
            kind[static_cast<std::size_t>(labels[p])] == SegmentKind::Ground;
   };
   int next = static_cast<int>(kind.size());
@@ -224,6 +226,28 @@ detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector
       ++detached;
     }
   return detached;
+}
+
+/// Points of ground segments that stand above the terrain: rejected by the ground filter, or
+/// kept by it but higher than \a limit above the plane of the ground points within
+/// \a radius (limit ≤ 0: the filter alone).
+std::vector<char>
+raisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
+             const std::vector<SegmentKind>& kind, const std::vector<int>& labels, double limit,
+             double radius)
+{
+  std::vector<char> raised(points.size(), 0), kept_on_ground(points.size(), 0);
+  for (std::size_t p = 0; p < points.size(); ++p)
+    if (labels[p] >= 0 && kind[static_cast<std::size_t>(labels[p])] == SegmentKind::Ground) {
+      raised[p] = !ground[p];
+      kept_on_ground[p] = ground[p] && limit > 0.0;
+    }
+  if (limit <= 0.0)
+    return raised;
+  const std::vector<float> height = heightAboveTerrain(points, ground, kept_on_ground, radius);
+  for (std::size_t p = 0; p < points.size(); ++p)
+    raised[p] = raised[p] || (kept_on_ground[p] && height[p] > limit);  // NaN: not raised
+  return raised;
 }
 
 /// A detached piece as smooth as a roof or the terrain (kind Solid: not rough, not a wall, not
@@ -281,7 +305,11 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   std::vector<SegmentKind> kind = kindsOf(shapes);
   if (settings.detach_raised_points) {
     std::vector<int> origin;
-    rep.detached_points = detachRaisedPoints(points, graph, graph_k, ground, kind,
+    const std::vector<char> raised =
+        raisedPoints(points, ground, kind, labels,
+                     settings.raised_noise_multiple * rep.ground_residual,
+                     2.0 * settings.max_link_length);
+    rep.detached_points = detachRaisedPoints(points, graph, graph_k, raised, kind,
                                              settings.max_link_length, labels, origin);
     if (rep.detached_points > 0) {
       const auto pieces = segmentShapes(points, labels, residuals, ground);

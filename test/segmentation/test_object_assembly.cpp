@@ -364,6 +364,66 @@ struct Scene
 
 }  // namespace
 
+// Grass 15-28 cm high along a hedge and in a patch of a lawn: within the ground filter's
+// 0.3 m, so the filter keeps it and it stays in the ground segment. It stands 6 noise levels
+// (ground residual 0.01) above the terrain plane around it, so it leaves the ground: the strip
+// along the hedge joins the hedge, the patch becomes its own object, and the terrain stays one
+// ground object. With raised_noise_multiple 0 (the filter alone) both stay in the ground.
+TEST(ObjectAssembly, GrassAboveTheTerrainPlaneLeavesTheGround)
+{
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f);
+  Scene scene;
+  std::vector<int> part;
+  enum { TERRAIN, HEDGE, STRIP, PATCH };
+  const auto inStrip = [](float x, float y) { return x >= 5.f && x <= 17.f && y > 6.5f && y <= 7.5f; };
+  const auto inPatch = [](float x, float y) { return x >= 21.f && x <= 23.f && y >= 21.f && y <= 23.f; };
+  for (float x = 0.f; x <= 30.f; x += 0.3f)
+    for (float y = 0.f; y <= 30.f; y += 0.3f) {
+      const bool grass = inStrip(x, y) || inPatch(x, y);  // the scanner sees the grass's top
+      scene.push(x, y, grass ? 0.15f + 0.13f * u(rng) : n(rng), 0, grass ? 0.05f : 0.01f);
+      part.push_back(inStrip(x, y) ? STRIP : inPatch(x, y) ? PATCH : TERRAIN);
+    }
+  for (int i = 0; i < 1800; ++i) {  // hedge 12 m x 1.5 m, 0.4-2.5 m high, its own segment
+    scene.push(5.f + 12.f * u(rng), 5.f + 1.5f * u(rng), 0.4f + 2.1f * u(rng), 1, 0.1f);
+    part.push_back(HEDGE);
+  }
+  sg::GroundFilterSettings gf;
+  gf.cell = 0.6;
+  const std::vector<char> ground = sg::groundPoints(scene.pts, gf);
+  std::size_t grass = 0, grass_kept = 0;
+  for (std::size_t i = 0; i < part.size(); ++i)
+    if (part[i] == STRIP || part[i] == PATCH) {
+      ++grass;
+      grass_kept += ground[i];
+    }
+  ASSERT_GT(grass_kept, grass * 9 / 10);  // the filter alone would keep the grass
+
+  sg::AssemblySettings a;
+  a.max_link_length = 0.8;
+  const std::vector<int> on = scene.assemble(a, ground);
+  const auto share = [&](const std::vector<int>& l, int p, int label) {
+    std::size_t in = 0, total = 0;
+    for (std::size_t i = 0; i < l.size(); ++i)
+      if (part[i] == p) {
+        ++total;
+        in += l[i] == label;
+      }
+    return static_cast<double>(in) / static_cast<double>(total);
+  };
+  const int terrain = on[0], hedge = on[part.size() - 1];
+  ASSERT_EQ(part[0], TERRAIN);
+  EXPECT_GE(share(on, TERRAIN, terrain), 0.99);
+  EXPECT_GE(share(on, STRIP, hedge), 0.9);  // the strip joined the hedge
+  EXPECT_LE(share(on, PATCH, terrain), 0.1);
+  EXPECT_LE(share(on, PATCH, hedge), 0.0);  // the patch is its own object
+
+  a.raised_noise_multiple = 0.0;
+  const std::vector<int> off = scene.assemble(a, ground);
+  EXPECT_GE(share(off, STRIP, off[0]), 0.9);
+  EXPECT_GE(share(off, PATCH, off[0]), 0.9);
+}
+
 // A hedge whose foot (0.4-0.9 m above the terrain) the growing and merging left in the ground
 // segment, and a patch of low vegetation (0.35-0.5 m) in the middle of a lawn, also in the
 // ground segment. The ground filter rejects both; they leave the ground: the foot joins the

@@ -53,5 +53,15 @@ struct GroundFilterSettings
 std::vector<char>
 groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSettings& settings);
 
+/// \brief Height of points above the terrain right under them: the least-squares plane of the
+///        ground points (\a ground 1) within \a radius in plan. Finer than the filter's opened
+///        surface, which keeps everything up to its initial distance above the lowest points.
+/// \param[in] wanted per point: 1 to compute its height
+/// \return per point: height above that plane; NaN where not wanted or where fewer than six
+///         ground points, or only collinear ones, lie within \a radius
+std::vector<float>
+heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
+                   const std::vector<char>& wanted, double radius);
+
 }  // namespace segmentation
 }  // namespace pcl_ls3d

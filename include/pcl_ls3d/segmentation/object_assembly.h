@@ -8,7 +8,8 @@
 /// Each segment gets a kind from its geometry (segment_kinds.h: ground, linear, rough, wall,
 /// solid).
 /// First, points of a ground segment that the ground filter rejects (the foot of a hedge, low
-/// vegetation, a wall's foot carried along by the planar growth) leave it as their own pieces,
+/// vegetation, a wall's foot carried along by the planar growth) or that lie clearly above the
+/// terrain plane around them (grass; raised_noise_multiple) leave it as their own pieces,
 /// one per connected component (detach_raised_points); each piece joins the one non-ground
 /// group it has most links with, or stays alone, and never bridges two groups.
 /// Segments touch through k-NN links no longer than max_link_length (at least min_links of
@@ -69,6 +70,12 @@ struct AssemblySettings
                                  ///< margin cells enclosed by the roof count)
   bool detach_raised_points = true;  ///< points of a ground segment that the ground filter
                                     ///< rejects leave it as their own segments
+  /// ... and so do those it keeps that lie more than this many ground residuals (the
+  /// terrain's noise, AssemblyReport::ground_residual, an RMS: about σ) above the plane of the
+  /// ground points within 2 max_link_length: grass over a lawn, 5–30 cm up, which the filter
+  /// keeps up to its initial distance. 6 σ: beyond the noise, below the terrain's micro-relief
+  /// steps that a plane through 1.7 m does not follow. ≤ 0: the filter alone decides.
+  double raised_noise_multiple = 6.0;
 };
 
 /// \brief What assembleObjects() did.
