@@ -161,56 +161,86 @@ groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSetti
   return ground;
 }
 
+namespace {
+
+/// Ground points of one grid cell: count, mean and central second moments (x, y against x, y, z).
+struct CellMoments
+{
+  double n = 0.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double xx = 0.0, xy = 0.0, yy = 0.0, xz = 0.0, yz = 0.0;
+};
+
+std::vector<CellMoments>
+groundMoments(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
+              const LowestPointGrid& grid)
+{
+  std::vector<CellMoments> cells(static_cast<std::size_t>(grid.rows()) *
+                                 static_cast<std::size_t>(grid.cols()));
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (ground[i]) {
+      CellMoments& c = cells[static_cast<std::size_t>(grid.cellOf(points[i]))];
+      c.n += 1.0;
+      c.mean += points[i].cast<double>();
+    }
+  for (CellMoments& c : cells)
+    if (c.n > 0.0)
+      c.mean /= c.n;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (ground[i]) {
+      CellMoments& c = cells[static_cast<std::size_t>(grid.cellOf(points[i]))];
+      const Eigen::Vector3d u = points[i].cast<double>() - c.mean;
+      c.xx += u.x() * u.x();
+      c.xy += u.x() * u.y();
+      c.yy += u.y() * u.y();
+      c.xz += u.x() * u.z();
+      c.yz += u.y() * u.z();
+    }
+  return cells;
+}
+
+}  // namespace
+
 std::vector<float>
 heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
-                   const std::vector<char>& wanted, double radius)
+                   const std::vector<char>& wanted, double half_width)
 {
   std::vector<float> height(points.size(), std::numeric_limits<float>::quiet_NaN());
-  if (points.empty() || radius <= 0.0)
+  if (points.empty() || half_width <= 0.0)
     return height;
-  // Ground points bucketed by cells of one radius: a query reads its own and the 8 around it.
-  const LowestPointGrid grid(points, radius);
-  const auto cells = static_cast<std::size_t>(grid.rows()) * static_cast<std::size_t>(grid.cols());
-  std::vector<std::size_t> start(cells + 1, 0);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (ground[i])
-      ++start[static_cast<std::size_t>(grid.cellOf(points[i])) + 1];
-  for (std::size_t c = 0; c < cells; ++c)
-    start[c + 1] += start[c];
-  std::vector<int> bucket(start.back());
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (ground[i])
-      bucket[fill[static_cast<std::size_t>(grid.cellOf(points[i]))]++] = static_cast<int>(i);
-
-  const double r2 = radius * radius;
+  // Moments per cell make each query O(1): 3 x 3 cells of 2/3 half_width around the point.
+  const LowestPointGrid grid(points, 2.0 * half_width / 3.0);
+  const std::vector<CellMoments> cells = groundMoments(points, ground, grid);
+  const double cell_area = grid.cell() * grid.cell();
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!wanted[i])
       continue;
-    // Plane z = a + b·dx + c·dy about the point: its height is z − a.
+    // Normal equations of z = a + b·dx + c·dy, d = offset from the point: its height is z − a.
     Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-    int used = 0;
+    const Eigen::Vector2d q = points[i].head<2>().cast<double>();
     const int c = grid.cellOf(points[i]), row = c / grid.cols(), col = c % grid.cols();
     for (int r = std::max(0, row - 1); r <= std::min(grid.rows() - 1, row + 1); ++r)
       for (int k = std::max(0, col - 1); k <= std::min(grid.cols() - 1, col + 1); ++k) {
-        const auto cell = static_cast<std::size_t>(r) * static_cast<std::size_t>(grid.cols()) +
-                          static_cast<std::size_t>(k);
-        for (std::size_t b = start[cell]; b < start[cell + 1]; ++b) {
-          const Eigen::Vector3f& q = points[static_cast<std::size_t>(bucket[b])];
-          const Eigen::Vector2d d = (q.head<2>() - points[i].head<2>()).cast<double>();
-          if (d.squaredNorm() > r2)
-            continue;
-          const Eigen::Vector3d a(1.0, d.x(), d.y());
-          normal += a * a.transpose();
-          rhs += a * static_cast<double>(q.z());
-          ++used;
-        }
+        const CellMoments& m = cells[static_cast<std::size_t>(r) * static_cast<std::size_t>(grid.cols()) +
+                                     static_cast<std::size_t>(k)];
+        if (m.n == 0.0)
+          continue;
+        const Eigen::Vector2d d = m.mean.head<2>() - q;
+        normal(0, 0) += m.n;
+        normal(0, 1) += m.n * d.x();
+        normal(0, 2) += m.n * d.y();
+        normal(1, 1) += m.xx + m.n * d.x() * d.x();
+        normal(1, 2) += m.xy + m.n * d.x() * d.y();
+        normal(2, 2) += m.yy + m.n * d.y() * d.y();
+        rhs += Eigen::Vector3d(m.n * m.mean.z(), m.xz + m.n * d.x() * m.mean.z(),
+                               m.yz + m.n * d.y() * m.mean.z());
       }
-    if (used < 6)
+    if (normal(0, 0) < 6.0)
       continue;
+    normal.triangularView<Eigen::StrictlyLower>() = normal.transpose();
     const Eigen::LDLT<Eigen::Matrix3d> fit(normal);
-    if (fit.info() != Eigen::Success || fit.vectorD().minCoeff() <= 1e-9 * normal(0, 0) * r2)
+    if (fit.info() != Eigen::Success || fit.vectorD().minCoeff() <= 1e-9 * normal(0, 0) * cell_area)
       continue;  // collinear ground points: no plane
     height[i] = static_cast<float>(static_cast<double>(points[i].z()) - fit.solve(rhs)(0));
   }

@@ -229,12 +229,12 @@ detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector
 }
 
 /// Points of ground segments that stand above the terrain: rejected by the ground filter, or
-/// kept by it but higher than \a limit above the plane of the ground points within
-/// \a radius (limit ≤ 0: the filter alone).
+/// kept by it but higher than \a limit above the terrain plane of the ground points around
+/// them (heightAboveTerrain with \a half_width; limit ≤ 0: the filter alone).
 std::vector<char>
 raisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
              const std::vector<SegmentKind>& kind, const std::vector<int>& labels, double limit,
-             double radius)
+             double half_width)
 {
   std::vector<char> raised(points.size(), 0), kept_on_ground(points.size(), 0);
   for (std::size_t p = 0; p < points.size(); ++p)
@@ -244,7 +244,7 @@ raisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<char>
     }
   if (limit <= 0.0)
     return raised;
-  const std::vector<float> height = heightAboveTerrain(points, ground, kept_on_ground, radius);
+  const std::vector<float> height = heightAboveTerrain(points, ground, kept_on_ground, half_width);
   for (std::size_t p = 0; p < points.size(); ++p)
     raised[p] = raised[p] || (kept_on_ground[p] && height[p] > limit);  // NaN: not raised
   return raised;

@@ -54,14 +54,16 @@ std::vector<char>
 groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSettings& settings);
 
 /// \brief Height of points above the terrain right under them: the least-squares plane of the
-///        ground points (\a ground 1) within \a radius in plan. Finer than the filter's opened
-///        surface, which keeps everything up to its initial distance above the lowest points.
+///        ground points (\a ground 1) in a square window about 2 \a half_width wide around each
+///        (the 3 × 3 cells of side 2/3 \a half_width around its own). Finer than the filter's
+///        opened surface, which keeps everything up to its initial distance above the lowest
+///        points.
 /// \param[in] wanted per point: 1 to compute its height
 /// \return per point: height above that plane; NaN where not wanted or where fewer than six
-///         ground points, or only collinear ones, lie within \a radius
+///         ground points, or only collinear ones, lie in the window
 std::vector<float>
 heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
-                   const std::vector<char>& wanted, double radius);
+                   const std::vector<char>& wanted, double half_width);
 
 }  // namespace segmentation
 }  // namespace pcl_ls3d

@@ -71,10 +71,10 @@ struct AssemblySettings
   bool detach_raised_points = true;  ///< points of a ground segment that the ground filter
                                     ///< rejects leave it as their own segments
   /// ... and so do those it keeps that lie more than this many ground residuals (the
-  /// terrain's noise, AssemblyReport::ground_residual, an RMS: about σ) above the plane of the
-  /// ground points within 2 max_link_length: grass over a lawn, 5–30 cm up, which the filter
-  /// keeps up to its initial distance. 6 σ: beyond the noise, below the terrain's micro-relief
-  /// steps that a plane through 1.7 m does not follow. ≤ 0: the filter alone decides.
+  /// terrain's noise, AssemblyReport::ground_residual, an RMS: about σ) above the terrain plane
+  /// of the ground points around them (heightAboveTerrain, half width 2 max_link_length):
+  /// grass 5–30 cm high, which the filter keeps up to its initial distance. 6 scored best of
+  /// 4, 6, 8 on the tuning tiles (docs/BENCHMARKS.md). ≤ 0: the filter alone.
   double raised_noise_multiple = 6.0;
 };
 
