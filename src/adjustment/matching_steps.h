@@ -1,7 +1,8 @@
 #pragma once
 // Internal steps of SurfaceMatchingCore::run (not installed): the pair's frames and starting
 // values, the source-noise estimate, the design rows and normal equations of one iteration, and
-// the precision and reliability fields of the report.
+// the precision and reliability fields of the report. LinearizedMatching (sample_consensus/)
+// shares the overlap and degenerate-target checks, so both paths name a failure alike.
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
 #include <pcl_ls3d/adjustment/gauss_markov.h>

@@ -284,8 +284,9 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
   // 2. High-breakdown start (LMS, MM).
   if (s.method == RobustMethod::LMS || s.method == RobustMethod::MM) {
     LinearizedMatching lin;
-    if (!lin.reset(points, reference, rule, s.adjustment, from, &why))
-      return fail(report, TerminationType::NO_OVERLAP, why);
+    TerminationType failure = TerminationType::NO_OVERLAP;
+    if (!lin.reset(points, reference, rule, s.adjustment, from, &why, &failure))
+      return fail(report, failure, why);
     const std::size_t matched = lin.size();
     if (matched < static_cast<std::size_t>(std::max(s.sample_size, lin.freeParameters() + 1)))
       return fail(report, TerminationType::TOO_FEW_OBSERVATIONS,

@@ -2,6 +2,8 @@
 
 #include <pcl_ls3d/adjustment/normal_equations.h>
 
+#include "../adjustment/matching_steps.h"  // the pair set-up's overlap and degeneracy checks
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
@@ -10,53 +12,26 @@
 
 namespace pcl_ls3d {
 
-namespace {
-
-// Centroid of the points whose image under `guess` falls over the reference's box (grown by a
-// margin), as the engine's pair set-up; false when none does.
-bool
-overlapCentroid(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
-                const Eigen::Matrix4d& guess, double max_distance, Eigen::Vector3d& centroid)
-{
-  Eigen::AlignedBox3d box;
-  for (std::size_t i = 0; i < reference.size(); ++i) {
-    const Eigen::Vector3d p = reference.point(static_cast<int>(i));
-    if (p.allFinite())
-      box.extend(p);
-  }
-  if (box.isEmpty())
-    return false;
-  const double margin = std::min(max_distance, 0.1 * box.diagonal().norm());
-  box.min().array() -= margin;
-  box.max().array() += margin;
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  std::size_t n = 0;
-  for (const Eigen::Vector3d& p : points)
-    if (p.allFinite() && box.contains((guess * p.homogeneous()).head<3>())) {
-      sum += p;
-      ++n;
-    }
-  if (n == 0)
-    return false;
-  centroid = sum / static_cast<double>(n);
-  return true;
-}
-
-}  // namespace
-
 bool
 LinearizedMatching::reset(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
                           const ConjugateRule& rule, const AdjustmentSettings& settings,
-                          const Eigen::Matrix4d& guess, std::string* why)
+                          const Eigen::Matrix4d& guess, std::string* why, TerminationType* failure)
 {
-  auto fail = [why](const char* reason) {
+  auto fail = [why, failure](TerminationType type, const std::string& reason) {
     if (why)
       *why = reason;
+    if (failure)
+      *failure = type;
     return false;
   };
+  // As the engine's pair set-up: o_s is the centroid of the points over the reference's box.
   Eigen::Vector3d o_s;
-  if (!guess.allFinite() || !overlapCentroid(points, reference, guess, settings.max_correspondence_distance, o_s))
-    return fail("no epoch point falls over the reference's extent under the initial guess");
+  Eigen::AlignedBox3d box;
+  std::vector<int> inside;
+  if (!guess.allFinite() || !detail::overlapCentroid(points, reference, guess,
+                                                     settings.max_correspondence_distance, o_s, box, inside))
+    return fail(TerminationType::NO_OVERLAP,
+                "no epoch point falls over the reference's extent under the initial guess");
   const Eigen::Vector3d o_t = (guess * o_s.homogeneous()).head<3>();
   block_ = ParameterBlock();
   block_.input_origin = o_s;
@@ -84,8 +59,17 @@ LinearizedMatching::reset(const std::vector<Eigen::Vector3d>& points, const Targ
   const double inv_r = radius > 0.0 ? 1.0 / radius : 1.0;
   problem_.scaling = (Eigen::VectorXd(7) << 1, 1, 1, inv_r, inv_r, inv_r, inv_r).finished();
   matcher_.reset(reduced_, reference, rule, settings.max_correspondence_distance);
-  if (!relinearize(block_.values))
-    return fail("no epoch point found a conjugate point on the reference (no overlap)");
+  if (!relinearize(block_.values)) {
+    // Points over the reference and still no conjugate point: a reference without a surface
+    // there (collinear, coincident) is named as the engine names it, not taken for no overlap.
+    const std::string degenerate = detail::degenerateTarget(points, inside, guess, reference);
+    if (!degenerate.empty())
+      return fail(TerminationType::TOO_FEW_OBSERVATIONS,
+                  "no observation: the reference has no surface the rule can fit where the epoch "
+                  "lies over it (degenerate: its points there are " + degenerate + ")");
+    return fail(TerminationType::NO_OVERLAP,
+                "no epoch point found a conjugate point on the reference (no overlap)");
+  }
   return true;
 }
 

@@ -476,3 +476,28 @@ TEST(DeformationTool, ConsoleSummaryIsNotCut)
   EXPECT_EQ(line.substr(0, 300), r.estimator);
   EXPECT_NE(line.find("312 iterations, 1500 subsets in 3 round(s)"), std::string::npos) << line;
 }
+
+// A reference on one line has no surface: whatever the estimator, one error line names it as
+// degenerate (not "no overlap") and the exit is 1 as for any failed matching (-h, ARCHITECTURE).
+TEST(DeformationTool, DegenerateReferenceIsNamed)
+{
+  const Scratch s;
+  pcl::PointCloud<pcl::PointXYZ> line, strip;
+  for (int i = 0; i <= 400; ++i)
+    line.push_back(pcl::PointXYZ(0.05f * static_cast<float>(i), 0.f, 0.f));
+  for (int i = 0; i <= 40; ++i)
+    for (int j = 0; j <= 40; ++j)
+      strip.push_back(pcl::PointXYZ(0.5f * static_cast<float>(i), 0.05f * static_cast<float>(j) - 1.f, 0.f));
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("line.pcd"), line), 0);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("strip.pcd"), strip), 0);
+  for (const char* estimator : {"mm", "lms", "md"}) {
+    const auto r = runTool("pcl_ls3d_deformation",
+                           s.file("line.pcd") + " " + s.file("strip.pcd") + " -estimator " + estimator,
+                           s.dir.string());
+    EXPECT_EQ(r.code, 1) << estimator << ": " << r.err;
+    EXPECT_EQ(lineCount(r.err), 1u) << estimator << ": " << r.err;
+    EXPECT_NE(r.err.find("degenerate: its points there are collinear"), std::string::npos)
+        << estimator << ": " << r.err;
+    EXPECT_EQ(r.err.find("no overlap"), std::string::npos) << estimator << ": " << r.err;
+  }
+}

@@ -5,6 +5,7 @@
 #include <pcl_ls3d/estimators/robust_matching.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
+#include <pcl_ls3d/rules/conjugate_rule.h>
 #include <pcl_ls3d/synth/li_surface.h>
 
 #include <pcl/search/kdtree.h>
@@ -12,6 +13,10 @@
 #include <gtest/gtest.h>
 
 #include <limits>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace pcl_ls3d;
 using li_test::liSurface;
@@ -32,6 +37,61 @@ struct LiRun : li_test::LiSurfacePair
     return robustMatching(points, indices, *surface, *rule, s, guess);
   }
 };
+
+/// A hand-made reference (LZD rule) and epoch, for geometry the Li generator does not make.
+struct HandMadePair
+{
+  HandMadePair(const std::vector<Eigen::Vector3d>& reference, std::vector<Eigen::Vector3d> epoch)
+  : points(std::move(epoch))
+  {
+    pcl::PointCloud<PointLiDAR>::Ptr cloud(new pcl::PointCloud<PointLiDAR>);
+    for (const Eigen::Vector3d& p : reference) {
+      PointLiDAR q;
+      q.getVector3fMap() = p.cast<float>();
+      cloud->push_back(q);
+    }
+    for (std::size_t i = 0; i < points.size(); ++i)
+      indices.push_back(static_cast<int>(i));
+    pcl::search::KdTree<PointLiDAR>::Ptr tree(new pcl::search::KdTree<PointLiDAR>);
+    tree->setInputCloud(cloud);
+    surface = std::make_shared<PclTargetSurface<PointLiDAR>>(cloud, tree);
+    rule = makeConjugateRule(ConjugateRuleType::LZD);
+    std::string why;
+    rule->prepare(*surface, &why);
+  }
+
+  /// Robust matching from the identity, straight to the high-breakdown start when
+  /// `least_squares_start` is false (the path that matches through LinearizedMatching first).
+  RobustMatchingReport
+  operator()(RobustMethod method, bool least_squares_start, double max_distance = 0.0,
+             const Eigen::Matrix4d& guess = Eigen::Matrix4d::Identity()) const
+  {
+    RobustMatchingSettings s;
+    s.method = method;
+    s.least_squares_start = least_squares_start;
+    if (max_distance > 0.0)
+      s.adjustment.max_correspondence_distance = max_distance;
+    return robustMatching(points, indices, *surface, *rule, s, guess);
+  }
+
+  std::vector<Eigen::Vector3d> points;
+  std::vector<int> indices;
+  std::shared_ptr<PclTargetSurface<PointLiDAR>> surface;
+  ConjugateRule::Ptr rule;
+};
+
+/// n × n grid nodes of z = slope x + dz over [x0, x0 + size] × [0, size].
+std::vector<Eigen::Vector3d>
+tiltedGrid(int n, double x0, double size, double slope, double dz)
+{
+  std::vector<Eigen::Vector3d> grid;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = x0 + size * i / (n - 1), y = size * j / (n - 1);
+      grid.emplace_back(x, y, slope * x + dz);
+    }
+  return grid;
+}
 
 }  // namespace
 
@@ -169,4 +229,49 @@ TEST(RobustMatching, BadInput)
   EXPECT_TRUE(parseRobustMethod("m-d", m));
   EXPECT_EQ(m, RobustMethod::MD);
   EXPECT_FALSE(parseRobustMethod("ransac", m));
+}
+
+// A reference whose points all lie on one line has no surface to match: every estimator says
+// so as the pair engine does (TOO_FEW_OBSERVATIONS, "degenerate: ... collinear"), also LMS and
+// MM when they match through LinearizedMatching first (no least-squares start), which reported
+// "no overlap" before.
+TEST(RobustMatching, DegenerateReferenceIsNamedNotNoOverlap)
+{
+  std::vector<Eigen::Vector3d> line;
+  for (int i = 0; i <= 400; ++i)
+    line.emplace_back(0.05 * i, 0.0, 0.0);
+  std::vector<Eigen::Vector3d> epoch;  // a flat strip over the line, 2 wide
+  for (const Eigen::Vector3d& p : tiltedGrid(41, 0.0, 20.0, 0.0, 0.0))
+    epoch.emplace_back(p.x(), 0.05 * p.y() - 1.0, 0.0);
+  const HandMadePair pair(line, epoch);
+  for (const RobustMethod m : {RobustMethod::LMS, RobustMethod::MM, RobustMethod::MD})
+    for (const bool ls_start : {false, true}) {
+      const RobustMatchingReport r = pair(m, ls_start);
+      EXPECT_EQ(r.termination, TerminationType::TOO_FEW_OBSERVATIONS)
+          << toString(m) << (ls_start ? " (ls start): " : ": ") << r.message;
+      EXPECT_NE(r.message.find("degenerate"), std::string::npos) << toString(m) << ": " << r.message;
+      EXPECT_NE(r.message.find("collinear"), std::string::npos) << toString(m) << ": " << r.message;
+      EXPECT_EQ(r.message.find("no overlap"), std::string::npos) << toString(m) << ": " << r.message;
+      EXPECT_FALSE(r.isSolutionUsable());
+    }
+}
+
+// A sound reference without overlap is still no overlap on the same path: epoch beyond the
+// reference's box, and epoch over the box but beyond the correspondence distance (no
+// conjugate point on a plane that spans a surface).
+TEST(RobustMatching, NoOverlapOnASoundReferenceIsNoOverlap)
+{
+  const std::vector<Eigen::Vector3d> plane = tiltedGrid(41, 0.0, 20.0, 0.5, 0.0);
+  const HandMadePair beside(plane, tiltedGrid(21, 100.0, 10.0, 0.5, 0.0));
+  const HandMadePair above(plane, tiltedGrid(21, 0.0, 10.0, 0.5, 5.0));  // 5 over it, in its box
+  for (const RobustMethod m : {RobustMethod::LMS, RobustMethod::MM}) {
+    const RobustMatchingReport far = beside(m, false);
+    EXPECT_EQ(far.termination, TerminationType::NO_OVERLAP) << toString(m) << ": " << far.message;
+    EXPECT_NE(far.message.find("extent"), std::string::npos) << toString(m) << ": " << far.message;
+    const RobustMatchingReport none = above(m, false, 1.0);
+    EXPECT_EQ(none.termination, TerminationType::NO_OVERLAP) << toString(m) << ": " << none.message;
+    EXPECT_NE(none.message.find("found a conjugate point on the reference (no overlap)"), std::string::npos)
+        << toString(m) << ": " << none.message;
+    EXPECT_EQ(none.message.find("degenerate"), std::string::npos) << toString(m) << ": " << none.message;
+  }
 }

@@ -9,8 +9,11 @@
 
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <sys/wait.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -23,6 +26,7 @@ namespace {
 
 const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_convert";
 const std::string kInfoTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_info";
+const std::string kSegmentTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_segment";
 
 
 std::size_t
@@ -251,4 +255,41 @@ TEST_F(ConvertTool, InfoCountsSegmentsOfASegmentsFile)
   ASSERT_EQ(runInfo("-json " + dir_.file("SEGMENTS.pcd"), out, dir_), 0) << out;
   EXPECT_NE(out.find("\"segments\":{\"count\":260,\"points_in_none\":40}"), std::string::npos) << out;
   EXPECT_EQ(out.find("\"classes\""), std::string::npos) << out;
+}
+
+// pcl_ls3d_segment writes local float coordinates and keeps the origin in a header comment
+// (segments_file.h). Info gives the box in the LAS input's frame, not the local one (which
+// started near 0), and says the origin was applied.
+TEST_F(ConvertTool, InfoGivesASegmentsFileBoxInTheInputFrame)
+{
+  if (!fs::exists(kInfoTool) || !fs::exists(kSegmentTool))
+    FAIL() << kInfoTool << " or " << kSegmentTool << " is not built";
+  std::string out;
+  const std::string seg = dir_.file("SEGMENTS.pcd");
+  ASSERT_EQ(runProgram(kSegmentTool, dir_.file("in.las") + " -o " + seg, out, dir_), 0) << out;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(1e300), hi = -lo;
+  for (const auto& p : cloud_) {
+    lo = lo.cwiseMin(p.getVector3fMap().cast<double>() + origin_);
+    hi = hi.cwiseMax(p.getVector3fMap().cast<double>() + origin_);
+  }
+  ASSERT_EQ(runInfo("-json " + seg, out, dir_), 0) << out;
+  const nlohmann::json j = nlohmann::json::parse(out);
+  ASSERT_TRUE(j.contains("origin_applied")) << out;
+  EXPECT_GT(j["origin_applied"][0].get<double>(), 1e5) << out;
+  for (int k = 0; k < 3; ++k) {
+    // Floats within 400 m of the origin hold ~3e-5; the LAS file holds millimetres.
+    EXPECT_NEAR(j["min"][k].get<double>(), lo[k], 2e-3) << k << " " << out;
+    EXPECT_NEAR(j["max"][k].get<double>(), hi[k], 2e-3) << k << " " << out;
+  }
+  ASSERT_EQ(runInfo(seg, out, dir_), 0) << out;
+  EXPECT_NE(out.find("applied (local float coordinates in the file)"), std::string::npos) << out;
+  const std::size_t at = out.find("bounds min ");
+  ASSERT_NE(at, std::string::npos) << out;
+  Eigen::Vector3d text_lo;
+  ASSERT_EQ(std::sscanf(out.c_str() + at, "bounds min %lf %lf %lf", &text_lo[0], &text_lo[1], &text_lo[2]), 3);
+  EXPECT_LT((text_lo - lo).cwiseAbs().maxCoeff(), 2e-3) << out;
+
+  // A file without a recorded origin is reported as it is, and says nothing of one.
+  ASSERT_EQ(runInfo(dir_.file("in.las"), out, dir_), 0) << out;
+  EXPECT_EQ(out.find("applied"), std::string::npos) << out;
 }

@@ -11,6 +11,7 @@
 ///        re-linearise (relinearize(X̂)) when X̂ has moved far from X0. PCL-free; fit() and
 ///        residuals() are const and thread-safe.
 
+#include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
 #include <pcl_ls3d/adjustment/gauss_markov.h>
 #include <pcl_ls3d/adjustment/pair_matcher.h>
@@ -34,11 +35,13 @@ public:
   ///        epoch points whose image under `guess` falls over the reference's extent; its
   ///        output origin is their image (as the engine's pair set-up). The settings give the
   ///        parameter model (a-priori weights), the correspondence distance and the rank test.
-  /// \return false (and `why`) when no point overlaps or no point found a conjugate
+  /// \return false (and `why`, `failure`) when no point overlaps or no point found a conjugate:
+  ///         NO_OVERLAP, or TOO_FEW_OBSERVATIONS when the reference is degenerate (collinear or
+  ///         coincident) where the points lie over it, as the engine's pair adjustment says
   bool
   reset(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
         const ConjugateRule& rule, const AdjustmentSettings& settings, const Eigen::Matrix4d& guess,
-        std::string* why = nullptr);
+        std::string* why = nullptr, TerminationType* failure = nullptr);
 
   /// Matches every point again at X (reduced frame) and makes X the linearisation point.
   /// False when no observation is left.
