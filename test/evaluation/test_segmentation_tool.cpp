@@ -511,3 +511,21 @@ TEST_F(SegmentTool, FarOutlierIsWarnedAbout)
   EXPECT_EQ(clean.code, 0) << clean.err;
   EXPECT_EQ(clean.err.find("far outliers"), std::string::npos) << clean.err;
 }
+
+// The small scene (6 pulses per m² on ground and roof) thinned to every 8th point is below
+// 1 point per m²: the tool warns that objects will join before it runs; the scene itself is
+// dense enough and gets no such warning.
+TEST_F(SegmentTool, SparseDataIsWarnedAbout)
+{
+  pcl::PointCloud<pcl::PointXYZL> sparse;
+  for (std::size_t i = 0; i < scene_.size(); i += 8)
+    sparse.push_back(scene_[i]);
+  const fs::path in = dir_ / "sparse.pcd";
+  ASSERT_EQ(pcl::io::savePCDFileBinary(in.string(), sparse), 0);
+  const ToolResult thin = run(in.string());
+  EXPECT_EQ(thin.code, 0) << thin.err;
+  EXPECT_NE(thin.err.find("too sparse for whole objects"), std::string::npos) << thin.err;
+  const ToolResult dense = run(input_.string());
+  EXPECT_EQ(dense.code, 0) << dense.err;
+  EXPECT_EQ(dense.err.find("too sparse"), std::string::npos) << dense.err;
+}
