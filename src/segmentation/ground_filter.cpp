@@ -171,24 +171,39 @@ struct CellMoments
   double xx = 0.0, xy = 0.0, yy = 0.0, xz = 0.0, yz = 0.0;
 };
 
-std::vector<CellMoments>
+/// Moments of the cells that hold ground points, and per grid cell its entry (−1: none). Only
+/// occupied cells carry moments: a far outlier can stretch the grid to its 64 M-cell cap.
+struct GroundMoments
+{
+  std::vector<int> entry;
+  std::vector<CellMoments> cells;
+};
+
+GroundMoments
 groundMoments(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
               const LowestPointGrid& grid)
 {
-  std::vector<CellMoments> cells(static_cast<std::size_t>(grid.rows()) *
-                                 static_cast<std::size_t>(grid.cols()));
+  GroundMoments g;
+  g.entry.assign(static_cast<std::size_t>(grid.rows()) * static_cast<std::size_t>(grid.cols()), -1);
+  const auto cellOf = [&](std::size_t i) -> CellMoments& {
+    int& e = g.entry[static_cast<std::size_t>(grid.cellOf(points[i]))];
+    if (e < 0) {
+      e = static_cast<int>(g.cells.size());
+      g.cells.emplace_back();
+    }
+    return g.cells[static_cast<std::size_t>(e)];
+  };
   for (std::size_t i = 0; i < points.size(); ++i)
     if (ground[i]) {
-      CellMoments& c = cells[static_cast<std::size_t>(grid.cellOf(points[i]))];
+      CellMoments& c = cellOf(i);
       c.n += 1.0;
       c.mean += points[i].cast<double>();
     }
-  for (CellMoments& c : cells)
-    if (c.n > 0.0)
-      c.mean /= c.n;
+  for (CellMoments& c : g.cells)
+    c.mean /= c.n;
   for (std::size_t i = 0; i < points.size(); ++i)
     if (ground[i]) {
-      CellMoments& c = cells[static_cast<std::size_t>(grid.cellOf(points[i]))];
+      CellMoments& c = cellOf(i);
       const Eigen::Vector3d u = points[i].cast<double>() - c.mean;
       c.xx += u.x() * u.x();
       c.xy += u.x() * u.y();
@@ -196,7 +211,7 @@ groundMoments(const std::vector<Eigen::Vector3f>& points, const std::vector<char
       c.xz += u.x() * u.z();
       c.yz += u.y() * u.z();
     }
-  return cells;
+  return g;
 }
 
 }  // namespace
@@ -210,7 +225,7 @@ heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector
     return height;
   // Moments per cell make each query O(1): 3 x 3 cells of 2/3 half_width around the point.
   const LowestPointGrid grid(points, 2.0 * half_width / 3.0);
-  const std::vector<CellMoments> cells = groundMoments(points, ground, grid);
+  const GroundMoments moments = groundMoments(points, ground, grid);
   const double cell_area = grid.cell() * grid.cell();
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!wanted[i])
@@ -222,10 +237,11 @@ heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector
     const int c = grid.cellOf(points[i]), row = c / grid.cols(), col = c % grid.cols();
     for (int r = std::max(0, row - 1); r <= std::min(grid.rows() - 1, row + 1); ++r)
       for (int k = std::max(0, col - 1); k <= std::min(grid.cols() - 1, col + 1); ++k) {
-        const CellMoments& m = cells[static_cast<std::size_t>(r) * static_cast<std::size_t>(grid.cols()) +
-                                     static_cast<std::size_t>(k)];
-        if (m.n == 0.0)
+        const int e = moments.entry[static_cast<std::size_t>(r) * static_cast<std::size_t>(grid.cols()) +
+                                    static_cast<std::size_t>(k)];
+        if (e < 0)
           continue;
+        const CellMoments& m = moments.cells[static_cast<std::size_t>(e)];
         const Eigen::Vector2d d = m.mean.head<2>() - q;
         normal(0, 0) += m.n;
         normal(0, 1) += m.n * d.x();
