@@ -416,14 +416,14 @@ main(int argc, char** argv)
       return fail("-evaluate: no point of '" + input + "' carries a label of the evaluated classes");
   }
 
-  const std::string far = farOutlierWarning(*xyz);
-  if (!far.empty())
-    print_warn("Warning: %s\n", far.c_str());
   const std::string wkt = info.format == "las" ? maps::crsFromLasVlrs(info.las.vlrs) : "";
   const double metres_per_unit = maps::crsLinearUnit(wkt) > 0.0 ? maps::crsLinearUnit(wkt) : 1.0;
-  const std::string sparse = sparseDataWarning(*xyz, metres_per_unit);
-  if (!sparse.empty())
-    print_warn("Warning: %s\n", sparse.c_str());
+  json warnings = json::array();
+  for (const std::string& w : {farOutlierWarning(*xyz), sparseDataWarning(*xyz, metres_per_unit)})
+    if (!w.empty()) {
+      print_warn("Warning: %s\n", w.c_str());
+      warnings.push_back(w);
+    }
 
   // ---- segment (one method, or all four for -evaluate) ----------------------------------
   std::vector<ev::SegmentationMethod> methods{settings.method};
@@ -442,6 +442,7 @@ main(int argc, char** argv)
   report["origin"] = {info.origin.x(), info.origin.y(), info.origin.z()};
   report["level"] = settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
   report["seconds_load"] = t_load;
+  report["warnings"] = warnings;
   ev::ReferenceObjects objects;
   if (evaluate) {
     ev::ReferenceObjectSettings ro;

@@ -520,11 +520,15 @@ TEST_F(SegmentTool, SparseDataIsWarnedAbout)
   pcl::PointCloud<pcl::PointXYZL> sparse;
   for (std::size_t i = 0; i < scene_.size(); i += 8)
     sparse.push_back(scene_[i]);
-  const fs::path in = dir_ / "sparse.pcd";
+  const fs::path in = dir_ / "sparse.pcd", json = dir_ / "sparse.json";
   ASSERT_EQ(pcl::io::savePCDFileBinary(in.string(), sparse), 0);
-  const ToolResult thin = run(in.string());
+  const ToolResult thin = run(in.string() + " -json " + json.string());
   EXPECT_EQ(thin.code, 0) << thin.err;
   EXPECT_NE(thin.err.find("too sparse for whole objects"), std::string::npos) << thin.err;
+  std::ifstream report(json);
+  const nlohmann::json j = nlohmann::json::parse(report);
+  ASSERT_EQ(j["warnings"].size(), 1u);  // and the report keeps it
+  EXPECT_NE(j["warnings"][0].get<std::string>().find("too sparse"), std::string::npos);
   const ToolResult dense = run(input_.string());
   EXPECT_EQ(dense.code, 0) << dense.err;
   EXPECT_EQ(dense.err.find("too sparse"), std::string::npos) << dense.err;
