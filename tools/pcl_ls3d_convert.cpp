@@ -50,7 +50,10 @@ printHelp(const char* name)
   print_info("    -overwrite         : replace existing output files (never an input)\n");
   print_info("    -h                 : this help\n");
   print_info("Coordinates are shifted to a local origin on reading (double precision) and restored\n"
-             "on writing; the origin used is printed.\n");
+             "on writing; the origin used is printed. A PCD recording its origin in a\n"
+             "'# pcl_ls3d origin' header line (pcl_ls3d_segment's SEGMENTS.pcd) is read with it.\n"
+             "LAS and XYZ outputs hold file coordinates; PCD and PLY hold them as FLOAT64 when the\n"
+             "origin is not zero (as from a georeferenced LAS), else FLOAT32.\n");
 }
 
 /// Rejects options this tool does not know (pcl::console silently ignores them).
@@ -245,7 +248,9 @@ main(int argc, char** argv)
   if (info.xyz_unmapped_columns)
     print_info("Note: %zu column(s) of the XYZ input are not used (name them with -columns).\n",
                info.xyz_unmapped_columns);
-  print_info("Local origin (%s): ", load.use_origin ? "forced" : "auto");
+  print_info("Local origin (%s): ", load.use_origin            ? "forced"
+                                    : !info.file_origin.isZero() ? "recorded in the file"
+                                                                 : "auto");
   print_value("%.3f %.3f %.3f\n", info.origin[0], info.origin[1], info.origin[2]);
 
   if (!classes.empty()) {

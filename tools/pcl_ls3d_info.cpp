@@ -3,7 +3,7 @@
 ///        bounds, the LAS header, the classification histogram (a SEGMENTS.pcd: its segment
 ///        count) and the flight strips. Every file is reported; exit 1 if any failed to load.
 ///        Bounds are in the file's global frame: a PCD whose header records a pcl_ls3d origin
-///        (a SEGMENTS.pcd holds local floats) is shifted back by it, and the text says so.
+///        (a SEGMENTS.pcd holds local floats) is read in it by io::loadCloud, and the text says so.
 
 #include "tool_arguments.h"
 #include "tool_output.h"
@@ -75,13 +75,12 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   j["points_loaded"] = info.points_loaded;
   j["points_dropped_nonfinite"] = info.points_dropped_nonfinite;
   j["local_origin"] = vec(info.origin);
-  // A SEGMENTS.pcd stores local floats (a float cannot hold projected coordinates) and its
-  // origin in a header comment the reader does not see: without it the box is the local one.
-  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
-  if (info.format == "pcd" && pcl_ls3d::evaluation::readSegmentsOrigin(path, shift) && !shift.isZero())
-    j["origin_applied"] = vec(shift);
-  j["min"] = vec(info.min_file + shift);
-  j["max"] = vec(info.max_file + shift);
+  // A SEGMENTS.pcd stores local floats (a float cannot hold projected coordinates): the reader
+  // applied the origin its header records; say so, as the file itself is not in that frame.
+  if (!info.file_origin.isZero())
+    j["origin_applied"] = vec(info.file_origin);
+  j["min"] = vec(info.min_file);
+  j["max"] = vec(info.max_file);
   j["fields"] = info.fields;
   if (info.format == "xyz")
     j["xyz_unmapped_columns"] = info.xyz_unmapped_columns;
@@ -133,11 +132,14 @@ printText(const nlohmann::json& j)
              j["load_ms"].get<double>());
   const auto o = j["local_origin"].get<std::vector<double>>();
   const auto lo = j["min"].get<std::vector<double>>(), hi = j["max"].get<std::vector<double>>();
-  print_info("  local origin %.3f %.3f %.3f\n", o[0], o[1], o[2]);
+  // A recorded origin is the local origin too: one line, saying where it came from.
   if (j.contains("origin_applied")) {
     const auto f = j["origin_applied"].get<std::vector<double>>();
     print_info("  origin %.3f %.3f %.3f applied (local float coordinates in the file)\n", f[0], f[1],
                f[2]);
+  }
+  else {
+    print_info("  local origin %.3f %.3f %.3f\n", o[0], o[1], o[2]);
   }
   print_info("  bounds min %.3f %.3f %.3f  max %.3f %.3f %.3f\n", lo[0], lo[1], lo[2], hi[0], hi[1],
              hi[2]);

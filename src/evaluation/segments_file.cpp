@@ -3,18 +3,17 @@
 
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
+#include <pcl_ls3d/io/pcd_io.h>
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
 #include <limits>
-#include <sstream>
 
 namespace pcl_ls3d {
 namespace evaluation {
@@ -92,11 +91,10 @@ saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& c
   // PCDWriter has no way to add a comment line: write its header with ours after the first line.
   std::string header = pcl::PCDWriter().generateHeaderBinary(blob, Eigen::Vector4f::Zero(),
                                                               Eigen::Quaternionf::Identity());
-  char line[256];
-  std::snprintf(line, sizeof(line), "# pcl_ls3d origin %.17g %.17g %.17g\n%s\n", layout.origin.x(),
-                layout.origin.y(), layout.origin.z(), kSegmentsMarker);
+  // The origin line is io's, so that io::loadCloud() reads the file in the input's frame.
+  const std::string lines = io::pcdOriginLine(layout.origin) + "\n" + kSegmentsMarker + "\n";
   const std::size_t first = header.find('\n');
-  header.insert(first == std::string::npos ? 0 : first + 1, line);
+  header.insert(first == std::string::npos ? 0 : first + 1, lines);
   header += "DATA binary\n";  // generateHeaderBinary() stops before it, as writeBinary() adds it
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   f << header;
@@ -135,13 +133,7 @@ bool
 readSegmentsOrigin(const std::string& path, Eigen::Vector3d& origin)
 {
   return anyHeaderLine(path, [&origin](const std::string& line) {
-    std::istringstream is(line);
-    std::string hash, tag, key;
-    double x = 0, y = 0, z = 0;
-    if (!(is >> hash >> tag >> key >> x >> y >> z && hash == "#" && tag == "pcl_ls3d" && key == "origin"))
-      return false;
-    origin = Eigen::Vector3d(x, y, z);
-    return true;
+    return io::parsePcdOriginLine(line, origin) == io::PcdOriginLine::Origin;
   });
 }
 

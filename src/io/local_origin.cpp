@@ -42,7 +42,8 @@ fitsInFloat(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file,
 
 bool
 applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cloud,
-                 CloudInfo& info, const LoadOptions& options, std::string& error)
+                 CloudInfo& info, const LoadOptions& options, std::string& error,
+                 const Eigen::Vector3d& file_origin)
 {
   const std::size_t n = cloud.size();
   info.points_in_file = n;
@@ -65,20 +66,23 @@ applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cl
   info.points_dropped_nonfinite = n - kept;
   info.points_loaded = kept;
   if (kept > 0) {
-    info.min_file = lo;
-    info.max_file = hi;
+    info.min_file = lo + file_origin;
+    info.max_file = hi + file_origin;
   }
   info.origin = options.use_origin ? options.origin : chooseOrigin(info.min_file, info.max_file);
   if (kept > 0 && !fitsInFloat(info.min_file, info.max_file, info.origin, error)) {
     cloud.clear();
     return false;
   }
+  // x_local = stored + (file_origin - origin), as the LAS reader adds (offset - origin): when
+  // the origin is the recorded one the stored floats come back bit for bit.
+  const Eigen::Vector3d shift = file_origin - info.origin;
   for (std::size_t j = 0; j < kept; ++j) {
     const std::size_t i = keep[j];
     PointLiDAR p = cloud[i];
-    p.x = static_cast<float>(xyz[3 * i] - info.origin[0]);
-    p.y = static_cast<float>(xyz[3 * i + 1] - info.origin[1]);
-    p.z = static_cast<float>(xyz[3 * i + 2] - info.origin[2]);
+    p.x = static_cast<float>(xyz[3 * i] + shift[0]);
+    p.y = static_cast<float>(xyz[3 * i + 1] + shift[1]);
+    p.z = static_cast<float>(xyz[3 * i + 2] + shift[2]);
     cloud[j] = p;
   }
   cloud.resize(kept);

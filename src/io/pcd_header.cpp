@@ -4,6 +4,9 @@
 
 #include "pcd_header.h"
 
+#include <pcl_ls3d/io/pcd_io.h>
+
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -25,6 +28,20 @@ const auto& fail = pcdFail;
 constexpr std::size_t kMaxFields = 4096;
 constexpr std::uint64_t kMaxCount = 1u << 20;
 constexpr std::uint64_t kMaxU32 = std::numeric_limits<std::uint32_t>::max();
+
+/// The origin line's tokens: "#", "pcl_ls3d", "origin" and three finite numbers.
+PcdOriginLine
+parseOriginTokens(const std::vector<std::string_view>& t, Eigen::Vector3d& origin)
+{
+  if (t.size() < 3 || t[0] != "#" || t[1] != "pcl_ls3d" || t[2] != "origin")
+    return PcdOriginLine::NotOrigin;
+  Eigen::Vector3d o;
+  if (t.size() != 6 || !parseDouble(t[3], o[0]) || !parseDouble(t[4], o[1]) ||
+      !parseDouble(t[5], o[2]) || !o.allFinite())
+    return PcdOriginLine::Malformed;
+  origin = o;
+  return PcdOriginLine::Origin;
+}
 
 bool
 scalarOf(char kind, std::size_t size, Scalar& type)
@@ -162,6 +179,27 @@ finishHeader(PcdHeader& h, std::string& error)
   return true;
 }
 
+/// A comment line: records the origin if it is a "# pcl_ls3d origin" line (pcd_io.h); false only
+/// for a malformed or repeated one, whose origin cannot be trusted.
+bool
+originComment(const std::vector<std::string_view>& tokens, PcdHeader& h, std::string& error)
+{
+  Eigen::Vector3d origin;
+  switch (parseOriginTokens(tokens, origin)) {
+  case PcdOriginLine::NotOrigin:
+    return true;
+  case PcdOriginLine::Malformed:
+    return fail(error, "header: '# pcl_ls3d origin' is not followed by three finite numbers");
+  case PcdOriginLine::Origin:
+    break;
+  }
+  if (h.has_origin)
+    return fail(error, "header: '# pcl_ls3d origin' given twice");
+  h.has_origin = true;
+  h.origin = origin;
+  return true;
+}
+
 }  // namespace
 
 bool
@@ -175,6 +213,8 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
     const std::size_t end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text) : size;
     splitTokens(std::string_view(text + pos, end - pos), tokens);
     pos = nl ? end + 1 : size;
+    if (!tokens.empty() && tokens[0][0] == '#' && !originComment(tokens, h, error))
+      return false;
     if (tokens.empty() || tokens[0][0] == '#')
       continue;
     if (!headerLine(tokens, h, error))
@@ -189,5 +229,23 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
 
 
 }  // namespace detail
+
+std::string
+pcdOriginLine(const Eigen::Vector3d& origin)
+{
+  char line[128];
+  std::snprintf(line, sizeof(line), "# pcl_ls3d origin %.17g %.17g %.17g", origin.x(), origin.y(),
+                origin.z());
+  return line;
+}
+
+PcdOriginLine
+parsePcdOriginLine(std::string_view line, Eigen::Vector3d& origin)
+{
+  std::vector<std::string_view> tokens;
+  detail::splitTokens(line, tokens);
+  return detail::parseOriginTokens(tokens, origin);
+}
+
 }  // namespace io
 }  // namespace pcl_ls3d

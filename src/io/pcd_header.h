@@ -5,6 +5,8 @@
 
 #include "point_fields.h"
 
+#include <Eigen/Core>
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -31,6 +33,8 @@ struct PcdHeader
   std::size_t record = 0;  ///< bytes per point (binary)
   std::size_t packed = 0;  ///< bytes per point without "_" padding fields (binary_compressed)
   std::size_t values = 0;  ///< values per point (ASCII)
+  bool has_origin = false;  ///< a "# pcl_ls3d origin" line was read (pcd_io.h)
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< x_file = stored value + origin
 };
 
 /// Parses and checks the header; h.data_offset is the first byte after the DATA line.

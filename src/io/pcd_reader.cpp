@@ -181,7 +181,14 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
                              &xyz[3 * i]);
       }
   }
-  return detail::applyLocalOrigin(xyz, cloud, info, options, error);
+  // A recorded origin is the file's own local frame: kept unless another one is forced.
+  LoadOptions frame = options;
+  if (h.has_origin && !options.use_origin) {
+    frame.use_origin = true;
+    frame.origin = h.origin;
+  }
+  info.file_origin = h.origin;
+  return detail::applyLocalOrigin(xyz, cloud, info, frame, error, h.origin);
 }
 
 }  // namespace io

@@ -3,6 +3,7 @@
 ///        NaN handling, overwrite protection, isSameFile, format detection, strip tools.
 
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/pcd_io.h>
 #include <pcl_ls3d/io/strip_tools.h>
 
 #include "io/io_test_utils.h"
@@ -102,6 +103,53 @@ TEST(CloudIO, ForcedOriginIsUsed)
   EXPECT_EQ(info.origin, lo.origin);
   EXPECT_NEAR(back[0].x + lo.origin[0], truth[0][0], 1e-4);
   EXPECT_NEAR(back[0].z + lo.origin[2], truth[0][2], 1e-4);
+}
+
+// A PCD of local floats that records its origin (pcl_ls3d_segment's SEGMENTS.pcd) is read in
+// that frame, as a LAS file's offset is applied: the stored values come back unchanged as the
+// local coordinates, the origin and the bounds are the file's; a forced origin moves the points.
+TEST(CloudIO, RecordedPcdOriginIsTheLocalFrame)
+{
+  TempDir dir("ls3d_pcd_origin");
+  const Eigen::Vector3d recorded(512000.25, 5412000.0, 0.1 + 0.2);  // not a short decimal
+  std::ofstream(dir.file("s.pcd")) << "# .PCD v0.7\n" << io::pcdOriginLine(recorded) << "\n"
+                                   << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                      "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n"
+                                      "-1.1 2.7 0.3\n300.123 -401.9 12\n";
+  pcl::PointCloud<PointLiDAR> back;
+  io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(io::loadCloud(dir.file("s.pcd"), back, info, error)) << error;
+  ASSERT_EQ(back.size(), 2u);
+  EXPECT_EQ(info.origin, recorded);  // %.17g: the double comes back exactly
+  EXPECT_EQ(info.file_origin, recorded);
+  EXPECT_EQ(back[0].x, -1.1f);
+  EXPECT_EQ(back[1].y, -401.9f);
+  EXPECT_EQ(back[1].z, 12.f);
+  EXPECT_EQ(info.min_file, Eigen::Vector3d(-1.1, -401.9, 0.3) + recorded);  // ASCII: read in double
+
+  io::LoadOptions forced;
+  forced.use_origin = true;
+  forced.origin = Eigen::Vector3d(512100.0, 5412000.0, 0.0);
+  ASSERT_TRUE(io::loadCloud(dir.file("s.pcd"), back, info, error, forced)) << error;
+  EXPECT_EQ(info.origin, forced.origin);
+  EXPECT_EQ(info.file_origin, recorded);
+  EXPECT_NEAR(back[1].x, 300.123 + recorded[0] - forced.origin[0], 1e-5);
+
+  // An origin line that cannot be read would put the cloud in the wrong place: one error line.
+  for (const char* bad : {"# pcl_ls3d origin 1 2", "# pcl_ls3d origin 1 2 nan",
+                          "# pcl_ls3d origin 1 2 3 4"}) {
+    std::ofstream(dir.file("b.pcd")) << "# .PCD v0.7\n" << bad << "\nVERSION 0.7\nFIELDS x y z\n"
+                                        "SIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
+    EXPECT_FALSE(io::loadCloud(dir.file("b.pcd"), back, info, error)) << bad;
+    EXPECT_NE(error.find("'# pcl_ls3d origin' is not followed by three finite numbers"),
+              std::string::npos) << error;
+    EXPECT_EQ(error.find('\n'), std::string::npos) << error;
+  }
+  Eigen::Vector3d parsed;
+  EXPECT_EQ(io::parsePcdOriginLine("# another comment", parsed), io::PcdOriginLine::NotOrigin);
+  EXPECT_EQ(io::parsePcdOriginLine(io::pcdOriginLine(recorded), parsed), io::PcdOriginLine::Origin);
+  EXPECT_EQ(parsed, recorded);
 }
 
 TEST(CloudIO, AutoOriginRule)

@@ -5,6 +5,9 @@
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 
+#include <pcl/io/pcd_io.h>
+#include <pcl/point_types.h>
+
 #include "io/io_test_utils.h"
 
 #include <gtest/gtest.h>
@@ -13,11 +16,17 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <sstream>
+#include <vector>
 
 using namespace pcl_ls3d;
 namespace fs = std::filesystem;
@@ -50,6 +59,42 @@ runProgram(const std::string& tool, const std::string& args, std::string& output
   s << in.rdbuf();
   output = s.str();
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+/// A LAS file's point coordinates read from its bytes (public header fields and the first 12
+/// bytes of each record), not through pcl_ls3d's reader: the reference the tests compare with.
+std::vector<Eigen::Vector3d>
+rawLasCoordinates(const std::string& path)
+{
+  std::ifstream in(path, std::ios::binary);
+  const std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto get = [&b](std::size_t at, auto value) {
+    std::memcpy(&value, b.data() + at, sizeof(value));
+    return value;
+  };
+  const std::uint32_t first = get(96, std::uint32_t());
+  const std::uint16_t record = get(105, std::uint16_t());
+  const std::uint32_t n = get(107, std::uint32_t());
+  std::vector<Eigen::Vector3d> out;
+  for (std::uint32_t i = 0; i < n; ++i)
+    out.emplace_back(
+        get(first + i * record, std::int32_t()) * get(131, 0.0) + get(155, 0.0),
+        get(first + i * record + 4, std::int32_t()) * get(139, 0.0) + get(163, 0.0),
+        get(first + i * record + 8, std::int32_t()) * get(147, 0.0) + get(171, 0.0));
+  return out;
+}
+
+/// The origin from the "# pcl_ls3d origin X Y Z" header line, read as text.
+bool
+recordedOrigin(const std::string& path, Eigen::Vector3d& origin)
+{
+  std::ifstream in(path, std::ios::binary);
+  std::string line;
+  while (std::getline(in, line) && line.rfind("DATA", 0) != 0)
+    if (std::sscanf(line.c_str(), "# pcl_ls3d origin %lf %lf %lf", &origin[0], &origin[1],
+                    &origin[2]) == 3)
+      return true;
+  return false;
 }
 
 /// pcl_ls3d_convert with `args`.
@@ -283,6 +328,7 @@ TEST_F(ConvertTool, InfoGivesASegmentsFileBoxInTheInputFrame)
   }
   ASSERT_EQ(runInfo(seg, out, dir_), 0) << out;
   EXPECT_NE(out.find("applied (local float coordinates in the file)"), std::string::npos) << out;
+  EXPECT_EQ(out.find("local origin"), std::string::npos) << out;  // said once, not twice
   const std::size_t at = out.find("bounds min ");
   ASSERT_NE(at, std::string::npos) << out;
   Eigen::Vector3d text_lo;
@@ -292,4 +338,63 @@ TEST_F(ConvertTool, InfoGivesASegmentsFileBoxInTheInputFrame)
   // A file without a recorded origin is reported as it is, and says nothing of one.
   ASSERT_EQ(runInfo(dir_.file("in.las"), out, dir_), 0) << out;
   EXPECT_EQ(out.find("applied"), std::string::npos) << out;
+}
+
+// A SEGMENTS.pcd is read by loadCloud in the frame of the LAS it was made from, as that LAS is:
+// its floats are the local coordinates and the recorded origin is the origin, so that every tool
+// sees the projected coordinates (before, the origin was 0 and the points sat near (0, 0, 0)).
+TEST_F(ConvertTool, SegmentsFileLoadsInTheInputFrame)
+{
+  if (!fs::exists(kSegmentTool))
+    FAIL() << kSegmentTool << " is not built";
+  std::string out;
+  const std::string seg = dir_.file("SEGMENTS.pcd");
+  ASSERT_EQ(runProgram(kSegmentTool, dir_.file("in.las") + " -o " + seg, out, dir_), 0) << out;
+  Eigen::Vector3d recorded;
+  ASSERT_TRUE(recordedOrigin(seg, recorded));
+  const std::vector<Eigen::Vector3d> las = rawLasCoordinates(dir_.file("in.las"));
+  ASSERT_EQ(las.size(), cloud_.size());
+
+  pcl::PointCloud<PointLiDAR> loaded;
+  io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(io::loadCloud(seg, loaded, info, error)) << error;
+  EXPECT_EQ(info.origin, recorded);
+  ASSERT_EQ(loaded.size(), las.size());  // every point finite: input order, one for one
+  pcl::PointCloud<pcl::PointXYZRGBL> stored;  // what plain PCL reads
+  ASSERT_EQ(pcl::io::loadPCDFile(seg, stored), 0);
+  ASSERT_EQ(stored.size(), las.size());
+  std::size_t changed = 0, off = 0;  // counted: one failure line, not one per point
+  for (std::size_t i = 0; i < las.size(); ++i) {
+    changed += loaded[i].getVector3fMap() != stored[i].getVector3fMap();
+    const Eigen::Vector3d local = loaded[i].getVector3fMap().cast<double>();
+    for (int k = 0; k < 3; ++k) {
+      // The floats' rounding: half a step, at most 3e-5 within 400 m.
+      const double tolerance = std::max(std::abs(local[k]), 1.0) * std::numeric_limits<float>::epsilon();
+      if (!(std::abs(local[k] + info.origin[k] - las[i][k]) <= tolerance) && off++ == 0)
+        ADD_FAILURE() << "point " << i << " axis " << k << ": " << local[k] + info.origin[k]
+                      << " loaded, " << las[i][k] << " in the LAS";
+    }
+  }
+  EXPECT_EQ(changed, 0u) << "points whose loaded floats differ from the stored ones";
+  EXPECT_EQ(off, 0u) << "coordinates off, of " << 3 * las.size();
+}
+
+// pcl_ls3d_convert SEGMENTS.pcd out.las writes the projected coordinates, not the local ones.
+TEST_F(ConvertTool, SegmentsFileConvertsToLasInTheInputFrame)
+{
+  if (!fs::exists(kSegmentTool))
+    FAIL() << kSegmentTool << " is not built";
+  std::string out;
+  const std::string seg = dir_.file("SEGMENTS.pcd");
+  ASSERT_EQ(runProgram(kSegmentTool, dir_.file("in.las") + " -o " + seg, out, dir_), 0) << out;
+  ASSERT_EQ(run(seg + " " + dir_.file("out.las"), out, dir_), 0) << out;
+  EXPECT_NE(out.find("Local origin (recorded in the file)"), std::string::npos) << out;
+  const std::vector<Eigen::Vector3d> in = rawLasCoordinates(dir_.file("in.las"));
+  const std::vector<Eigen::Vector3d> back = rawLasCoordinates(dir_.file("out.las"));
+  ASSERT_EQ(back.size(), in.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < in.size(); ++i)
+    worst = std::max(worst, (back[i] - in[i]).cwiseAbs().maxCoeff());
+  EXPECT_LT(worst, 2e-3);  // float rounding 3e-5 and the 1 mm LAS quantum
 }

@@ -11,10 +11,12 @@
 /// not found by loadPCDFile into PointXYZRGBL: every point would load as (0, 0, 0)). The origin
 /// is written in the header as a comment line that PCL skips:
 ///   # pcl_ls3d origin X Y Z
-/// (%.17g, so the double comes back exactly) and readSegmentsOrigin() parses it back; a second
-/// comment line (kSegmentsMarker) says the labels are segment ids. Points
-/// whose input coordinates were not finite keep their place with NaN coordinates and label 0,
-/// so that the file lines up with the input point for point (is_dense false then).
+/// (io::pcdOriginLine(), %.17g, so the double comes back exactly); readSegmentsOrigin() parses it
+/// back, and io::loadCloud() reads the file in the input's frame (local floats, CloudInfo::origin
+/// = this origin, as for the LAS input). A second comment line (kSegmentsMarker) says the labels
+/// are segment ids. Points whose input coordinates were not finite keep their place with NaN
+/// coordinates and label 0, so that the file lines up with the input point for point (is_dense
+/// false then).
 
 #include <pcl/PointIndices.h>
 #include <pcl/point_cloud.h>

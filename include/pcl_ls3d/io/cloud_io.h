@@ -13,6 +13,9 @@
 /// Below 1e4 a float's step is <= 1 mm (rounding <= 0.5 mm), so small clouds (bunny, Kinect) are not
 /// shifted; a UTM tile is centred. Registering two clouds: load the first, then load the second with
 /// LoadOptions{use_origin = true, origin = info_first.origin} so both share one frame.
+/// A PCD that records its origin in its header (pcl_ls3d_segment's SEGMENTS.pcd, see pcd_io.h)
+/// holds local floats already: that origin is used instead of the rule, and its values come back
+/// unchanged as the local coordinates.
 ///
 /// Non-finite points. Points with a NaN/inf x, y or z are dropped by every reader and counted in
 /// CloudInfo::points_dropped_nonfinite; the result is always dense and unorganized (height 1).
@@ -101,6 +104,9 @@ struct CloudInfo
 {
   std::string format;                                ///< "las", "pcd", "ply", "xyz"
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< local origin subtracted from every point (double)
+  /// PCD: the origin its header records ("# pcl_ls3d origin", pcd_io.h; the file holds local
+  /// floats, x_file = stored value + file_origin); zero for any other file.
+  Eigen::Vector3d file_origin = Eigen::Vector3d::Zero();
   std::size_t points_in_file = 0, points_loaded = 0, points_dropped_nonfinite = 0;
   std::vector<std::size_t> nonfinite_indices;        ///< file indices of the dropped points, ascending
   Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units

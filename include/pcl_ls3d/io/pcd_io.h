@@ -11,12 +11,24 @@
 /// uncompressed size equal to POINTS x record size (and no more than LZF can expand); ASCII needs
 /// at least two bytes per value. A file that claims a billion points but holds ten fails there,
 /// with one line saying so, before any allocation. Fields mapped: see cloud_io.h / pcl_formats.h.
+///
+/// Recorded origin. A PCD that stores local float coordinates (pcl_ls3d_segment's SEGMENTS.pcd:
+/// a float cannot hold projected coordinates) records its origin in a header comment, which PCL
+/// skips:
+///   # pcl_ls3d origin X Y Z
+/// file coordinate = stored value + origin. readPcd() then returns the stored values as the
+/// local coordinates with CloudInfo::origin = CloudInfo::file_origin = that origin, as a LAS
+/// file's offset is applied (with LoadOptions::use_origin the points are moved to the forced
+/// origin instead). A malformed origin line, or a second one, fails the header.
 
 #include <pcl_ls3d/io/cloud_io.h>
+
+#include <Eigen/Core>
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string_view>
 
 namespace pcl_ls3d {
 namespace io {
@@ -26,6 +38,24 @@ namespace io {
 bool
 readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
         CloudInfo& info, std::string& error, const LoadOptions& options = {});
+
+/// \brief The header line that records `origin`, without a newline: "# pcl_ls3d origin X Y Z"
+///        with %.17g, so the doubles come back exactly.
+std::string
+pcdOriginLine(const Eigen::Vector3d& origin);
+
+/// What parsePcdOriginLine() found in a header line.
+enum class PcdOriginLine
+{
+  NotOrigin,  ///< another line (or another comment)
+  Origin,     ///< an origin line; the origin was set
+  Malformed   ///< "# pcl_ls3d origin" not followed by exactly three finite numbers
+};
+
+/// \brief Reads the origin from a PCD header line written by pcdOriginLine(); `origin` is left
+///        unchanged unless the result is PcdOriginLine::Origin.
+PcdOriginLine
+parsePcdOriginLine(std::string_view line, Eigen::Vector3d& origin);
 
 }  // namespace io
 }  // namespace pcl_ls3d
