@@ -2,9 +2,13 @@
 /// \brief Top-view PNG of a segmented or classified cloud, to look at a segmentation as a user
 ///        would: each pixel shows the highest point's colour, and pixels whose neighbour shows
 ///        another segment are darkened so segment borders (and fragmentation) are visible.
+///        The picture is framed as a map for people without the software: a margin with a
+///        scale bar, a north arrow (top view) or the side view's direction, a legend of the
+///        classes shown (class colours) and a one-line caption (segments or classes, points,
+///        view, pixel size); -plain writes the picture alone, as before the margin existed.
 ///
 /// Usage: render_top_view INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class]
-///                       [-crop x0,x1,y0,y1] [-view top|north|east|south|west] [-overwrite]
+///                       [-crop x0,x1,y0,y1] [-view top|north|east|south|west] [-plain] [-overwrite]
 ///   INPUT  SEGMENTS.pcd of pcl_ls3d_segment (x y z rgba label), or any cloud pcl_ls3d reads
 ///          (-by class colours by the LAS classification / PCD label with a fixed palette)
 ///   -pixel pixel size in cloud units (default 0.25)
@@ -15,12 +19,17 @@
 ///   -crop  keep only points with x0 ≤ x ≤ x1 and y0 ≤ y ≤ y1 (the file's local coordinates)
 ///   -view  top (default); or a side view looking north, east, south or west, the nearest
 ///          point per pixel shown (facades, storeys, what hangs under a roof)
+///   -plain the picture alone, without margin (pixel for pixel the map's picture area)
 /// Not run by CTest: a viewing aid for docs/BENCHMARKS.md.
 
 #include "../tools/tool_arguments.h"
 
+#include <pcl_ls3d/evaluation/segmentation_classes.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
+#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
+#include <pcl_ls3d/maps/map_rendering.h>
 #include <pcl_ls3d/maps/png_io.h>
 
 #include <pcl/console/parse.h>
@@ -31,6 +40,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -76,8 +86,17 @@ pcdHasField(const std::string& path, const std::string& field)
                      [&field](const pcl::PCLPointField& f) { return f.name == field; });
 }
 
+/// What the picture's colours, labels and coordinates mean, for the margin.
+struct Meaning
+{
+  bool class_palette = false;       ///< colours are classColour(label): legend of the classes
+  std::string labels = "classes";   ///< a label is one of the "segments", "labels" or "classes"
+  std::string unit = "m";           ///< of x and y; empty: geographic (no scale bar)
+  std::string crs;                  ///< name of the LAS file's CRS, empty when it declares none
+};
+
 bool
-loadSamples(const std::string& path, const std::string& by, std::vector<Sample>& out)
+loadSamples(const std::string& path, const std::string& by, std::vector<Sample>& out, Meaning& meaning)
 {
   // pcl_ls3d's reader first: it refuses empty, truncated and foreign files with one line
   // (PCL's PCD reader crashes on an empty file).
@@ -88,7 +107,16 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
     std::fprintf(stderr, "render_top_view: %s\n", error.c_str());
     return false;
   }
+  if (info.format == "las") {
+    // Metres unless the file's CRS says otherwise (US survey feet in some states).
+    const std::string wkt = pcl_ls3d::maps::crsFromLasVlrs(info.las.vlrs);
+    if (!wkt.empty()) {
+      meaning.crs = pcl_ls3d::maps::crsName(wkt);
+      meaning.unit = pcl_ls3d::maps::crsLinearUnitName(wkt);
+    }
+  }
   if (by != "class" && pcl_ls3d::io::fileExtension(path) == "pcd") {
+    meaning.labels = pcl_ls3d::evaluation::isSegmentsFile(path) ? "segments" : "labels";
     // Its rgba and label fields, which PointLiDAR does not carry; without colours, by label.
     const bool has_rgb = pcdHasField(path, "rgba") || pcdHasField(path, "rgb");
     if (by == "rgb" && !has_rgb)
@@ -109,6 +137,7 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
     return true;
   }
   // LAS, PLY, XYZ: the classification is the label.
+  meaning.class_palette = by != "label";
   for (const auto& p : lidar.points)
     out.push_back({p.x, p.y, p.z,
                    by == "label" ? pcl_ls3d::evaluation::segmentColour(p.classification)
@@ -155,11 +184,25 @@ struct Options
   double pixel = 0.25;
   int splat = 1;
   std::vector<double> crop;  ///< x0, x1, y0, y1, or empty
+  bool plain = false;        ///< the picture alone, as before the margin existed
 };
 
 constexpr const char* kUsage =
     "Usage: %s INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class] [-crop x0,x1,y0,y1]\n"
-    "       [-view top|north|east|south|west] [-overwrite]\n";
+    "       [-view top|north|east|south|west] [-plain] [-overwrite]\n"
+    "  A PNG of the highest point per pixel (side views: the nearest), segment borders darkened,\n"
+    "  in a margin with a scale bar in the cloud's unit (metres unless a LAS CRS says otherwise),\n"
+    "  a north arrow (top view) or the side view's direction, a legend of the classes shown\n"
+    "  (class colours) and a caption: segments (or classes), points, view and pixel size.\n"
+    "  INPUT   SEGMENTS.pcd of pcl_ls3d_segment, or any cloud pcl_ls3d reads (PCD, PLY, LAS, XYZ)\n"
+    "  -pixel  pixel size in cloud units (default 0.25)\n"
+    "  -splat  each point also paints the pixels within n of its own (default 1: 3 x 3)\n"
+    "  -by     rgb: the file's colours (default; LAS, PLY, XYZ: by class); label: a colour per\n"
+    "          label (segment, or class); class: ASPRS palette by classification / PCD label\n"
+    "  -crop   keep points with x0 <= x <= x1 and y0 <= y <= y1 (the file's local coordinates)\n"
+    "  -view   top (default), or a side view looking north, east, south or west\n"
+    "  -plain  the picture alone, without the margin\n"
+    "  -overwrite  replace an existing OUT.png\n";
 
 /// The options, checked before the input is read; false with a one-line reason.
 bool
@@ -167,13 +210,14 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
 {
   namespace tools = pcl_ls3d::tools;
   std::vector<std::string> files;
-  if (!tools::splitArguments(argc, argv, 1, {"-pixel", "-splat", "-by", "-crop", "-view"}, {"-overwrite"},
-                             files, why))
+  if (!tools::splitArguments(argc, argv, 1, {"-pixel", "-splat", "-by", "-crop", "-view"},
+                             {"-overwrite", "-plain"}, files, why))
     return false;
   if (files.size() != 2 || pcl_ls3d::io::fileExtension(files[1]) != "png")
     return (why = "expected INPUT OUT.png (see -h)").empty();
   o.input = files[0];
   o.output = files[1];
+  o.plain = pcl::console::find_switch(argc, argv, "-plain");
   long long splat = o.splat;
   if (!tools::numberOption(argc, argv, "-pixel", o.pixel, why) ||
       !tools::integerOption(argc, argv, "-splat", splat, why, 0, 50))
@@ -195,45 +239,12 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   return tools::checkOutputFile(o.output, {o.input}, pcl::console::find_switch(argc, argv, "-overwrite"), why);
 }
 
-}  // namespace
-
-int
-main(int argc, char** argv)
+/// The picture: highest point per pixel over [x0, x0 + w·pixel] × [y0, y0 + h·pixel], borders
+/// between labels darkened; `visible` gets the labels that own a pixel.
+pcl_ls3d::maps::Image
+renderPicture(const std::vector<Sample>& pts, double pixel, int splat, float x0, float y0, int w, int h,
+              std::set<std::uint32_t>& visible)
 {
-  if (pcl::console::find_switch(argc, argv, "-h") || pcl::console::find_switch(argc, argv, "--help")) {
-    std::printf(kUsage, argv[0]);
-    return 0;
-  }
-  Options o;
-  std::string why;
-  if (!parseOptions(argc, argv, o, why)) {
-    std::fprintf(stderr, "render_top_view: %s\n", why.c_str());
-    return 1;
-  }
-  const double pixel = o.pixel;
-  const int splat = o.splat;
-  const std::string& output = o.output;
-  std::vector<Sample> pts;
-  if (!loadSamples(o.input, o.by, pts))
-    return 1;
-  const std::vector<float> box(o.crop.begin(), o.crop.end());
-  crop(box, pts);
-  toView(o.view, pts);
-  if (pts.empty()) {
-    std::fprintf(stderr, "render_top_view: no finite point of '%s'%s\n", o.input.c_str(),
-                 o.crop.empty() ? "" : " inside -crop");
-    return 1;
-  }
-  float x0 = pts[0].x, x1 = x0, y0 = pts[0].y, y1 = y0;
-  for (const auto& p : pts) {
-    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
-    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-  }
-  const int w = static_cast<int>((x1 - x0) / pixel) + 1, h = static_cast<int>((y1 - y0) / pixel) + 1;
-  if (static_cast<double>(w) * h > 64e6) {
-    std::fprintf(stderr, "render_top_view: image %d x %d too large, raise -pixel\n", w, h);
-    return 1;
-  }
   // z-buffer: highest point per pixel; a point's own pixel beats its splats at equal height.
   std::vector<float> top(static_cast<std::size_t>(w) * h, -std::numeric_limits<float>::infinity());
   std::vector<const Sample*> owner(top.size(), nullptr);
@@ -260,6 +271,7 @@ main(int argc, char** argv)
       const Sample* s = owner[i];
       if (!s)
         continue;
+      visible.insert(s->label);
       bool border = false;
       for (const auto& [ox, oy] : {std::pair{1, 0}, std::pair{0, 1}}) {
         if (x + ox >= w || y + oy >= h)
@@ -272,12 +284,220 @@ main(int argc, char** argv)
       rgb[3 * i + 1] = static_cast<unsigned char>(((s->rgb >> 8) & 0xff) * f);
       rgb[3 * i + 2] = static_cast<unsigned char>((s->rgb & 0xff) * f);
     }
+  return image;
+}
+
+// Margin layout, in the spirit of maps::renderRasterMap (same margins, ink and frame).
+constexpr int kMargin = 16, kGap = 24, kSwatch = 14, kArrowHeight = 36;
+const pcl_ls3d::maps::Rgb kInk{30, 30, 30}, kFrame{90, 90, 90};
+
+/// The side panel's text for a side view: where it looks and what lies left and right.
+std::vector<std::string>
+viewLines(const std::string& view)
+{
+  if (view == "north")
+    return {"Looking north", "west left, east right"};
+  if (view == "east")
+    return {"Looking east", "north left, south right"};
+  if (view == "south")
+    return {"Looking south", "east left, west right"};
+  if (view == "west")
+    return {"Looking west", "south left, north right"};
+  return {};
+}
+
+/// \brief The margin's contents: right of the picture a north arrow or the view's direction
+///        and the class legend; below it the scale bar, a caption and the CRS.
+struct Margin
+{
+  std::vector<std::string> view_lines;  ///< empty: top view, north arrow
+  std::vector<std::uint32_t> classes;   ///< legend rows (class palette only), ascending
+  std::string caption, footer, unit;    ///< unit empty: no scale bar (geographic coordinates)
+};
+
+int
+legendRowHeight()
+{
+  return std::max(kSwatch, pcl_ls3d::maps::Image::lineHeight() + 4);
+}
+
+/// Width and height of the side panel.
+std::pair<int, int>
+panelSize(const Margin& m)
+{
+  using pcl_ls3d::maps::FontStyle;
+  using pcl_ls3d::maps::Image;
+  int w = 20, h = kArrowHeight;
+  if (!m.view_lines.empty()) {
+    w = std::max(Image::textWidth(m.view_lines[0], FontStyle::BOLD), Image::textWidth(m.view_lines[1]));
+    h = Image::lineHeight(FontStyle::BOLD) + Image::lineHeight();
+  }
+  if (!m.classes.empty()) {
+    h += 12 + Image::lineHeight(FontStyle::BOLD) + static_cast<int>(m.classes.size()) * legendRowHeight();
+    const int code_w = Image::textWidth(std::to_string(m.classes.back()));
+    for (std::uint32_t c : m.classes)
+      w = std::max(w, kSwatch + 12 + code_w +
+                          Image::textWidth(pcl_ls3d::evaluation::lasClassName(static_cast<int>(c))));
+  }
+  return {w, h};
+}
+
+void
+drawPanel(pcl_ls3d::maps::Image& img, int x, int y, const Margin& m)
+{
+  using pcl_ls3d::maps::FontStyle;
+  using pcl_ls3d::maps::Image;
+  using pcl_ls3d::maps::TextAlign;
+  if (m.view_lines.empty()) {
+    pcl_ls3d::maps::drawNorthArrow(img, x + 10, y);
+    y += kArrowHeight;
+  }
+  else {
+    img.drawText(x, y + Image::ascent(FontStyle::BOLD), m.view_lines[0], kInk, FontStyle::BOLD);
+    y += Image::lineHeight(FontStyle::BOLD);
+    img.drawText(x, y + Image::ascent(), m.view_lines[1], kInk);
+    y += Image::lineHeight();
+  }
+  if (m.classes.empty())
+    return;
+  y += 12;
+  img.drawText(x, y + Image::ascent(FontStyle::BOLD), "Classes", kInk, FontStyle::BOLD);
+  y += Image::lineHeight(FontStyle::BOLD);
+  const int code_w = Image::textWidth(std::to_string(m.classes.back()));
+  for (std::uint32_t c : m.classes) {
+    const std::uint32_t rgb = classColour(c);
+    // The swatch is the class's own colour, exactly as in the picture (tests find it there).
+    const pcl_ls3d::maps::Rgb colour{static_cast<std::uint8_t>(rgb >> 16),
+                                     static_cast<std::uint8_t>(rgb >> 8), static_cast<std::uint8_t>(rgb)};
+    img.fillRect(x, y + 2, kSwatch, 10, colour);
+    img.drawRect(x - 1, y + 1, kSwatch + 2, 12, kFrame);
+    const int base = y + 2 + Image::ascent() - 1;
+    img.drawText(x + kSwatch + 6 + code_w, base, std::to_string(c), kInk, FontStyle::REGULAR,
+                 TextAlign::RIGHT);
+    img.drawText(x + kSwatch + 12 + code_w, base,
+                 pcl_ls3d::evaluation::lasClassName(static_cast<int>(c)), kInk);
+    y += legendRowHeight();
+  }
+}
+
+/// The picture at (kMargin, kMargin), framed, with the margin around it; `bar` and `bar_y` say
+/// what scale bar was drawn where (printed, so that scripts and tests can find it).
+pcl_ls3d::maps::Image
+decorate(const pcl_ls3d::maps::Image& picture, double pixel, const Margin& m,
+         pcl_ls3d::maps::ScaleBar& bar, int& bar_y)
+{
+  using pcl_ls3d::maps::Image;
+  const int w = picture.width(), h = picture.height();
+  const auto [panel_w, panel_h] = panelSize(m);
+  const int line = Image::lineHeight();
+  int width = kMargin + w + kGap + panel_w + kMargin;
+  width = std::max(width, 2 * kMargin + std::max(Image::textWidth(m.caption), Image::textWidth(m.footer)));
+  const int below = kMargin + std::max(h, panel_h) + 12;  // top of the scale bar
+  const int height = below + (m.unit.empty() ? 0 : 30) + line + (m.footer.empty() ? 0 : line) + kMargin;
+  Image img(width, height);
+  for (int y = 0; y < h; ++y)
+    std::copy_n(picture.pixels().begin() + 3 * static_cast<std::ptrdiff_t>(y) * w, 3 * w,
+                img.pixels().begin() + 3 * (static_cast<std::ptrdiff_t>(kMargin + y) * width + kMargin));
+  img.drawRect(kMargin - 1, kMargin - 1, w + 2, h + 2, kFrame);
+  drawPanel(img, kMargin + w + kGap, kMargin, m);
+  int y = bar_y = below;
+  if (!m.unit.empty()) {
+    // At least a 160-pixel reference: under a small picture, "0" and the label would overlap.
+    bar = pcl_ls3d::maps::drawScaleBar(img, kMargin, y, std::max(w, 160), pixel, m.unit);
+    y += 30;
+  }
+  img.drawText(kMargin, y + Image::ascent(), m.caption, kInk);
+  y += line;
+  if (!m.footer.empty())
+    img.drawText(kMargin, y + Image::ascent(), m.footer, kFrame);
+  return img;
+}
+
+/// "12 segments, 9600 points, top view, pixel 0.25 m" (segments: label 0 is no segment).
+std::string
+caption(const std::vector<Sample>& pts, const Meaning& meaning, const std::string& view, double pixel)
+{
+  std::set<std::uint32_t> labels;
+  for (const auto& p : pts)
+    if (p.label != 0 || meaning.labels != "segments")
+      labels.insert(p.label);
+  char text[256];
+  const std::string where = view == "top" ? "top view" : "side view looking " + view;
+  std::snprintf(text, sizeof(text), "%zu %s, %zu points, %s, pixel %g%s%s", labels.size(),
+                meaning.labels.c_str(), pts.size(), where.c_str(), pixel,
+                meaning.unit.empty() ? "" : " ", meaning.unit.c_str());
+  return text;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  if (pcl::console::find_switch(argc, argv, "-h") || pcl::console::find_switch(argc, argv, "--help")) {
+    std::printf(kUsage, argv[0]);
+    return 0;
+  }
+  Options o;
+  std::string why;
+  if (!parseOptions(argc, argv, o, why)) {
+    std::fprintf(stderr, "render_top_view: %s\n", why.c_str());
+    return 1;
+  }
+  const double pixel = o.pixel;
+  std::vector<Sample> pts;
+  Meaning meaning;
+  if (!loadSamples(o.input, o.by, pts, meaning))
+    return 1;
+  const std::vector<float> box(o.crop.begin(), o.crop.end());
+  crop(box, pts);
+  toView(o.view, pts);
+  if (pts.empty()) {
+    std::fprintf(stderr, "render_top_view: no finite point of '%s'%s\n", o.input.c_str(),
+                 o.crop.empty() ? "" : " inside -crop");
+    return 1;
+  }
+  float x0 = pts[0].x, x1 = x0, y0 = pts[0].y, y1 = y0;
+  for (const auto& p : pts) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  }
+  const int w = static_cast<int>((x1 - x0) / pixel) + 1, h = static_cast<int>((y1 - y0) / pixel) + 1;
+  if (static_cast<double>(w) * h > 64e6) {
+    std::fprintf(stderr, "render_top_view: image %d x %d too large, raise -pixel\n", w, h);
+    return 1;
+  }
+  std::set<std::uint32_t> visible;
+  const pcl_ls3d::maps::Image picture = renderPicture(pts, pixel, o.splat, x0, y0, w, h, visible);
+  Margin m;
+  m.view_lines = viewLines(o.view);
+  if (meaning.class_palette)  // the classes that own a pixel: a hidden one would only confuse
+    m.classes.assign(visible.begin(), visible.end());
+  m.caption = caption(pts, meaning, o.view, pixel);
+  m.footer = meaning.crs.empty() ? "No CRS in the file: lengths in metres assumed" : meaning.crs;
+  m.unit = meaning.unit;
+  pcl_ls3d::maps::ScaleBar bar;
+  int bar_y = 0;
+  const pcl_ls3d::maps::Image image = o.plain ? picture : decorate(picture, pixel, m, bar, bar_y);
   std::string error;
-  if (!pcl_ls3d::maps::writePng(output, image, error)) {
+  if (!pcl_ls3d::maps::writePng(o.output, image, error)) {
     std::fprintf(stderr, "render_top_view: %s\n", error.c_str());
     return 1;
   }
-  std::printf("Wrote %s (%d x %d pixels of %.3g, %zu points, x %.1f..%.1f, y %.1f..%.1f)\n",
-              output.c_str(), w, h, pixel, pts.size(), x0, x1, y0, y1);
+  if (o.plain) {
+    std::printf("Wrote %s (%d x %d pixels of %.3g, %zu points, x %.1f..%.1f, y %.1f..%.1f)\n",
+                o.output.c_str(), w, h, pixel, pts.size(), x0, x1, y0, y1);
+    return 0;
+  }
+  std::printf("Wrote %s (%d x %d pixels; picture %d x %d pixels of %.3g at %d,%d, %zu points, "
+              "x %.1f..%.1f, y %.1f..%.1f)\n",
+              o.output.c_str(), image.width(), image.height(), w, h, pixel, kMargin, kMargin,
+              pts.size(), x0, x1, y0, y1);
+  std::printf("Caption: %s\n", m.caption.c_str());
+  if (bar.pixels > 0)
+    std::printf("Scale bar %g %s = %d px at %d,%d\n", bar.length, m.unit.c_str(), bar.pixels, kMargin, bar_y);
+  else
+    std::printf("No scale bar: %s\n",
+                m.unit.empty() ? "geographic coordinates" : "the picture is too narrow");
   return 0;
 }

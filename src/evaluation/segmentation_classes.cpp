@@ -40,6 +40,24 @@ parseCodes(const std::string& s, std::vector<int>& codes)
 }
 }  // namespace
 
+std::string
+lasClassName(int code)
+{
+  static const char* const kAsprs[] = {
+      "never classified", "unclassified", "ground", "low vegetation", "medium vegetation",
+      "high vegetation", "building", "low point (noise)", "model key point (LAS 1.0–1.3)", "water",
+      "rail", "road surface", "overlap (LAS 1.0–1.3)", "wire guard", "wire",
+      "transmission tower", "wire connector", "bridge deck", "high noise"};
+  if (code >= 0 && code < static_cast<int>(sizeof(kAsprs) / sizeof(kAsprs[0])))
+    return kAsprs[code];
+  switch (code) {  // IGN LiDAR HD, "sursol pérenne", "artefacts", "points virtuels"
+    case 64: return "user-defined (IGN: permanent structure)";
+    case 65: return "user-defined (IGN: artefact)";
+    case 66: return "user-defined (IGN: virtual point)";
+    default: return code >= 64 && code <= 255 ? "user-defined" : "reserved";
+  }
+}
+
 std::vector<ClassGroup>
 defaultClassGroups()
 {

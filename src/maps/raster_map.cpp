@@ -67,38 +67,6 @@ drawMap(Image& img, int x0, int y0, int w, int h, const Raster& r, double scale,
   img.drawRect(x0 - 1, y0 - 1, w + 2, h + 2, kFrame);
 }
 
-// A bar of about a quarter of the map width in ground units, alternating black and white.
-void
-drawScaleBar(Image& img, int x0, int y0, int map_w, double ground_per_pixel, const std::string& unit)
-{
-  const double target = map_w * ground_per_pixel / 4.0;
-  const double len = niceStep(target * 4.0, 4);
-  const int px = static_cast<int>(std::lround(len / ground_per_pixel));
-  if (px < 8)
-    return;
-  for (int k = 0; k < 4; ++k) {
-    const int a = x0 + k * px / 4, b = x0 + (k + 1) * px / 4;
-    img.fillRect(a, y0, b - a, 6, k % 2 ? kWhite : kInk);
-  }
-  img.drawRect(x0, y0, px, 6, kInk);
-  const int base = y0 + 8 + Image::ascent();
-  img.drawText(x0, base, "0", kInk, FontStyle::REGULAR, TextAlign::CENTRE);
-  char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g %s", len, unit.c_str());
-  img.drawText(x0 + px, base, buf, kInk, FontStyle::REGULAR, TextAlign::CENTRE);
-}
-
-void
-drawNorthArrow(Image& img, int cx, int top)
-{
-  const int h = 22;
-  for (int y = 0; y < h; ++y) {
-    const int half = y < 10 ? y / 2 : 2;
-    img.drawLine(cx - half, top + 14 + y, cx + half, top + 14 + y, kInk);
-  }
-  img.drawText(cx, top + 12, "N", kInk, FontStyle::BOLD, TextAlign::CENTRE);
-}
-
 // Vertical bar from max (top) to min (bottom) with tick labels to its right; returns its width.
 int
 drawColourBar(Image& img, int x0, int y0, int h, const ColourMap& c, const MapStyle& style)
@@ -193,6 +161,38 @@ renderRasterMap(const Raster& raster, const ColourMap& colours, const MapStyle& 
   if (!style.footer.empty())
     img.drawText(kMargin, by + Image::ascent(), style.footer, {90, 90, 90});
   return img;
+}
+
+ScaleBar
+drawScaleBar(Image& img, int x0, int y0, int map_w, double ground_per_pixel, const std::string& unit)
+{
+  const double target = map_w * ground_per_pixel / 4.0;
+  const double len = niceStep(target * 4.0, 4);
+  const int px = static_cast<int>(std::lround(len / ground_per_pixel));
+  if (px < 8)
+    return {};
+  for (int k = 0; k < 4; ++k) {
+    const int a = x0 + k * px / 4, b = x0 + (k + 1) * px / 4;
+    img.fillRect(a, y0, b - a, 6, k % 2 ? kWhite : kInk);
+  }
+  img.drawRect(x0, y0, px, 6, kInk);
+  const int base = y0 + 8 + Image::ascent();
+  img.drawText(x0, base, "0", kInk, FontStyle::REGULAR, TextAlign::CENTRE);
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%g %s", len, unit.c_str());
+  img.drawText(x0 + px, base, buf, kInk, FontStyle::REGULAR, TextAlign::CENTRE);
+  return {len, px};
+}
+
+void
+drawNorthArrow(Image& img, int cx, int top)
+{
+  const int h = 22;
+  for (int y = 0; y < h; ++y) {
+    const int half = y < 10 ? y / 2 : 2;
+    img.drawLine(cx - half, top + 14 + y, cx + half, top + 14 + y, kInk);
+  }
+  img.drawText(cx, top + 12, "N", kInk, FontStyle::BOLD, TextAlign::CENTRE);
 }
 
 double

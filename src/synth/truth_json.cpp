@@ -1,4 +1,5 @@
 #include <pcl_ls3d/synth/truth_json.h>
+#include <pcl_ls3d/evaluation/segmentation_classes.h>
 #include <pcl_ls3d/io/json_text.h>
 
 #include <nlohmann/json.hpp>
@@ -216,9 +217,10 @@ truthJson(const LabelledScene& scene, const SceneSettings& s)
                    {"low_max", s.low_max},
                    {"medium_max", s.medium_max},
                    {"car_class", s.car_class}};
-  j["classes"] = {{"2", "ground"},       {"3", "low vegetation"}, {"4", "medium vegetation"},
-                  {"5", "high vegetation"}, {"6", "building"},    {"14", "wire"},
-                  {"15", "transmission tower"}, {std::to_string(s.car_class), "car (user-defined)"}};
+  j["classes"] = json::object();
+  for (int code : {2, 3, 4, 5, 6, 14, 15})
+    j["classes"][std::to_string(code)] = evaluation::lasClassName(code);
+  j["classes"].emplace(std::to_string(s.car_class), "car (user-defined)");  // a standard code keeps its name
   j["counts"] = {{"points", scene.cloud->size()}, {"by_class", classCounts(*scene.cloud)}};
   j["objects"] = json::array();
   for (const auto& o : scene.objects)

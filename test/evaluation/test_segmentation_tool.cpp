@@ -533,3 +533,164 @@ TEST_F(SegmentTool, SparseDataIsWarnedAbout)
   EXPECT_EQ(dense.code, 0) << dense.err;
   EXPECT_EQ(dense.err.find("too sparse"), std::string::npos) << dense.err;
 }
+
+namespace {
+/// Where render_top_view put the picture in its map: "picture W x H pixels of P at X,Y".
+bool
+parsePicturePlacement(const std::string& out, int& w, int& h, int& x, int& y)
+{
+  const auto at = out.find("picture ");
+  double pixel = 0.0;
+  return at != std::string::npos &&
+         std::sscanf(out.c_str() + at, "picture %d x %d pixels of %lf at %d,%d", &w, &h, &pixel, &x, &y) == 5;
+}
+}  // namespace
+
+// render_top_view draws a map: the picture framed by a margin (scale bar, north arrow or the
+// side view's direction, legend or caption). The map is larger than the picture by the margin
+// on every side, and its picture area is pixel for pixel the -plain image, whose size is the
+// old one (the extent over the pixel size, plus one, in each direction).
+TEST_F(SegmentTool, TopViewMapFramesThePlainPictureUnchanged)
+{
+  const fs::path viewer = fs::path(PCL_LS3D_TOOL_DIR) / "render_top_view";
+  if (!fs::exists(viewer))
+    GTEST_SKIP() << "render_top_view not built (PCL_LS3D_BUILD_BENCHMARKS=OFF)";
+  const fs::path seg = dir_ / "SEGMENTS.pcd", plain_png = dir_ / "plain.png", map_png = dir_ / "map.png";
+  ASSERT_EQ(run(input_.string() + " -o " + seg.string()).code, 0);
+  tool_ = viewer;
+  const ToolResult plain_run = run(seg.string() + " " + plain_png.string() + " -plain");
+  ASSERT_EQ(plain_run.code, 0) << plain_run.err;
+  const ToolResult map_run = run(seg.string() + " " + map_png.string());
+  ASSERT_EQ(map_run.code, 0) << map_run.err;
+  pcl_ls3d::maps::Image plain, map;
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::maps::readPng(plain_png.string(), plain, error)) << error;
+  ASSERT_TRUE(pcl_ls3d::maps::readPng(map_png.string(), map, error)) << error;
+
+  pcl::PointCloud<pcl::PointXYZRGBL> cloud;
+  ASSERT_EQ(pcl::io::loadPCDFile(seg.string(), cloud), 0);
+  float x0 = cloud[0].x, x1 = x0, y0 = cloud[0].y, y1 = y0;
+  std::set<std::uint32_t> segments;
+  for (const auto& p : cloud) {
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+    if (p.label != 0)
+      segments.insert(p.label);
+  }
+  EXPECT_EQ(plain.width(), static_cast<int>((x1 - x0) / 0.25) + 1);
+  EXPECT_EQ(plain.height(), static_cast<int>((y1 - y0) / 0.25) + 1);
+
+  int w = 0, h = 0, ox = -1, oy = -1;
+  ASSERT_TRUE(parsePicturePlacement(map_run.out, w, h, ox, oy)) << map_run.out;
+  EXPECT_EQ(w, plain.width());
+  EXPECT_EQ(h, plain.height());
+  ASSERT_GT(ox, 0);
+  ASSERT_GT(oy, 0);
+  EXPECT_GE(map.width(), ox + plain.width() + ox);
+  EXPECT_GE(map.height(), oy + plain.height() + oy);
+  std::size_t differing = 0;
+  for (int y = 0; y < plain.height(); ++y)
+    for (int x = 0; x < plain.width(); ++x)
+      differing += !(map.get(ox + x, oy + y) == plain.get(x, y));
+  EXPECT_EQ(differing, 0u);
+  // The caption counts what the picture shows; a side view names its direction.
+  const std::string caption = "Caption: " + std::to_string(segments.size()) + " segments, " +
+                              std::to_string(cloud.size()) + " points, top view, pixel 0.25 m";
+  EXPECT_NE(map_run.out.find(caption), std::string::npos) << map_run.out;
+  const ToolResult side = run(seg.string() + " " + map_png.string() + " -overwrite -view north");
+  ASSERT_EQ(side.code, 0) << side.err;
+  EXPECT_NE(side.out.find("side view looking north"), std::string::npos) << side.out;
+}
+
+// -by class: the legend shows a swatch in the colour of each class in the picture, and none of
+// another class: a cloud of ground (2) and building (6) has exactly those two class colours in
+// its margin; the full scene adds high vegetation (5). Anti-aliased text and the frame are grey,
+// so no other pixel of the margin has a class colour.
+TEST_F(SegmentTool, TopViewClassLegendShowsTheClassesPresent)
+{
+  const fs::path viewer = fs::path(PCL_LS3D_TOOL_DIR) / "render_top_view";
+  if (!fs::exists(viewer))
+    GTEST_SKIP() << "render_top_view not built (PCL_LS3D_BUILD_BENCHMARKS=OFF)";
+  tool_ = viewer;
+  // The tool's ASPRS palette (render_top_view.cpp, classColour) of classes 2–6, 9, 14, 15, 64.
+  const std::map<int, std::uint32_t> palette = {{2, 0xa0785a}, {3, 0x9ad07a}, {4, 0x4caf50},
+                                                {5, 0x1b5e20}, {6, 0xd03030}, {9, 0x3070ff},
+                                                {14, 0xffe000}, {15, 0xff8c00}, {64, 0x2040c0}};
+  auto marginColours = [&](const fs::path& cloud) -> std::set<int> {
+    const fs::path png = dir_ / "classes.png";
+    const ToolResult r = run(cloud.string() + " " + png.string() + " -by class -overwrite");
+    EXPECT_EQ(r.code, 0) << r.err;
+    pcl_ls3d::maps::Image map;
+    std::string error;
+    EXPECT_TRUE(pcl_ls3d::maps::readPng(png.string(), map, error)) << error;
+    int w = 0, h = 0, ox = 0, oy = 0;
+    if (!parsePicturePlacement(r.out, w, h, ox, oy)) {
+      ADD_FAILURE() << "no picture placement (no margin) in: " << r.out;
+      return {};
+    }
+    std::set<int> found;
+    for (int y = 0; y < map.height(); ++y)
+      for (int x = 0; x < map.width(); ++x) {
+        if (x >= ox && x < ox + w && y >= oy && y < oy + h)
+          continue;  // the picture itself
+        const pcl_ls3d::maps::Rgb c = map.get(x, y);
+        for (const auto& [code, rgb] : palette)
+          if (c.r == (rgb >> 16 & 0xff) && c.g == (rgb >> 8 & 0xff) && c.b == (rgb & 0xff))
+            found.insert(code);
+      }
+    return found;
+  };
+  pcl::PointCloud<pcl::PointXYZL> two;
+  for (const auto& p : scene_)
+    if (p.label == 2 || p.label == 6)
+      two.push_back(p);
+  ASSERT_GT(two.size(), 1000u);
+  const fs::path two_pcd = dir_ / "ground_building.pcd";
+  ASSERT_EQ(pcl::io::savePCDFileBinary(two_pcd.string(), two), 0);
+  EXPECT_EQ(marginColours(two_pcd), (std::set<int>{2, 6}));
+  EXPECT_EQ(marginColours(input_), (std::set<int>{2, 5, 6}));
+}
+
+// The scale bar's label is a round length (1, 2 or 5 × 10^k m) and the bar is that length over
+// the pixel size, rounded to a pixel: as printed, and as drawn (its top edge is one dark run of
+// exactly that many pixels), also at 0.3 m pixels, where the ratio is not whole.
+TEST_F(SegmentTool, TopViewScaleBarMatchesItsLabel)
+{
+  const fs::path viewer = fs::path(PCL_LS3D_TOOL_DIR) / "render_top_view";
+  if (!fs::exists(viewer))
+    GTEST_SKIP() << "render_top_view not built (PCL_LS3D_BUILD_BENCHMARKS=OFF)";
+  tool_ = viewer;
+  const fs::path png = dir_ / "bar.png";
+  for (const double pixel : {0.25, 0.3}) {
+    const ToolResult r =
+        run(input_.string() + " " + png.string() + " -overwrite -pixel " + std::to_string(pixel));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto at = r.out.find("Scale bar ");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    double length = 0.0;
+    int pixels = 0, x = 0, y = 0;
+    char unit[8] = {};
+    ASSERT_EQ(std::sscanf(r.out.c_str() + at, "Scale bar %lf %7s = %d px at %d,%d", &length, unit,
+                          &pixels, &x, &y),
+              5)
+        << r.out;
+    EXPECT_STREQ(unit, "m");  // a PCD declares no CRS: metres
+    EXPECT_EQ(pixels, std::lround(length / pixel)) << length << " m at " << pixel;
+    const double mantissa = length / std::pow(10.0, std::floor(std::log10(length)));
+    EXPECT_TRUE(std::abs(mantissa - 1.0) < 1e-9 || std::abs(mantissa - 2.0) < 1e-9 ||
+                std::abs(mantissa - 5.0) < 1e-9)
+        << length;
+    pcl_ls3d::maps::Image map;
+    std::string error;
+    ASSERT_TRUE(pcl_ls3d::maps::readPng(png.string(), map, error)) << error;
+    auto dark = [&map](int px, int py) {
+      const pcl_ls3d::maps::Rgb c = map.get(px, py);
+      return c.r < 100 && c.g < 100 && c.b < 100;
+    };
+    int run_length = 0;
+    while (x + run_length < map.width() && dark(x + run_length, y))
+      ++run_length;
+    EXPECT_FALSE(dark(x - 1, y));
+    EXPECT_EQ(run_length, pixels) << "at " << pixel << " m pixels";
+  }
+}

@@ -9,6 +9,13 @@
 namespace pcl_ls3d {
 namespace evaluation {
 
+/// \brief The name of a LAS classification code for legends and reports: ASPRS LAS 1.4 R15
+///        codes 0–18 ("ground", "low vegetation", ..., "building", "water", "bridge deck"; 8 and
+///        12 as LAS 1.0–1.3 used them), "reserved" 19–63, "user-defined" 64–255 with the IGN
+///        LiDAR HD meaning of 64–66 added (other producers use them otherwise: cars in synth).
+std::string
+lasClassName(int code);
+
 /// \brief One evaluated class: a name and the reference label codes it gathers.
 struct ClassGroup
 {

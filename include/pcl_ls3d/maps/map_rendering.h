@@ -62,6 +62,25 @@ struct HistogramStyle
 Image
 renderHistogram(const std::vector<HistogramSeries>& series, const HistogramStyle& style);
 
+/// \brief What drawScaleBar() drew: a round length in ground units and its length in pixels
+///        (0: none, it would have been shorter than 8 pixels).
+struct ScaleBar
+{
+  double length = 0.0;
+  int pixels = 0;
+};
+
+/// Draws at (x, y) a scale bar of a round length (1, 2 or 5 × 10^k) near a quarter of
+/// `map_width` pixels: four black and white parts 6 px high, "0" and "length unit" under its
+/// ends; 30 px high in all. Used by renderRasterMap() and by pictures with their own layout.
+ScaleBar
+drawScaleBar(Image& image, int x, int y, int map_width, double ground_per_pixel,
+             const std::string& unit);
+
+/// Draws a bold "N" over an arrow pointing up, centred on x, 36 px high from y down.
+void
+drawNorthArrow(Image& image, int x, int y);
+
 /// A "nice" tick step (1, 2 or 5 × 10^k) giving about `count` ticks over `range`.
 double
 niceStep(double range, int count);
