@@ -423,8 +423,12 @@ caption(const std::vector<Sample>& pts, const Meaning& meaning, const std::strin
       labels.insert(p.label);
   char text[256];
   const std::string where = view == "top" ? "top view" : "side view looking " + view;
+  // "1 segment", "1 class", "1 label": the names are plurals ending in s.
+  const std::string name = labels.size() == 1 ? meaning.labels.substr(0, meaning.labels.size() -
+                                                  (meaning.labels == "classes" ? 2 : 1))
+                                              : meaning.labels;
   std::snprintf(text, sizeof(text), "%zu %s, %zu points, %s, pixel %g%s%s", labels.size(),
-                meaning.labels.c_str(), pts.size(), where.c_str(), pixel,
+                name.c_str(), pts.size(), where.c_str(), pixel,
                 meaning.unit.empty() ? "" : " ", meaning.unit.c_str());
   return text;
 }

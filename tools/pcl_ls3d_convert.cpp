@@ -249,7 +249,7 @@ main(int argc, char** argv)
     print_info("Note: %zu column(s) of the XYZ input are not used (name them with -columns).\n",
                info.xyz_unmapped_columns);
   print_info("Local origin (%s): ", load.use_origin            ? "forced"
-                                    : !info.file_origin.isZero() ? "recorded in the file"
+                                    : info.has_file_origin ? "recorded in the file"
                                                                  : "auto");
   print_value("%.3f %.3f %.3f\n", info.origin[0], info.origin[1], info.origin[2]);
 

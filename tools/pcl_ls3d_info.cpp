@@ -77,7 +77,7 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   j["local_origin"] = vec(info.origin);
   // A SEGMENTS.pcd stores local floats (a float cannot hold projected coordinates): the reader
   // applied the origin its header records; say so, as the file itself is not in that frame.
-  if (!info.file_origin.isZero())
+  if (info.has_file_origin)
     j["origin_applied"] = vec(info.file_origin);
   j["min"] = vec(info.min_file);
   j["max"] = vec(info.max_file);

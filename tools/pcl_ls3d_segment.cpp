@@ -295,7 +295,8 @@ farOutlierWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud)
 }
 
 /// Below about 2 points per m² a house or a crown is a handful of points, and the growth radius
-/// (2 spacings) spans the gaps between them: objects join. Measured on IGN tiles thinned at
+/// (2 k_min-th neighbour distances, about 4 mean spacings 1/√density) spans the gaps between
+/// them: objects join. Measured on IGN tiles thinned at
 /// random (docs/BENCHMARKS.md, "Sparse data"): said before the run, not discovered in the maps.
 std::string
 sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud, double metres_per_unit)
@@ -315,7 +316,7 @@ sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud, double metres_per
   const double spacing = 1.0 / std::sqrt(density);
   char buf[400];
   std::snprintf(buf, sizeof(buf),
-                "%.2g points per m² (mean spacing %.2f m): too sparse for whole objects; houses, "
+                "%.3g points per m² (mean spacing %.2f m): too sparse for whole objects; houses, "
                 "crowns and the ground closer than about 4 spacings join (on an IGN tile thinned "
                 "to 1.5 points per m², vegetation F1 fell from 0.89 to 0.34); object "
                 "segmentation wants at least 2-4 points per m²",
@@ -416,10 +417,15 @@ main(int argc, char** argv)
       return fail("-evaluate: no point of '" + input + "' carries a label of the evaluated classes");
   }
 
+  // Metres per unit: the LAS CRS's, else the tool's assumption of metres; a CRS without a
+  // linear unit (geographic degrees) gives no density to judge.
   const std::string wkt = info.format == "las" ? maps::crsFromLasVlrs(info.las.vlrs) : "";
-  const double metres_per_unit = maps::crsLinearUnit(wkt) > 0.0 ? maps::crsLinearUnit(wkt) : 1.0;
+  const double crs_unit = maps::crsLinearUnit(wkt);
+  const bool density_known = wkt.empty() || crs_unit > 0.0;
   json warnings = json::array();
-  for (const std::string& w : {farOutlierWarning(*xyz), sparseDataWarning(*xyz, metres_per_unit)})
+  for (const std::string& w :
+       {farOutlierWarning(*xyz),
+        density_known ? sparseDataWarning(*xyz, crs_unit > 0.0 ? crs_unit : 1.0) : std::string()})
     if (!w.empty()) {
       print_warn("Warning: %s\n", w.c_str());
       warnings.push_back(w);

@@ -132,9 +132,14 @@ isSegmentsFile(const std::string& path)
 bool
 readSegmentsOrigin(const std::string& path, Eigen::Vector3d& origin)
 {
-  return anyHeaderLine(path, [&origin](const std::string& line) {
-    return io::parsePcdOriginLine(line, origin) == io::PcdOriginLine::Origin;
+  // The first origin line decides, as for io::loadCloud (which refuses a malformed one).
+  bool found = false;
+  anyHeaderLine(path, [&](const std::string& line) {
+    const io::PcdOriginLine kind = io::parsePcdOriginLine(line, origin);
+    found = kind == io::PcdOriginLine::Origin;
+    return kind != io::PcdOriginLine::NotOrigin;
   });
+  return found;
 }
 
 }  // namespace evaluation

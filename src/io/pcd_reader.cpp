@@ -188,6 +188,7 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
     frame.origin = h.origin;
   }
   info.file_origin = h.origin;
+  info.has_file_origin = h.has_origin;
   return detail::applyLocalOrigin(xyz, cloud, info, frame, error, h.origin);
 }
 

@@ -4,11 +4,14 @@
 #include <pcl_ls3d/segmentation/ground_filter.h>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <limits>
+#include <unordered_map>
 
 namespace pcl_ls3d {
 namespace segmentation {
@@ -171,47 +174,57 @@ struct CellMoments
   double xx = 0.0, xy = 0.0, yy = 0.0, xz = 0.0, yz = 0.0;
 };
 
-/// Moments of the cells that hold ground points, and per grid cell its entry (−1: none). Only
-/// occupied cells carry moments: a far outlier can stretch the grid to its 64 M-cell cap.
-struct GroundMoments
+/// Cell key of (col, row) on a grid of edge \a cell from the origin: no cell count cap, so a
+/// far outlier neither enlarges the window nor costs memory (only occupied cells are stored).
+std::int64_t
+cellKey(std::int64_t col, std::int64_t row)
 {
-  std::vector<int> entry;
-  std::vector<CellMoments> cells;
-};
+  return col * 0x100000000LL + row;
+}
 
+/// Cell index of a coordinate in cells, clamped to ±2^30 so that cellKey cannot overflow (only
+/// absurd outliers are clamped; they share edge cells far from any terrain).
+std::int64_t
+cellIndex(double v)
+{
+  constexpr double kLimit = 1073741824.0;
+  return static_cast<std::int64_t>(std::floor(std::clamp(v, -kLimit, kLimit)));
+}
+
+using GroundMoments = std::unordered_map<std::int64_t, CellMoments>;
+
+/// Moments of the ground points per occupied cell; coordinates in cells about \a origin.
 GroundMoments
 groundMoments(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
-              const LowestPointGrid& grid)
+              const Eigen::Vector2d& origin, double cell)
 {
-  GroundMoments g;
-  g.entry.assign(static_cast<std::size_t>(grid.rows()) * static_cast<std::size_t>(grid.cols()), -1);
-  const auto cellOf = [&](std::size_t i) -> CellMoments& {
-    int& e = g.entry[static_cast<std::size_t>(grid.cellOf(points[i]))];
-    if (e < 0) {
-      e = static_cast<int>(g.cells.size());
-      g.cells.emplace_back();
-    }
-    return g.cells[static_cast<std::size_t>(e)];
+  GroundMoments moments;
+  const auto at = [&](std::size_t i) {
+    const Eigen::Vector2d c = (points[i].head<2>().cast<double>() - origin) / cell;
+    return Eigen::Vector3d(c.x(), c.y(), points[i].z());
   };
+  const auto keyOf = [](const Eigen::Vector3d& c) { return cellKey(cellIndex(c.x()), cellIndex(c.y())); };
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (ground[i]) {
-      CellMoments& c = cellOf(i);
-      c.n += 1.0;
-      c.mean += points[i].cast<double>();
+    if (ground[i] && points[i].allFinite()) {
+      const Eigen::Vector3d c = at(i);
+      CellMoments& m = moments[keyOf(c)];
+      m.n += 1.0;
+      m.mean += c;
     }
-  for (CellMoments& c : g.cells)
-    c.mean /= c.n;
+  for (auto& [key, m] : moments)
+    m.mean /= m.n;
   for (std::size_t i = 0; i < points.size(); ++i)
-    if (ground[i]) {
-      CellMoments& c = cellOf(i);
-      const Eigen::Vector3d u = points[i].cast<double>() - c.mean;
-      c.xx += u.x() * u.x();
-      c.xy += u.x() * u.y();
-      c.yy += u.y() * u.y();
-      c.xz += u.x() * u.z();
-      c.yz += u.y() * u.z();
+    if (ground[i] && points[i].allFinite()) {
+      const Eigen::Vector3d c = at(i);
+      CellMoments& m = moments[keyOf(c)];
+      const Eigen::Vector3d u = c - m.mean;
+      m.xx += u.x() * u.x();
+      m.xy += u.x() * u.y();
+      m.yy += u.y() * u.y();
+      m.xz += u.x() * u.z();
+      m.yz += u.y() * u.z();
     }
-  return g;
+  return moments;
 }
 
 }  // namespace
@@ -221,27 +234,34 @@ heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector
                    const std::vector<char>& wanted, double half_width)
 {
   std::vector<float> height(points.size(), std::numeric_limits<float>::quiet_NaN());
-  if (points.empty() || half_width <= 0.0)
+  if (points.empty() || !(half_width > 0.0) || ground.size() != points.size() ||
+      wanted.size() != points.size())
     return height;
-  // Moments per cell make each query O(1): 3 x 3 cells of 2/3 half_width around the point.
-  const LowestPointGrid grid(points, 2.0 * half_width / 3.0);
-  const GroundMoments moments = groundMoments(points, ground, grid);
-  const double cell_area = grid.cell() * grid.cell();
+  // Moments per cell make each query O(1): the 3 x 3 cells of 2/3 half_width around the point.
+  // Lengths in cells keep the normal equations unit-free.
+  const double cell = 2.0 * half_width / 3.0;
+  // Cells from the lowest x and y, as the filter's grid (LowestPointGrid) lays them.
+  Eigen::Vector2d origin = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  for (const Eigen::Vector3f& p : points)
+    if (p.allFinite())
+      origin = origin.cwiseMin(p.head<2>().cast<double>());
+  if (!origin.allFinite())
+    return height;
+  const GroundMoments moments = groundMoments(points, ground, origin, cell);
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!wanted[i])
+    if (!wanted[i] || !points[i].allFinite())
       continue;
     // Normal equations of z = a + b·dx + c·dy, d = offset from the point: its height is z − a.
     Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-    const Eigen::Vector2d q = points[i].head<2>().cast<double>();
-    const int c = grid.cellOf(points[i]), row = c / grid.cols(), col = c % grid.cols();
-    for (int r = std::max(0, row - 1); r <= std::min(grid.rows() - 1, row + 1); ++r)
-      for (int k = std::max(0, col - 1); k <= std::min(grid.cols() - 1, col + 1); ++k) {
-        const int e = moments.entry[static_cast<std::size_t>(r) * static_cast<std::size_t>(grid.cols()) +
-                                    static_cast<std::size_t>(k)];
-        if (e < 0)
+    const Eigen::Vector2d q = (points[i].head<2>().cast<double>() - origin) / cell;
+    const std::int64_t col = cellIndex(q.x()), row = cellIndex(q.y());
+    for (std::int64_t r = row - 1; r <= row + 1; ++r)
+      for (std::int64_t k = col - 1; k <= col + 1; ++k) {
+        const auto found = moments.find(cellKey(k, r));
+        if (found == moments.end())
           continue;
-        const CellMoments& m = moments.cells[static_cast<std::size_t>(e)];
+        const CellMoments& m = found->second;
         const Eigen::Vector2d d = m.mean.head<2>() - q;
         normal(0, 0) += m.n;
         normal(0, 1) += m.n * d.x();
@@ -252,13 +272,22 @@ heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector
         rhs += Eigen::Vector3d(m.n * m.mean.z(), m.xz + m.n * d.x() * m.mean.z(),
                                m.yz + m.n * d.y() * m.mean.z());
       }
-    if (normal(0, 0) < 6.0)
+    const double n = normal(0, 0);
+    if (n < 6.0)
+      continue;
+    // Ground points on a line or a strip narrower than about a third of a cell leave the slope
+    // across it to chance: no plane (their spread's smaller axis below 0.1 cell).
+    const Eigen::Vector2d mean_offset(normal(0, 1) / n, normal(0, 2) / n);
+    Eigen::Matrix2d spread;
+    spread << normal(1, 1) / n - mean_offset.x() * mean_offset.x(),
+        normal(1, 2) / n - mean_offset.x() * mean_offset.y(), 0.0,
+        normal(2, 2) / n - mean_offset.y() * mean_offset.y();
+    spread(1, 0) = spread(0, 1);
+    if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread, Eigen::EigenvaluesOnly)
+            .eigenvalues()(0) < 0.01)
       continue;
     normal.triangularView<Eigen::StrictlyLower>() = normal.transpose();
-    const Eigen::LDLT<Eigen::Matrix3d> fit(normal);
-    if (fit.info() != Eigen::Success || fit.vectorD().minCoeff() <= 1e-9 * normal(0, 0) * cell_area)
-      continue;  // collinear ground points: no plane
-    height[i] = static_cast<float>(static_cast<double>(points[i].z()) - fit.solve(rhs)(0));
+    height[i] = static_cast<float>(static_cast<double>(points[i].z()) - normal.ldlt().solve(rhs)(0));
   }
   return height;
 }

@@ -176,9 +176,10 @@ attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<Segm
   }
 }
 
-/// Points of a ground segment that the ground filter rejects (higher above the opened terrain
-/// than its noise allowance) are not ground: the foot of a hedge, low vegetation, a wall's foot
-/// that the planar growth carried along the terrain. They leave the segment as new segments, one
+/// Raised points of a ground segment (\a raised_point, from raisedPoints(): rejected by the
+/// ground filter, or clearly above the terrain plane around them) are not ground: the foot of a
+/// hedge, low vegetation, grass, a wall's foot that the planar growth carried along the
+/// terrain. They leave the segment as new segments, one
 /// per connected component of such points (k-NN links no longer than \a max_length), and are
 /// assembled like any other segment. \a labels stays dense.
 /// \return points detached
@@ -242,7 +243,7 @@ raisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<char>
       raised[p] = !ground[p];
       kept_on_ground[p] = ground[p] && limit > 0.0;
     }
-  if (limit <= 0.0)
+  if (!(limit > 0.0))  // also a NaN multiple or residual
     return raised;
   const std::vector<float> height = heightAboveTerrain(points, ground, kept_on_ground, half_width);
   for (std::size_t p = 0; p < points.size(); ++p)

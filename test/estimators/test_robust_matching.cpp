@@ -240,7 +240,7 @@ TEST(RobustMatching, DegenerateReferenceIsNamedNotNoOverlap)
   std::vector<Eigen::Vector3d> line;
   for (int i = 0; i <= 400; ++i)
     line.emplace_back(0.05 * i, 0.0, 0.0);
-  std::vector<Eigen::Vector3d> epoch;  // a flat strip over the line, 2 wide
+  std::vector<Eigen::Vector3d> epoch;  // a flat strip beside the line, y in [-1, 0]
   for (const Eigen::Vector3d& p : tiltedGrid(41, 0.0, 20.0, 0.0, 0.0))
     epoch.emplace_back(p.x(), 0.05 * p.y() - 1.0, 0.0);
   const HandMadePair pair(line, epoch);

@@ -2,6 +2,7 @@
 /// \brief loadCloud()/saveCloud(): UTM round trip to 1 mm through every writer, origin rules,
 ///        NaN handling, overwrite protection, isSameFile, format detection, strip tools.
 
+#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/pcd_io.h>
 #include <pcl_ls3d/io/strip_tools.h>
@@ -146,6 +147,25 @@ TEST(CloudIO, RecordedPcdOriginIsTheLocalFrame)
               std::string::npos) << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   }
+  // A malformed origin line before a good one: the reader of SEGMENTS files agrees with
+  // loadCloud (refused), and a zero origin is still a recorded one.
+  std::ofstream(dir.file("m.pcd")) << "# .PCD v0.7\n# pcl_ls3d origin 1 2\n"
+                                   << io::pcdOriginLine(recorded) << "\nVERSION 0.7\nFIELDS x y z\n"
+                                      "SIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
+  Eigen::Vector3d from_segments;
+  EXPECT_FALSE(io::loadCloud(dir.file("m.pcd"), back, info, error));
+  EXPECT_FALSE(evaluation::readSegmentsOrigin(dir.file("m.pcd"), from_segments));
+  std::ofstream(dir.file("z.pcd")) << "# .PCD v0.7\n" << io::pcdOriginLine(Eigen::Vector3d::Zero())
+                                   << "\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
+                                      "WIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
+  ASSERT_TRUE(io::loadCloud(dir.file("z.pcd"), back, info, error)) << error;
+  EXPECT_TRUE(info.has_file_origin);
+  pcl::PointCloud<pcl::PointXYZ> plain;
+  plain.push_back(pcl::PointXYZ(1.f, 2.f, 3.f));
+  ASSERT_EQ(pcl::io::savePCDFileASCII(dir.file("p.pcd"), plain), 0);
+  ASSERT_TRUE(io::loadCloud(dir.file("p.pcd"), back, info, error)) << error;
+  EXPECT_FALSE(info.has_file_origin);  // PCL's own PCD records none
+
   Eigen::Vector3d parsed;
   EXPECT_EQ(io::parsePcdOriginLine("# another comment", parsed), io::PcdOriginLine::NotOrigin);
   EXPECT_EQ(io::parsePcdOriginLine(io::pcdOriginLine(recorded), parsed), io::PcdOriginLine::Origin);

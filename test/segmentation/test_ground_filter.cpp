@@ -138,4 +138,32 @@ TEST(GroundFilter, HeightAboveTerrainFollowsTheTerrainPlane)
       heightAboveTerrain(line, on_line, std::vector<char>(line.size(), 1), 1.5);
   EXPECT_TRUE(std::isnan(h_line[20]));
   EXPECT_TRUE(std::isnan(h_line[21]));
+  // Sizes that do not match: nothing computed (no read past the end).
+  const std::vector<float> h_short = heightAboveTerrain(line, std::vector<char>(3, 1), on_line, 1.5);
+  EXPECT_TRUE(std::all_of(h_short.begin(), h_short.end(), [](float h) { return std::isnan(h); }));
+}
+
+// A stray point 100 km away, in both x and y, must not widen the window the terrain plane is
+// fitted in (the curved terrain would then pass for grass): every height stays as it was.
+TEST(GroundFilter, HeightAboveTerrainIgnoresAFarOutlier)
+{
+  std::mt19937 rng(4);
+  std::uniform_real_distribution<float> u(0.f, 40.f);
+  std::normal_distribution<float> noise(0.f, 0.03f);
+  std::vector<Eigen::Vector3f> pts;
+  for (int i = 0; i < 20000; ++i) {
+    const float x = u(rng), y = u(rng);
+    pts.emplace_back(x, y, terrain(x, y) + 3.f * std::sin(0.3f * x) + noise(rng));  // curved
+  }
+  std::vector<char> ground(pts.size(), 1), wanted(pts.size(), 1);
+  const std::vector<float> before = heightAboveTerrain(pts, ground, wanted, 1.5);
+  pts.emplace_back(1.0e5f, 1.0e5f, 0.f);
+  ground.push_back(1);
+  wanted.push_back(1);
+  const std::vector<float> after = heightAboveTerrain(pts, ground, wanted, 1.5);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < before.size(); ++i)
+    worst = std::max(worst, double(std::abs(after[i] - before[i])));
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_TRUE(std::isnan(after.back()));  // alone in its window
 }

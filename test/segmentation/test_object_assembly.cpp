@@ -365,10 +365,10 @@ struct Scene
 }  // namespace
 
 // Grass 15-28 cm high along a hedge and in a patch of a lawn: within the ground filter's
-// 0.3 m, so the filter keeps it and it stays in the ground segment. It stands 6 noise levels
-// (ground residual 0.01) above the terrain plane around it, so it leaves the ground: the strip
-// along the hedge joins the hedge, the patch becomes its own object, and the terrain stays one
-// ground object. With raised_noise_multiple 0 (the filter alone) both stay in the ground.
+// 0.3 m, so the filter keeps it and it stays in the ground segment. It stands 15-28 noise levels
+// (ground residual 0.01; the limit is 6) above the terrain plane around it, so it leaves the
+// ground: the strip along the hedge joins the hedge, the patch becomes its own object, and the
+// terrain stays one ground object. With raised_noise_multiple 0 (the filter alone) both stay in the ground.
 TEST(ObjectAssembly, GrassAboveTheTerrainPlaneLeavesTheGround)
 {
   std::mt19937 rng(7);

@@ -58,8 +58,9 @@ constexpr const char* kSegmentsMarker = "# pcl_ls3d segments: label = segment id
 bool
 isSegmentsFile(const std::string& path);
 
-/// \brief The origin from the "# pcl_ls3d origin" header line of \a path; false if the file has
-///        none (or cannot be read).
+/// \brief The origin from the first "# pcl_ls3d origin" header line of \a path; false if the
+///        file has none, that line is malformed (io::loadCloud refuses such a file too), or the
+///        file cannot be read.
 bool
 readSegmentsOrigin(const std::string& path, Eigen::Vector3d& origin);
 

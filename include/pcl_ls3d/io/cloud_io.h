@@ -107,6 +107,7 @@ struct CloudInfo
   /// PCD: the origin its header records ("# pcl_ls3d origin", pcd_io.h; the file holds local
   /// floats, x_file = stored value + file_origin); zero for any other file.
   Eigen::Vector3d file_origin = Eigen::Vector3d::Zero();
+  bool has_file_origin = false;  ///< the header records an origin (it may be zero)
   std::size_t points_in_file = 0, points_loaded = 0, points_dropped_nonfinite = 0;
   std::vector<std::size_t> nonfinite_indices;        ///< file indices of the dropped points, ascending
   Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units

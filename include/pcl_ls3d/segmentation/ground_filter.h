@@ -57,10 +57,12 @@ groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSetti
 ///        ground points (\a ground 1) in a square window about 2 \a half_width wide around each
 ///        (the 3 × 3 cells of side 2/3 \a half_width around its own). Finer than the filter's
 ///        opened surface, which keeps everything up to its initial distance above the lowest
-///        points.
+///        points. Non-finite points are skipped.
 /// \param[in] wanted per point: 1 to compute its height
-/// \return per point: height above that plane; NaN where not wanted or where fewer than six
-///         ground points, or only collinear ones, lie in the window
+/// \return per point: height above that plane; NaN where not wanted, where fewer than six
+///         ground points lie in the window, or where they lie along a line or a strip too thin
+///         to give the slope across it (spread below 0.1 cell); all NaN when the sizes of
+///         \a ground or \a wanted differ from \a points
 std::vector<float>
 heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
                    const std::vector<char>& wanted, double half_width);
