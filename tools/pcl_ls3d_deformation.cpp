@@ -9,6 +9,7 @@
 #include <pcl_ls3d/deformation/point_residual.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/json_text.h>
+#include <pcl_ls3d/io/pcd_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 #include <pcl_ls3d/search/flann_kd_tree.h>
@@ -16,6 +17,7 @@
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
+#include <pcl/conversions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/search/kdtree.h>
 
@@ -81,7 +83,8 @@ printHelp(const char* prog)
       "  -matching_points N   match on at most N evenly spread epoch points (default 50000; 0:\n"
       "                       all); residuals are computed for every point\n"
       "  -o RESIDUALS.pcd     one record per epoch point, epoch order: x y z (local coordinates,\n"
-      "                       origin in the JSON) residual sigma significant region; .xyz/.txt:\n"
+      "                       origin in the header and the JSON) residual sigma significant\n"
+      "                       region; .xyz/.txt:\n"
       "                       the same as text with full file coordinates\n"
       "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
       "                       coordinates), converged, parameters and sigmas (reduced frame about\n"
@@ -218,13 +221,10 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
     q.significant = r.field.significant[i];
     q.region = r.regions.region[i];
   }
-  try {  // PCL throws pcl::IOException where the file cannot be created (/proc, a directory)
-    if (pcl::io::savePCDFileBinary(path, out) == 0)
-      return true;
-  }
-  catch (const std::exception&) {
-  }
-  return (error = "cannot write " + path).empty();
+  // The origin in the header too (not only in -json), so the file keeps its frame on its own.
+  pcl::PCLPointCloud2 blob;
+  pcl::toPCLPointCloud2(out, blob);
+  return pcl_ls3d::io::savePcdBinaryWithOrigin(path, blob, origin, "", error);
 }
 
 

@@ -6,6 +6,7 @@
 #include <pcl_ls3d/io/pcd_io.h>
 
 #include <pcl/PCLPointCloud2.h>
+#include <pcl/conversions.h>
 #include <pcl/io/pcd_io.h>
 
 #include <algorithm>
@@ -64,47 +65,12 @@ saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& c
   pcl::PointCloud<pcl::PointXYZRGBL> out;
   if (!fileOrderCloud(cloud, segments, layout, out, error))
     return false;
-  // Packed fields (no padding), read by name into pcl::PointXYZRGBL.
+  // Packed by the writer (no padding), read by name into pcl::PointXYZRGBL.
   pcl::PCLPointCloud2 blob;
-  std::uint32_t offset = 0;
-  for (const char* name : {"x", "y", "z", "rgba", "label"}) {
-    pcl::PCLPointField field;
-    field.name = name;
-    field.offset = offset;
-    field.datatype = offset < 12 ? pcl::PCLPointField::FLOAT32 : pcl::PCLPointField::UINT32;
-    field.count = 1;
-    blob.fields.push_back(field);
-    offset += 4;
-  }
-  blob.point_step = offset;
-  blob.width = static_cast<std::uint32_t>(out.size());
-  blob.height = 1;
-  blob.row_step = blob.point_step * blob.width;
-  blob.is_dense = out.is_dense;
-  blob.data.resize(static_cast<std::size_t>(blob.row_step));
-  for (std::size_t i = 0; i < out.size(); ++i) {
-    std::uint8_t* d = blob.data.data() + i * blob.point_step;
-    std::memcpy(d, &out[i].x, 12);
-    std::memcpy(d + 12, &out[i].rgba, 4);
-    std::memcpy(d + 16, &out[i].label, 4);
-  }
-  // PCDWriter has no way to add a comment line: write its header with ours after the first line.
-  std::string header = pcl::PCDWriter().generateHeaderBinary(blob, Eigen::Vector4f::Zero(),
-                                                              Eigen::Quaternionf::Identity());
+  pcl::toPCLPointCloud2(out, blob);
   // The origin line is io's, so that io::loadCloud() reads the file in the input's frame.
-  const std::string lines = io::pcdOriginLine(layout.origin) + "\n" + kSegmentsMarker + "\n";
-  const std::size_t first = header.find('\n');
-  header.insert(first == std::string::npos ? 0 : first + 1, lines);
-  header += "DATA binary\n";  // generateHeaderBinary() stops before it, as writeBinary() adds it
-  std::ofstream f(path, std::ios::binary | std::ios::trunc);
-  f << header;
-  f.write(reinterpret_cast<const char*>(blob.data.data()),
-          static_cast<std::streamsize>(blob.data.size()));
-  if (!f) {
-    error = "cannot write '" + path + "'";
-    return false;
-  }
-  return true;
+  return io::savePcdBinaryWithOrigin(path, blob, layout.origin, kSegmentsMarker + std::string("\n"),
+                                     error);
 }
 
 namespace {

@@ -6,6 +6,7 @@
 #include <pcl_ls3d/deformation/point_residual.h>
 #include <pcl_ls3d/estimators/robust_matching.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
+#include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/geotiff_io.h>
 #include <pcl_ls3d/maps/png_io.h>
@@ -195,6 +196,14 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
   }
   EXPECT_GE(static_cast<double>(tp) / static_cast<double>(tp + fp), 0.95);
   EXPECT_GE(static_cast<double>(tp) / static_cast<double>(tp + fn), 0.9);
+  // The file records its origin in the header too: pcl_ls3d's reader puts it in the report's frame.
+  pcl::PointCloud<PointLiDAR> back;
+  io::CloudInfo info;
+  std::string load_error;
+  ASSERT_TRUE(io::loadCloud(s.file("res.pcd"), back, info, load_error)) << load_error;
+  EXPECT_TRUE(info.has_file_origin);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_EQ(info.file_origin[k], j["local_origin"][static_cast<std::size_t>(k)].get<double>());
 
   // The map: a PNG and a GeoTIFF with the CRS given (deformation/test_deformation_map.cpp checks
   // their content).

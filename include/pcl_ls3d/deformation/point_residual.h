@@ -2,7 +2,7 @@
 /// \file point_residual.h
 /// \brief The point type of a deformation result cloud, one record per epoch point in the
 ///        epoch's order: x, y, z (the epoch point, local coordinates: file coordinates minus the
-///        report's "local_origin"), residual and sigma (NaN when the point has no conjugate on
+///        report's "local_origin", which the PCD header records too, io/pcd_io.h), residual and sigma (NaN when the point has no conjugate on
 ///        the reference), significant (0/1) and region (> 0 a region id of the report, −1 an
 ///        isolated detection below the minimum region size, 0 none). A plain PCL program reads
 ///        it with pcl::io::loadPCDFile<pcl_ls3d::PointResidual> (or any cloud type with these

@@ -23,6 +23,8 @@
 
 #include <pcl_ls3d/io/cloud_io.h>
 
+#include <pcl/PCLPointCloud2.h>
+
 #include <Eigen/Core>
 
 #include <cstddef>
@@ -43,6 +45,17 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
 ///        with %.17g, so the doubles come back exactly.
 std::string
 pcdOriginLine(const Eigen::Vector3d& origin);
+
+/// \brief Writes \a cloud as a binary PCD (fields packed, no padding) whose header records
+///        \a origin (pcdOriginLine(), after PCL's first header line) and then \a comments (whole
+///        "# ..." lines, each ending in a newline; may be empty). The stored floats are local
+///        coordinates, file coordinate = stored + origin: io::loadCloud() reads the file in that
+///        frame, pcl::io::loadPCDFile() reads the floats as they are.
+/// \return false with a one-line reason (the file cannot be written, too few data bytes)
+bool
+savePcdBinaryWithOrigin(const std::string& path, const pcl::PCLPointCloud2& cloud,
+                        const Eigen::Vector3d& origin, const std::string& comments,
+                        std::string& error);
 
 /// What parsePcdOriginLine() found in a header line.
 enum class PcdOriginLine
