@@ -10,6 +10,7 @@
 #include "tool_arguments.h"
 #include "tool_output.h"
 
+#include <pcl_ls3d/common/voxel_index.h>
 #include <pcl_ls3d/evaluation/object_metrics.h>
 #include <pcl_ls3d/evaluation/reference_objects.h>
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
@@ -21,7 +22,6 @@
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/segmentation/dimensionality_features.h>
-#include <pcl_ls3d/segmentation/ground_filter.h>
 #include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/io/json_text.h>
 
@@ -302,14 +302,13 @@ std::string
 sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud, double metres_per_unit)
 {
   // Density over the 5 m cells that hold points: gaps (water, a cropped corner) do not count.
-  std::vector<Eigen::Vector3f> points;
+  std::vector<Eigen::Vector3d> points;
   points.reserve(cloud.size());
   for (const auto& p : cloud)
     points.emplace_back(p.x, p.y, p.z);
-  const segmentation::LowestPointGrid grid(points, 5.0 / metres_per_unit);
-  const auto occupied = static_cast<double>(std::count_if(
-      grid.lowest().begin(), grid.lowest().end(), [](float z) { return !std::isnan(z); }));
-  const double cell_m = grid.cell() * metres_per_unit;
+  const double cell = 5.0 / metres_per_unit;
+  const auto occupied = static_cast<double>(occupiedCells(points, 0, 1, cell));
+  const double cell_m = cell * metres_per_unit;
   const double density = static_cast<double>(cloud.size()) / (occupied * cell_m * cell_m);
   if (!(occupied > 0.0) || density >= 2.0)
     return "";

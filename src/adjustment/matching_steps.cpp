@@ -1,6 +1,7 @@
 #include "matching_steps.h"
 
 #include <pcl_ls3d/adjustment/surface_noise.h>
+#include <pcl_ls3d/rules/local_tin.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -87,17 +88,12 @@ neighbourhoodDegeneracy(const TargetSurface& target, const Eigen::Vector3d& quer
   const int n = target.nearestKSearch(query, 16, idx, sq);
   if (n <= 0)
     return "";
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
-  for (int i = 0; i < n; ++i)
-    mean += target.point(idx[static_cast<std::size_t>(i)]);
-  mean /= n;
-  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
-  for (int i = 0; i < n; ++i) {
-    const Eigen::Vector3d d = target.point(idx[static_cast<std::size_t>(i)]) - mean;
-    cov += d * d.transpose();
-  }
+  // The iterative solver, not tin::neighbourhoodPca's closed form: it resolves eigenvalues
+  // many orders below the largest, which the rounding tolerance below needs.
+  Eigen::Vector3d mean;
+  const Eigen::Matrix3d cov = tin::neighbourhoodCovariance(target, idx, n, mean);
   const Eigen::Vector3d spread =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov / n, Eigen::EigenvaluesOnly)
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly)
           .eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
   // 1e-5 of the neighbourhood's length, plus the rounding of float coordinates (~1e-7 of their
   // size: not 1e-5 of it, which is metres at projected coordinates).

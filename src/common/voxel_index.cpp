@@ -32,18 +32,24 @@ cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis)
   // The box overstates the footprint of a rotated or irregular cloud (a lake, a corridor):
   // refine with the area of the occupied cells, twice.
   const int a = (out.normal_axis + 1) % 3, b = (out.normal_axis + 2) % 3;
-  for (int pass = 0; pass < 2; ++pass) {
-    std::unordered_set<std::int64_t> cells;
-    for (const Eigen::Vector3d& p : points)
-      if (p.allFinite()) {
-        const std::int64_t u = voxelCoordinate(p[a], out.spacing);
-        const std::int64_t v = voxelCoordinate(p[b], out.spacing);
-        cells.insert(static_cast<std::int64_t>((static_cast<std::uint64_t>(u) << 32) ^
-                                                (static_cast<std::uint64_t>(v) & 0xffffffffu)));  // no UB for u < 0
-      }
-    out.spacing = std::sqrt(static_cast<double>(cells.size()) * out.spacing * out.spacing / static_cast<double>(n));
-  }
+  for (int pass = 0; pass < 2; ++pass)
+    out.spacing = std::sqrt(static_cast<double>(occupiedCells(points, a, b, out.spacing)) *
+                            out.spacing * out.spacing / static_cast<double>(n));
   return out;
+}
+
+std::size_t
+occupiedCells(const std::vector<Eigen::Vector3d>& points, int a, int b, double cell)
+{
+  std::unordered_set<std::int64_t> cells;
+  for (const Eigen::Vector3d& p : points)
+    if (p.allFinite()) {
+      const std::int64_t u = voxelCoordinate(p[a], cell);
+      const std::int64_t v = voxelCoordinate(p[b], cell);
+      cells.insert(static_cast<std::int64_t>((static_cast<std::uint64_t>(u) << 32) ^
+                                              (static_cast<std::uint64_t>(v) & 0xffffffffu)));  // no UB for u < 0
+    }
+  return cells.size();
 }
 
 std::int64_t

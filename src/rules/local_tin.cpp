@@ -10,13 +10,11 @@
 namespace pcl_ls3d {
 namespace tin {
 
-bool
-neighbourhoodPca(const TargetSurface& target, const std::vector<int>& indices, int count,
-                 Eigen::Vector3d& normal, Eigen::Vector3d& eigenvalues)
+Eigen::Matrix3d
+neighbourhoodCovariance(const TargetSurface& target, const std::vector<int>& indices, int count,
+                        Eigen::Vector3d& mean)
 {
-  if (count < 3)
-    return false;
-  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  mean = Eigen::Vector3d::Zero();
   for (int i = 0; i < count; ++i)
     mean += target.point(indices[static_cast<std::size_t>(i)]);
   mean /= count;
@@ -25,8 +23,18 @@ neighbourhoodPca(const TargetSurface& target, const std::vector<int>& indices, i
     const Eigen::Vector3d d = target.point(indices[static_cast<std::size_t>(i)]) - mean;
     cov.noalias() += d * d.transpose();
   }
+  return cov / count;
+}
+
+bool
+neighbourhoodPca(const TargetSurface& target, const std::vector<int>& indices, int count,
+                 Eigen::Vector3d& normal, Eigen::Vector3d& eigenvalues)
+{
+  if (count < 3)
+    return false;
+  Eigen::Vector3d mean;
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
-  es.computeDirect(cov / count);
+  es.computeDirect(neighbourhoodCovariance(target, indices, count, mean));
   eigenvalues = es.eigenvalues();
   // Degenerate when the neighbourhood is (nearly) a line: second eigenvalue ~ 0.
   if (!(eigenvalues[1] > 1e-12 * eigenvalues[2]))

@@ -191,10 +191,7 @@ detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector
 {
   origin.clear();
   const double max_sq = max_length * max_length;
-  const auto raised = [&](std::size_t p) {
-    return labels[p] >= 0 && raised_point[p] &&
-           kind[static_cast<std::size_t>(labels[p])] == SegmentKind::Ground;
-  };
+  const auto raised = [&](std::size_t p) { return raised_point[p] != 0; };  // ground segments only
   int next = static_cast<int>(kind.size());
   std::size_t detached = 0;
   std::vector<int> stack;

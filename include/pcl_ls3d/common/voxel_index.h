@@ -27,6 +27,11 @@ struct CloudSpacing
 CloudSpacing
 cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis = -1);
 
+/// \brief Number of distinct square cells of edge `cell` that the finite points occupy in the
+///        plane of axes `a` and `b` (0 x, 1 y, 2 z): the footprint's area is that times cell².
+std::size_t
+occupiedCells(const std::vector<Eigen::Vector3d>& points, int a, int b, double cell);
+
 /// Beyond 2^52 cells a double no longer resolves a whole cell, so coordinates stop there.
 constexpr std::int64_t kVoxelCoordinateLimit = std::int64_t{1} << 52;
 

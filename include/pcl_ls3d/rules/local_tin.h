@@ -20,6 +20,11 @@ bool
 planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count,
             Eigen::Vector3d& normal);
 
+/// Mean and covariance (divided by \a count) of the first \a count target points of \a indices.
+Eigen::Matrix3d
+neighbourhoodCovariance(const TargetSurface& target, const std::vector<int>& indices, int count,
+                        Eigen::Vector3d& mean);
+
 /// As planeNormal(), also giving the covariance eigenvalues (ascending: λ0 across the surface,
 /// λ1 ≤ λ2 its spread in the tangent plane).
 bool
