@@ -124,6 +124,18 @@ degenerateTarget(const std::vector<Eigen::Vector3d>& source, const std::vector<i
   return collinear ? "collinear" : "coincident";
 }
 
+std::string
+degenerateTargetReason(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& inside,
+                       const Eigen::Matrix4d& guess, const TargetSurface& target,
+                       const std::string& target_name, const std::string& source_name)
+{
+  const std::string degenerate = degenerateTarget(source, inside, guess, target);
+  if (degenerate.empty())
+    return "";
+  return "no observation: the " + target_name + " has no surface the rule can fit where the " +
+         source_name + " lies over it (degenerate: its points there are " + degenerate + ")";
+}
+
 Vector7d
 rankTestScaling(double radius)
 {

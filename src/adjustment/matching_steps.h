@@ -55,6 +55,15 @@ std::string
 degenerateTarget(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& inside,
                  const Eigen::Matrix4d& guess, const TargetSurface& target);
 
+/// The failure line for a degenerate target, in the caller's names for the two clouds ("target"
+/// and "source", "reference" and "epoch"): "no observation: the <target> has no surface the
+/// rule can fit where the <source> lies over it (degenerate: its points there are collinear)";
+/// "" when degenerateTarget() finds a surface.
+std::string
+degenerateTargetReason(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& inside,
+                       const Eigen::Matrix4d& guess, const TargetSurface& target,
+                       const std::string& target_name, const std::string& source_name);
+
 /// Column scaling of the rank test: a unit change of each scaled parameter displaces the edge
 /// of the data by about one unit.
 Vector7d

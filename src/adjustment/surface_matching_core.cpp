@@ -91,11 +91,10 @@ AdjustmentReport&
 noConjugatePoint(const std::vector<Eigen::Vector3d>& source, const Eigen::Matrix4d& guess,
                  const TargetSurface& target, const PairSetup& setup, AdjustmentReport& report)
 {
-  const std::string degenerate = degenerateTarget(source, setup.inside, guess, target);
+  const std::string degenerate =
+      degenerateTargetReason(source, setup.inside, guess, target, "target", "source");
   if (!degenerate.empty())
-    return fail(report, TerminationType::TOO_FEW_OBSERVATIONS,
-                "no observation: the target has no surface the rule can fit where the source lies "
-                "over it (degenerate: its points there are " + degenerate + ")");
+    return fail(report, TerminationType::TOO_FEW_OBSERVATIONS, degenerate);
   return fail(report, TerminationType::NO_OVERLAP, "the rule found no conjugate point on the target (no overlap)");
 }
 

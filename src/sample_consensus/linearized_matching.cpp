@@ -62,11 +62,10 @@ LinearizedMatching::reset(const std::vector<Eigen::Vector3d>& points, const Targ
   if (!relinearize(block_.values)) {
     // Points over the reference and still no conjugate point: a reference without a surface
     // there (collinear, coincident) is named as the engine names it, not taken for no overlap.
-    const std::string degenerate = detail::degenerateTarget(points, inside, guess, reference);
+    const std::string degenerate =
+        detail::degenerateTargetReason(points, inside, guess, reference, "reference", "epoch");
     if (!degenerate.empty())
-      return fail(TerminationType::TOO_FEW_OBSERVATIONS,
-                  "no observation: the reference has no surface the rule can fit where the epoch "
-                  "lies over it (degenerate: its points there are " + degenerate + ")");
+      return fail(TerminationType::TOO_FEW_OBSERVATIONS, degenerate);
     return fail(TerminationType::NO_OVERLAP,
                 "no epoch point found a conjugate point on the reference (no overlap)");
   }
