@@ -9,8 +9,9 @@
 ///
 /// Usage: render_top_view INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class]
 ///                       [-crop x0,x1,y0,y1] [-view top|north|east|south|west] [-plain] [-overwrite]
-///   INPUT  SEGMENTS.pcd of pcl_ls3d_segment (x y z rgba label), or any cloud pcl_ls3d reads
-///          (-by class colours by the LAS classification / PCD label with a fixed palette)
+///   INPUT  SEGMENTS.pcd of pcl_ls3d_segment (x y z rgba label [classification]), or any cloud
+///          pcl_ls3d reads (-by class colours by the LAS classification / PCD label with a fixed
+///          palette; a SEGMENTS.pcd by its objects' classes, legend with IMRG's class names)
 ///   -pixel pixel size in cloud units (default 0.25)
 ///   -splat each point also paints the pixels within n of its own (default 1: 3 × 3)
 ///   -by    rgb: the file's colours (default; a PCD without rgb/rgba: by label); label: a colour
@@ -26,6 +27,7 @@
 
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
+#include <pcl_ls3d/segmentation/object_classes.h>
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
@@ -93,6 +95,7 @@ struct Meaning
   std::string labels = "classes";   ///< a label is one of the "segments", "labels" or "classes"
   std::string unit = "m";           ///< of x and y; empty: geographic (no scale bar)
   std::string crs;                  ///< name of the LAS file's CRS, empty when it declares none
+  bool object_classes = false;      ///< classes are pcl_ls3d_segment's object classes
 };
 
 bool
@@ -114,6 +117,17 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
       meaning.crs = pcl_ls3d::maps::crsName(wkt);
       meaning.unit = pcl_ls3d::maps::crsLinearUnitName(wkt);
     }
+  }
+  if (by == "class" && pcl_ls3d::io::fileExtension(path) == "pcd" &&
+      pcl_ls3d::evaluation::isSegmentsFile(path)) {
+    // Its classification field holds the object classes; without one, the labels are ids.
+    if (!pcdHasField(path, "classification")) {
+      std::fprintf(stderr, "render_top_view: %s holds segment ids but no object classes (made with "
+                           "-mode mrg or pcl_rg, or by an older pcl_ls3d_segment): use "
+                           "-by rgb or -by label\n", path.c_str());
+      return false;
+    }
+    meaning.object_classes = true;
   }
   if (by != "class" && pcl_ls3d::io::fileExtension(path) == "pcd") {
     meaning.labels = pcl_ls3d::evaluation::isSegmentsFile(path) ? "segments" : "labels";
@@ -313,7 +327,25 @@ struct Margin
   std::vector<std::string> view_lines;  ///< empty: top view, north arrow
   std::vector<std::uint32_t> classes;   ///< legend rows (class palette only), ascending
   std::string caption, footer, unit;    ///< unit empty: no scale bar (geographic coordinates)
+  bool object_classes = false;          ///< legend names: IMRG's object classes, not ASPRS's
 };
+
+/// Legend name of a class code: a SEGMENTS.pcd holds IMRG's object classes (64 = car there).
+std::string
+className(const Margin& m, std::uint32_t code)
+{
+  using pcl_ls3d::segmentation::ObjectClass;
+  if (m.object_classes) {
+    if (code == 0)
+      return "no segment";
+    for (ObjectClass c : {ObjectClass::Unclassified, ObjectClass::Ground, ObjectClass::Building,
+                          ObjectClass::Vegetation, ObjectClass::Wire, ObjectClass::Pole,
+                          ObjectClass::Car})
+      if (pcl_ls3d::segmentation::lasCode(c) == code)
+        return pcl_ls3d::segmentation::toString(c);
+  }
+  return pcl_ls3d::evaluation::lasClassName(static_cast<int>(code));
+}
 
 int
 legendRowHeight()
@@ -337,7 +369,7 @@ panelSize(const Margin& m)
     const int code_w = Image::textWidth(std::to_string(m.classes.back()));
     for (std::uint32_t c : m.classes)
       w = std::max(w, kSwatch + 12 + code_w +
-                          Image::textWidth(pcl_ls3d::evaluation::lasClassName(static_cast<int>(c))));
+                          Image::textWidth(className(m, c)));
   }
   return {w, h};
 }
@@ -374,8 +406,7 @@ drawPanel(pcl_ls3d::maps::Image& img, int x, int y, const Margin& m)
     const int base = y + 2 + Image::ascent() - 1;
     img.drawText(x + kSwatch + 6 + code_w, base, std::to_string(c), kInk, FontStyle::REGULAR,
                  TextAlign::RIGHT);
-    img.drawText(x + kSwatch + 12 + code_w, base,
-                 pcl_ls3d::evaluation::lasClassName(static_cast<int>(c)), kInk);
+    img.drawText(x + kSwatch + 12 + code_w, base, className(m, c), kInk);
     y += legendRowHeight();
   }
 }
@@ -477,6 +508,7 @@ main(int argc, char** argv)
   m.view_lines = viewLines(o.view);
   if (meaning.class_palette)  // the classes that own a pixel: a hidden one would only confuse
     m.classes.assign(visible.begin(), visible.end());
+  m.object_classes = meaning.object_classes;
   m.caption = caption(pts, meaning, o.view, pixel);
   m.footer = meaning.crs.empty() ? "No CRS in the file: lengths in metres assumed" : meaning.crs;
   m.unit = meaning.unit;

@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 #include <set>
@@ -108,14 +109,18 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
     l["vlrs"] = vlrs;
     j["las"] = l;
   }
-  if (info.format == "pcd" && pcl_ls3d::evaluation::isSegmentsFile(path)) {
+  const bool segments = info.format == "pcd" && pcl_ls3d::evaluation::isSegmentsFile(path);
+  if (segments)
     j["segments"] = describeSegments(path);
-  } else {
+  // A SEGMENTS.pcd's own classification field holds its objects' classes (IMRG).
+  const bool has_classes = std::find(info.fields.begin(), info.fields.end(), "classification") !=
+                           info.fields.end();
+  if (!segments || has_classes) {
     std::map<int, std::size_t> classes;
     for (const auto& p : cloud)
       ++classes[p.classification];
     for (const auto& [c, n] : classes)
-      j["classes"][std::to_string(c)] = n;
+      j[segments ? "object_classes" : "classes"][std::to_string(c)] = n;
   }
   for (const auto& [id, idx] : pcl_ls3d::io::splitByPointSource(cloud))
     j["point_source_ids"][std::to_string(id)] = idx.size();
@@ -171,11 +176,17 @@ printText(const nlohmann::json& j)
       print_info("  labels are segment ids (pcl_ls3d_segment output), not classes: %zu segments, "
                  "%zu points in none\n", s["count"].get<std::size_t>(),
                  s["points_in_none"].get<std::size_t>());
-  } else {
+  }
+  for (const char* key : {"classes", "object_classes"}) {
+    if (!j.contains(key))
+      continue;
     std::string classes;
-    for (const auto& [c, n] : j["classes"].items())
+    for (const auto& [c, n] : j[key].items())
       classes += " " + c + ":" + std::to_string(n.get<std::size_t>());
-    print_info("  classes:%s\n", classes.c_str());
+    print_info("  %s:%s%s\n", key == std::string("classes") ? "classes" : "object classes (LAS codes)",
+               classes.c_str(),
+               key == std::string("classes") ? "" : " (2 ground, 6 building, 5 vegetation, 14 wire, "
+                                                    "15 pole, 64 car, 1 unclassified, 0 no segment)");
   }
   std::string strips;
   for (const auto& [id, n] : j["point_source_ids"].items())

@@ -22,6 +22,7 @@
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/segmentation/dimensionality_features.h>
+#include <pcl_ls3d/segmentation/object_classes.h>
 #include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/io/json_text.h>
 
@@ -39,6 +40,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -323,6 +325,42 @@ sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud, double metres_per
   return buf;
 }
 
+/// Objects and points per class of the segments (IMRG), e.g. "building 12 (30.2 %)", and
+/// the same as JSON: per class name {objects, points}.
+std::string
+classSummary(const std::vector<pcl::PointIndices>& segments,
+             const std::vector<segmentation::ObjectClass>& classes, std::size_t points, json& j)
+{
+  std::map<segmentation::ObjectClass, std::pair<std::size_t, std::size_t>> per;
+  for (std::size_t s = 0; s < segments.size() && s < classes.size(); ++s) {
+    ++per[classes[s]].first;
+    per[classes[s]].second += segments[s].indices.size();
+  }
+  std::string text;
+  j = json::object();
+  for (const auto& [c, n] : per) {
+    char buf[96];
+    std::snprintf(buf, sizeof(buf), "%s%s %zu (%.1f %%)", text.empty() ? "" : ", ",
+                  segmentation::toString(c), n.first,
+                  100.0 * static_cast<double>(n.second) / static_cast<double>(std::max<std::size_t>(points, 1)));
+    text += buf;
+    j[segmentation::toString(c)] = {{"objects", n.first}, {"points", n.second}};
+  }
+  return text;
+}
+
+/// Per point: the LAS code of its segment's class (0 in no segment), for the evaluation.
+std::vector<int>
+pointClassCodes(const std::vector<pcl::PointIndices>& segments,
+                const std::vector<segmentation::ObjectClass>& classes, std::size_t points)
+{
+  std::vector<int> codes(points, 0);
+  for (std::size_t s = 0; s < segments.size() && s < classes.size(); ++s)
+    for (const auto i : segments[s].indices)
+      codes[static_cast<std::size_t>(i)] = segmentation::lasCode(classes[s]);
+  return codes;
+}
+
 int
 fail(const std::string& msg)
 {
@@ -464,6 +502,8 @@ main(int argc, char** argv)
   std::vector<ev::SegmentationEvaluation> evaluations;
   std::vector<ev::ObjectEvaluation> object_evaluations;
   std::vector<pcl::PointIndices> selected;
+  std::vector<segmentation::ObjectClass> selected_classes;
+  std::vector<ev::SegmentationEvaluation> class_evaluations;
   std::size_t imrg_segments = 0;
   for (auto m : methods) {
     ev::SegmentationRunSettings s = settings;
@@ -519,11 +559,18 @@ main(int argc, char** argv)
     report["runs"].push_back(rj);
     if (m == settings.method) {
       selected = run.segments;
+      selected_classes = run.classes;
       if (run.rest_points > 0)  // pcl_rg's rest is for the evaluation only: no segment, label 0
         selected.pop_back();
       if (selected.empty())
         print_warn("%s: every point lies in a cluster under the minimum size: all labels 0\n",
                    ev::toString(m).c_str());
+    }
+    if (!run.classes.empty()) {
+      json classes;
+      print_info("%s classes: %s\n", ev::toString(m).c_str(),
+                 classSummary(run.segments, run.classes, cloud.size(), classes).c_str());
+      report["runs"].back()["classes"] = classes;
     }
     if (evaluate) {
       ev::SegmentationEvaluation e;
@@ -540,6 +587,17 @@ main(int argc, char** argv)
         return fail(error);
       report["object_evaluation"].push_back(objectEvaluationToJson(o));
       object_evaluations.push_back(o);
+      if (!run.classes.empty()) {
+        ev::SegmentationEvaluation c;
+        c.method = e.method + " classes";
+        c.seconds = e.seconds;
+        c.segments = run.segments.size();
+        if (!ev::evaluateClassification(pointClassCodes(run.segments, run.classes, cloud.size()),
+                                        reference, eval_settings, c, error))
+          return fail(error);
+        report["class_evaluation"].push_back(evaluationToJson(c));
+        class_evaluations.push_back(c);
+      }
     }
   }
   if (evaluate) {
@@ -567,6 +625,12 @@ main(int argc, char** argv)
     for (const auto& e : evaluations)
       if (e.failure.empty())
         print_info("%s confusion:\n%s", e.method.c_str(), ev::describeConfusion(e).c_str());
+    if (!class_evaluations.empty())
+      print_info("\nObject classes, per point precision / recall / F1 (%%): each point takes the "
+                 "class IMRG gave its object\n(no reference label used); unclassified counts as "
+                 "no prediction; %s.\n%s%s",
+                 excluded.c_str(), ev::formatSegmentationTable(class_evaluations).c_str(),
+                 ev::describeConfusion(class_evaluations.front()).c_str());
   }
 
   // ---- write -----------------------------------------------------------------------------
@@ -576,7 +640,10 @@ main(int argc, char** argv)
     layout.points_in_file = info.points_in_file;
     layout.nonfinite = info.nonfinite_indices;
     layout.origin = info.origin;
-    if (!ev::saveSegmentsPcd(out_pcd, *xyz, selected, layout, error))
+    std::vector<std::uint8_t> codes;
+    for (const auto c : selected_classes)
+      codes.push_back(segmentation::lasCode(c));
+    if (!ev::saveSegmentsPcd(out_pcd, *xyz, selected, layout, error, codes))
       return fail(error);
     const double t_write = tt.toc() / 1000.0;
     report["seconds_write"] = t_write;
@@ -585,6 +652,15 @@ main(int argc, char** argv)
                                {"coordinates", "float32, local: file coordinate = x + origin"},
                                {"origin", {info.origin.x(), info.origin.y(), info.origin.z()}},
                                {"label", "segment id + 1; 0 = no segment or non-finite input"}};
+    if (!codes.empty()) {
+      report["segments_file"]["classification"] =
+          "LAS code of the segment's object class: 2 ground, 6 building, 5 vegetation, 14 wire, "
+          "15 pole, 64 car, 1 unclassified; 0 = no segment";
+      json names = json::array();
+      for (const auto c : selected_classes)
+        names.push_back(segmentation::toString(c));
+      report["segment_classes"] = names;  // index = label - 1
+    }
     print_info("Wrote %s (%zu points in input order, %zu segments; local float coordinates, "
                "origin (%.3f, %.3f, %.3f) in its header) in %.3f s\n",
                out_pcd.c_str(), std::max(info.points_in_file, cloud.size()), selected.size(),

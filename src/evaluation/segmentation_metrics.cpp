@@ -31,6 +31,33 @@ majorityGroup(const pcl::PointIndices& seg, const std::vector<int>& ref_group, s
       best = g;
   return static_cast<int>(best);
 }
+/// Per group (and "other") from res.confusion: TP = diagonal; FP = rest of the column; FN =
+/// rest of the row (including "none").
+void
+scoreConfusion(const std::vector<ClassGroup>& groups, const std::vector<std::size_t>& segs_per_col,
+               SegmentationEvaluation& res)
+{
+  const std::size_t G = groups.size();
+  auto scoresOf = [&](std::size_t g, const std::string& name) {
+    ClassScores s;
+    s.name = name;
+    s.segments = segs_per_col.empty() ? 0 : segs_per_col[g];
+    for (std::size_t c = 0; c < G + 2; ++c)
+      s.reference_points += res.confusion[g][c];
+    for (std::size_t r = 0; r < G + 1; ++r)
+      s.predicted_points += res.confusion[r][g];
+    s.tp = res.confusion[g][g];
+    s.fp = s.predicted_points - s.tp;
+    s.fn = s.reference_points - s.tp;
+    computeScores(s);
+    return s;
+  };
+  res.classes.clear();
+  for (std::size_t g = 0; g < G; ++g)
+    res.classes.push_back(scoresOf(g, groups[g].name));
+  res.other = scoresOf(G, "other");
+}
+
 }  // namespace
 
 void
@@ -110,24 +137,43 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
       ++res.points_unsegmented;
   }
 
-  // TP = diagonal; FP = rest of the column; FN = rest of the row (including "none").
-  auto scoresOf = [&](std::size_t g, const std::string& name) {
-    ClassScores s;
-    s.name = name;
-    s.segments = segs_per_col[g];
-    for (std::size_t c = 0; c < G + 2; ++c)
-      s.reference_points += res.confusion[g][c];
-    for (std::size_t r = 0; r < G + 1; ++r)
-      s.predicted_points += res.confusion[r][g];
-    s.tp = res.confusion[g][g];
-    s.fp = s.predicted_points - s.tp;
-    s.fn = s.reference_points - s.tp;
-    computeScores(s);
-    return s;
-  };
-  for (std::size_t g = 0; g < G; ++g)
-    res.classes.push_back(scoresOf(g, settings.groups[g].name));
-  res.other = scoresOf(G, "other");
+  scoreConfusion(settings.groups, segs_per_col, res);
+  result = std::move(res);
+  return true;
+}
+
+bool
+evaluateClassification(const std::vector<int>& predicted_codes,
+                       const std::vector<int>& reference_labels,
+                       const SegmentationEvaluationSettings& settings,
+                       SegmentationEvaluation& result, std::string& error)
+{
+  const std::size_t n = reference_labels.size();
+  if (predicted_codes.size() != n) {
+    error = std::to_string(predicted_codes.size()) + " predicted classes for " +
+            std::to_string(n) + " reference labels";
+    return false;
+  }
+  const std::size_t G = settings.groups.size();
+  SegmentationEvaluation res;
+  res.method = result.method;
+  res.seconds = result.seconds;
+  res.points_total = n;
+  const ClassLookup lookup(settings.groups, settings.excluded_codes);
+  res.confusion.assign(G + 1, std::vector<std::size_t>(G + 2, 0));
+  for (std::size_t i = 0; i < n; ++i) {
+    const int ref = lookup.groupOf(reference_labels[i]);
+    if (ref == ClassLookup::kExcluded)
+      continue;
+    ++res.points_evaluated;
+    const int pred = lookup.groupOf(predicted_codes[i]);
+    const std::size_t col = pred == ClassLookup::kExcluded ? G + 1
+                            : pred == ClassLookup::kOther  ? G
+                                                           : static_cast<std::size_t>(pred);
+    res.points_unsegmented += col == G + 1;
+    ++res.confusion[ref == ClassLookup::kOther ? G : static_cast<std::size_t>(ref)][col];
+  }
+  scoreConfusion(settings.groups, {}, res);
   result = std::move(res);
   return true;
 }

@@ -44,6 +44,7 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   seg.extract(run.segments);
   run.seconds_segmentation = run.seconds_total = watch.getTimeSeconds();
   run.other_level = seg.getClusters(planes ? MRG::Level::Objects : MRG::Level::Planes);
+  run.classes = seg.getClusterClasses(planes ? MRG::Level::Planes : MRG::Level::Objects);
 
   run.residual_threshold = seg.getResidualThreshold();
   const auto& m = seg.getMergeReport();

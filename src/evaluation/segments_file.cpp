@@ -55,19 +55,51 @@ fileOrderCloud(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   return true;
 }
 
+/// Appends a UINT8 field "classification" to \a blob: per point the code of its label's
+/// segment (label − 1), 0 for points in no segment.
+void
+appendClassification(const pcl::PointCloud<pcl::PointXYZRGBL>& points,
+                     const std::vector<std::uint8_t>& segment_codes, pcl::PCLPointCloud2& blob)
+{
+  const std::size_t old_step = blob.point_step, n = points.size();
+  std::vector<std::uint8_t> data(n * (old_step + 1));
+  for (std::size_t i = 0; i < n; ++i) {
+    std::memcpy(&data[i * (old_step + 1)], &blob.data[i * old_step], old_step);
+    const std::uint32_t label = points[i].label;
+    data[i * (old_step + 1) + old_step] =
+        label > 0 && label <= segment_codes.size() ? segment_codes[label - 1] : 0;
+  }
+  pcl::PCLPointField field;
+  field.name = "classification";
+  field.offset = static_cast<std::uint32_t>(old_step);
+  field.datatype = pcl::PCLPointField::UINT8;
+  field.count = 1;
+  blob.fields.push_back(field);
+  blob.point_step = static_cast<std::uint32_t>(old_step + 1);
+  blob.row_step = blob.point_step * blob.width;
+  blob.data = std::move(data);
+}
+
 }  // namespace
 
 bool
 saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& cloud,
                 const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
-                std::string& error)
+                std::string& error, const std::vector<std::uint8_t>& segment_codes)
 {
+  if (!segment_codes.empty() && segment_codes.size() != segments.size()) {
+    error = "segments file: " + std::to_string(segment_codes.size()) + " class codes for " +
+            std::to_string(segments.size()) + " segments";
+    return false;
+  }
   pcl::PointCloud<pcl::PointXYZRGBL> out;
   if (!fileOrderCloud(cloud, segments, layout, out, error))
     return false;
   // Packed by the writer (no padding), read by name into pcl::PointXYZRGBL.
   pcl::PCLPointCloud2 blob;
   pcl::toPCLPointCloud2(out, blob);
+  if (!segment_codes.empty())
+    appendClassification(out, segment_codes, blob);
   // The origin line is io's, so that io::loadCloud() reads the file in the input's frame.
   return io::savePcdBinaryWithOrigin(path, blob, layout.origin, kSegmentsMarker + std::string("\n"),
                                      error);

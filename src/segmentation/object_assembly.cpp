@@ -319,6 +319,10 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   }
   for (const SegmentKind k : kind)
     ++rep.kind_count[static_cast<int>(k)];
+  rep.point_kind.assign(labels.size(), SegmentKind::Solid);
+  for (std::size_t p = 0; p < labels.size(); ++p)
+    if (labels[p] >= 0)
+      rep.point_kind[p] = kind[static_cast<std::size_t>(labels[p])];
 
   // Segments detached from the ground stand on the terrain: neither they nor a group holding
   // them sits on a roof (a hedge and its foot, a crown whose trunk reaches the ground).

@@ -145,6 +145,39 @@ TEST(SegmentationMetrics, BadInput)
   EXPECT_EQ(e.points_evaluated, 0u);
 }
 
+// Predicted classes point by point: a predicted code counts for its group (5 and 3 both for
+// vegetation), an unclassified prediction (1, excluded) is no prediction, a code in no group
+// (64) predicts "other"; reference points with excluded codes are left out.
+TEST(SegmentationMetrics, ClassificationPointByPoint)
+{
+  //  point:       0  1  2  3  4  5  6  7  8
+  //  reference:   2  2  2  6  6  6  3  5  1
+  //  predicted:   2  2  6  6  6  1  5 64  6
+  const std::vector<int> reference{2, 2, 2, 6, 6, 6, 3, 5, 1};
+  const std::vector<int> predicted{2, 2, 6, 6, 6, 1, 5, 64, 6};
+  SegmentationEvaluation e;
+  std::string err;
+  ASSERT_TRUE(evaluateClassification(predicted, reference, {}, e, err)) << err;
+  ASSERT_EQ(e.classes.size(), 4u);
+  EXPECT_EQ(e.points_evaluated, 8u);
+  EXPECT_EQ(e.points_unsegmented, 1u);  // point 5
+  // ground: TP 2, FP 0, FN 1 (point 2 predicted building).
+  EXPECT_EQ(e.classes[0].tp, 2u);
+  EXPECT_EQ(e.classes[0].fp, 0u);
+  EXPECT_EQ(e.classes[0].fn, 1u);
+  // building: TP 2 (3, 4), FP 1 (point 2; point 8 is excluded), FN 1 (point 5, none).
+  EXPECT_EQ(e.classes[1].tp, 2u);
+  EXPECT_EQ(e.classes[1].fp, 1u);
+  EXPECT_EQ(e.classes[1].fn, 1u);
+  EXPECT_NEAR(e.classes[1].f1, 4.0 / 6.0, 1e-12);
+  // vegetation: TP 1 (point 6), FN 1 (point 7 predicted "other").
+  EXPECT_EQ(e.classes[2].tp, 1u);
+  EXPECT_EQ(e.classes[2].fn, 1u);
+  EXPECT_EQ(e.other.predicted_points, 1u);
+  EXPECT_FALSE(evaluateClassification({2, 2}, reference, {}, e, err));
+  EXPECT_NE(err.find("2 predicted classes for 9 reference labels"), std::string::npos) << err;
+}
+
 TEST(SegmentationClasses, Parser)
 {
   std::vector<ClassGroup> g;

@@ -77,6 +77,18 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
                      const SegmentationEvaluationSettings& settings,
                      SegmentationEvaluation& result, std::string& error);
 
+/// \brief Scores predicted classes point by point (IMRG's object classes, as LAS codes): a point
+///        is predicted as the group holding its predicted code; a predicted code in no group is
+///        predicted "other", an excluded one (0, 1: unclassified) "none" (a false negative of
+///        the point's class). Reference points with excluded codes are left out, as above.
+///        `segments` and segment counts stay 0; points_unsegmented counts points predicted none.
+/// \return false with a one-line reason (sizes differ) in `error`
+bool
+evaluateClassification(const std::vector<int>& predicted_codes,
+                       const std::vector<int>& reference_labels,
+                       const SegmentationEvaluationSettings& settings,
+                       SegmentationEvaluation& result, std::string& error);
+
 /// \brief Scores from counts: the rules of ClassScores (exposed for tests and tools).
 void
 computeScores(ClassScores& s);

@@ -5,6 +5,8 @@
 ///        or the voxel-grid baseline. Shared by pcl_ls3d_segment, the benchmark and the tests so
 ///        all three run the same thing.
 
+#include <pcl_ls3d/segmentation/object_classes.h>
+
 #include <pcl/PointIndices.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
@@ -89,6 +91,9 @@ struct SegmentationRun
   /// IMRG/MRG: segments of the other level than settings.level (planes when objects were
   /// returned and vice versa), so one run gives both.
   std::vector<pcl::PointIndices> other_level;
+  /// IMRG: the class of every segment of `segments` (segmentation::ObjectClass; planes take
+  /// their object's); empty for MRG, pcl_rg and the voxel grid.
+  std::vector<segmentation::ObjectClass> classes;
   std::size_t linear = 0, planar = 0, volumetric = 0, invalid = 0;      ///< points per class
   /// Per input point: 0 linear, 1 planar, 2 volumetric, 255 not processed (empty for pcl_rg).
   std::vector<std::uint8_t> dimensionality;

@@ -5,7 +5,11 @@
 ///        every input point, in input order, with its segment label and colour.
 ///
 /// Layout (binary PCD v0.7): fields x y z (FLOAT32, local coordinates), rgba (UINT32, a colour
-/// per segment, pcl::PointXYZRGBL's layout), label (UINT32, segment id + 1, 0 = in no segment).
+/// per segment, pcl::PointXYZRGBL's layout), label (UINT32, segment id + 1, 0 = in no segment),
+/// and, when the segments have classes (IMRG), classification (UINT8, the LAS code of the
+/// segment's object class, segmentation::lasCode(); 0 = in no segment). PointXYZRGBL loads
+/// skip the extra field; io::loadCloud() reads it as the points' classification, so
+/// pcl_ls3d_convert writes the object classes into a LAS file's classification.
 /// Coordinates are local: file coordinate = x + origin. A float cannot hold a UTM or Lambert-93
 /// coordinate to the centimetre, and PCL's point types have float x, y, z only (a FLOAT64 x is
 /// not found by loadPCDFile into PointXYZRGBL: every point would load as (0, 0, 0)). The origin
@@ -25,6 +29,7 @@
 #include <Eigen/Core>
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -44,11 +49,12 @@ struct InputLayout
 /// \param[in] cloud the finite input points in input order (local coordinates), as loaded
 /// \param[in] segments indices into \a cloud
 /// \param[in] layout where \a cloud's points sit in the input file
+/// \param[in] segment_codes per segment: LAS code of its class; empty: no classification field
 /// \return false with a one-line reason (counts that do not add up, write failure)
 bool
 saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& cloud,
                 const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
-                std::string& error);
+                std::string& error, const std::vector<std::uint8_t>& segment_codes = {});
 
 /// Header comment line that marks a SEGMENTS.pcd: its label field holds segment ids, never
 /// classes (pcl_ls3d_segment -evaluate refuses such a file as its own reference).

@@ -7,6 +7,7 @@
 #include <pcl_ls3d/segmentation/fragment_absorption.h>
 #include <pcl_ls3d/segmentation/ground_filter.h>
 #include <pcl_ls3d/segmentation/object_assembly.h>
+#include <pcl_ls3d/segmentation/object_classes.h>
 #include <pcl_ls3d/segmentation/rule_growing.h>
 #include <pcl_ls3d/segmentation/segment_merging.h>
 
@@ -54,6 +55,10 @@ namespace pcl_ls3d {
 ///     touching segments of kinds that belong together join into whole objects: a building
 ///     (roof planes, walls, edge lines, chimneys), a tree group, the ground, a wire span
 ///     (object_assembly.h); fragments are absorbed once more.
+///  7. object classes (an addition, with the assembly): each object is ground, building,
+///     vegetation, wire, pole, car or unclassified by the kinds of its segments, its height
+///     above the terrain and its size (object_classes.h); a plane takes the class of the object
+///     holding most of its points (getClusterClasses()).
 /// Two levels come out of one extract() (setOutputLevel(), getClusters()): Level::Planes, the
 /// segments of step 2–3 (the planes of the paper's Table 1: roof planes, facades, ground
 /// pieces), and Level::Objects, the result of steps 4–6 (default).
@@ -182,6 +187,15 @@ public:
   double getMaxObjectWidth() const { return ground_filter_.max_window; }
   /// \brief Segments per kind and objects of the last extract().
   const segmentation::AssemblyReport& getAssemblyReport() const { return assembly_report_; }
+  /// \brief Thresholds of the object classes (heights, car and building sizes; metres).
+  void setObjectClassSettings(const segmentation::ObjectClassSettings& s) { classes_ = s; }
+  const segmentation::ObjectClassSettings& getObjectClassSettings() const { return classes_; }
+  /// \brief Class of every cluster of getClusters(\a level) of the last extract(); empty
+  ///        without the object assembly (Mode::MRG).
+  const std::vector<segmentation::ObjectClass>& getClusterClasses(Level level) const
+  {
+    return level == Level::Planes ? plane_classes_ : object_classes_;
+  }
 
   /// \brief Wall time [s] of each stage of the last extract().
   struct StageTimes
@@ -245,6 +259,9 @@ protected:
   /// Clusters (cloud indices) of per-position \a labels, min/max cluster size applied.
   void assembleRegions(const std::vector<int>& labels, std::vector<pcl::PointIndices>& clusters,
                        std::vector<int>& cluster_of) const;
+  /// Per cluster: the class of the object holding most of its points (object_class_).
+  std::vector<segmentation::ObjectClass>
+  clusterClasses(const std::vector<pcl::PointIndices>& clusters) const;
 
   // settings
   segmentation::NeighbourhoodSettings nbh_;
@@ -281,6 +298,9 @@ protected:
   segmentation::AssemblySettings assembly_;
   segmentation::GroundFilterSettings ground_filter_;
   segmentation::AssemblyReport assembly_report_;
+  segmentation::ObjectClassSettings classes_;
+  std::vector<segmentation::ObjectClass> object_class_;  ///< per object label (segment_of_)
+  std::vector<segmentation::ObjectClass> plane_classes_, object_classes_;  ///< per cluster
   StageTimes stage_times_;
 };
 

@@ -85,6 +85,9 @@ struct AssemblyReport
   std::size_t detached_points = 0;  ///< points that left ground segments (raised above terrain)
   std::size_t kind_count[5] = {0, 0, 0, 0, 0};  ///< segments per SegmentKind
   double ground_residual = 0.0;  ///< median residual of the ground points (roughness unit)
+  /// per point: kind of its segment before any join (pieces detached from the ground by their
+  /// own kind); what classifyObjects() votes with. Solid for points in no segment.
+  std::vector<SegmentKind> point_kind;
 };
 
 /// \brief Joins touching segments into objects by the rules of the file comment; \a labels is

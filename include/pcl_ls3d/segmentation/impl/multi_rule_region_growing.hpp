@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <random>
 
 #ifdef _OPENMP
@@ -57,6 +58,9 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   object_clusters_.clear();
   plane_cluster_of_.clear();
   object_cluster_of_.clear();
+  object_class_.clear();
+  plane_classes_.clear();
+  object_classes_.clear();
   features_.clear();
   segment_of_.clear();
   plane_of_.clear();
@@ -126,6 +130,10 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   lap(stage_times_.assembling);
   assembleRegions(plane_of_, plane_clusters_, plane_cluster_of_);
   assembleRegions(segment_of_, object_clusters_, object_cluster_of_);
+  if (!object_class_.empty()) {
+    plane_classes_ = clusterClasses(plane_clusters_);
+    object_classes_ = clusterClasses(object_clusters_);
+  }
   clusters = getClusters(level_);
   stage_times_.total = watch.getTimeSeconds();
   PCL_DEBUG("[pcl_ls3d::%s::extract] %zu points: search %.2f s, features %.2f s, growing %.2f s, "
@@ -327,6 +335,30 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
   if (min_fragment_size_ > 1)
     absorbed_fragments_ += segmentation::absorbFragments(graph_, grow_.graph_k, segment_of_,
                                                          min_fragment_size_);
+  object_class_ = segmentation::classifyObjects(points_, segment_of_, assembly_report_.point_kind,
+                                                ground, classes_);
+}
+
+template <typename PointT, typename NormalT>
+std::vector<segmentation::ObjectClass>
+MultiRuleRegionGrowing<PointT, NormalT>::clusterClasses(
+    const std::vector<pcl::PointIndices>& clusters) const
+{
+  std::vector<segmentation::ObjectClass> out(clusters.size(),
+                                             segmentation::ObjectClass::Unclassified);
+  std::map<int, std::size_t> votes;  // object -> points of the cluster in it
+  for (std::size_t c = 0; c < clusters.size(); ++c) {
+    votes.clear();
+    for (const auto i : clusters[c].indices)
+      ++votes[segment_of_[static_cast<std::size_t>(position_of_[i])]];
+    const auto best = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+      return a.second < b.second;
+    });
+    if (best != votes.end() && best->first >= 0 &&
+        static_cast<std::size_t>(best->first) < object_class_.size())
+      out[c] = object_class_[static_cast<std::size_t>(best->first)];
+  }
+  return out;
 }
 
 template <typename PointT, typename NormalT>

@@ -1,0 +1,91 @@
+#pragma once
+/// \file object_classes.h
+/// \brief What each object of IMRG's object level is — ground, building, vegetation, wire,
+///        pole, car or unclassified — from the kinds of the segments it was assembled from
+///        (segment_kinds.h), its height above the terrain and its size in plan. PCL-free.
+///
+/// Per object, the points vote with the kind of their segment before any join (ground; rough;
+/// solid or wall; linear) and the largest vote decides the family:
+///  - ground: Ground, unless it stands min_building_height above the other ground around it
+///    (median z against the median lowest point of the other ground objects): a roof wider
+///    than the ground filter's largest window, which the filter kept, is a Building;
+///  - rough: Vegetation (crowns, hedges, grass detached from the ground);
+///  - surface (solid, wall) or linear, standing upright — vertical extent at least
+///    min_building_height and pole_slenderness × its plan length, median z in the lower
+///    pole_mass_height of that extent (points all the way up: a tall building seen from above
+///    has most in its roof), and a surface one at least pole_plan_aspect × as wide as long (a
+///    lattice tower; a piece of wall is thin): Pole;
+///  - surface: Car when car-sized (top at most car_max_height above the terrain,
+///    car_min_length..car_max_length long, car_min_width..car_max_width wide); Building when
+///    its top is at least min_building_height above the terrain and its plan box covers at
+///    least min_building_area; else Unclassified (a low wall, a shelter's roof piece);
+///  - linear: Wire when even its low points hang min_wire_height above the terrain and it is
+///    at least min_wire_length long; else Unclassified (a kerb, a fence).
+/// The terrain under an object is the median of the lowest ground-filter point per
+/// terrain_cell cell within terrain_margin of the object's plan box; with no ground point there
+/// the height tests are skipped (a solid object is then a Building if large enough).
+/// Heights use robust ends: top = 95th and low = 5th percentile of the object's z. Lengths are
+/// metres (cloud units): car and building sizes are physical, not relative to the spacing.
+
+#include <pcl_ls3d/segmentation/segment_kinds.h>
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+namespace pcl_ls3d {
+namespace segmentation {
+
+enum class ObjectClass : std::uint8_t
+{
+  Unclassified,
+  Ground,
+  Building,
+  Vegetation,
+  Wire,
+  Pole,
+  Car
+};
+
+/// \brief "unclassified", "ground", "building", "vegetation", "wire", "pole", "car".
+const char*
+toString(ObjectClass c);
+
+/// \brief The LAS code written for a class: 1 unclassified, 2 ground, 6 building, 5 (high)
+///        vegetation, 14 wire conductor, 15 transmission tower (poles and towers), 64 car (a
+///        user-definable code, as pcl_ls3d_synth's cars; ASPRS has no car class).
+std::uint8_t
+lasCode(ObjectClass c);
+
+/// \brief Thresholds of classifyObjects(); lengths in metres (cloud units).
+struct ObjectClassSettings
+{
+  double terrain_cell = 2.0;          ///< cell of the grid of lowest ground points
+  double terrain_margin = 5.0;        ///< terrain sought this far around the plan box
+  double min_building_height = 2.0;   ///< a building's top above the terrain
+  double min_building_area = 6.0;     ///< a building's plan box (length × width)
+  double car_max_height = 3.0;        ///< a car's top above the terrain (vans included)
+  double car_min_length = 2.5, car_max_length = 7.0;  ///< a car's plan length
+  double car_min_width = 1.2, car_max_width = 3.0;    ///< ... and width (a low wall is thinner)
+  double min_wire_height = 2.5;       ///< a wire's low points above the terrain
+  double min_wire_length = 7.0;       ///< a wire's plan length (longer than a car)
+  double pole_slenderness = 1.5;      ///< a pole's vertical extent / plan length, at least
+  double pole_plan_aspect = 0.5;      ///< ... a surface one's plan width / length, at least
+                                      ///< (a lattice tower; a piece of wall is thin)
+  double pole_mass_height = 0.7;      ///< ... and its median z at most this far up its extent
+};
+
+/// \brief The class of every object.
+/// \param[in] points coordinates per point
+/// \param[in] labels object per point (dense 0..n−1, −1 none)
+/// \param[in] point_kind per point: kind of its segment before the assembly joined any
+/// \param[in] ground per point: 1 if the ground filter keeps it
+/// \return per object (index = label): its class; empty when the sizes differ
+std::vector<ObjectClass>
+classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+                const std::vector<SegmentKind>& point_kind, const std::vector<char>& ground,
+                const ObjectClassSettings& settings);
+
+}  // namespace segmentation
+}  // namespace pcl_ls3d

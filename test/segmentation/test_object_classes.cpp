@@ -1,0 +1,209 @@
+// Object classes of IMRG's object level (object_classes.h): constructed objects of known class
+// through classifyObjects(), and IMRG on a generated scene scored point by point against the
+// generator's labels (seed 4: the thresholds were looked at on seeds 1-3 and the IGN tuning
+// tiles only).
+#include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
+#include <pcl_ls3d/segmentation/object_classes.h>
+#include <pcl_ls3d/synth/scene.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <random>
+
+using pcl_ls3d::segmentation::classifyObjects;
+using pcl_ls3d::segmentation::ObjectClass;
+using pcl_ls3d::segmentation::ObjectClassSettings;
+using pcl_ls3d::segmentation::SegmentKind;
+
+namespace {
+
+/// Points, object labels, kinds and ground flags, built object by object.
+struct Scene
+{
+  std::vector<Eigen::Vector3f> points;
+  std::vector<int> labels;
+  std::vector<SegmentKind> kinds;
+  std::vector<char> ground;
+
+  void add(float x, float y, float z, int label, SegmentKind kind, bool on_ground = false)
+  {
+    points.emplace_back(x, y, z);
+    labels.push_back(label);
+    kinds.push_back(kind);
+    ground.push_back(on_ground ? 1 : 0);
+  }
+  /// A horizontal rectangle sampled every `step`.
+  void rectangle(float x0, float x1, float y0, float y1, float z, float step, int label,
+                 SegmentKind kind, bool on_ground = false)
+  {
+    for (float x = x0; x <= x1; x += step)
+      for (float y = y0; y <= y1; y += step)
+        add(x, y, z, label, kind, on_ground);
+  }
+  std::vector<ObjectClass> classify() const
+  {
+    return classifyObjects(points, labels, kinds, ground, ObjectClassSettings{});
+  }
+};
+
+/// Terrain (object 0) from −40 to 40 m at z 0 with a hole where the objects stand.
+void
+addTerrain(Scene& s)
+{
+  for (float x = -40.0f; x <= 40.0f; x += 0.5f)
+    for (float y = -40.0f; y <= 40.0f; y += 0.5f)
+      s.add(x, y, 0.0f, 0, SegmentKind::Ground, true);
+}
+
+}  // namespace
+
+// Each object is what its geometry says: a roof 6 m up is a building, a 4.5 m × 1.8 m box 1.5 m
+// high a car, a crown of rough segments vegetation, a line hanging 10 m up a wire, a 12 m mast
+// with a 1 m cross arm a pole, a 1 m high, 0.2 m thick wall nothing it could name.
+TEST(ObjectClasses, ConstructedObjectsGetTheirClasses)
+{
+  Scene s;
+  addTerrain(s);
+  s.rectangle(-30.0f, -18.0f, -30.0f, -20.0f, 6.0f, 0.5f, 1, SegmentKind::Solid);    // roof
+  s.rectangle(10.0f, 14.5f, 10.0f, 11.8f, 1.5f, 0.2f, 2, SegmentKind::Solid);        // car
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (int i = 0; i < 800; ++i) {                                                   // crown
+    const Eigen::Vector3f d(u(rng), u(rng), u(rng));
+    if (d.norm() <= 1.0f)
+      s.add(20.0f + 3.0f * d.x(), -20.0f + 3.0f * d.y(), 7.0f + 3.0f * d.z(), 3, SegmentKind::Rough);
+  }
+  for (float x = -35.0f; x <= 35.0f; x += 0.3f)                                      // wire
+    s.add(x, 30.0f, 10.0f + 0.002f * x * x, 4, SegmentKind::Linear);
+  for (float z = 0.0f; z <= 12.0f; z += 0.1f)                                        // pole
+    s.add(0.0f, -10.0f, z, 5, SegmentKind::Linear);
+  for (float x = -0.5f; x <= 0.5f; x += 0.1f)
+    s.add(x, -10.0f, 11.0f, 5, SegmentKind::Linear);
+  for (float x = -20.0f; x <= -15.0f; x += 0.1f)                                     // low wall
+    for (float z = 0.1f; z <= 1.0f; z += 0.1f)
+      for (float y : {10.0f, 10.2f})
+        s.add(x, y, z, 6, SegmentKind::Wall);
+
+  const std::vector<ObjectClass> c = s.classify();
+  ASSERT_EQ(c.size(), 7u);
+  EXPECT_EQ(c[0], ObjectClass::Ground);
+  EXPECT_EQ(c[1], ObjectClass::Building);
+  EXPECT_EQ(c[2], ObjectClass::Car);
+  EXPECT_EQ(c[3], ObjectClass::Vegetation);
+  EXPECT_EQ(c[4], ObjectClass::Wire);
+  EXPECT_EQ(c[5], ObjectClass::Pole);
+  EXPECT_EQ(c[6], ObjectClass::Unclassified);
+}
+
+// A roof wider than the ground filter's largest window passes the filter: its segments are of
+// the ground kind. Standing 8 m above the ground around it, it is a building; a courtyard at
+// the terrain's level, cut off from the rest of the ground, stays ground. (PDAL's sample_c: one
+// roof over most of the tile.)
+TEST(ObjectClasses, RoofThatPassedTheGroundFilterIsABuilding)
+{
+  Scene s;
+  addTerrain(s);
+  s.rectangle(-20.0f, 20.0f, -20.0f, 20.0f, 8.0f, 0.5f, 1, SegmentKind::Ground, true);
+  s.rectangle(50.0f, 56.0f, 0.0f, 6.0f, 0.1f, 0.5f, 2, SegmentKind::Ground, true);
+  const std::vector<ObjectClass> c = s.classify();
+  ASSERT_EQ(c.size(), 3u);
+  EXPECT_EQ(c[0], ObjectClass::Ground);
+  EXPECT_EQ(c[1], ObjectClass::Building);
+  EXPECT_EQ(c[2], ObjectClass::Ground);
+}
+
+// Without any ground point the height tests cannot run: a flat object of more than
+// min_building_area is a building (a roof-only crop), a 2 m × 2 m one nothing it could name;
+// inputs of unequal sizes give no classes at all.
+TEST(ObjectClasses, NoTerrainAndBadSizes)
+{
+  Scene s;
+  s.rectangle(0.0f, 12.0f, 0.0f, 10.0f, 6.0f, 0.5f, 0, SegmentKind::Solid);
+  s.rectangle(20.0f, 22.0f, 0.0f, 2.0f, 1.5f, 0.2f, 1, SegmentKind::Solid);
+  const std::vector<ObjectClass> c = s.classify();
+  ASSERT_EQ(c.size(), 2u);
+  EXPECT_EQ(c[0], ObjectClass::Building);
+  EXPECT_EQ(c[1], ObjectClass::Unclassified);
+  std::vector<char> short_ground(s.ground.begin(), s.ground.end() - 1);
+  EXPECT_TRUE(classifyObjects(s.points, s.labels, s.kinds, short_ground, {}).empty());
+  EXPECT_EQ(std::string(pcl_ls3d::segmentation::toString(ObjectClass::Car)), "car");
+  EXPECT_EQ(pcl_ls3d::segmentation::lasCode(ObjectClass::Building), 6);
+  EXPECT_EQ(pcl_ls3d::segmentation::lasCode(ObjectClass::Unclassified), 1);
+}
+
+// IMRG end to end on a generated 100 m scene with buildings, trees, shrubs, cars and a power
+// line: every point takes its object's class, scored against the generator's ASPRS labels
+// (vegetation 3-5, towers 15 as poles, cars 64). Measured on this seed: F1 ground 0.998,
+// building 0.998, vegetation 0.975, wire 0.964, car 1.000; towers recall 0.77 (their rough
+// members join no pole), pole precision 0.92. Planes take the class of their object.
+TEST(ObjectClasses, ImrgClassesOnAGeneratedScene)
+{
+  pcl_ls3d::synth::SceneSettings settings;
+  settings.seed = 4;
+  settings.size_x = settings.size_y = 100.0;
+  const auto scene = pcl_ls3d::synth::makeScene(settings);
+  ASSERT_TRUE(scene.cloud && scene.cloud->size() > 50000u);
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  for (const auto& p : *scene.cloud)
+    cloud->push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  using Segmenter = pcl_ls3d::MultiRuleRegionGrowing<pcl::PointXYZ>;
+  Segmenter seg;
+  seg.setInputCloud(cloud);
+  std::vector<pcl::PointIndices> objects;
+  seg.extract(objects);
+  const auto& classes = seg.getClusterClasses(Segmenter::Level::Objects);
+  ASSERT_EQ(classes.size(), objects.size());
+
+  const auto groupOf = [](int code) {
+    return code >= 3 && code <= 5 ? 5 : code;  // vegetation as one class
+  };
+  std::vector<int> predicted(cloud->size(), 0);
+  for (std::size_t o = 0; o < objects.size(); ++o)
+    for (const auto i : objects[o].indices)
+      predicted[static_cast<std::size_t>(i)] = pcl_ls3d::segmentation::lasCode(classes[o]);
+  std::map<int, std::size_t> tp, fp, fn;
+  for (std::size_t i = 0; i < predicted.size(); ++i) {
+    const int ref = groupOf(scene.cloud->points[i].classification), pred = predicted[i];
+    if (ref == pred)
+      ++tp[ref];
+    else {
+      ++fn[ref];
+      ++fp[pred];
+    }
+  }
+  const auto f1 = [&](int c) {
+    return 2.0 * tp[c] / (2.0 * tp[c] + fp[c] + fn[c]);
+  };
+  EXPECT_GE(f1(2), 0.95) << "ground";
+  EXPECT_GE(f1(6), 0.95) << "building";
+  EXPECT_GE(f1(5), 0.95) << "vegetation";
+  EXPECT_GE(f1(14), 0.90) << "wire";
+  EXPECT_GE(f1(64), 0.90) << "car";
+  EXPECT_GE(static_cast<double>(tp[15]) / (tp[15] + fn[15]), 0.6) << "tower recall";
+  EXPECT_GE(static_cast<double>(tp[15]) / (tp[15] + fp[15]), 0.85) << "pole precision";
+
+  // Plane level: every plane has a class, and the roof planes (plane_id >= 0 majority) are
+  // building planes.
+  const auto& planes = seg.getClusters(Segmenter::Level::Planes);
+  const auto& plane_classes = seg.getClusterClasses(Segmenter::Level::Planes);
+  ASSERT_EQ(plane_classes.size(), planes.size());
+  std::size_t roof_planes = 0, roof_planes_building = 0;
+  for (std::size_t p = 0; p < planes.size(); ++p) {
+    std::size_t on_roof = 0;
+    for (const auto i : planes[p].indices)
+      on_roof += scene.plane_id[static_cast<std::size_t>(i)] >= 0;
+    if (2 * on_roof > planes[p].indices.size() && planes[p].indices.size() >= 100) {
+      ++roof_planes;
+      roof_planes_building += plane_classes[p] == ObjectClass::Building;
+    }
+  }
+  EXPECT_GT(roof_planes, 0u);
+  EXPECT_EQ(roof_planes_building, roof_planes);
+
+  // MRG assembles no objects and so gives no classes.
+  seg.setMode(Segmenter::Mode::MRG);
+  seg.extract(objects);
+  EXPECT_TRUE(seg.getClusterClasses(Segmenter::Level::Objects).empty());
+}
