@@ -6,6 +6,7 @@
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/evaluation/segments_file.h>
+#include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/png_io.h>
 
 #include <pcl/io/pcd_io.h>
@@ -693,4 +694,91 @@ TEST_F(SegmentTool, TopViewScaleBarMatchesItsLabel)
     EXPECT_FALSE(dark(x - 1, y));
     EXPECT_EQ(run_length, pixels) << "at " << pixel << " m pixels";
   }
+}
+
+// IMRG names its objects: SEGMENTS.pcd carries a classification byte per point, the LAS code
+// of its segment's class as the JSON names it (segment_classes, index = label - 1); plain PCL
+// still loads the file into PointXYZRGBL with the same labels. Against the scene's truth the
+// roof is building, the terrain ground and the crowns vegetation. pcl_ls3d_info counts the
+// object classes; pcl_ls3d_convert writes them into a LAS file's classification.
+TEST_F(SegmentTool, SegmentsFileCarriesObjectClasses)
+{
+  const fs::path seg = dir_ / "SEGMENTS.pcd", js = dir_ / "report.json", las = dir_ / "classes.las";
+  const ToolResult r = run(input_.string() + " -o " + seg.string() + " -json " + js.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("imrg classes: "), std::string::npos) << r.out;
+  const auto report = nlohmann::json::parse(slurp(js));
+  ASSERT_TRUE(report.contains("segment_classes")) << report.dump();
+  const auto names = report["segment_classes"].get<std::vector<std::string>>();
+  ASSERT_EQ(names.size(), report["runs"][0]["segments"].get<std::size_t>());
+
+  pcl::PointCloud<pcl::PointXYZRGBL> plain;
+  ASSERT_EQ(pcl::io::loadPCDFile(seg.string(), plain), 0);
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> lidar;
+  pcl_ls3d::io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::io::loadCloud(seg.string(), lidar, info, error)) << error;
+  ASSERT_EQ(plain.size(), scene_.size());
+  ASSERT_EQ(lidar.size(), scene_.size());
+  const std::map<std::string, int> code = {{"unclassified", 1}, {"ground", 2}, {"building", 6},
+                                           {"vegetation", 5},   {"wire", 14},  {"pole", 15},
+                                           {"car", 64}};
+  std::map<int, std::map<int, std::size_t>> truth_to_class;  // scene label -> written code
+  for (std::size_t i = 0; i < plain.size(); ++i) {
+    const std::uint32_t label = plain[i].label;
+    const int expected = label == 0 ? 0 : code.at(names.at(label - 1));
+    ASSERT_EQ(static_cast<int>(lidar[i].classification), expected) << i;
+    ++truth_to_class[static_cast<int>(scene_[i].label)][expected];
+  }
+  const auto share = [&](int truth, int written) {
+    std::size_t all = 0;
+    for (const auto& [c, n] : truth_to_class[truth])
+      all += n;
+    return static_cast<double>(truth_to_class[truth][written]) / static_cast<double>(all);
+  };
+  EXPECT_GE(share(2, 2), 0.95);
+  EXPECT_GE(share(6, 6), 0.9);
+  EXPECT_GE(share(5, 5), 0.9);
+
+  const fs::path info_tool = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_info";
+  tool_ = info_tool;
+  const ToolResult described = run(seg.string());
+  ASSERT_EQ(described.code, 0) << described.err;
+  EXPECT_NE(described.out.find("object classes (LAS codes): "), std::string::npos) << described.out;
+  tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_convert";
+  ASSERT_EQ(run(seg.string() + " " + las.string()).code, 0);
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> converted;
+  ASSERT_TRUE(pcl_ls3d::io::loadCloud(las.string(), converted, info, error)) << error;
+  ASSERT_EQ(converted.size(), lidar.size());
+  for (std::size_t i = 0; i < converted.size(); i += 7)
+    EXPECT_EQ(converted[i].classification, lidar[i].classification) << i;
+}
+
+// -evaluate scores IMRG's classes point by point against the reference labels (no reference
+// used to name them), in the table and the JSON; MRG names nothing, so its SEGMENTS.pcd has no
+// classification field, and render_top_view -by class refuses it in one line instead of
+// painting segment ids as classes.
+TEST_F(SegmentTool, EvaluateScoresObjectClassesAndMrgHasNone)
+{
+  const fs::path js = dir_ / "eval.json", mrg = dir_ / "mrg.pcd";
+  const ToolResult r = run(input_.string() + " -evaluate -json " + js.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("Object classes, per point"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("imrg classes |"), std::string::npos) << r.out;
+  const auto report = nlohmann::json::parse(slurp(js));
+  ASSERT_EQ(report["class_evaluation"].size(), 1u) << report.dump();
+  for (const char* name : {"ground", "building", "vegetation"})
+    EXPECT_GE(report["class_evaluation"][0]["classes"][name]["f1"].get<double>(), 0.9) << name;
+
+  ASSERT_EQ(run(input_.string() + " -mode mrg -o " + mrg.string()).code, 0);
+  EXPECT_EQ(slurp(mrg).find("classification"), std::string::npos);
+  const fs::path viewer = fs::path(PCL_LS3D_TOOL_DIR) / "render_top_view";
+  if (!fs::exists(viewer))
+    GTEST_SKIP() << "render_top_view not built (PCL_LS3D_BUILD_BENCHMARKS=OFF)";
+  tool_ = viewer;
+  const ToolResult refused = run(mrg.string() + " " + (dir_ / "c.png").string() + " -by class");
+  EXPECT_EQ(refused.code, 1);
+  EXPECT_EQ(countNonEmptyLines(refused.err), 1u) << refused.err;
+  EXPECT_NE(refused.err.find("no object classes"), std::string::npos) << refused.err;
+  EXPECT_FALSE(fs::exists(dir_ / "c.png"));
 }
