@@ -253,6 +253,38 @@ compareObjects(const std::string& title, const Labelled& data,
   return out;
 }
 
+/// IMRG's object classes scored point by point against the reference labels (no reference
+/// used to name them): a table and one summary line per run.
+void
+printObjectClasses(const std::string& title, const ev::SegmentationRun& imrg, const Labelled& data,
+                   const std::vector<ev::ClassGroup>& groups)
+{
+  if (imrg.classes.size() != imrg.segments.size() || imrg.classes.empty())
+    return;
+  std::vector<int> predicted(data.labels.size(), 0);
+  for (std::size_t s = 0; s < imrg.segments.size(); ++s)
+    for (const auto i : imrg.segments[s].indices)
+      predicted[static_cast<std::size_t>(i)] = segmentation::lasCode(imrg.classes[s]);
+  ev::SegmentationEvaluationSettings settings;
+  settings.groups = groups;
+  ev::SegmentationEvaluation e;
+  e.method = "imrg classes";
+  e.seconds = imrg.seconds_total;
+  e.segments = imrg.segments.size();
+  std::string error;
+  if (!ev::evaluateClassification(predicted, data.labels, settings, e, error)) {
+    std::printf("  object classes: %s\n", error.c_str());
+    return;
+  }
+  std::printf("IMRG object classes, per point P / R / F1 (%%; unclassified = no prediction):\n%s%s",
+              ev::formatSegmentationTable({e}).c_str(), ev::describeConfusion(e).c_str());
+  std::printf("  object classes %s:", title.c_str());
+  for (const auto& c : e.classes)
+    if (c.reference_points > 0)
+      std::printf(" %s %.3f", c.name.c_str(), c.f1);
+  std::printf("\n");
+}
+
 const ev::ObjectClassScores*
 classOf(const ev::ObjectEvaluation& e, const std::string& name)
 {
@@ -319,6 +351,7 @@ benchmarkObjectsOnTile(const fs::path& file, const std::string& name, int thread
     return;
   }
   const auto cmp = compareObjects(name, data, reference, threads);
+  printObjectClasses(name, cmp.runs[0], data, ro.groups);
   if (with_targets)
     objectTargets(name, cmp);
 }
@@ -415,6 +448,7 @@ benchmarkObjectsOnScene(std::uint32_t seed, double size, int threads)
     verdict(false, "scene IMRG failed: " + imrg.failure);
     return;
   }
+  printObjectClasses("scene " + std::to_string(seed), cmp.runs[0], data, groups);
   // Per object type: recognised with largest share >= 0.8 (objects of >= 50 points; smaller
   // ones — a shrub of a few returns — are listed but not scored).
   std::printf("  IMRG per generated object type: whole (recognised, largest share >= 0.8) / "

@@ -13,6 +13,7 @@
 #include <limits>
 #include <memory>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace pcl_ls3d {
 namespace segmentation {
@@ -43,6 +44,7 @@ struct ObjectShape
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;                          ///< along (axis, its normal)
   Eigen::Vector2d box_lo = lo, box_hi = hi;          ///< x, y box (terrain search)
+  std::size_t cover = 0;                             ///< linear ones: occupied wire cells
 
   int family() const
   {
@@ -102,6 +104,27 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
     s.hi = s.hi.cwiseMax(along);
   }
   return shapes;
+}
+
+/// Plan cells of edge \a cell that the points of each linear-family object occupy: a wire's
+/// run along its length, a canopy or a row of roofs seen as a line covers its width too.
+void
+countLinearCover(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+                 double cell, std::vector<ObjectShape>& shapes)
+{
+  std::unordered_set<std::uint64_t> seen;
+  for (std::size_t p = 0; p < points.size(); ++p) {
+    if (labels[p] < 0)
+      continue;
+    ObjectShape& s = shapes[static_cast<std::size_t>(labels[p])];
+    if (s.family() != kLinear)
+      continue;
+    // Object and cell in one key; a collision only undercounts a cover.
+    const auto x = static_cast<std::uint64_t>(voxelCoordinate(points[p].x(), cell)) & 0xfffffu;
+    const auto y = static_cast<std::uint64_t>(voxelCoordinate(points[p].y(), cell)) & 0xfffffu;
+    if (seen.insert(static_cast<std::uint64_t>(labels[p]) << 40 | x << 20 | y).second)
+      ++s.cover;
+  }
 }
 
 /// Median lowest ground point of the cells within the margin of an object's plan box; NaN
@@ -248,7 +271,9 @@ raisedAbove(ObjectShape& s, float others, const ObjectClassSettings& c)
 ObjectClass
 linearClass(const ObjectShape& s, double low, const ObjectClassSettings& c)
 {
-  if (std::isfinite(low) && low >= c.min_wire_height && s.length() >= c.min_wire_length)
+  const double thin = c.max_wire_cover * s.length() / c.wire_cell;
+  if (std::isfinite(low) && low >= c.min_wire_height && s.length() >= c.min_wire_length &&
+      static_cast<double>(s.cover) <= thin)
     return ObjectClass::Wire;
   return ObjectClass::Unclassified;
 }
@@ -292,6 +317,7 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
       ground.size() != points.size())
     return {};
   std::vector<ObjectShape> shapes = objectShapes(points, labels, point_kind);
+  countLinearCover(points, labels, settings.wire_cell, shapes);
   const TerrainLevels terrain(points, ground, settings.terrain_cell);
   const GroundCells ground_cells(points, labels, shapes, settings.terrain_cell);
   std::vector<ObjectClass> classes(shapes.size(), ObjectClass::Unclassified);

@@ -63,7 +63,9 @@ addTerrain(Scene& s)
 
 // Each object is what its geometry says: a roof 6 m up is a building, a 4.5 m × 1.8 m box 1.5 m
 // high a car, a crown of rough segments vegetation, a line hanging 10 m up a wire, a 12 m mast
-// with a 1 m cross arm a pole, a 1 m high, 0.2 m thick wall nothing it could name.
+// with a 1 m cross arm a pole, a 1 m high, 0.2 m thick wall nothing it could name, and neither
+// is a 16 m × 2.6 m canopy 2.9 m up that the growing took for a line (IGN 77050_627760's
+// parking lot: a wire before the thinness test).
 TEST(ObjectClasses, ConstructedObjectsGetTheirClasses)
 {
   Scene s;
@@ -88,8 +90,12 @@ TEST(ObjectClasses, ConstructedObjectsGetTheirClasses)
       for (float y : {10.0f, 10.2f})
         s.add(x, y, z, 6, SegmentKind::Wall);
 
+  for (float x = -30.0f; x <= -14.0f; x += 0.2f)                                     // canopy
+    for (float y = 20.0f; y <= 22.6f; y += 0.2f)
+      s.add(x, y, 2.9f, 7, SegmentKind::Linear);
+
   const std::vector<ObjectClass> c = s.classify();
-  ASSERT_EQ(c.size(), 7u);
+  ASSERT_EQ(c.size(), 8u);
   EXPECT_EQ(c[0], ObjectClass::Ground);
   EXPECT_EQ(c[1], ObjectClass::Building);
   EXPECT_EQ(c[2], ObjectClass::Car);
@@ -97,6 +103,7 @@ TEST(ObjectClasses, ConstructedObjectsGetTheirClasses)
   EXPECT_EQ(c[4], ObjectClass::Wire);
   EXPECT_EQ(c[5], ObjectClass::Pole);
   EXPECT_EQ(c[6], ObjectClass::Unclassified);
+  EXPECT_EQ(c[7], ObjectClass::Unclassified);
 }
 
 // A roof wider than the ground filter's largest window passes the filter: its segments are of

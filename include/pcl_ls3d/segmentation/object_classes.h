@@ -19,8 +19,10 @@
 ///    car_min_length..car_max_length long, car_min_width..car_max_width wide); Building when
 ///    its top is at least min_building_height above the terrain and its plan box covers at
 ///    least min_building_area; else Unclassified (a low wall, a shelter's roof piece);
-///  - linear: Wire when even its low points hang min_wire_height above the terrain and it is
-///    at least min_wire_length long; else Unclassified (a kerb, a fence).
+///  - linear: Wire when even its low points hang min_wire_height above the terrain, it is at
+///    least min_wire_length long and thin (its points occupy at most max_wire_cover × length /
+///    wire_cell plan cells of edge wire_cell: a canopy edge or a row of roofs grown as a line
+///    covers its width too); else Unclassified (a kerb, a fence).
 /// The terrain under an object is the median of the lowest ground-filter point per
 /// terrain_cell cell within terrain_margin of the object's plan box; with no ground point there
 /// the height tests are skipped (a solid object is then a Building if large enough).
@@ -70,6 +72,8 @@ struct ObjectClassSettings
   double car_min_width = 1.2, car_max_width = 3.0;    ///< ... and width (a low wall is thinner)
   double min_wire_height = 2.5;       ///< a wire's low points above the terrain
   double min_wire_length = 7.0;       ///< a wire's plan length (longer than a car)
+  double wire_cell = 0.5;             ///< a wire covers at most max_wire_cover × its length
+  double max_wire_cover = 2.0;        ///< / wire_cell plan cells of this edge (it is thin)
   double pole_slenderness = 1.5;      ///< a pole's vertical extent / plan length, at least
   double pole_plan_aspect = 0.5;      ///< ... a surface one's plan width / length, at least
                                       ///< (a lattice tower; a piece of wall is thin)
