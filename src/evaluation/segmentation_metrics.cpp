@@ -158,6 +158,7 @@ evaluateClassification(const std::vector<int>& predicted_codes,
   SegmentationEvaluation res;
   res.method = result.method;
   res.seconds = result.seconds;
+  res.segments = result.segments;
   res.points_total = n;
   const ClassLookup lookup(settings.groups, settings.excluded_codes);
   res.confusion.assign(G + 1, std::vector<std::size_t>(G + 2, 0));

@@ -81,7 +81,8 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
 ///        is predicted as the group holding its predicted code; a predicted code in no group is
 ///        predicted "other", an excluded one (0, 1: unclassified) "none" (a false negative of
 ///        the point's class). Reference points with excluded codes are left out, as above.
-///        `segments` and segment counts stay 0; points_unsegmented counts points predicted none.
+///        method, seconds and segments are kept from \a result (the caller's); the per-class
+///        segment counts stay 0; points_unsegmented counts the points predicted none.
 /// \return false with a one-line reason (sizes differ) in `error`
 bool
 evaluateClassification(const std::vector<int>& predicted_codes,
