@@ -21,6 +21,7 @@
 
 #include <pcl_ls3d/evaluation/object_metrics.h>
 #include <pcl_ls3d/evaluation/reference_objects.h>
+#include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_metrics.h>
 #include <pcl_ls3d/evaluation/segmentation_report.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
@@ -261,10 +262,8 @@ printObjectClasses(const std::string& title, const ev::SegmentationRun& imrg, co
 {
   if (imrg.classes.size() != imrg.segments.size() || imrg.classes.empty())
     return;
-  std::vector<int> predicted(data.labels.size(), 0);
-  for (std::size_t s = 0; s < imrg.segments.size(); ++s)
-    for (const auto i : imrg.segments[s].indices)
-      predicted[static_cast<std::size_t>(i)] = segmentation::lasCode(imrg.classes[s]);
+  const std::vector<int> predicted =
+      ev::classCodesFromSegments(imrg.segments, imrg.classes, data.labels.size());
   ev::SegmentationEvaluationSettings settings;
   settings.groups = groups;
   ev::SegmentationEvaluation e;

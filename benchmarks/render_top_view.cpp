@@ -110,13 +110,13 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
     std::fprintf(stderr, "render_top_view: %s\n", error.c_str());
     return false;
   }
-  if (info.format == "las") {
-    // Metres unless the file's CRS says otherwise (US survey feet in some states).
-    const std::string wkt = pcl_ls3d::maps::crsFromLasVlrs(info.las.vlrs);
-    if (!wkt.empty()) {
-      meaning.crs = pcl_ls3d::maps::crsName(wkt);
-      meaning.unit = pcl_ls3d::maps::crsLinearUnitName(wkt);
-    }
+  // Metres unless the file's CRS says otherwise (US survey feet in some states); a
+  // SEGMENTS.pcd records its input's CRS in its header.
+  const std::string wkt = info.format == "las" ? pcl_ls3d::maps::crsFromLasVlrs(info.las.vlrs)
+                                               : info.file_crs_wkt;
+  if (!wkt.empty()) {
+    meaning.crs = pcl_ls3d::maps::crsName(wkt);
+    meaning.unit = pcl_ls3d::maps::crsLinearUnitName(wkt);
   }
   if (by == "class" && pcl_ls3d::io::fileExtension(path) == "pcd" &&
       pcl_ls3d::evaluation::isSegmentsFile(path)) {
@@ -334,16 +334,11 @@ struct Margin
 std::string
 className(const Margin& m, std::uint32_t code)
 {
-  using pcl_ls3d::segmentation::ObjectClass;
-  if (m.object_classes) {
-    if (code == 0)
-      return "no segment";
-    for (ObjectClass c : {ObjectClass::Unclassified, ObjectClass::Ground, ObjectClass::Building,
-                          ObjectClass::Vegetation, ObjectClass::Wire, ObjectClass::Pole,
-                          ObjectClass::Car})
-      if (pcl_ls3d::segmentation::lasCode(c) == code)
-        return pcl_ls3d::segmentation::toString(c);
-  }
+  pcl_ls3d::segmentation::ObjectClass c;
+  if (m.object_classes && code == 0)
+    return "no segment";
+  if (m.object_classes && pcl_ls3d::segmentation::objectClassFromLasCode(static_cast<int>(code), c))
+    return pcl_ls3d::segmentation::toString(c);
   return pcl_ls3d::evaluation::lasClassName(static_cast<int>(code));
 }
 

@@ -8,6 +8,7 @@
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_io.h>
 #include <pcl_ls3d/io/strip_tools.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 
 #include <pcl/common/io.h>
 #include <pcl/console/parse.h>
@@ -53,7 +54,8 @@ printHelp(const char* name)
              "on writing; the origin used is printed. A PCD recording its origin in a\n"
              "'# pcl_ls3d origin' header line (pcl_ls3d_segment's SEGMENTS.pcd) is read with it.\n"
              "LAS and XYZ outputs hold file coordinates; PCD and PLY hold them as FLOAT64 when the\n"
-             "origin is not zero (as from a georeferenced LAS), else FLOAT32.\n");
+             "origin is not zero (as from a georeferenced LAS), else FLOAT32. A PCD that records\n"
+             "its CRS ('# pcl_ls3d crs' header line) gives a LAS output that CRS (LAS 1.4, WKT).\n");
 }
 
 /// Rejects options this tool does not know (pcl::console silently ignores them).
@@ -140,6 +142,11 @@ saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const Outpu
         s.las_minor_version = 4;
         break;
       }
+    // A PCD that records its CRS (SEGMENTS.pcd) gives the LAS its CRS: LAS 1.4, WKT VLR.
+    if (!info.file_crs_wkt.empty()) {
+      s.las_vlrs = {pcl_ls3d::maps::wktVlr(info.file_crs_wkt)};
+      s.las_minor_version = 4;
+    }
   }
   if (o.las_format >= 0) {
     s.las_point_format = static_cast<std::uint8_t>(o.las_format);

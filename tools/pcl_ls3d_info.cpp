@@ -12,6 +12,8 @@
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/io/strip_tools.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
+#include <pcl_ls3d/segmentation/object_classes.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
@@ -80,6 +82,8 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   // applied the origin its header records; say so, as the file itself is not in that frame.
   if (info.has_file_origin)
     j["origin_applied"] = vec(info.file_origin);
+  if (!info.file_crs_wkt.empty())  // a SEGMENTS.pcd of a georeferenced input
+    j["crs_recorded"] = pcl_ls3d::maps::crsName(info.file_crs_wkt);
   j["min"] = vec(info.min_file);
   j["max"] = vec(info.max_file);
   j["fields"] = info.fields;
@@ -138,6 +142,8 @@ printText(const nlohmann::json& j)
   const auto o = j["local_origin"].get<std::vector<double>>();
   const auto lo = j["min"].get<std::vector<double>>(), hi = j["max"].get<std::vector<double>>();
   // A recorded origin is the local origin too: one line, saying where it came from.
+  if (j.contains("crs_recorded"))
+    print_info("  crs %s (recorded in the header)\n", j["crs_recorded"].get<std::string>().c_str());
   if (j.contains("origin_applied")) {
     const auto f = j["origin_applied"].get<std::vector<double>>();
     print_info("  origin %.3f %.3f %.3f applied (local float coordinates in the file)\n", f[0], f[1],
@@ -183,10 +189,11 @@ printText(const nlohmann::json& j)
     std::string classes;
     for (const auto& [c, n] : j[key].items())
       classes += " " + c + ":" + std::to_string(n.get<std::size_t>());
-    print_info("  %s:%s%s\n", key == std::string("classes") ? "classes" : "object classes (LAS codes)",
-               classes.c_str(),
-               key == std::string("classes") ? "" : " (2 ground, 6 building, 5 vegetation, 14 wire, "
-                                                    "15 pole, 64 car, 1 unclassified, 0 no segment)");
+    const bool objects = std::string(key) == "object_classes";
+    const std::string codes =
+        objects ? " (" + pcl_ls3d::segmentation::describeLasCodes() + ", 0 no segment)" : "";
+    print_info("  %s:%s%s\n", objects ? "object classes (LAS codes)" : "classes", classes.c_str(),
+               codes.c_str());
   }
   std::string strips;
   for (const auto& [id, n] : j["point_source_ids"].items())

@@ -325,8 +325,8 @@ sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud, double metres_per
   return buf;
 }
 
-/// Objects and points per class of the segments (IMRG), e.g. "building 12 (30.2 %)", and
-/// the same as JSON: per class name {objects, points}.
+/// Segments and points per class (IMRG), e.g. "building 12 (30.2 %)", and the same as JSON:
+/// per class name {segments, points} (objects, or planes with -level planes).
 std::string
 classSummary(const std::vector<pcl::PointIndices>& segments,
              const std::vector<segmentation::ObjectClass>& classes, std::size_t points, json& j)
@@ -344,21 +344,9 @@ classSummary(const std::vector<pcl::PointIndices>& segments,
                   segmentation::toString(c), n.first,
                   100.0 * static_cast<double>(n.second) / static_cast<double>(std::max<std::size_t>(points, 1)));
     text += buf;
-    j[segmentation::toString(c)] = {{"objects", n.first}, {"points", n.second}};
+    j[segmentation::toString(c)] = {{"segments", n.first}, {"points", n.second}};
   }
   return text;
-}
-
-/// Per point: the LAS code of its segment's class (0 in no segment), for the evaluation.
-std::vector<int>
-pointClassCodes(const std::vector<pcl::PointIndices>& segments,
-                const std::vector<segmentation::ObjectClass>& classes, std::size_t points)
-{
-  std::vector<int> codes(points, 0);
-  for (std::size_t s = 0; s < segments.size() && s < classes.size(); ++s)
-    for (const auto i : segments[s].indices)
-      codes[static_cast<std::size_t>(i)] = segmentation::lasCode(classes[s]);
-  return codes;
 }
 
 int
@@ -456,7 +444,8 @@ main(int argc, char** argv)
 
   // Metres per unit: the LAS CRS's, else the tool's assumption of metres; a CRS without a
   // linear unit (geographic degrees) gives no density to judge.
-  const std::string wkt = info.format == "las" ? maps::crsFromLasVlrs(info.las.vlrs) : "";
+  const std::string wkt =
+      info.format == "las" ? maps::crsFromLasVlrs(info.las.vlrs) : info.file_crs_wkt;
   const double crs_unit = maps::crsLinearUnit(wkt);
   const bool density_known = wkt.empty() || crs_unit > 0.0;
   json warnings = json::array();
@@ -592,7 +581,7 @@ main(int argc, char** argv)
         c.method = e.method + " classes";
         c.seconds = e.seconds;
         c.segments = run.segments.size();
-        if (!ev::evaluateClassification(pointClassCodes(run.segments, run.classes, cloud.size()),
+        if (!ev::evaluateClassification(ev::classCodesFromSegments(run.segments, run.classes, cloud.size()),
                                         reference, eval_settings, c, error))
           return fail(error);
         report["class_evaluation"].push_back(evaluationToJson(c));
@@ -640,6 +629,7 @@ main(int argc, char** argv)
     layout.points_in_file = info.points_in_file;
     layout.nonfinite = info.nonfinite_indices;
     layout.origin = info.origin;
+    layout.crs_wkt = wkt;
     std::vector<std::uint8_t> codes;
     for (const auto c : selected_classes)
       codes.push_back(segmentation::lasCode(c));
@@ -651,11 +641,12 @@ main(int argc, char** argv)
                                {"points", std::max(info.points_in_file, cloud.size())},
                                {"coordinates", "float32, local: file coordinate = x + origin"},
                                {"origin", {info.origin.x(), info.origin.y(), info.origin.z()}},
-                               {"label", "segment id + 1; 0 = no segment or non-finite input"}};
+                               {"label", "segment id + 1; 0 = no segment or non-finite input"},
+                               {"crs", wkt.empty() ? json(nullptr) : json(maps::crsName(wkt))}};
     if (!codes.empty()) {
       report["segments_file"]["classification"] =
-          "LAS code of the segment's object class: 2 ground, 6 building, 5 vegetation, 14 wire, "
-          "15 pole, 64 car, 1 unclassified; 0 = no segment";
+          "LAS code of the segment's object class: " + segmentation::describeLasCodes() +
+          "; 0 = no segment";
       json names = json::array();
       for (const auto c : selected_classes)
         names.push_back(segmentation::toString(c));

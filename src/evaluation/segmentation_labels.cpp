@@ -17,6 +17,21 @@ labelsFromSegments(const std::vector<pcl::PointIndices>& segments, std::size_t n
   return labels;
 }
 
+std::vector<int>
+classCodesFromSegments(const std::vector<pcl::PointIndices>& segments,
+                       const std::vector<segmentation::ObjectClass>& classes,
+                       std::size_t num_points)
+{
+  std::vector<int> codes(num_points, 0);
+  if (classes.size() != segments.size())
+    return codes;
+  const std::vector<std::uint32_t> labels = labelsFromSegments(segments, num_points);
+  for (std::size_t i = 0; i < num_points; ++i)
+    if (labels[i] > 0)
+      codes[i] = segmentation::lasCode(classes[labels[i] - 1]);
+  return codes;
+}
+
 std::vector<pcl::PointIndices>
 segmentsFromLabels(const std::vector<std::uint32_t>& labels)
 {

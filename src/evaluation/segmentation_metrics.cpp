@@ -167,7 +167,9 @@ evaluateClassification(const std::vector<int>& predicted_codes,
     if (ref == ClassLookup::kExcluded)
       continue;
     ++res.points_evaluated;
-    const int pred = lookup.groupOf(predicted_codes[i]);
+    // 0 (no segment) and 1 (unclassified) predict nothing, whatever the groups name.
+    const int pred = predicted_codes[i] <= 1 ? ClassLookup::kExcluded
+                                             : lookup.groupOf(predicted_codes[i]);
     const std::size_t col = pred == ClassLookup::kExcluded ? G + 1
                             : pred == ClassLookup::kOther  ? G
                                                            : static_cast<std::size_t>(pred);

@@ -101,8 +101,10 @@ saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& c
   if (!segment_codes.empty())
     appendClassification(out, segment_codes, blob);
   // The origin line is io's, so that io::loadCloud() reads the file in the input's frame.
-  return io::savePcdBinaryWithOrigin(path, blob, layout.origin, kSegmentsMarker + std::string("\n"),
-                                     error);
+  std::string comments = kSegmentsMarker + std::string("\n");
+  if (!layout.crs_wkt.empty())
+    comments += io::pcdCrsLine(layout.crs_wkt) + "\n";
+  return io::savePcdBinaryWithOrigin(path, blob, layout.origin, comments, error);
 }
 
 namespace {

@@ -179,8 +179,11 @@ writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
   std::uint16_t encoding = 0;
   if (minor >= 2 && o.las_adjusted_standard_gps_time)
     encoding |= 1;
-  if (minor >= 4 && format >= 6)
-    encoding |= 1 << 4;  // LAS 1.4: the CRS of formats 6-10 is WKT
+  const bool wkt_vlr = std::any_of(o.las_vlrs.begin(), o.las_vlrs.end(), [](const LasVlr& v) {
+    return v.user_id == "LASF_Projection" && v.record_id == 2112;
+  });
+  if (minor >= 4 && (format >= 6 || wkt_vlr))
+    encoding |= 1 << 4;  // LAS 1.4: the CRS is WKT (always so for formats 6-10)
   las::put<std::uint16_t>(h + las::kGlobalEncoding, encoding);
   h[las::kVersionMajor] = 1;
   h[las::kVersionMinor] = static_cast<std::uint8_t>(minor);

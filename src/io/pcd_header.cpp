@@ -6,6 +6,7 @@
 
 #include <pcl_ls3d/io/pcd_io.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -200,6 +201,19 @@ originComment(const std::vector<std::string_view>& tokens, PcdHeader& h, std::st
   return true;
 }
 
+/// A "# pcl_ls3d crs WKT" comment line: the first one gives the file's CRS (pcd_io.h).
+void
+crsComment(std::string_view line, PcdHeader& h)
+{
+  constexpr std::string_view kPrefix = "# pcl_ls3d crs ";
+  if (!h.crs_wkt.empty() || line.substr(0, kPrefix.size()) != kPrefix)
+    return;
+  line.remove_prefix(kPrefix.size());
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' '))
+    line.remove_suffix(1);
+  h.crs_wkt = std::string(line);
+}
+
 }  // namespace
 
 bool
@@ -211,10 +225,13 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
   while (pos < size) {
     const void* nl = std::memchr(text + pos, '\n', size - pos);
     const std::size_t end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text) : size;
-    splitTokens(std::string_view(text + pos, end - pos), tokens);
+    const std::string_view line(text + pos, end - pos);
+    splitTokens(line, tokens);
     pos = nl ? end + 1 : size;
     if (!tokens.empty() && tokens[0][0] == '#' && !originComment(tokens, h, error))
       return false;
+    if (!tokens.empty() && tokens[0][0] == '#')
+      crsComment(line, h);
     if (tokens.empty() || tokens[0][0] == '#')
       continue;
     if (!headerLine(tokens, h, error))
@@ -229,6 +246,14 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
 
 
 }  // namespace detail
+
+std::string
+pcdCrsLine(const std::string& wkt)
+{
+  std::string line = "# pcl_ls3d crs " + wkt;
+  std::replace_if(line.begin(), line.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  return line;
+}
 
 std::string
 pcdOriginLine(const Eigen::Vector3d& origin)

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <string>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -35,6 +36,7 @@ struct PcdHeader
   std::size_t values = 0;  ///< values per point (ASCII)
   bool has_origin = false;  ///< a "# pcl_ls3d origin" line was read (pcd_io.h)
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< x_file = stored value + origin
+  std::string crs_wkt;  ///< the first "# pcl_ls3d crs" line's WKT (pcd_io.h), empty if none
 };
 
 /// Parses and checks the header; h.data_offset is the first byte after the DATA line.

@@ -189,6 +189,7 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
   }
   info.file_origin = h.origin;
   info.has_file_origin = h.has_origin;
+  info.file_crs_wkt = h.crs_wkt;
   return detail::applyLocalOrigin(xyz, cloud, info, frame, error, h.origin);
 }
 

@@ -248,5 +248,17 @@ sameCrs(const std::string& a, const std::string& b)
   return sa && sb && sa->IsSame(sb.get());
 }
 
+io::LasVlr
+wktVlr(const std::string& wkt)
+{
+  io::LasVlr v;
+  v.user_id = "LASF_Projection";
+  v.record_id = kWktRecord;
+  v.description = "OGC WKT";
+  v.data.assign(wkt.begin(), wkt.end());
+  v.data.push_back(0);
+  return v;
+}
+
 }  // namespace maps
 }  // namespace pcl_ls3d

@@ -4,14 +4,13 @@
 #include <pcl_ls3d/segmentation/object_classes.h>
 
 #include <pcl_ls3d/common/voxel_index.h>
-#include <pcl_ls3d/segmentation/ground_filter.h>
+#include <pcl_ls3d/stats/descriptive.h>
 
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <memory>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -32,11 +31,17 @@ familyOf(SegmentKind k)
   }
 }
 
+bool
+finite(const Eigen::Vector3f& p)
+{
+  return p.allFinite();
+}
+
 /// What one object looks like: kind votes, z sample, plan moments and box along its axes.
 struct ObjectShape
 {
   std::size_t votes[kFamilies] = {0, 0, 0, 0};
-  std::vector<float> z;
+  std::vector<double> z;
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< first point (moments are relative)
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   Eigen::Matrix2d sum_sq = Eigen::Matrix2d::Zero();
@@ -54,31 +59,19 @@ struct ObjectShape
   double width() const { return hi.y() - lo.y(); }
 };
 
-/// q-quantile of a sample (partially reorders it).
-float
-quantile(std::vector<float>& v, double q)
-{
-  const auto k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
-
 std::vector<ObjectShape>
 objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
              const std::vector<SegmentKind>& point_kind)
 {
   const int n_objects = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
   std::vector<ObjectShape> shapes(static_cast<std::size_t>(std::max(0, n_objects)));
-  std::vector<char> seen(shapes.size(), 0);
   for (std::size_t p = 0; p < points.size(); ++p) {
-    if (labels[p] < 0)
+    if (labels[p] < 0 || !finite(points[p]))
       continue;
     ObjectShape& s = shapes[static_cast<std::size_t>(labels[p])];
     const Eigen::Vector2d xy = points[p].head<2>().cast<double>();
-    if (!seen[static_cast<std::size_t>(labels[p])]) {
-      seen[static_cast<std::size_t>(labels[p])] = 1;
+    if (s.z.empty())
       s.origin = xy;
-    }
     ++s.votes[familyOf(point_kind[p])];
     s.z.push_back(points[p].z());
     const Eigen::Vector2d d = xy - s.origin;
@@ -95,7 +88,7 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
     s.axis = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvectors().col(1);
   }
   for (std::size_t p = 0; p < points.size(); ++p) {
-    if (labels[p] < 0)
+    if (labels[p] < 0 || !finite(points[p]))
       continue;
     ObjectShape& s = shapes[static_cast<std::size_t>(labels[p])];
     const Eigen::Vector2d d = points[p].head<2>().cast<double>() - s.origin;
@@ -106,62 +99,100 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
   return shapes;
 }
 
+/// A plan cell's index, saturated to 32 bits so that keys and box ranges agree everywhere.
+std::int64_t
+cellIndex(double x, double cell)
+{
+  constexpr std::int64_t kLimit = std::numeric_limits<std::int32_t>::max();
+  return std::clamp<std::int64_t>(voxelCoordinate(x, cell), -kLimit, kLimit);
+}
+
+std::uint64_t
+cellKey(std::int64_t x, std::int64_t y)
+{
+  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32 |
+         static_cast<std::uint32_t>(y);
+}
+
 /// Plan cells of edge \a cell that the points of each linear-family object occupy: a wire's
 /// run along its length, a canopy or a row of roofs seen as a line covers its width too.
 void
 countLinearCover(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
                  double cell, std::vector<ObjectShape>& shapes)
 {
-  std::unordered_set<std::uint64_t> seen;
+  std::vector<std::unordered_set<std::uint64_t>> cells(shapes.size());
   for (std::size_t p = 0; p < points.size(); ++p) {
-    if (labels[p] < 0)
+    if (labels[p] < 0 || !finite(points[p]))
       continue;
-    ObjectShape& s = shapes[static_cast<std::size_t>(labels[p])];
-    if (s.family() != kLinear)
-      continue;
-    // Object and cell in one key; a collision only undercounts a cover.
-    const auto x = static_cast<std::uint64_t>(voxelCoordinate(points[p].x(), cell)) & 0xfffffu;
-    const auto y = static_cast<std::uint64_t>(voxelCoordinate(points[p].y(), cell)) & 0xfffffu;
-    if (seen.insert(static_cast<std::uint64_t>(labels[p]) << 40 | x << 20 | y).second)
-      ++s.cover;
+    const auto o = static_cast<std::size_t>(labels[p]);
+    if (shapes[o].family() == kLinear)
+      cells[o].insert(cellKey(cellIndex(points[p].x(), cell), cellIndex(points[p].y(), cell)));
   }
+  for (std::size_t o = 0; o < shapes.size(); ++o)
+    shapes[o].cover = cells[o].size();
 }
 
-/// Median lowest ground point of the cells within the margin of an object's plan box; NaN
-/// when none holds a ground point.
-class TerrainLevels
+/// The lowest ground-filter point per plan cell and the object it belongs to (−1: none): the
+/// terrain under and around an object, and what the other ground objects show around a
+/// ground object.
+class TerrainCells
 {
 public:
-  TerrainLevels(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
-                double cell)
+  TerrainCells(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+               const std::vector<char>& ground, double cell)
+  : cell_(cell)
   {
-    std::vector<Eigen::Vector3f> kept;
-    for (std::size_t p = 0; p < points.size(); ++p)
-      if (ground[p])
-        kept.push_back(points[p]);
-    if (!kept.empty())
-      grid_ = std::make_unique<LowestPointGrid>(kept, cell);
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      if (!ground[p] || !finite(points[p]))
+        continue;
+      const Lowest here{points[p].z(), labels[p]};
+      const auto [it, fresh] = cells_.try_emplace(
+          cellKey(cellIndex(points[p].x(), cell_), cellIndex(points[p].y(), cell_)), here);
+      if (!fresh && here.z < it->second.z)
+        it->second = here;
+    }
   }
 
-  float under(const ObjectShape& s, double margin) const
+  /// Median lowest point of the cells within \a margin of the object's plan box whose lowest
+  /// point is not of object \a except (−2: take all); NaN when there is none.
+  double levelAround(const ObjectShape& s, double margin, int except) const
   {
-    if (!grid_)
-      return std::numeric_limits<float>::quiet_NaN();
-    const Eigen::Vector2d lo = s.box_lo.array() - margin, hi = s.box_hi.array() + margin;
-    const int first = grid_->cellOf(Eigen::Vector3f(float(lo.x()), float(lo.y()), 0.0f));
-    const int last = grid_->cellOf(Eigen::Vector3f(float(hi.x()), float(hi.y()), 0.0f));
-    std::vector<float> levels;
-    for (int r = first / grid_->cols(); r <= last / grid_->cols(); ++r)
-      for (int c = first % grid_->cols(); c <= last % grid_->cols(); ++c) {
-        const float z = grid_->lowest()[static_cast<std::size_t>(r) * grid_->cols() + c];
-        if (std::isfinite(z))
-          levels.push_back(z);
+    const std::int64_t x0 = cellIndex(s.box_lo.x() - margin, cell_);
+    const std::int64_t x1 = cellIndex(s.box_hi.x() + margin, cell_);
+    const std::int64_t y0 = cellIndex(s.box_lo.y() - margin, cell_);
+    const std::int64_t y1 = cellIndex(s.box_hi.y() + margin, cell_);
+    std::vector<double> levels;
+    const auto take = [&](const Lowest& l) {
+      if (l.object != except)
+        levels.push_back(l.z);
+    };
+    // Scan the smaller of the box's cells and the occupied cells.
+    if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) >
+        static_cast<double>(cells_.size())) {
+      for (const auto& [key, lowest] : cells_) {
+        const std::int64_t x = static_cast<std::int32_t>(key >> 32);
+        const std::int64_t y = static_cast<std::int32_t>(key & 0xffffffffu);
+        if (x >= x0 && x <= x1 && y >= y0 && y <= y1)
+          take(lowest);
       }
-    return levels.empty() ? std::numeric_limits<float>::quiet_NaN() : quantile(levels, 0.5);
+    }
+    else {
+      for (std::int64_t x = x0; x <= x1; ++x)
+        for (std::int64_t y = y0; y <= y1; ++y)
+          if (const auto it = cells_.find(cellKey(x, y)); it != cells_.end())
+            take(it->second);
+    }
+    return stats::median(std::move(levels));
   }
 
 private:
-  std::unique_ptr<LowestPointGrid> grid_;
+  struct Lowest
+  {
+    float z;
+    int object;
+  };
+  double cell_;
+  std::unordered_map<std::uint64_t, Lowest> cells_;
 };
 
 /// Poles and lattice towers are taller than wide and hold their points all the way up (a tall
@@ -178,72 +209,14 @@ standsUpright(const ObjectShape& s, double low, double middle, double top,
          (s.family() == kLinear || s.width() >= c.pole_plan_aspect * s.length());
 }
 
-/// Lowest point per plan cell of the ground-family objects, and the object it belongs to: the
-/// terrain that the other ground objects show around one of them.
-class GroundCells
+/// A ground-like object standing clearly above the other ground around it is a roof that the
+/// ground filter kept (wider than its largest window, or with little terrain around).
+bool
+raisedAbove(const ObjectShape& s, double middle, double others, const ObjectClassSettings& c)
 {
-public:
-  GroundCells(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
-              const std::vector<ObjectShape>& shapes, double cell)
-  : cell_(cell)
-  {
-    for (std::size_t p = 0; p < points.size(); ++p) {
-      if (labels[p] < 0 || shapes[static_cast<std::size_t>(labels[p])].family() != kGround)
-        continue;
-      const auto key = keyOf(voxelCoordinate(points[p].x(), cell_),
-                             voxelCoordinate(points[p].y(), cell_));
-      const auto [it, fresh] = cells_.try_emplace(key, Lowest{points[p].z(), labels[p]});
-      if (!fresh && points[p].z() < it->second.z)
-        it->second = Lowest{points[p].z(), labels[p]};
-    }
-  }
-
-  /// Median of the lowest points of other ground objects in the cells within \a margin of the
-  /// plan box of \a object; NaN when there are none.
-  float othersUnder(const ObjectShape& s, int object, double margin) const
-  {
-    const std::int64_t x0 = voxelCoordinate(s.box_lo.x() - margin, cell_);
-    const std::int64_t x1 = voxelCoordinate(s.box_hi.x() + margin, cell_);
-    const std::int64_t y0 = voxelCoordinate(s.box_lo.y() - margin, cell_);
-    const std::int64_t y1 = voxelCoordinate(s.box_hi.y() + margin, cell_);
-    std::vector<float> levels;
-    const auto take = [&](const Lowest& l) {
-      if (l.object != object)
-        levels.push_back(l.z);
-    };
-    if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) >
-        static_cast<double>(cells_.size())) {
-      for (const auto& [key, lowest] : cells_) {
-        const auto x = static_cast<std::int32_t>(key >> 32), y = static_cast<std::int32_t>(key);
-        if (x >= x0 && x <= x1 && y >= y0 && y <= y1)
-          take(lowest);
-      }
-    }
-    else {
-      for (std::int64_t x = x0; x <= x1; ++x)
-        for (std::int64_t y = y0; y <= y1; ++y) {
-          const auto it = cells_.find(keyOf(x, y));
-          if (it != cells_.end())
-            take(it->second);
-        }
-    }
-    return levels.empty() ? std::numeric_limits<float>::quiet_NaN() : quantile(levels, 0.5);
-  }
-
-private:
-  struct Lowest
-  {
-    float z;
-    int object;
-  };
-  static std::uint64_t keyOf(std::int64_t x, std::int64_t y)
-  {
-    return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32) |
-           static_cast<std::uint32_t>(y);
-  }
-  double cell_;
-  std::unordered_map<std::uint64_t, Lowest> cells_;
-};
+  return middle - others >= c.min_building_height &&  // false for a NaN level
+         s.length() * s.width() >= c.min_building_area;
+}
 
 ObjectClass
 surfaceClass(const ObjectShape& s, double top, const ObjectClassSettings& c)
@@ -259,20 +232,11 @@ surfaceClass(const ObjectShape& s, double top, const ObjectClassSettings& c)
   return ObjectClass::Unclassified;
 }
 
-/// A ground-like object standing clearly above the other ground around it is a roof that the
-/// ground filter kept (wider than its largest window, or with little terrain around).
-bool
-raisedAbove(ObjectShape& s, float others, const ObjectClassSettings& c)
-{
-  return std::isfinite(others) && quantile(s.z, 0.5) - others >= c.min_building_height &&
-         s.length() * s.width() >= c.min_building_area;
-}
-
 ObjectClass
 linearClass(const ObjectShape& s, double low, const ObjectClassSettings& c)
 {
   const double thin = c.max_wire_cover * s.length() / c.wire_cell;
-  if (std::isfinite(low) && low >= c.min_wire_height && s.length() >= c.min_wire_length &&
+  if (low >= c.min_wire_height && s.length() >= c.min_wire_length &&  // false for NaN
       static_cast<double>(s.cover) <= thin)
     return ObjectClass::Wire;
   return ObjectClass::Unclassified;
@@ -308,6 +272,28 @@ lasCode(ObjectClass c)
   }
 }
 
+bool
+objectClassFromLasCode(int code, ObjectClass& c)
+{
+  for (const ObjectClass k : kObjectClasses)
+    if (lasCode(k) == code) {
+      c = k;
+      return true;
+    }
+  return false;
+}
+
+std::string
+describeLasCodes()
+{
+  std::string text;
+  for (const ObjectClass k : {ObjectClass::Ground, ObjectClass::Building, ObjectClass::Vegetation,
+                              ObjectClass::Wire, ObjectClass::Pole, ObjectClass::Car,
+                              ObjectClass::Unclassified})
+    text += (text.empty() ? "" : ", ") + std::to_string(lasCode(k)) + " " + toString(k);
+  return text;
+}
+
 std::vector<ObjectClass>
 classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
                 const std::vector<SegmentKind>& point_kind, const std::vector<char>& ground,
@@ -318,11 +304,10 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     return {};
   std::vector<ObjectShape> shapes = objectShapes(points, labels, point_kind);
   countLinearCover(points, labels, settings.wire_cell, shapes);
-  const TerrainLevels terrain(points, ground, settings.terrain_cell);
-  const GroundCells ground_cells(points, labels, shapes, settings.terrain_cell);
+  const TerrainCells terrain(points, labels, ground, settings.terrain_cell);
   std::vector<ObjectClass> classes(shapes.size(), ObjectClass::Unclassified);
   for (std::size_t o = 0; o < shapes.size(); ++o) {
-    ObjectShape& s = shapes[o];
+    const ObjectShape& s = shapes[o];
     if (s.z.empty())
       continue;
     const int family = s.family();
@@ -330,16 +315,15 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
       classes[o] = ObjectClass::Vegetation;
       continue;
     }
+    const std::vector<double> z = stats::quantiles(s.z, {0.05, 0.5, 0.95});
+    const double low = z[0], middle = z[1], top = z[2];
     if (family == kGround) {
-      classes[o] = raisedAbove(s, ground_cells.othersUnder(s, static_cast<int>(o),
-                                                          settings.terrain_margin), settings)
-                       ? ObjectClass::Building
-                       : ObjectClass::Ground;
+      const double others = terrain.levelAround(s, settings.terrain_margin, static_cast<int>(o));
+      classes[o] = raisedAbove(s, middle, others, settings) ? ObjectClass::Building
+                                                            : ObjectClass::Ground;
       continue;
     }
-    const float level = terrain.under(s, settings.terrain_margin);
-    const double low = quantile(s.z, 0.05), middle = quantile(s.z, 0.5),
-                 top = quantile(s.z, 0.95);
+    const double level = terrain.levelAround(s, settings.terrain_margin, -2);
     if (standsUpright(s, low, middle, top, settings))
       classes[o] = ObjectClass::Pole;
     else

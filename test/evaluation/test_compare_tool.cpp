@@ -297,14 +297,9 @@ TEST_F(CompareTool, UnitsFollowTheCrs)
   if (!fs::exists(kTool))
     FAIL() << kTool << " not built";
   io::SaveOptions feet;
-  io::LasVlr wkt_vlr;
-  wkt_vlr.user_id = "LASF_Projection";
-  wkt_vlr.record_id = 2112;
   const std::string wkt = maps::crsFromUserInput("EPSG:2994");  // NAD83(CORS96) / Oregon Lambert (ft)
   ASSERT_EQ(maps::crsLinearUnitName(wkt), "ft");
-  wkt_vlr.data.assign(wkt.begin(), wkt.end());
-  wkt_vlr.data.push_back(0);
-  feet.las_vlrs = {wkt_vlr};
+  feet.las_vlrs = {maps::wktVlr(wkt)};
   for (const char* name : {"source", "target"}) {
     pcl::PointCloud<PointLiDAR> cloud;
     io::CloudInfo info;

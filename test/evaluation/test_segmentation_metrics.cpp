@@ -176,6 +176,17 @@ TEST(SegmentationMetrics, ClassificationPointByPoint)
   EXPECT_EQ(e.other.predicted_points, 1u);
   EXPECT_FALSE(evaluateClassification({2, 2}, reference, {}, e, err));
   EXPECT_NE(err.find("2 predicted classes for 9 reference labels"), std::string::npos) << err;
+
+  // A group naming code 1 scores the reference's code 1 (IGN's parked cars); a prediction of
+  // 1 (unclassified) or 0 (no segment) is still no prediction, not a car.
+  SegmentationEvaluationSettings cars;
+  ASSERT_TRUE(parseClassGroups("ground=2,car=1", cars.groups, err)) << err;
+  ASSERT_TRUE(evaluateClassification({1, 1, 0, 1, 1}, {1, 1, 1, 2, 2}, cars, e, err)) << err;
+  EXPECT_EQ(e.classes[1].tp, 0u);
+  EXPECT_EQ(e.classes[1].fp, 0u);
+  EXPECT_EQ(e.classes[1].fn, 3u);
+  EXPECT_EQ(e.classes[0].fn, 2u);
+  EXPECT_EQ(e.points_unsegmented, 5u);
 }
 
 TEST(SegmentationClasses, Parser)

@@ -7,6 +7,7 @@
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/png_io.h>
 
 #include <pcl/io/pcd_io.h>
@@ -745,6 +746,11 @@ TEST_F(SegmentTool, SegmentsFileCarriesObjectClasses)
   const ToolResult described = run(seg.string());
   ASSERT_EQ(described.code, 0) << described.err;
   EXPECT_NE(described.out.find("object classes (LAS codes): "), std::string::npos) << described.out;
+  for (const auto& [name, counts] : report["runs"][0]["classes"].items())  // same points per code
+    EXPECT_NE(described.out.find(" " + std::to_string(code.at(name)) + ":" +
+                                 std::to_string(counts["points"].get<std::size_t>())),
+              std::string::npos)
+        << name << "\n" << described.out;
   tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_convert";
   ASSERT_EQ(run(seg.string() + " " + las.string()).code, 0);
   pcl::PointCloud<pcl_ls3d::PointLiDAR> converted;
@@ -781,4 +787,51 @@ TEST_F(SegmentTool, EvaluateScoresObjectClassesAndMrgHasNone)
   EXPECT_EQ(countNonEmptyLines(refused.err), 1u) << refused.err;
   EXPECT_NE(refused.err.find("no object classes"), std::string::npos) << refused.err;
   EXPECT_FALSE(fs::exists(dir_ / "c.png"));
+}
+
+// A georeferenced input's CRS travels with its segments: SEGMENTS.pcd records it in a header
+// line (plain PCL still loads the file), pcl_ls3d_info names it, and pcl_ls3d_convert gives the
+// LAS it writes that CRS (LAS 1.4, WKT VLR, global-encoding bit 4). Before, the CRS was lost
+// and every picture of the segments said "no CRS in the file".
+TEST_F(SegmentTool, SegmentsFileKeepsTheInputCrs)
+{
+  const std::string wkt = pcl_ls3d::maps::crsFromUserInput("EPSG:2154");  // Lambert-93
+  ASSERT_FALSE(wkt.empty());
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> lidar;
+  for (const auto& p : scene_) {
+    pcl_ls3d::PointLiDAR q;
+    q.x = p.x;
+    q.y = p.y;
+    q.z = p.z;
+    q.classification = static_cast<std::uint8_t>(p.label);
+    lidar.push_back(q);
+  }
+  pcl_ls3d::io::SaveOptions options;
+  options.las_vlrs = {pcl_ls3d::maps::wktVlr(wkt)};
+  const Eigen::Vector3d origin(770000.0, 6277000.0, 0.0);
+  const fs::path las = dir_ / "scene.las", seg = dir_ / "SEGMENTS.pcd", back = dir_ / "back.las";
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(las.string(), lidar, origin, error, options)) << error;
+  ASSERT_EQ(run(las.string() + " -o " + seg.string()).code, 0);
+  EXPECT_NE(slurp(seg).find("\n# pcl_ls3d crs "), std::string::npos);
+  pcl::PointCloud<pcl::PointXYZRGBL> plain;
+  ASSERT_EQ(pcl::io::loadPCDFile(seg.string(), plain), 0);
+  EXPECT_EQ(plain.size(), scene_.size());
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> loaded;
+  pcl_ls3d::io::CloudInfo info;
+  ASSERT_TRUE(pcl_ls3d::io::loadCloud(seg.string(), loaded, info, error)) << error;
+  EXPECT_TRUE(pcl_ls3d::maps::sameCrs(info.file_crs_wkt, wkt)) << info.file_crs_wkt;
+
+  tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_info";
+  const ToolResult described = run(seg.string());
+  EXPECT_NE(described.out.find("crs RGF93 v1 / Lambert-93 (recorded in the header)"),
+            std::string::npos)
+      << described.out;
+  tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_convert";
+  ASSERT_EQ(run(seg.string() + " " + back.string()).code, 0);
+  ASSERT_TRUE(pcl_ls3d::io::loadCloud(back.string(), loaded, info, error)) << error;
+  EXPECT_EQ(info.las.version_minor, 4);
+  EXPECT_EQ(info.las.global_encoding & 16, 16);
+  EXPECT_TRUE(pcl_ls3d::maps::sameCrs(pcl_ls3d::maps::crsFromLasVlrs(info.las.vlrs), wkt));
+  EXPECT_NEAR(info.min_file.x(), origin.x() - 20.0, 1.0);  // the input's coordinates
 }

@@ -78,9 +78,11 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
                      SegmentationEvaluation& result, std::string& error);
 
 /// \brief Scores predicted classes point by point (IMRG's object classes, as LAS codes): a point
-///        is predicted as the group holding its predicted code; a predicted code in no group is
-///        predicted "other", an excluded one (0, 1: unclassified) "none" (a false negative of
-///        the point's class). Reference points with excluded codes are left out, as above.
+///        is predicted as the group holding its predicted code; a predicted code in no group or
+///        excluded is predicted "other" or "none", and 0 (no segment) and 1 (unclassified) are
+///        always "none" (a false negative of the point's class), even when a group names code 1
+///        for the reference (IGN's parked cars). Reference points with excluded codes are left
+///        out, as above; min_segment_size does not apply (there are no segments).
 ///        method, seconds and segments are kept from \a result (the caller's); the per-class
 ///        segment counts stay 0; points_unsegmented counts the points predicted none.
 /// \return false with a one-line reason (sizes differ) in `error`

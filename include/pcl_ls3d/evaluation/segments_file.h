@@ -18,7 +18,9 @@
 /// (io::pcdOriginLine(), %.17g, so the double comes back exactly); readSegmentsOrigin() parses it
 /// back, and io::loadCloud() reads the file in the input's frame (local floats, CloudInfo::origin
 /// = this origin, as for the LAS input). A second comment line (kSegmentsMarker) says the labels
-/// are segment ids. Points whose input coordinates were not finite keep their place with NaN
+/// are segment ids; when the input declared a CRS, a third (io::pcdCrsLine(), "# pcl_ls3d crs
+/// WKT") records it, so that pictures get their unit and a LAS converted from the file its CRS.
+/// Points whose input coordinates were not finite keep their place with NaN
 /// coordinates and label 0, so that the file lines up with the input point for point (is_dense
 /// false then).
 
@@ -42,6 +44,7 @@ struct InputLayout
   std::size_t points_in_file = 0;            ///< input points, finite or not
   std::vector<std::size_t> nonfinite;        ///< file indices of the dropped points, ascending
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< file coordinate = local + origin
+  std::string crs_wkt;  ///< the input's CRS (OGC WKT), recorded in the header; empty: none
 };
 
 /// \brief Writes SEGMENTS.pcd.

@@ -108,6 +108,9 @@ struct CloudInfo
   /// floats, x_file = stored value + file_origin); zero for any other file.
   Eigen::Vector3d file_origin = Eigen::Vector3d::Zero();
   bool has_file_origin = false;  ///< the header records an origin (it may be zero)
+  /// PCD: the OGC WKT its header records ("# pcl_ls3d crs", pcd_io.h); empty for other files
+  /// (a LAS file's CRS is in las.vlrs).
+  std::string file_crs_wkt;
   std::size_t points_in_file = 0, points_loaded = 0, points_dropped_nonfinite = 0;
   std::vector<std::size_t> nonfinite_indices;        ///< file indices of the dropped points, ascending
   Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units

@@ -20,6 +20,11 @@
 /// local coordinates with CloudInfo::origin = CloudInfo::file_origin = that origin, as a LAS
 /// file's offset is applied (with LoadOptions::use_origin the points are moved to the forced
 /// origin instead). A malformed origin line, or a second one, fails the header.
+///
+/// Recorded CRS. Such a PCD may also carry the coordinate reference of those file coordinates
+/// (SEGMENTS.pcd of a georeferenced LAS) in one comment line holding OGC WKT:
+///   # pcl_ls3d crs PROJCS["RGF93 v1 / Lambert-93",...]
+/// readPcd() returns it as CloudInfo::file_crs_wkt (the first such line; not interpreted here).
 
 #include <pcl_ls3d/io/cloud_io.h>
 
@@ -45,6 +50,11 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
 ///        with %.17g, so the doubles come back exactly.
 std::string
 pcdOriginLine(const Eigen::Vector3d& origin);
+
+/// \brief The header line that records a CRS, without a newline: "# pcl_ls3d crs WKT", line
+///        breaks of the WKT made spaces.
+std::string
+pcdCrsLine(const std::string& wkt);
 
 /// \brief Writes \a cloud as a binary PCD (fields packed, no padding) whose header records
 ///        \a origin (pcdOriginLine(), after PCL's first header line) and then \a comments (whole

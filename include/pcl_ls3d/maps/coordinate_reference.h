@@ -18,6 +18,12 @@ namespace maps {
 std::string
 crsFromLasVlrs(const std::vector<io::LasVlr>& vlrs, std::string* why = nullptr);
 
+/// The LAS VLR that declares \a wkt (LASF_Projection 2112, "OGC WKT", NUL-terminated): what a
+/// LAS 1.4 file carries (global-encoding bit 4, set by the writer); LAS 1.0–1.3 readers that
+/// know only GeoTIFF keys ignore it.
+io::LasVlr
+wktVlr(const std::string& wkt);
+
 /// WKT of a CRS given by a user: "EPSG:2154", a PROJ string or WKT; empty with `why` if invalid.
 std::string
 crsFromUserInput(const std::string& text, std::string* why = nullptr);

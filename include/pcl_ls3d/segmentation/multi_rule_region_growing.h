@@ -190,8 +190,9 @@ public:
   /// \brief Thresholds of the object classes (heights, car and building sizes; metres).
   void setObjectClassSettings(const segmentation::ObjectClassSettings& s) { classes_ = s; }
   const segmentation::ObjectClassSettings& getObjectClassSettings() const { return classes_; }
-  /// \brief Class of every cluster of getClusters(\a level) of the last extract(); empty
-  ///        without the object assembly (Mode::MRG).
+  /// \brief Class of every cluster of getClusters(\a level) of the last extract() (a plane: the
+  ///        class of the object holding most of its points); empty without the object assembly
+  ///        (Mode::MRG) or when extract() failed.
   const std::vector<segmentation::ObjectClass>& getClusterClasses(Level level) const
   {
     return level == Level::Planes ? plane_classes_ : object_classes_;

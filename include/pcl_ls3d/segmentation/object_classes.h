@@ -6,9 +6,10 @@
 ///
 /// Per object, the points vote with the kind of their segment before any join (ground; rough;
 /// solid or wall; linear) and the largest vote decides the family:
-///  - ground: Ground, unless it stands min_building_height above the other ground around it
-///    (median z against the median lowest point of the other ground objects): a roof wider
-///    than the ground filter's largest window, which the filter kept, is a Building;
+///  - ground: Ground, unless its median z stands min_building_height above the ground around
+///    it (the lowest ground-filter point of each cell near it that is not its own) and its plan
+///    box covers min_building_area: a roof wider than the ground filter's largest window,
+///    which the filter kept, is a Building;
 ///  - rough: Vegetation (crowns, hedges, grass detached from the ground);
 ///  - surface (solid, wall) or linear, standing upright — vertical extent at least
 ///    min_building_height and pole_slenderness × its plan length, median z in the lower
@@ -23,17 +24,21 @@
 ///    least min_wire_length long and thin (its points occupy at most max_wire_cover × length /
 ///    wire_cell plan cells of edge wire_cell: a canopy edge or a row of roofs grown as a line
 ///    covers its width too); else Unclassified (a kerb, a fence).
-/// The terrain under an object is the median of the lowest ground-filter point per
-/// terrain_cell cell within terrain_margin of the object's plan box; with no ground point there
-/// the height tests are skipped (a solid object is then a Building if large enough).
-/// Heights use robust ends: top = 95th and low = 5th percentile of the object's z. Lengths are
-/// metres (cloud units): car and building sizes are physical, not relative to the spacing.
+/// Plan length and width are the extents along the object's principal plan axes; the terrain
+/// is looked for around its x–y box: the median of the lowest ground-filter point per
+/// terrain_cell cell within terrain_margin of that box. Where no ground point lies that close
+/// the height is unknown: a surface is then a Building if its plan box covers
+/// min_building_area (a roof-only crop; a car there is called a building too), a line is no
+/// wire. Heights use robust ends: top = 95th and low = 5th percentile of the object's z.
+/// Lengths are metres (cloud units): car and building sizes are physical, not relative to the
+/// spacing. Non-finite points are skipped.
 
 #include <pcl_ls3d/segmentation/segment_kinds.h>
 
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -50,6 +55,12 @@ enum class ObjectClass : std::uint8_t
   Car
 };
 
+/// \brief Every class, in the order of the enum.
+constexpr ObjectClass kObjectClasses[] = {ObjectClass::Unclassified, ObjectClass::Ground,
+                                          ObjectClass::Building,     ObjectClass::Vegetation,
+                                          ObjectClass::Wire,         ObjectClass::Pole,
+                                          ObjectClass::Car};
+
 /// \brief "unclassified", "ground", "building", "vegetation", "wire", "pole", "car".
 const char*
 toString(ObjectClass c);
@@ -59,6 +70,15 @@ toString(ObjectClass c);
 ///        user-definable code, as pcl_ls3d_synth's cars; ASPRS has no car class).
 std::uint8_t
 lasCode(ObjectClass c);
+
+/// \brief The class written as \a code (lasCode()); false for any other code.
+bool
+objectClassFromLasCode(int code, ObjectClass& c);
+
+/// \brief "2 ground, 6 building, 5 vegetation, 14 wire, 15 pole, 64 car, 1 unclassified": the
+///        codes as written, for reports and help texts.
+std::string
+describeLasCodes();
 
 /// \brief Thresholds of classifyObjects(); lengths in metres (cloud units).
 struct ObjectClassSettings

@@ -350,12 +350,12 @@ MultiRuleRegionGrowing<PointT, NormalT>::clusterClasses(
   for (std::size_t c = 0; c < clusters.size(); ++c) {
     votes.clear();
     for (const auto i : clusters[c].indices)
-      ++votes[segment_of_[static_cast<std::size_t>(position_of_[i])]];
+      if (const int object = segment_of_[static_cast<std::size_t>(position_of_[i])]; object >= 0)
+        ++votes[object];
     const auto best = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
       return a.second < b.second;
     });
-    if (best != votes.end() && best->first >= 0 &&
-        static_cast<std::size_t>(best->first) < object_class_.size())
+    if (best != votes.end() && static_cast<std::size_t>(best->first) < object_class_.size())
       out[c] = object_class_[static_cast<std::size_t>(best->first)];
   }
   return out;
