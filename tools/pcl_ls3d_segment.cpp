@@ -7,10 +7,11 @@
 /// segment id + 1 (0 = in no segment, and every non-finite input point), rgba per segment, so
 /// that pcl::io::loadPCDFile into pcl::PointXYZRGBL reads it.
 
+#include "segment_report.h"
+#include "segment_warnings.h"
 #include "tool_arguments.h"
 #include "tool_output.h"
 
-#include <pcl_ls3d/common/voxel_index.h>
 #include <pcl_ls3d/evaluation/object_metrics.h>
 #include <pcl_ls3d/evaluation/reference_objects.h>
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
@@ -23,7 +24,6 @@
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/segmentation/dimensionality_features.h>
 #include <pcl_ls3d/segmentation/object_classes.h>
-#include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/io/json_text.h>
 
 #include <pcl/common/time.h>
@@ -40,7 +40,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -198,162 +197,346 @@ checkOutput(const std::string& out, const std::string& input, bool overwrite, st
   return tools::checkOutputFile(out, {input}, overwrite, error);
 }
 
-json
-runToJson(const ev::SegmentationRun& r)
-{
-  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
-  json j;
-  j["method"] = ev::toString(r.method);
-  j["segments"] = r.segments.size();
-  j["segments_before_merging"] = r.segments_before_merge;
-  j["segments_after_merging"] = r.segments_after_merge;
-  j["merges"] = r.merges;
-  j["thresholds"] = {{"v_t_m", num(r.residual_threshold)}, {"d_t_m", num(r.distance_threshold)},
-                     {"s_t_m", num(r.similarity_threshold)}, {"V_t", num(r.volume_threshold)},
-                     {"distance_samples", r.distance_samples},
-                     {"volume_samples", r.volume_samples}};
-  j["spacing_m"] = num(r.spacing);
-  j["growth_radius_m"] = num(r.growth_radius);
-  j["volumetric_radius_m"] = num(r.volumetric_radius);
-  j["dimensionality"] = {{"linear", r.linear}, {"planar", r.planar},
-                         {"volumetric", r.volumetric}, {"invalid", r.invalid}};
-  j["fragments_absorbed"] = r.fragments_absorbed;
-  // Segments whose convex hull is degenerate (decided before qhull, which runs silently).
-  j["segment_hulls"] = {{"tiny", r.hulls_tiny}, {"collinear", r.hulls_collinear},
-                        {"flat", r.hulls_flat}, {"solid", r.hulls_solid}};
-  j["seconds"] = {{"total", r.seconds_total}, {"normals", r.seconds_normals},
-                  {"segmentation", r.seconds_segmentation}, {"search", r.seconds_search},
-                  {"features", r.seconds_features}, {"growing", r.seconds_growing},
-                  {"merging", r.seconds_merging}, {"absorbing", r.seconds_absorbing}};
-  return j;
-}
-
-json
-evaluationToJson(const ev::SegmentationEvaluation& e)
-{
-  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
-  json j;
-  j["method"] = e.method;
-  j["seconds"] = e.seconds;
-  j["segments"] = e.segments;
-  j["points_evaluated"] = e.points_evaluated;
-  j["points_unsegmented"] = e.points_unsegmented;
-  j["segments_under_min_size"] = e.segments_too_small;
-  for (const auto& c : e.classes)
-    j["classes"][c.name] = {{"precision", num(c.precision)}, {"recall", num(c.recall)},
-                            {"f1", num(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn},
-                            {"reference_points", c.reference_points}, {"segments", c.segments}};
-  return j;
-}
-
-json
-objectEvaluationToJson(const ev::ObjectEvaluation& e)
-{
-  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
-  json j;
-  j["method"] = e.method;
-  j["seconds"] = e.seconds;
-  j["segments"] = e.segments;
-  if (!e.failure.empty()) {
-    j["failure"] = e.failure;
-    return j;
-  }
-  for (const auto& c : e.classes)
-    j["classes"][c.name] = {{"precision", num(c.precision)}, {"recall", num(c.recall)},
-                            {"f1", num(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn},
-                            {"objects", c.objects}, {"recognised", c.recognised},
-                            {"large_objects", c.large_objects},
-                            {"median_valid_segments", num(c.median_valid_segments)},
-                            {"median_largest_share", num(c.median_largest_share)}};
-  return j;
-}
-
-/// Points far outside the data's dense core (a stray return kilometres away) stretch the
-/// extent that the ground grid and the origin are taken from and change the segmentation: said,
-/// not hidden. "" when the extent is within 4 × that of the central 99.8 % of the points.
-std::string
-farOutlierWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud)
-{
-  if (cloud.size() < 1000)
-    return "";
-  double core = 0.0, full = 0.0;
-  for (int axis = 0; axis < 2; ++axis) {
-    std::vector<double> v;
-    v.reserve(cloud.size());
-    for (const auto& p : cloud)
-      v.push_back(axis == 0 ? p.x : p.y);
-    const std::vector<double> q = stats::quantiles(std::move(v), {0.0, 0.001, 0.999, 1.0});
-    core = std::max(core, q[2] - q[1]);
-    full = std::max(full, q[3] - q[0]);
-  }
-  if (!(full > 4.0 * core))
-    return "";
-  char buf[240];
-  std::snprintf(buf, sizeof(buf),
-                "the points span %.0f m, but 99.8 %% of them lie within %.0f m: far outliers change the "
-                "grid and the segmentation; crop them first",
-                full, core);
-  return buf;
-}
-
-/// Below about 2 points per m² a house or a crown is a handful of points, and the growth radius
-/// (2 k_min-th neighbour distances, about 4 mean spacings 1/√density) spans the gaps between
-/// them: objects join. Measured on IGN tiles thinned at
-/// random (docs/BENCHMARKS.md, "Sparse data"): said before the run, not discovered in the maps.
-std::string
-sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud, double metres_per_unit)
-{
-  // Density over the 5 m cells that hold points: gaps (water, a cropped corner) do not count.
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(cloud.size());
-  for (const auto& p : cloud)
-    points.emplace_back(p.x, p.y, p.z);
-  const double cell = 5.0 / metres_per_unit;
-  const auto occupied = static_cast<double>(occupiedCells(points, 0, 1, cell));
-  const double cell_m = cell * metres_per_unit;
-  const double density = static_cast<double>(cloud.size()) / (occupied * cell_m * cell_m);
-  if (!(occupied > 0.0) || density >= 2.0)
-    return "";
-  const double spacing = 1.0 / std::sqrt(density);
-  char buf[400];
-  std::snprintf(buf, sizeof(buf),
-                "%.3g points per m² (mean spacing %.2f m): too sparse for whole objects; houses, "
-                "crowns and the ground closer than about 4 spacings join (on an IGN tile thinned "
-                "to 1.5 points per m², vegetation F1 fell from 0.89 to 0.34); object "
-                "segmentation wants at least 2-4 points per m²",
-                density, spacing);
-  return buf;
-}
-
-/// Segments and points per class (IMRG), e.g. "building 12 (30.2 %)", and the same as JSON:
-/// per class name {segments, points} (objects, or planes with -level planes).
-std::string
-classSummary(const std::vector<pcl::PointIndices>& segments,
-             const std::vector<segmentation::ObjectClass>& classes, std::size_t points, json& j)
-{
-  std::map<segmentation::ObjectClass, std::pair<std::size_t, std::size_t>> per;
-  for (std::size_t s = 0; s < segments.size() && s < classes.size(); ++s) {
-    ++per[classes[s]].first;
-    per[classes[s]].second += segments[s].indices.size();
-  }
-  std::string text;
-  j = json::object();
-  for (const auto& [c, n] : per) {
-    char buf[96];
-    std::snprintf(buf, sizeof(buf), "%s%s %zu (%.1f %%)", text.empty() ? "" : ", ",
-                  segmentation::toString(c), n.first,
-                  100.0 * static_cast<double>(n.second) / static_cast<double>(std::max<std::size_t>(points, 1)));
-    text += buf;
-    j[segmentation::toString(c)] = {{"segments", n.first}, {"points", n.second}};
-  }
-  return text;
-}
-
 int
 fail(const std::string& msg)
 {
   print_error("[pcl_ls3d_segment] %s\n", msg.c_str());
   return EXIT_FAILURE;
+}
+
+/// Everything the command line asks for, checked before any input is read.
+struct Options
+{
+  std::string input, out_pcd, out_json;
+  bool overwrite = false, evaluate = false;
+  ev::SegmentationRunSettings settings;
+  ev::SegmentationEvaluationSettings eval;
+  double object_radius = -1.0;  ///< reference objects; negative: automatic
+};
+
+bool
+parseOptions(int argc, char** argv, Options& o, std::string& error)
+{
+  if (!checkArguments(argc, argv, o.input, error) || !parseSettings(argc, argv, o.settings, error))
+    return false;
+  parse_argument(argc, argv, "-o", o.out_pcd);
+  parse_argument(argc, argv, "-json", o.out_json);
+  o.overwrite = find_switch(argc, argv, "-overwrite");
+  o.evaluate = find_switch(argc, argv, "-evaluate");
+  double min_size = 0;
+  if (!parseNumber(argc, argv, "-eval_min_size", min_size, error) ||
+      !parseNumber(argc, argv, "-object_radius", o.object_radius, error))
+    return false;
+  if (min_size < 0 || min_size != std::floor(min_size))
+    return (error = "-eval_min_size must be a non-negative integer"), false;
+  o.eval.min_segment_size = static_cast<std::size_t>(min_size);
+  if (o.object_radius == 0.0 || o.object_radius > 1e6)
+    return (error = "-object_radius must be positive (metres), or negative for automatic"), false;
+  std::string class_spec;
+  if (parse_argument(argc, argv, "-classes", class_spec) >= 0 &&
+      !ev::parseClassGroups(class_spec, o.eval.groups, error))
+    return (error = "-classes: " + error), false;
+  if (!o.out_pcd.empty() && io::fileExtension(o.out_pcd) != "pcd")
+    return (error = "-o must name a .pcd file, got '" + o.out_pcd + "'"), false;
+  if (!o.out_pcd.empty() && !o.out_json.empty() && io::isSameFile(o.out_pcd, o.out_json))
+    return (error = "-o and -json name the same file"), false;
+  return checkOutput(o.out_pcd, o.input, o.overwrite, error) &&
+         checkOutput(o.out_json, o.input, o.overwrite, error);
+}
+
+/// The input as the methods see it: finite points, local coordinates, reference labels.
+struct Input
+{
+  pcl::PointCloud<PointLiDAR> cloud;
+  io::CloudInfo info;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz{new pcl::PointCloud<pcl::PointXYZ>};
+  std::vector<int> reference;  ///< LAS classification / PCD label per point
+  std::string wkt;             ///< CRS of the coordinates; empty: none declared
+  double seconds = 0.0;
+};
+
+bool
+loadInput(const Options& o, Input& in, std::string& error)
+{
+  TicToc tt;
+  tt.tic();
+  if (o.evaluate && ev::isSegmentsFile(o.input))
+    return (error = "-evaluate: '" + o.input + "' is a SEGMENTS file of pcl_ls3d_segment: its labels "
+                    "are segment ids, not reference classes (evaluate the labelled input instead)"),
+           false;
+  if (!io::loadCloud(o.input, in.cloud, in.info, error))
+    return false;
+  const std::size_t n = in.cloud.size();
+  if (n > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    return (error = "cloud too large for pcl::PointIndices"), false;
+  in.seconds = tt.toc() / 1000.0;
+  print_info("Loaded %s: %zu points (%zu non-finite dropped), origin (%.3f, %.3f, %.3f) in %.3f s\n",
+             o.input.c_str(), n, in.info.points_dropped_nonfinite, in.info.origin.x(),
+             in.info.origin.y(), in.info.origin.z(), in.seconds);
+  // The multi-rule methods' smallest neighbourhood (pcl_rg runs on fewer: its clusters say so).
+  const int k_min =
+      o.settings.k_min > 0 ? o.settings.k_min : segmentation::NeighbourhoodSettings().k_min;
+  if (o.settings.method != ev::SegmentationMethod::PclRegionGrowing && n < static_cast<std::size_t>(k_min))
+    return (error = "need at least k_min = " + std::to_string(k_min) + " finite points (-k) for " +
+                    ev::toString(o.settings.method) + ", got " + std::to_string(n)),
+           false;
+  if (n < 3)
+    return (error = "need at least 3 finite points, got " + std::to_string(n)), false;
+  in.xyz->resize(n);
+  in.reference.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    (*in.xyz)[i] = pcl::PointXYZ(in.cloud[i].x, in.cloud[i].y, in.cloud[i].z);
+    in.reference[i] = in.cloud[i].classification;
+  }
+  const ev::ClassLookup lookup(o.eval.groups, o.eval.excluded_codes);
+  if (o.evaluate && std::none_of(in.reference.begin(), in.reference.end(),
+                                 [&](int c) { return lookup.groupOf(c) >= 0; }))
+    return (error = "-evaluate: no point of '" + o.input +
+                    "' carries a label of the evaluated classes"),
+           false;
+  in.wkt = in.info.format == "las" ? maps::crsFromLasVlrs(in.info.las.vlrs) : in.info.file_crs_wkt;
+  return true;
+}
+
+/// Far outliers and sparse data, said before the run (printed, and returned for the JSON).
+json
+inputWarnings(const Input& in)
+{
+  // Metres per unit: the CRS's, else the tool's assumption of metres; a CRS without a linear
+  // unit (geographic degrees) gives no density to judge.
+  const double crs_unit = maps::crsLinearUnit(in.wkt);
+  const bool density_known = in.wkt.empty() || crs_unit > 0.0;
+  json warnings = json::array();
+  for (const std::string& w :
+       {tools::farOutlierWarning(*in.xyz),
+        density_known ? tools::sparseDataWarning(*in.xyz, crs_unit > 0.0 ? crs_unit : 1.0)
+                      : std::string()})
+    if (!w.empty()) {
+      print_warn("Warning: %s\n", w.c_str());
+      warnings.push_back(w);
+    }
+  return warnings;
+}
+
+/// What the runs gave: the selected method's segments and classes, and the evaluation rows.
+struct Results
+{
+  std::vector<pcl::PointIndices> selected;
+  std::vector<segmentation::ObjectClass> selected_classes;
+  std::vector<ev::SegmentationEvaluation> evaluations, class_evaluations;
+  std::vector<ev::ObjectEvaluation> object_evaluations;
+};
+
+/// A baseline that failed: a row of every table, with its reason.
+void
+recordFailure(ev::SegmentationMethod m, double seconds, const std::string& why, json& report,
+              Results& r)
+{
+  print_warn("%s failed: %s\n", ev::toString(m).c_str(), why.c_str());
+  report["runs"].push_back({{"method", ev::toString(m)}, {"failure", why}});
+  ev::SegmentationEvaluation e;
+  e.method = ev::toString(m);
+  e.seconds = seconds;
+  e.failure = why;
+  r.evaluations.push_back(e);
+  ev::ObjectEvaluation o;
+  o.method = e.method;
+  o.seconds = seconds;
+  o.failure = why;
+  r.object_evaluations.push_back(o);
+  report["evaluation"].push_back({{"method", e.method}, {"failure", why}});
+  report["object_evaluation"].push_back(tools::segment_report::objectEvaluationToJson(o));
+}
+
+/// One line per run: segments, time, thresholds or the baseline's own figures; and its classes.
+void
+printRun(ev::SegmentationMethod m, const ev::SegmentationRun& run, double seconds,
+         std::size_t points, json& report)
+{
+  print_info("%s: %zu segments (%zu before merging) in %.3f s", ev::toString(m).c_str(),
+             run.segments.size(), run.segments_before_merge, seconds);
+  if (m == ev::SegmentationMethod::IMRG || m == ev::SegmentationMethod::MRG)
+    print_info("; v_t %.4f m, d_t %.4f m, s_t %.4f m, V_t %.3f; linear/planar/volumetric "
+               "%zu/%zu/%zu\n",
+               run.residual_threshold, run.distance_threshold, run.similarity_threshold,
+               run.volume_threshold, run.linear, run.planar, run.volumetric);
+  else if (m == ev::SegmentationMethod::PclRegionGrowing)
+    print_info(" (normals %.3f s; %zu points in the rest segment)\n", run.seconds_normals,
+               run.rest_points);
+  else
+    print_info(" (voxel edge %.3f m)\n", run.voxel_size);
+  json rj = tools::segment_report::runToJson(run);
+  if (m == ev::SegmentationMethod::VoxelGrid)
+    rj["voxel_size_m"] = run.voxel_size;
+  if (m == ev::SegmentationMethod::PclRegionGrowing)
+    rj["rest_points"] = run.rest_points;
+  if (!run.classes.empty()) {
+    json classes;
+    print_info("%s classes: %s\n", ev::toString(m).c_str(),
+               tools::segment_report::classSummary(run.segments, run.classes, points, classes).c_str());
+    rj["classes"] = classes;
+  }
+  report["runs"].push_back(rj);
+}
+
+/// The run scored against the reference: per point, per object, and IMRG's classes.
+bool
+evaluateRun(const Options& o, const Input& in, const ev::ReferenceObjects& objects,
+            ev::SegmentationMethod m, const ev::SegmentationRun& run, json& report, Results& r,
+            std::string& error)
+{
+  ev::SegmentationEvaluation e;
+  e.method = ev::toString(m);
+  e.seconds = run.seconds_total;
+  if (!ev::evaluateSegmentation(run.segments, in.reference, o.eval, e, error))
+    return false;
+  report["evaluation"].push_back(tools::segment_report::evaluationToJson(e));
+  r.evaluations.push_back(e);
+  ev::ObjectEvaluation oe;
+  oe.method = e.method;
+  oe.seconds = e.seconds;
+  if (!ev::evaluateObjects(run.segments, objects, {}, oe, error))
+    return false;
+  report["object_evaluation"].push_back(tools::segment_report::objectEvaluationToJson(oe));
+  r.object_evaluations.push_back(oe);
+  if (run.classes.empty())
+    return true;
+  ev::SegmentationEvaluation c;
+  c.method = e.method + " classes";
+  c.seconds = e.seconds;
+  c.segments = run.segments.size();
+  if (!ev::evaluateClassification(
+          ev::classCodesFromSegments(run.segments, run.classes, in.reference.size()),
+          in.reference, o.eval, c, error))
+    return false;
+  report["class_evaluation"].push_back(tools::segment_report::evaluationToJson(c));
+  r.class_evaluations.push_back(c);
+  return true;
+}
+
+/// The selected method, or all four for -evaluate (the selected one first, so that the voxel
+/// grid can match IMRG's count either way). A baseline's failure is a row, not the run's.
+bool
+runMethods(const Options& o, const Input& in, const ev::ReferenceObjects& objects, json& report,
+           Results& r, std::string& error)
+{
+  std::vector<ev::SegmentationMethod> methods{o.settings.method};
+  if (o.evaluate) {
+    methods = {ev::SegmentationMethod::IMRG, ev::SegmentationMethod::MRG,
+               ev::SegmentationMethod::PclRegionGrowing, ev::SegmentationMethod::VoxelGrid};
+    std::stable_partition(methods.begin(), methods.end(),
+                          [&](ev::SegmentationMethod m) { return m == o.settings.method; });
+  }
+  std::size_t imrg_segments = 0;
+  for (const auto m : methods) {
+    ev::SegmentationRunSettings s = o.settings;
+    s.method = m;
+    s.voxel_segments = imrg_segments;
+    ev::SegmentationRun run;
+    TicToc tt;
+    tt.tic();
+    const bool ok = (m != ev::SegmentationMethod::VoxelGrid || imrg_segments > 0)
+                        ? ev::runSegmentation(in.xyz, s, run, error)
+                        : (error = "no IMRG segment count to match", false);
+    if (!ok && m == o.settings.method)
+      return false;
+    if (!ok) {
+      recordFailure(m, run.seconds_total, error, report, r);
+      continue;
+    }
+    if (m == ev::SegmentationMethod::IMRG)
+      imrg_segments = run.segments.size();
+    printRun(m, run, tt.toc() / 1000.0, in.cloud.size(), report);
+    if (m == o.settings.method) {
+      r.selected = run.segments;
+      r.selected_classes = run.classes;
+      if (run.rest_points > 0)  // pcl_rg's rest is for the evaluation only: no segment, label 0
+        r.selected.pop_back();
+      if (r.selected.empty())
+        print_warn("%s: every point lies in a cluster under the minimum size: all labels 0\n",
+                   ev::toString(m).c_str());
+    }
+    if (o.evaluate && !evaluateRun(o, in, objects, m, run, report, r, error))
+      return false;
+  }
+  return true;
+}
+
+/// The tables of -evaluate: objects, fragmentation, per point (with confusions), classes.
+void
+printEvaluation(const Options& o, const Results& r)
+{
+  const std::string excluded = ev::describeExcludedCodes(o.eval.groups, o.eval.excluded_codes);
+  print_info("\nObject-based precision / recall / F1 (%%), Wang et al. 2021 sec. 4.1: a segment "
+             "is valid for the\nreference object holding more than half of its labelled "
+             "points; an object is recognised when\nits valid segments hold more than half of "
+             "it; %s.\n%s",
+             excluded.c_str(), ev::formatObjectTable(r.object_evaluations).c_str());
+  const ev::ObjectEvaluationSettings object_settings;
+  print_info("\nFragmentation: recognised / objects, and over objects of at least %zu points "
+             "the median number of\nvalid segments per object and the median share of the "
+             "object in its largest valid segment.\n%s",
+             object_settings.min_object_points,
+             ev::formatFragmentationTable(r.object_evaluations, object_settings.min_object_points)
+                 .c_str());
+  const std::string small =
+      o.eval.min_segment_size > 0
+          ? " (or in one under " + std::to_string(o.eval.min_segment_size) + " points)"
+          : "";
+  print_info("\nPer-point precision / recall / F1 (%%); segments mapped to their majority class;\n"
+             "points in no segment%s count as false negatives; %s.\n%s",
+             small.c_str(), excluded.c_str(), ev::formatSegmentationTable(r.evaluations).c_str());
+  for (const auto& e : r.evaluations)
+    if (e.failure.empty())
+      print_info("%s confusion:\n%s", e.method.c_str(), ev::describeConfusion(e).c_str());
+  if (!r.class_evaluations.empty())
+    print_info("\nObject classes, per point precision / recall / F1 (%%): each point takes the "
+               "class IMRG gave its object\n(no reference label used); unclassified counts as "
+               "no prediction; %s.\n%s%s",
+               excluded.c_str(), ev::formatSegmentationTable(r.class_evaluations).c_str(),
+               ev::describeConfusion(r.class_evaluations.front()).c_str());
+}
+
+/// SEGMENTS.pcd (segments_file.h) and what the JSON says about it.
+bool
+writeSegments(const Options& o, const Input& in, const Results& r, json& report,
+              std::string& error)
+{
+  TicToc tt;
+  tt.tic();
+  ev::InputLayout layout;
+  layout.points_in_file = in.info.points_in_file;
+  layout.nonfinite = in.info.nonfinite_indices;
+  layout.origin = in.info.origin;
+  layout.crs_wkt = in.wkt;
+  std::vector<std::uint8_t> codes;
+  for (const auto c : r.selected_classes)
+    codes.push_back(segmentation::lasCode(c));
+  if (!ev::saveSegmentsPcd(o.out_pcd, *in.xyz, r.selected, layout, error, codes))
+    return false;
+  const double seconds = tt.toc() / 1000.0;
+  const std::size_t points = std::max(in.info.points_in_file, in.cloud.size());
+  const Eigen::Vector3d& origin = in.info.origin;
+  report["seconds_write"] = seconds;
+  report["segments_file"] = {{"path", o.out_pcd},
+                             {"points", points},
+                             {"coordinates", "float32, local: file coordinate = x + origin"},
+                             {"origin", {origin.x(), origin.y(), origin.z()}},
+                             {"label", "segment id + 1; 0 = no segment or non-finite input"},
+                             {"crs", in.wkt.empty() ? json(nullptr) : json(maps::crsName(in.wkt))}};
+  if (!codes.empty()) {
+    report["segments_file"]["classification"] = "LAS code of the segment's object class: " +
+                                                segmentation::describeLasCodes() + "; 0 = no segment";
+    json names = json::array();
+    for (const auto c : r.selected_classes)
+      names.push_back(segmentation::toString(c));
+    report["segment_classes"] = names;  // index = label - 1
+  }
+  print_info("Wrote %s (%zu points in input order, %zu segments; local float coordinates, "
+             "origin (%.3f, %.3f, %.3f) in its header) in %.3f s\n",
+             o.out_pcd.c_str(), points, r.selected.size(), origin.x(), origin.y(), origin.z(),
+             seconds);
+  return true;
 }
 
 }  // namespace
@@ -367,300 +550,47 @@ main(int argc, char** argv)
     printHelp(argv[0]);
     return argc < 2 ? EXIT_FAILURE : EXIT_SUCCESS;
   }
-  std::string input, error, out_pcd, out_json, class_spec;
-  if (!checkArguments(argc, argv, input, error))
-    return fail(error);
-  ev::SegmentationRunSettings settings;
-  if (!parseSettings(argc, argv, settings, error))
-    return fail(error);
-  parse_argument(argc, argv, "-o", out_pcd);
-  parse_argument(argc, argv, "-json", out_json);
-  const bool overwrite = find_switch(argc, argv, "-overwrite");
-  const bool evaluate = find_switch(argc, argv, "-evaluate");
-  ev::SegmentationEvaluationSettings eval_settings;
-  double min_size = 0;
-  if (!parseNumber(argc, argv, "-eval_min_size", min_size, error))
-    return fail(error);
-  if (min_size < 0 || min_size != std::floor(min_size))
-    return fail("-eval_min_size must be a non-negative integer");
-  eval_settings.min_segment_size = static_cast<std::size_t>(min_size);
-  double object_radius = -1.0;
-  if (!parseNumber(argc, argv, "-object_radius", object_radius, error))
-    return fail(error);
-  if (object_radius == 0.0 || object_radius > 1e6)
-    return fail("-object_radius must be positive (metres), or negative for automatic");
-  if (parse_argument(argc, argv, "-classes", class_spec) >= 0 &&
-      !ev::parseClassGroups(class_spec, eval_settings.groups, error))
-    return fail("-classes: " + error);
-  if (!out_pcd.empty() && io::fileExtension(out_pcd) != "pcd")
-    return fail("-o must name a .pcd file, got '" + out_pcd + "'");
-  if (!out_pcd.empty() && !out_json.empty() && io::isSameFile(out_pcd, out_json))
-    return fail("-o and -json name the same file");
-  if (!checkOutput(out_pcd, input, overwrite, error) ||
-      !checkOutput(out_json, input, overwrite, error))
+  Options o;
+  Input in;
+  std::string error;
+  if (!parseOptions(argc, argv, o, error) || !loadInput(o, in, error))
     return fail(error);
 
-  // ---- load ----------------------------------------------------------------------------
-  TicToc tt;
-  tt.tic();
-  pcl::PointCloud<PointLiDAR> cloud;
-  io::CloudInfo info;
-  if (evaluate && ev::isSegmentsFile(input))
-    return fail("-evaluate: '" + input + "' is a SEGMENTS file of pcl_ls3d_segment: its labels are segment "
-                "ids, not reference classes (evaluate the labelled input instead)");
-  if (!io::loadCloud(input, cloud, info, error))
-    return fail(error);
-  if (cloud.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    return fail("cloud too large for pcl::PointIndices");
-  const double t_load = tt.toc() / 1000.0;
-  print_info("Loaded %s: %zu points (%zu non-finite dropped), origin (%.3f, %.3f, %.3f) in %.3f s\n",
-             input.c_str(), cloud.size(), info.points_dropped_nonfinite, info.origin.x(),
-             info.origin.y(), info.origin.z(), t_load);
-  // The multi-rule methods' smallest neighbourhood (pcl_rg runs on fewer: its clusters say so).
-  const int k_min = settings.k_min > 0 ? settings.k_min : segmentation::NeighbourhoodSettings().k_min;
-  if (settings.method != ev::SegmentationMethod::PclRegionGrowing && cloud.size() < static_cast<std::size_t>(k_min))
-    return fail("need at least k_min = " + std::to_string(k_min) + " finite points (-k) for " +
-                ev::toString(settings.method) + ", got " + std::to_string(cloud.size()));
-  if (cloud.size() < 3)
-    return fail("need at least 3 finite points, got " + std::to_string(cloud.size()));
-
-  pcl::PointCloud<pcl::PointXYZ>::Ptr xyz(new pcl::PointCloud<pcl::PointXYZ>);
-  xyz->resize(cloud.size());
-  std::vector<int> reference(cloud.size());
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    (*xyz)[i].x = cloud[i].x;
-    (*xyz)[i].y = cloud[i].y;
-    (*xyz)[i].z = cloud[i].z;
-    reference[i] = cloud[i].classification;
-  }
-  if (evaluate) {
-    const ev::ClassLookup lookup(eval_settings.groups, eval_settings.excluded_codes);
-    std::size_t labelled = 0;
-    for (int c : reference)
-      labelled += lookup.groupOf(c) >= 0;
-    if (labelled == 0)
-      return fail("-evaluate: no point of '" + input + "' carries a label of the evaluated classes");
-  }
-
-  // Metres per unit: the LAS CRS's, else the tool's assumption of metres; a CRS without a
-  // linear unit (geographic degrees) gives no density to judge.
-  const std::string wkt =
-      info.format == "las" ? maps::crsFromLasVlrs(info.las.vlrs) : info.file_crs_wkt;
-  const double crs_unit = maps::crsLinearUnit(wkt);
-  const bool density_known = wkt.empty() || crs_unit > 0.0;
-  json warnings = json::array();
-  for (const std::string& w :
-       {farOutlierWarning(*xyz),
-        density_known ? sparseDataWarning(*xyz, crs_unit > 0.0 ? crs_unit : 1.0) : std::string()})
-    if (!w.empty()) {
-      print_warn("Warning: %s\n", w.c_str());
-      warnings.push_back(w);
-    }
-
-  // ---- segment (one method, or all four for -evaluate) ----------------------------------
-  std::vector<ev::SegmentationMethod> methods{settings.method};
-  if (evaluate) {
-    methods = {ev::SegmentationMethod::IMRG, ev::SegmentationMethod::MRG,
-               ev::SegmentationMethod::PclRegionGrowing, ev::SegmentationMethod::VoxelGrid};
-    // The selected method first, so that the voxel grid can match IMRG's count either way.
-    std::stable_partition(methods.begin(), methods.end(),
-                          [&](ev::SegmentationMethod m) { return m == settings.method; });
-  }
   json report;
-  report["input"] = input;
-  report["points"] = cloud.size();
-  report["points_in_file"] = info.points_in_file;
-  report["points_dropped_nonfinite"] = info.points_dropped_nonfinite;
-  report["origin"] = {info.origin.x(), info.origin.y(), info.origin.z()};
-  report["level"] = settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
-  report["seconds_load"] = t_load;
-  report["warnings"] = warnings;
+  report["input"] = o.input;
+  report["points"] = in.cloud.size();
+  report["points_in_file"] = in.info.points_in_file;
+  report["points_dropped_nonfinite"] = in.info.points_dropped_nonfinite;
+  report["origin"] = {in.info.origin.x(), in.info.origin.y(), in.info.origin.z()};
+  report["level"] = o.settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
+  report["seconds_load"] = in.seconds;
+  report["warnings"] = inputWarnings(in);
+
   ev::ReferenceObjects objects;
-  if (evaluate) {
+  if (o.evaluate) {
     ev::ReferenceObjectSettings ro;
-    ro.groups = eval_settings.groups;
-    ro.excluded_codes = eval_settings.excluded_codes;
-    ro.radius = object_radius;
+    ro.groups = o.eval.groups;
+    ro.excluded_codes = o.eval.excluded_codes;
+    ro.radius = o.object_radius;
+    TicToc tt;
     tt.tic();
-    if (!ev::referenceObjectsFromLabels(*xyz, reference, ro, objects, error))
+    if (!ev::referenceObjectsFromLabels(*in.xyz, in.reference, ro, objects, error))
       return fail("-evaluate: " + error);
     print_info("Reference objects: %zu (connected components per class group, radius %.2f m) "
                "in %.3f s\n", objects.objects(), objects.radius, tt.toc() / 1000.0);
     report["reference_objects"] = {{"objects", objects.objects()}, {"radius_m", objects.radius}};
   }
-  std::vector<ev::SegmentationEvaluation> evaluations;
-  std::vector<ev::ObjectEvaluation> object_evaluations;
-  std::vector<pcl::PointIndices> selected;
-  std::vector<segmentation::ObjectClass> selected_classes;
-  std::vector<ev::SegmentationEvaluation> class_evaluations;
-  std::size_t imrg_segments = 0;
-  for (auto m : methods) {
-    ev::SegmentationRunSettings s = settings;
-    s.method = m;
-    s.voxel_segments = imrg_segments;
-    ev::SegmentationRun run;
-    tt.tic();
-    const bool ok = (m != ev::SegmentationMethod::VoxelGrid || imrg_segments > 0)
-                        ? ev::runSegmentation(xyz, s, run, error)
-                        : (error = "no IMRG segment count to match", false);
-    if (!ok) {
-      // The selected method's failure ends the run; a baseline's is a row of the tables.
-      if (m == settings.method)
-        return fail(error);
-      print_warn("%s failed: %s\n", ev::toString(m).c_str(), error.c_str());
-      json j;
-      j["method"] = ev::toString(m);
-      j["failure"] = error;
-      report["runs"].push_back(j);
-      ev::SegmentationEvaluation e;
-      e.method = ev::toString(m);
-      e.seconds = run.seconds_total;
-      e.failure = error;
-      evaluations.push_back(e);
-      ev::ObjectEvaluation o;
-      o.method = e.method;
-      o.seconds = e.seconds;
-      o.failure = error;
-      object_evaluations.push_back(o);
-      report["evaluation"].push_back({{"method", e.method}, {"failure", error}});
-      report["object_evaluation"].push_back(objectEvaluationToJson(o));
-      continue;
-    }
-    if (m == ev::SegmentationMethod::IMRG)
-      imrg_segments = run.segments.size();
-    print_info("%s: %zu segments (%zu before merging) in %.3f s", ev::toString(m).c_str(),
-               run.segments.size(), run.segments_before_merge, tt.toc() / 1000.0);
-    if (m == ev::SegmentationMethod::IMRG || m == ev::SegmentationMethod::MRG)
-      print_info("; v_t %.4f m, d_t %.4f m, s_t %.4f m, V_t %.3f; linear/planar/volumetric "
-                 "%zu/%zu/%zu\n",
-                 run.residual_threshold, run.distance_threshold, run.similarity_threshold,
-                 run.volume_threshold, run.linear, run.planar, run.volumetric);
-    else if (m == ev::SegmentationMethod::PclRegionGrowing)
-      print_info(" (normals %.3f s; %zu points in the rest segment)\n", run.seconds_normals,
-                 run.rest_points);
-    else
-      print_info(" (voxel edge %.3f m)\n", run.voxel_size);
-    json rj = runToJson(run);
-    if (m == ev::SegmentationMethod::VoxelGrid)
-      rj["voxel_size_m"] = run.voxel_size;
-    if (m == ev::SegmentationMethod::PclRegionGrowing)
-      rj["rest_points"] = run.rest_points;
-    report["runs"].push_back(rj);
-    if (m == settings.method) {
-      selected = run.segments;
-      selected_classes = run.classes;
-      if (run.rest_points > 0)  // pcl_rg's rest is for the evaluation only: no segment, label 0
-        selected.pop_back();
-      if (selected.empty())
-        print_warn("%s: every point lies in a cluster under the minimum size: all labels 0\n",
-                   ev::toString(m).c_str());
-    }
-    if (!run.classes.empty()) {
-      json classes;
-      print_info("%s classes: %s\n", ev::toString(m).c_str(),
-                 classSummary(run.segments, run.classes, cloud.size(), classes).c_str());
-      report["runs"].back()["classes"] = classes;
-    }
-    if (evaluate) {
-      ev::SegmentationEvaluation e;
-      e.method = ev::toString(m);
-      e.seconds = run.seconds_total;
-      if (!ev::evaluateSegmentation(run.segments, reference, eval_settings, e, error))
-        return fail(error);
-      report["evaluation"].push_back(evaluationToJson(e));
-      evaluations.push_back(e);
-      ev::ObjectEvaluation o;
-      o.method = e.method;
-      o.seconds = e.seconds;
-      if (!ev::evaluateObjects(run.segments, objects, {}, o, error))
-        return fail(error);
-      report["object_evaluation"].push_back(objectEvaluationToJson(o));
-      object_evaluations.push_back(o);
-      if (!run.classes.empty()) {
-        ev::SegmentationEvaluation c;
-        c.method = e.method + " classes";
-        c.seconds = e.seconds;
-        c.segments = run.segments.size();
-        if (!ev::evaluateClassification(ev::classCodesFromSegments(run.segments, run.classes, cloud.size()),
-                                        reference, eval_settings, c, error))
-          return fail(error);
-        report["class_evaluation"].push_back(evaluationToJson(c));
-        class_evaluations.push_back(c);
-      }
-    }
-  }
-  if (evaluate) {
-    const std::string excluded =
-        ev::describeExcludedCodes(eval_settings.groups, eval_settings.excluded_codes);
-    print_info("\nObject-based precision / recall / F1 (%%), Wang et al. 2021 sec. 4.1: a segment "
-               "is valid for the\nreference object holding more than half of its labelled "
-               "points; an object is recognised when\nits valid segments hold more than half of "
-               "it; %s.\n%s",
-               excluded.c_str(), ev::formatObjectTable(object_evaluations).c_str());
-    const ev::ObjectEvaluationSettings object_settings;
-    print_info("\nFragmentation: recognised / objects, and over objects of at least %zu points "
-               "the median number of\nvalid segments per object and the median share of the "
-               "object in its largest valid segment.\n%s",
-               object_settings.min_object_points,
-               ev::formatFragmentationTable(object_evaluations, object_settings.min_object_points)
-                   .c_str());
-    print_info("\nPer-point precision / recall / F1 (%%); segments mapped to their majority class;\n"
-               "points in no segment%s count as false negatives; %s.\n%s",
-               eval_settings.min_segment_size > 0
-                   ? (" (or in one under " + std::to_string(eval_settings.min_segment_size) +
-                      " points)").c_str()
-                   : "",
-               excluded.c_str(), ev::formatSegmentationTable(evaluations).c_str());
-    for (const auto& e : evaluations)
-      if (e.failure.empty())
-        print_info("%s confusion:\n%s", e.method.c_str(), ev::describeConfusion(e).c_str());
-    if (!class_evaluations.empty())
-      print_info("\nObject classes, per point precision / recall / F1 (%%): each point takes the "
-                 "class IMRG gave its object\n(no reference label used); unclassified counts as "
-                 "no prediction; %s.\n%s%s",
-                 excluded.c_str(), ev::formatSegmentationTable(class_evaluations).c_str(),
-                 ev::describeConfusion(class_evaluations.front()).c_str());
-  }
-
-  // ---- write -----------------------------------------------------------------------------
-  if (!out_pcd.empty()) {
-    tt.tic();
-    ev::InputLayout layout;
-    layout.points_in_file = info.points_in_file;
-    layout.nonfinite = info.nonfinite_indices;
-    layout.origin = info.origin;
-    layout.crs_wkt = wkt;
-    std::vector<std::uint8_t> codes;
-    for (const auto c : selected_classes)
-      codes.push_back(segmentation::lasCode(c));
-    if (!ev::saveSegmentsPcd(out_pcd, *xyz, selected, layout, error, codes))
-      return fail(error);
-    const double t_write = tt.toc() / 1000.0;
-    report["seconds_write"] = t_write;
-    report["segments_file"] = {{"path", out_pcd},
-                               {"points", std::max(info.points_in_file, cloud.size())},
-                               {"coordinates", "float32, local: file coordinate = x + origin"},
-                               {"origin", {info.origin.x(), info.origin.y(), info.origin.z()}},
-                               {"label", "segment id + 1; 0 = no segment or non-finite input"},
-                               {"crs", wkt.empty() ? json(nullptr) : json(maps::crsName(wkt))}};
-    if (!codes.empty()) {
-      report["segments_file"]["classification"] =
-          "LAS code of the segment's object class: " + segmentation::describeLasCodes() +
-          "; 0 = no segment";
-      json names = json::array();
-      for (const auto c : selected_classes)
-        names.push_back(segmentation::toString(c));
-      report["segment_classes"] = names;  // index = label - 1
-    }
-    print_info("Wrote %s (%zu points in input order, %zu segments; local float coordinates, "
-               "origin (%.3f, %.3f, %.3f) in its header) in %.3f s\n",
-               out_pcd.c_str(), std::max(info.points_in_file, cloud.size()), selected.size(),
-               info.origin.x(), info.origin.y(), info.origin.z(), t_write);
-  }
-  if (!out_json.empty()) {
-    if (!tools::writeJsonFile(out_json, report))
-      return fail("cannot write '" + out_json + "'");
-    print_info("Wrote %s\n", out_json.c_str());
+  Results results;
+  if (!runMethods(o, in, objects, report, results, error))
+    return fail(error);
+  if (o.evaluate)
+    printEvaluation(o, results);
+  if (!o.out_pcd.empty() && !writeSegments(o, in, results, report, error))
+    return fail(error);
+  if (!o.out_json.empty()) {
+    if (!tools::writeJsonFile(o.out_json, report))
+      return fail("cannot write '" + o.out_json + "'");
+    print_info("Wrote %s\n", o.out_json.c_str());
   }
   return EXIT_SUCCESS;
 }
