@@ -245,44 +245,32 @@ writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, 
   return def::writeDeformationMap(prefix, def::makeDeformationMap(points, r, ms), crs_wkt, overwrite, error);
 }
 
-}  // namespace
-
-int
-main(int argc, char** argv)
+/// Everything the command line asks for, checked before any input is read.
+struct Options
 {
-  pcl_ls3d::tools::lineBufferedStdout();
-  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
-    printHelp(argv[0]);
-    return 0;
-  }
-  static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
-                                               "-contamination", "-seed", "-k", "-min_region", "-grow_k", "-refine",
-                                               "-max_iter", "-max_dist", "-matching_points", "-o", "-json",
-                                               "-map", "-crs", "-map_cell"};
-  std::vector<std::string> files;
-  std::string why;
-  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite", "-lod95"}, files, why))
-    return fail(why), 1;
-  if (files.size() != 2)
-    return fail("expected exactly two input files, REFERENCE and EPOCH (see -h)"), 1;
-  const std::string reference_path = files[0], epoch_path = files[1];
+  std::string reference_path, epoch_path, rule_text = "lzd", out_path, json_path, map_prefix;
+  std::string png_path, tif_path, crs_wkt;  ///< the map's files; the -crs CRS (empty: none)
+  bool overwrite = false, lod95 = false;
+  double map_cell = 0.0;
+  def::DeformationSettings settings;
+};
 
-  std::string estimator_text = "mm", rule_text = "lzd", out_path, json_path, map_prefix, crs_text;
+/// -params, -subsets, ... into the deformation settings; false with the reason.
+bool
+parseSettings(int argc, char** argv, Options& o, std::string& why)
+{
+  std::string estimator_text = "mm";
   int params = 6, subsets = 0, min_region = 10, refine = 10, max_iter = 30;
   long long matching_points = 50000;
-  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, map_cell = 0.0, grow_k = 2.0;
-  const bool overwrite = find_switch(argc, argv, "-overwrite");
+  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, grow_k = 2.0;
   parse_argument(argc, argv, "-estimator", estimator_text);
-  parse_argument(argc, argv, "-rule", rule_text);
-  parse_argument(argc, argv, "-o", out_path);
-  parse_argument(argc, argv, "-json", json_path);
-  parse_argument(argc, argv, "-map", map_prefix);
-  parse_argument(argc, argv, "-crs", crs_text);
+  parse_argument(argc, argv, "-rule", o.rule_text);
   using pcl_ls3d::tools::integerOption;
   using pcl_ls3d::tools::numberOption;
   using pcl_ls3d::tools::optionValue;
   if (!integerOption(argc, argv, "-params", params, why, 3, 7) || (params != 3 && params != 6 && params != 7))
-    return fail(std::string("-params expects 6, 7 or 3, got '") + optionValue(argc, argv, "-params") + "'"), 1;
+    return (why = std::string("-params expects 6, 7 or 3, got '") + optionValue(argc, argv, "-params") + "'"),
+           false;
   if (!integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
       !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
       !integerOption(argc, argv, "-refine", refine, why, 0, 100) ||
@@ -293,22 +281,22 @@ main(int argc, char** argv)
       !numberOption(argc, argv, "-k", k, why, 1e-6, 1e6) ||
       !numberOption(argc, argv, "-contamination", contamination, why, 1e-6, 0.5) ||
       !numberOption(argc, argv, "-max_dist", max_dist, why, 1e-12) ||
-      !numberOption(argc, argv, "-map_cell", map_cell, why, 1e-12))
-    return fail(why), 1;
-  const bool lod95 = find_switch(argc, argv, "-lod95");
-  if (!optionConflict(argc, argv, lod95, k, grow_k, why))
-    return fail(why), 1;
-  if (!optionValue(argc, argv, "-grow_k") && grow_k >= (lod95 ? kLod95Factor : k))
+      !numberOption(argc, argv, "-map_cell", o.map_cell, why, 1e-12))
+    return false;
+  o.lod95 = find_switch(argc, argv, "-lod95");
+  if (!optionConflict(argc, argv, o.lod95, k, grow_k, why))
+    return false;
+  if (!optionValue(argc, argv, "-grow_k") && grow_k >= (o.lod95 ? kLod95Factor : k))
     print_warn("Warning: %s %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
-               "below it, or 0)\n", lod95 ? "-lod95's threshold" : "-k", lod95 ? kLod95Factor : k, grow_k);
+               "below it, or 0)\n", o.lod95 ? "-lod95's threshold" : "-k", o.lod95 ? kLod95Factor : k, grow_k);
 
-  def::DeformationSettings settings;
+  def::DeformationSettings& settings = o.settings;
   pcl_ls3d::RobustMatchingSettings& m = settings.matching;
   if (!pcl_ls3d::parseRobustMethod(estimator_text, m.method))
-    return fail("unknown -estimator " + estimator_text + " (mm, lms, md, m, huber, zuo, ls)"), 1;
-  if (!pcl_ls3d::parseConjugateRuleType(rule_text, settings.rule) ||
+    return (why = "unknown -estimator " + estimator_text + " (mm, lms, md, m, huber, zuo, ls)"), false;
+  if (!pcl_ls3d::parseConjugateRuleType(o.rule_text, settings.rule) ||
       settings.rule == pcl_ls3d::ConjugateRuleType::ICP)
-    return fail("unknown -rule " + rule_text + " (lzd or lnd)"), 1;
+    return (why = "unknown -rule " + o.rule_text + " (lzd or lnd)"), false;
   switch (params) {
   case 7: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7); break;
   case 6: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6); break;
@@ -325,112 +313,170 @@ main(int argc, char** argv)
     m.adjustment.max_correspondence_distance = max_dist;
   m.adjustment.max_iterations = max_iter;
   settings.residuals.k = k;
-  if (lod95)
+  if (o.lod95)
     settings.residuals.rule = def::DetectionRule::LOD95;
   settings.regions.min_points = static_cast<std::size_t>(min_region);
   settings.regions.grow_k = grow_k;
   settings.refinement.max_rounds = refine;
   settings.matching_points = static_cast<std::size_t>(matching_points);
   if (!settings.isValid(&why))
-    return fail("invalid settings: " + why), 1;
+    return (why = "invalid settings: " + why), false;
+  return true;
+}
 
-  std::string crs_wkt;
-  if (!crs_text.empty() && (crs_wkt = pcl_ls3d::maps::crsFromUserInput(crs_text, &why)).empty())
-    return fail("invalid -crs " + crs_text + ": " + why), 1;
-  const std::string png_path = map_prefix.empty() ? "" : map_prefix + ".png";
-  const std::string tif_path = map_prefix.empty() ? "" : map_prefix + ".tif";
-  for (const std::string& out : {out_path, json_path, png_path, tif_path})
-    if (!pcl_ls3d::tools::checkOutputFile(out, {reference_path, epoch_path}, overwrite, why))
-      return fail(why), 1;
-  if (!out_path.empty() && pcl_ls3d::io::isSameFile(out_path, json_path))
-    return fail("-o and -json name the same file"), 1;
-  if (!out_path.empty()) {
-    const std::string ext = pcl_ls3d::io::fileExtension(out_path);
-    if (ext != "pcd" && ext != "xyz" && ext != "txt")
-      return fail("-o writes .pcd, .xyz or .txt, not ." + ext), 1;
-  }
+/// Inputs, settings and outputs (-o, -json, -map, -crs), all refused before any file is read.
+bool
+parseOptions(int argc, char** argv, Options& o, std::string& why)
+{
+  static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
+                                               "-contamination", "-seed", "-k", "-min_region", "-grow_k", "-refine",
+                                               "-max_iter", "-max_dist", "-matching_points", "-o", "-json",
+                                               "-map", "-crs", "-map_cell"};
+  std::vector<std::string> files;
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite", "-lod95"}, files, why))
+    return false;
+  if (files.size() != 2)
+    return (why = "expected exactly two input files, REFERENCE and EPOCH (see -h)"), false;
+  o.reference_path = files[0];
+  o.epoch_path = files[1];
+  o.overwrite = find_switch(argc, argv, "-overwrite");
+  std::string crs_text;
+  parse_argument(argc, argv, "-o", o.out_path);
+  parse_argument(argc, argv, "-json", o.json_path);
+  parse_argument(argc, argv, "-map", o.map_prefix);
+  parse_argument(argc, argv, "-crs", crs_text);
+  if (!parseSettings(argc, argv, o, why))
+    return false;
+  if (!crs_text.empty() && (o.crs_wkt = pcl_ls3d::maps::crsFromUserInput(crs_text, &why)).empty())
+    return (why = "invalid -crs " + crs_text + ": " + why), false;
+  o.png_path = o.map_prefix.empty() ? "" : o.map_prefix + ".png";
+  o.tif_path = o.map_prefix.empty() ? "" : o.map_prefix + ".tif";
+  for (const std::string& out : {o.out_path, o.json_path, o.png_path, o.tif_path})
+    if (!pcl_ls3d::tools::checkOutputFile(out, {o.reference_path, o.epoch_path}, o.overwrite, why))
+      return false;
+  if (!o.out_path.empty() && pcl_ls3d::io::isSameFile(o.out_path, o.json_path))
+    return (why = "-o and -json name the same file"), false;
+  const std::string ext = pcl_ls3d::io::fileExtension(o.out_path);
+  if (!o.out_path.empty() && ext != "pcd" && ext != "xyz" && ext != "txt")
+    return (why = "-o writes .pcd, .xyz or .txt, not ." + ext), false;
+  return true;
+}
 
-  // Load: reference first, the epoch in the reference's local origin.
+/// The two epochs: the reference first, the epoch in the reference's local origin.
+struct Epochs
+{
+  Cloud::Ptr reference{new Cloud}, epoch{new Cloud};
+  pcl_ls3d::io::CloudInfo rinfo, einfo;
+  std::vector<Eigen::Vector3d> points;  ///< the epoch's points, local, in double
+  double load_ms = 0.0;
+};
+
+bool
+loadEpochs(const Options& o, Epochs& e, std::string& error)
+{
   TicToc tt;
   tt.tic();
-  Cloud::Ptr reference(new Cloud), epoch(new Cloud);
-  pcl_ls3d::io::CloudInfo rinfo, einfo;
-  std::string error;
-  if (!pcl_ls3d::io::loadCloud(reference_path, *reference, rinfo, error))
-    return fail(error), 1;
+  if (!pcl_ls3d::io::loadCloud(o.reference_path, *e.reference, e.rinfo, error))
+    return false;
   pcl_ls3d::io::LoadOptions eopt;
   eopt.use_origin = true;
-  eopt.origin = rinfo.origin;
-  if (!pcl_ls3d::io::loadCloud(epoch_path, *epoch, einfo, error, eopt))
-    return fail(error), 1;
-  const double t_load = tt.toc();
+  eopt.origin = e.rinfo.origin;
+  if (!pcl_ls3d::io::loadCloud(o.epoch_path, *e.epoch, e.einfo, error, eopt))
+    return false;
+  e.load_ms = tt.toc();
   print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
-             reference_path.c_str(), reference->size(), epoch_path.c_str(), epoch->size(),
-             rinfo.origin.x(), rinfo.origin.y(), rinfo.origin.z(), t_load);
-  if (reference->size() < 3)
-    return fail("the reference has fewer than 3 points"), 1;
+             o.reference_path.c_str(), e.reference->size(), o.epoch_path.c_str(), e.epoch->size(),
+             e.rinfo.origin.x(), e.rinfo.origin.y(), e.rinfo.origin.z(), e.load_ms);
+  if (e.reference->size() < 3)
+    return (error = "the reference has fewer than 3 points"), false;
+  e.points.resize(e.epoch->size());
+  for (std::size_t i = 0; i < e.epoch->size(); ++i)
+    e.points[i] = (*e.epoch)[i].getVector3fMap().cast<double>();
+  return true;
+}
 
-  // Robust matching and the residual field.
+/// Robust matching of the epoch onto the reference, then the residual field and its regions.
+bool
+analyse(const Options& o, const Epochs& e, def::DeformationResult& result, double& run_ms,
+        std::string& why)
+{
+  TicToc tt;
   tt.tic();
   pcl::search::KdTree<pcl_ls3d::PointLiDAR>::Ptr tree(
       new pcl_ls3d::search::FlannKdTree<pcl_ls3d::PointLiDAR>);
-  tree->setInputCloud(reference);
-  const pcl_ls3d::PclTargetSurface<pcl_ls3d::PointLiDAR> surface(reference, tree);
-  const pcl_ls3d::ConjugateRule::Ptr rule = pcl_ls3d::makeConjugateRule(settings.rule);
+  tree->setInputCloud(e.reference);
+  const pcl_ls3d::PclTargetSurface<pcl_ls3d::PointLiDAR> surface(e.reference, tree);
+  const pcl_ls3d::ConjugateRule::Ptr rule = pcl_ls3d::makeConjugateRule(o.settings.rule);
   if (!rule->prepare(surface, &why))
-    return fail("the reference cannot be used with rule " + rule_text + ": " + why), 1;
-  std::vector<Eigen::Vector3d> points(epoch->size());
-  for (std::size_t i = 0; i < epoch->size(); ++i)
-    points[i] = (*epoch)[i].getVector3fMap().cast<double>();
-  def::DeformationResult result;
+    return (why = "the reference cannot be used with rule " + o.rule_text + ": " + why), false;
   {  // the library's own PCL_ERROR would be a second error line: the report's message is printed
     const auto verbosity = getVerbosityLevel();
     setVerbosityLevel(L_ALWAYS);
-    result = def::analyseDeformation(points, surface, *rule, settings);
+    result = def::analyseDeformation(e.points, surface, *rule, o.settings);
     setVerbosityLevel(verbosity);
   }
-  const double t_run = tt.toc();
+  run_ms = tt.toc();
   const pcl_ls3d::RobustMatchingReport& mr = result.matching;
   if (!result.ok())
-    return fail(std::string("robust matching failed: ") + pcl_ls3d::terminationTypeToString(mr.termination) +
-                ": " + mr.message), 1;
+    return (why = std::string("robust matching failed: ") +
+                  pcl_ls3d::terminationTypeToString(mr.termination) + ": " + mr.message),
+           false;
+  return true;
+}
 
-  const pcl_ls3d::AdjustmentReport& a = mr.adjustment;
-  const Eigen::Matrix4d T = pcl_ls3d::localToGlobal(a.transformation, rinfo.origin, rinfo.origin);
-  const bool converged = mr.termination == pcl_ls3d::TerminationType::CONVERGED;
-  print_info("%s\n", mr.brief().c_str());
-  if (!mr.message.empty())
-    print_info("  %s\n", mr.message.c_str());
-  pcl_ls3d::tools::printTransformation("Transformation (EPOCH -> REFERENCE, input coordinates):", T);
-  // What the transformation does where the data are: the shift of the epoch's centroid.
+/// Where the data are: the epoch's centroid (input coordinates) and the shift the
+/// transformation gives it.
+struct CentroidShift
+{
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), shift = Eigen::Vector3d::Zero();
+};
+
+CentroidShift
+centroidShift(const Epochs& e, const Eigen::Matrix4d& local_transformation)
+{
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
   std::size_t finite = 0;
-  for (const Eigen::Vector3d& p : points)
+  for (const Eigen::Vector3d& p : e.points)
     if (p.allFinite()) {
       centroid += p;
       ++finite;
     }
   centroid /= static_cast<double>(std::max<std::size_t>(finite, 1));
-  const Eigen::Vector3d shift = (a.transformation * centroid.homogeneous()).head<3>() - centroid;
-  const Eigen::Vector3d centroid_in = centroid + rinfo.origin;
-  print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)\n", centroid_in.x(),
-             centroid_in.y(), centroid_in.z(), shift.x(), shift.y(), shift.z());
-  const Eigen::Vector3d o_s = a.local_origin_source + rinfo.origin, o_t = a.local_origin_target + rinfo.origin;
-  printParameters(a, o_s, o_t);
+  CentroidShift c;
+  c.shift = (local_transformation * centroid.homogeneous()).head<3>() - centroid;
+  c.centroid = centroid + e.rinfo.origin;
+  return c;
+}
+
+/// The result on the console: transformation, parameters, the start's choice, the regions.
+void
+printResult(const Epochs& e, const def::DeformationResult& result, const CentroidShift& c,
+            double run_ms)
+{
+  const pcl_ls3d::RobustMatchingReport& mr = result.matching;
+  const pcl_ls3d::AdjustmentReport& a = mr.adjustment;
+  const Eigen::Vector3d& origin = e.rinfo.origin;
+  print_info("%s\n", mr.brief().c_str());
+  if (!mr.message.empty())
+    print_info("  %s\n", mr.message.c_str());
+  pcl_ls3d::tools::printTransformation("Transformation (EPOCH -> REFERENCE, input coordinates):",
+                                       pcl_ls3d::localToGlobal(a.transformation, origin, origin));
+  print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)\n", c.centroid.x(),
+             c.centroid.y(), c.centroid.z(), c.shift.x(), c.shift.y(), c.shift.z());
+  printParameters(a, a.local_origin_source + origin, a.local_origin_target + origin);
   if (!result.start_choice.candidates.empty()) {
     print_info("Fits compared by the scatter of their stable part:");
-    for (const auto& c : result.start_choice.candidates)
-      print_info(" %s %.4g", c.name.c_str(), c.scatter);
+    for (const auto& candidate : result.start_choice.candidates)
+      print_info(" %s %.4g", candidate.name.c_str(), candidate.scatter);
     print_info("; kept: %s\n", result.start_choice.chosen.c_str());
   }
   const def::RegionAnalysis& reg = result.regions;
   print_info("Robust scale %.4g; %zu of %zu epoch points observed, %zu significant; %zu regions, %zu noise "
              "clusters; %.2f %% of the area deformed\n",
-             mr.scale, result.field.observed, epoch->size(), result.field.significant_count,
+             mr.scale, result.field.observed, e.epoch->size(), result.field.significant_count,
              reg.regions.size(), reg.noise.size(), reg.percent_deformed);
   // A robust estimator takes the larger part to be stable; near half, the data cannot say which.
-  const bool near_half = reg.percent_deformed > kNearHalfPercent;
-  if (near_half)
+  if (reg.percent_deformed > kNearHalfPercent)
     print_warn("Warning: %.1f %% of the observed area differs: the part taken as stable is only the larger "
                "one; check on the map which part really moved\n",
                reg.percent_deformed);
@@ -439,91 +485,126 @@ main(int argc, char** argv)
     print_info("  region %d: %s, %zu points, area %.4g, mean %+.4g (min %+.4g, max %+.4g), volume %+.4g\n",
                r.id, r.sign > 0 ? "up/out" : "down/in", r.points, r.area, r.mean, r.min, r.max, r.volume);
   }
-  print_info("Timings: load %.0f ms, matching and residuals %.0f ms\n", t_load, t_run);
+  print_info("Timings: load %.0f ms, matching and residuals %.0f ms\n", e.load_ms, run_ms);
+}
 
-  if (!out_path.empty()) {
-    if (!writeResiduals(out_path, *epoch, result, rinfo.origin, error))
-      return fail(error), 1;
-    print_info("Wrote %s\n", out_path.c_str());
+/// The -json report.
+nlohmann::json
+reportJson(const Options& o, const Epochs& e, const def::DeformationResult& result,
+           const CentroidShift& c, double run_ms)
+{
+  const pcl_ls3d::RobustMatchingReport& mr = result.matching;
+  const pcl_ls3d::AdjustmentReport& a = mr.adjustment;
+  const Eigen::Vector3d& origin = e.rinfo.origin;
+  const Eigen::Vector3d o_s = a.local_origin_source + origin, o_t = a.local_origin_target + origin;
+  nlohmann::json j;
+  j["transformation"] = matrixJson(pcl_ls3d::localToGlobal(a.transformation, origin, origin));
+  j["converged"] = mr.termination == pcl_ls3d::TerminationType::CONVERGED;
+  j["termination"] = pcl_ls3d::terminationTypeToString(mr.termination);
+  j["message"] = mr.message;
+  const auto& names = pcl_ls3d::similarityParameterNames();
+  nlohmann::json p, s;
+  for (std::size_t i = 0; i < 7; ++i) {
+    p[names[i]] = a.parameters[static_cast<int>(i)];
+    s[names[i]] = finiteOrNull(a.sigmas[static_cast<int>(i)]);
   }
-  if (!map_prefix.empty()) {
-    if (crs_wkt.empty() && rinfo.format == "las")
-      crs_wkt = pcl_ls3d::maps::crsFromLasVlrs(rinfo.las.vlrs);
-    if (!writeMap(map_prefix, points, result, rinfo.origin, crs_wkt, reference_path, epoch_path,
-                  settings.residuals.k, lod95, map_cell, overwrite, error))
+  j["parameters"] = p;
+  j["parameters_note"] = "reduced frame, input coordinates: x_t - local_origin_target = t + m R (x_s - "
+                         "local_origin_source); local_origin is the origin of the -o cloud's coordinates";
+  j["local_origin_source"] = {o_s.x(), o_s.y(), o_s.z()};
+  j["local_origin_target"] = {o_t.x(), o_t.y(), o_t.z()};
+  j["sigmas"] = s;
+  j["estimator"] = mr.estimator;
+  j["method"] = pcl_ls3d::toString(mr.method);
+  j["rule"] = o.rule_text;
+  j["scale"] = mr.scale;
+  j["high_breakdown_scale"] = mr.high_breakdown_scale;
+  j["neighbour_noise"] = mr.neighbour_noise;
+  j["subsets"] = mr.subsets_drawn;
+  j["rounds"] = mr.rounds;
+  j["iterations"] = mr.iterations;
+  if (!result.start_choice.candidates.empty()) {
+    nlohmann::json scores = nlohmann::json::object(), usable = nlohmann::json::object();
+    for (const auto& candidate : result.start_choice.candidates) {
+      scores[candidate.name] = finiteOrNull(candidate.scatter);  // null: refused, or its regions are the majority
+      usable[candidate.name] = candidate.usable;
+    }
+    j["start_choice"] = {{"chosen", result.start_choice.chosen},
+                         {"stable_part_scatter", scores},
+                         {"usable", usable},
+                         {"block_support", mr.block_support}};
+  }
+  j["stable_refinement"] = {{"rounds", result.refinement.rounds},
+                            {"points_left_out", result.refinement.left_out},
+                            {"stopped", result.refinement.stopped}};
+  j["sigma0"] = a.sigma0;
+  j["significance"] = def::toString(o.settings.residuals.rule);
+  j["k"] = o.settings.residuals.k;
+  j["points"] = e.epoch->size();
+  j["points_observed"] = result.field.observed;
+  j["points_significant"] = result.field.significant_count;
+  j["epoch_centroid"] = {c.centroid.x(), c.centroid.y(), c.centroid.z()};
+  j["centroid_shift"] = {c.shift.x(), c.shift.y(), c.shift.z()};
+  const def::RegionAnalysis& reg = result.regions;
+  j["percent_deformed"] = reg.percent_deformed;
+  j["stable_part_ambiguous"] = reg.percent_deformed > kNearHalfPercent;
+  j["matching_points"] = a.source_points;
+  j["area_observed"] = reg.area_observed;
+  j["area_deformed"] = reg.area_deformed;
+  j["spacing"] = reg.spacing;
+  nlohmann::json regions = nlohmann::json::array(), noise = nlohmann::json::array();
+  for (const auto& r : reg.regions)
+    regions.push_back(regionJson(r, origin));
+  for (const auto& r : reg.noise)
+    noise.push_back(regionJson(r, origin));
+  j["regions"] = regions;
+  j["noise"] = noise;
+  j["local_origin"] = {origin.x(), origin.y(), origin.z()};
+  j["timings_ms"] = {{"load", e.load_ms}, {"deformation", run_ms}};
+  return j;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  pcl_ls3d::tools::lineBufferedStdout();
+  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  Options o;
+  Epochs e;
+  def::DeformationResult result;
+  double run_ms = 0.0;
+  std::string error;
+  if (!parseOptions(argc, argv, o, error) || !loadEpochs(o, e, error) ||
+      !analyse(o, e, result, run_ms, error))
+    return fail(error), 1;
+  const pcl_ls3d::RobustMatchingReport& mr = result.matching;
+  const CentroidShift shift = centroidShift(e, mr.adjustment.transformation);
+  printResult(e, result, shift, run_ms);
+
+  if (!o.out_path.empty()) {
+    if (!writeResiduals(o.out_path, *e.epoch, result, e.rinfo.origin, error))
       return fail(error), 1;
-    print_info("Wrote %s and %s%s\n", png_path.c_str(), tif_path.c_str(),
+    print_info("Wrote %s\n", o.out_path.c_str());
+  }
+  if (!o.map_prefix.empty()) {
+    std::string crs_wkt = o.crs_wkt;
+    if (crs_wkt.empty() && e.rinfo.format == "las")
+      crs_wkt = pcl_ls3d::maps::crsFromLasVlrs(e.rinfo.las.vlrs);
+    if (!writeMap(o.map_prefix, e.points, result, e.rinfo.origin, crs_wkt, o.reference_path,
+                  o.epoch_path, o.settings.residuals.k, o.lod95, o.map_cell, o.overwrite, error))
+      return fail(error), 1;
+    print_info("Wrote %s and %s%s\n", o.png_path.c_str(), o.tif_path.c_str(),
                crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");
   }
-  if (!json_path.empty()) {
-    nlohmann::json j;
-    j["transformation"] = matrixJson(T);
-    j["converged"] = converged;
-    j["termination"] = pcl_ls3d::terminationTypeToString(mr.termination);
-    j["message"] = mr.message;
-    const auto& names = pcl_ls3d::similarityParameterNames();
-    nlohmann::json p, s;
-    for (std::size_t i = 0; i < 7; ++i) {
-      p[names[i]] = a.parameters[static_cast<int>(i)];
-      s[names[i]] = finiteOrNull(a.sigmas[static_cast<int>(i)]);
-    }
-    j["parameters"] = p;
-    j["parameters_note"] = "reduced frame, input coordinates: x_t - local_origin_target = t + m R (x_s - "
-                           "local_origin_source); local_origin is the origin of the -o cloud's coordinates";
-    j["local_origin_source"] = {o_s.x(), o_s.y(), o_s.z()};
-    j["local_origin_target"] = {o_t.x(), o_t.y(), o_t.z()};
-    j["sigmas"] = s;
-    j["estimator"] = mr.estimator;
-    j["method"] = pcl_ls3d::toString(mr.method);
-    j["rule"] = rule_text;
-    j["scale"] = mr.scale;
-    j["high_breakdown_scale"] = mr.high_breakdown_scale;
-    j["neighbour_noise"] = mr.neighbour_noise;
-    j["subsets"] = mr.subsets_drawn;
-    j["rounds"] = mr.rounds;
-    j["iterations"] = mr.iterations;
-    if (!result.start_choice.candidates.empty()) {
-      nlohmann::json scores = nlohmann::json::object(), usable = nlohmann::json::object();
-      for (const auto& c : result.start_choice.candidates) {
-        scores[c.name] = finiteOrNull(c.scatter);  // null: refused, or its regions are the majority
-        usable[c.name] = c.usable;
-      }
-      j["start_choice"] = {{"chosen", result.start_choice.chosen},
-                           {"stable_part_scatter", scores},
-                           {"usable", usable},
-                           {"block_support", mr.block_support}};
-    }
-    j["stable_refinement"] = {{"rounds", result.refinement.rounds},
-                              {"points_left_out", result.refinement.left_out},
-                              {"stopped", result.refinement.stopped}};
-    j["sigma0"] = a.sigma0;
-    j["significance"] = def::toString(settings.residuals.rule);
-    j["k"] = settings.residuals.k;
-    j["points"] = epoch->size();
-    j["points_observed"] = result.field.observed;
-    j["points_significant"] = result.field.significant_count;
-    j["epoch_centroid"] = {centroid_in.x(), centroid_in.y(), centroid_in.z()};
-    j["centroid_shift"] = {shift.x(), shift.y(), shift.z()};
-    j["percent_deformed"] = reg.percent_deformed;
-    j["stable_part_ambiguous"] = near_half;
-    j["matching_points"] = a.source_points;
-    j["area_observed"] = reg.area_observed;
-    j["area_deformed"] = reg.area_deformed;
-    j["spacing"] = reg.spacing;
-    nlohmann::json regions = nlohmann::json::array(), noise = nlohmann::json::array();
-    for (const auto& r : reg.regions)
-      regions.push_back(regionJson(r, rinfo.origin));
-    for (const auto& r : reg.noise)
-      noise.push_back(regionJson(r, rinfo.origin));
-    j["regions"] = regions;
-    j["noise"] = noise;
-    const Eigen::Vector3d o = rinfo.origin;
-    j["local_origin"] = {o.x(), o.y(), o.z()};
-    j["timings_ms"] = {{"load", t_load}, {"deformation", t_run}};
-    if (!pcl_ls3d::tools::writeJsonFile(json_path, j))
-      return fail("cannot write " + json_path), 1;
-  }
-  if (!converged) {
+  if (!o.json_path.empty() &&
+      !pcl_ls3d::tools::writeJsonFile(o.json_path, reportJson(o, e, result, shift, run_ms)))
+    return fail("cannot write " + o.json_path), 1;
+  if (mr.termination != pcl_ls3d::TerminationType::CONVERGED) {
     print_warn("Warning: the matching ended %s, not CONVERGED: the transformation and the residuals "
                "are the last iterate's (exit 3)\n", pcl_ls3d::terminationTypeToString(mr.termination));
     return 3;
