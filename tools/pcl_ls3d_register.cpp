@@ -213,8 +213,6 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
   return j;
 }
 
-}  // namespace
-
 /// Keeps the points of `classes` (all when empty); false when none is left.
 bool
 keepClasses(Cloud::Ptr& cloud, const std::set<std::uint8_t>& classes, const std::string& path, std::string& error)
@@ -249,73 +247,58 @@ writeMovedLas(const std::string& source_path, const Eigen::Matrix4d& T, const st
   return pcl_ls3d::io::rewriteLas(las, nullptr, move, out_path, summary, error, overwrite);
 }
 
-int
-main(int argc, char** argv)
+/// Everything the command line asks for, checked before any input is read.
+struct Options
 {
-  pcl_ls3d::tools::lineBufferedStdout();
-  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
-    printHelp(argv[0]);
-    return 0;
-  }
-  // Positional files and the known options (anything else starting with '-' is an error).
-  static const std::set<std::string> valued = {"-o", "-rule", "-params", "-fix", "-max_iter",
-                                               "-K", "-thin", "-max_dist", "-guess", "-json", "-truth",
-                                               "-classes"};
-  std::vector<std::string> files;
-  std::string why;
-  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite"}, files, why))
-    return fail(why), 1;
-  if (files.size() != 2)
-    return fail("expected exactly two input files, SOURCE and TARGET (see -h)"), 1;
-  const std::string source_path = files[0], target_path = files[1];
+  std::string source_path, target_path, out_path, json_path, truth_path;
+  std::string rule_text = "lnd", classes_text;
+  bool overwrite = false;
+  std::set<std::uint8_t> classes;   ///< -classes; empty: every point
+  pcl_ls3d::ConjugateRuleType rule = pcl_ls3d::ConjugateRuleType::LND;
+  pcl_ls3d::AdjustmentSettings settings;
+  double K = 6.0;                   ///< Zuo's weight-function constant
+  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
+};
 
-  std::string out_path, rule_text = "lnd", fix_text, json_path, truth_path;
+/// -params, -fix, -max_iter, -thin, -max_dist, -guess and -rule into the adjustment settings.
+bool
+parseSettings(int argc, char** argv, Options& o, std::string& why)
+{
+  std::string fix_text;
   int params = 6, max_iter = 30;
-  double K = 6.0, thin = 0.0, max_dist = -1.0, guess = 0.0;
-  const bool overwrite = find_switch(argc, argv, "-overwrite");
-  parse_argument(argc, argv, "-o", out_path);
-  parse_argument(argc, argv, "-rule", rule_text);
+  double thin = 0.0, max_dist = -1.0, guess = 0.0;
+  parse_argument(argc, argv, "-rule", o.rule_text);
   parse_argument(argc, argv, "-fix", fix_text);
-  parse_argument(argc, argv, "-json", json_path);
-  parse_argument(argc, argv, "-truth", truth_path);
-  std::set<std::uint8_t> classes;
-  std::string classes_text;
-  if (parse_argument(argc, argv, "-classes", classes_text) >= 0 &&
-      !pcl_ls3d::tools::parseClassList("-classes", classes_text, classes, why))
-    return fail(why), 1;
   using pcl_ls3d::tools::integerOption;
   using pcl_ls3d::tools::numberOption;
   if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
       !integerOption(argc, argv, "-max_iter", max_iter, why, 1, 1000000) ||
-      !numberOption(argc, argv, "-K", K, why) || !numberOption(argc, argv, "-thin", thin, why) ||
+      !numberOption(argc, argv, "-K", o.K, why) || !numberOption(argc, argv, "-thin", thin, why) ||
       !numberOption(argc, argv, "-max_dist", max_dist, why) ||
       !numberOption(argc, argv, "-guess", guess, why))
-    return fail(why), 1;
+    return false;
   // No sentinel values: a given distance is a distance.
   const bool max_dist_given = pcl_ls3d::tools::optionValue(argc, argv, "-max_dist") != nullptr;
   const bool guess_given = pcl_ls3d::tools::optionValue(argc, argv, "-guess") != nullptr;
   if (max_dist_given && !(max_dist > 0.0))
-    return fail("-max_dist must be > 0 (leave it out for no limit)"), 1;
+    return (why = "-max_dist must be > 0 (leave it out for no limit)"), false;
   if (guess_given && !(guess > 0.0))
-    return fail("-guess must be > 0 (leave it out for the default, 1 % of the source extent)"), 1;
-
-  // Settings, validated before any file is read.
-  pcl_ls3d::ConjugateRuleType rule;
-  if (!pcl_ls3d::parseConjugateRuleType(rule_text, rule))
-    return fail("unknown -rule " + rule_text + " (lnd, lzd or icp)"), 1;
-  pcl_ls3d::AdjustmentSettings settings;
+    return (why = "-guess must be > 0 (leave it out for the default, 1 % of the source extent)"), false;
+  if (!pcl_ls3d::parseConjugateRuleType(o.rule_text, o.rule))
+    return (why = "unknown -rule " + o.rule_text + " (lnd, lzd or icp)"), false;
+  pcl_ls3d::AdjustmentSettings& settings = o.settings;
   switch (params) {
   case 7: settings.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7); break;
   case 6: settings.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6); break;
   case 3: settings.setParameterModel(pcl_ls3d::ParameterModel::TRANSLATION_3); break;
   case 1: settings.setParameterModel(pcl_ls3d::ParameterModel::HEIGHT_1); break;
-  default: return fail("-params must be 7, 6, 3 or 1"), 1;
+  default: return (why = "-params must be 7, 6, 3 or 1"), false;
   }
   std::vector<int> fixes;
   if (pcl_ls3d::tools::optionValue(argc, argv, "-fix") && fix_text.empty())
-    return fail("-fix needs a comma list of tx,ty,tz,phi,omega,kappa,m (leave it out to fix none)"), 1;
+    return (why = "-fix needs a comma list of tx,ty,tz,phi,omega,kappa,m (leave it out to fix none)"), false;
   if (!fix_text.empty() && !parseFixList(fix_text, fixes))
-    return fail("-fix expects a comma list of tx,ty,tz,phi,omega,kappa,m"), 1;
+    return (why = "-fix expects a comma list of tx,ty,tz,phi,omega,kappa,m"), false;
   for (int i : fixes)
     settings.fixParameter(i);
   settings.max_iterations = max_iter;
@@ -324,115 +307,196 @@ main(int argc, char** argv)
   if (max_dist_given)
     settings.max_correspondence_distance = max_dist;
   if (!settings.isValid(&why))
-    return fail("invalid settings: " + why), 1;
-  if (!(K > 0.0) || !std::isfinite(K))
-    return fail("-K must be > 0"), 1;
+    return (why = "invalid settings: " + why), false;
+  if (!(o.K > 0.0) || !std::isfinite(o.K))
+    return (why = "-K must be > 0"), false;
+  return true;
+}
 
-  // Outputs must be writable and must not clobber inputs or existing files: checked before any
-  // input is read, not after the adjustment.
-  const std::vector<std::string> inputs = {source_path, target_path, truth_path};
-  if (!pcl_ls3d::tools::checkOutputFile(out_path, inputs, overwrite, why, true) ||
-      !pcl_ls3d::tools::checkOutputFile(json_path, inputs, overwrite, why))
-    return fail(why), 1;
-  if (!out_path.empty() && pcl_ls3d::io::isSameFile(out_path, json_path))
-    return fail("-o and -json name the same file"), 1;
-  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
-  std::string error;
-  if (!truth_path.empty() && !readTruth(truth_path, truth, error))
-    return fail(error), 1;
+/// Inputs, settings, outputs and the -truth file: all refused before a point cloud is read
+/// (outputs must be writable and must not clobber inputs or existing files).
+bool
+parseOptions(int argc, char** argv, Options& o, std::string& why)
+{
+  // Positional files and the known options (anything else starting with '-' is an error).
+  static const std::set<std::string> valued = {"-o", "-rule", "-params", "-fix", "-max_iter",
+                                               "-K", "-thin", "-max_dist", "-guess", "-json", "-truth",
+                                               "-classes"};
+  std::vector<std::string> files;
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite"}, files, why))
+    return false;
+  if (files.size() != 2)
+    return (why = "expected exactly two input files, SOURCE and TARGET (see -h)"), false;
+  o.source_path = files[0];
+  o.target_path = files[1];
+  o.overwrite = find_switch(argc, argv, "-overwrite");
+  parse_argument(argc, argv, "-o", o.out_path);
+  parse_argument(argc, argv, "-json", o.json_path);
+  parse_argument(argc, argv, "-truth", o.truth_path);
+  if (parse_argument(argc, argv, "-classes", o.classes_text) >= 0 &&
+      !pcl_ls3d::tools::parseClassList("-classes", o.classes_text, o.classes, why))
+    return false;
+  if (!parseSettings(argc, argv, o, why))
+    return false;
+  const std::vector<std::string> inputs = {o.source_path, o.target_path, o.truth_path};
+  if (!pcl_ls3d::tools::checkOutputFile(o.out_path, inputs, o.overwrite, why, true) ||
+      !pcl_ls3d::tools::checkOutputFile(o.json_path, inputs, o.overwrite, why))
+    return false;
+  if (!o.out_path.empty() && pcl_ls3d::io::isSameFile(o.out_path, o.json_path))
+    return (why = "-o and -json name the same file"), false;
+  return o.truth_path.empty() || readTruth(o.truth_path, o.truth, why);
+}
 
-  // Load: target first, then the source in the target's local origin.
+/// The two clouds: the target first, the source in the target's local origin; with -classes,
+/// the points matched (whole_source: every point -o moves).
+struct Pair
+{
+  Cloud::Ptr target{new Cloud}, source{new Cloud}, whole_source;
+  pcl_ls3d::io::CloudInfo tinfo, sinfo;
+  double load_ms = 0.0;
+};
+
+bool
+loadPair(const Options& o, Pair& pair, std::string& error)
+{
   TicToc tt;
   tt.tic();
-  Cloud::Ptr target(new Cloud), source(new Cloud);
-  pcl_ls3d::io::CloudInfo tinfo, sinfo;
-  if (!pcl_ls3d::io::loadCloud(target_path, *target, tinfo, error))
-    return fail(error), 1;
+  if (!pcl_ls3d::io::loadCloud(o.target_path, *pair.target, pair.tinfo, error))
+    return false;
   pcl_ls3d::io::LoadOptions sopt;
   sopt.use_origin = true;
-  sopt.origin = tinfo.origin;
-  if (!pcl_ls3d::io::loadCloud(source_path, *source, sinfo, error, sopt))
-    return fail(error), 1;
-  const Cloud::Ptr whole_source = source;  // -o moves every point, whatever -classes matched
-  const std::size_t target_points = target->size();
-  if (!keepClasses(target, classes, target_path, error) || !keepClasses(source, classes, source_path, error))
-    return fail(error), 1;
-  if (!classes.empty())
-    print_info("Matching on classes %s: %zu of %zu target and %zu of %zu source points\n", classes_text.c_str(),
-               target->size(), target_points, source->size(), whole_source->size());
-  const double t_load = tt.toc();
+  sopt.origin = pair.tinfo.origin;
+  if (!pcl_ls3d::io::loadCloud(o.source_path, *pair.source, pair.sinfo, error, sopt))
+    return false;
+  pair.whole_source = pair.source;
+  const std::size_t target_points = pair.target->size();
+  if (!keepClasses(pair.target, o.classes, o.target_path, error) ||
+      !keepClasses(pair.source, o.classes, o.source_path, error))
+    return false;
+  if (!o.classes.empty())
+    print_info("Matching on classes %s: %zu of %zu target and %zu of %zu source points\n",
+               o.classes_text.c_str(), pair.target->size(), target_points, pair.source->size(),
+               pair.whole_source->size());
+  pair.load_ms = tt.toc();
   print_info("Loaded target %s (%zu points) and source %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
-             target_path.c_str(), target->size(), source_path.c_str(), source->size(),
-             tinfo.origin.x(), tinfo.origin.y(), tinfo.origin.z(), t_load);
+             o.target_path.c_str(), pair.target->size(), o.source_path.c_str(), pair.source->size(),
+             pair.tinfo.origin.x(), pair.tinfo.origin.y(), pair.tinfo.origin.z(), pair.load_ms);
+  return true;
+}
 
-  // Adjust.
+/// LS3D with the Zuo estimator; the library's own PCL_ERROR would be a second error line (the
+/// report's message is printed instead).
+void
+adjust(const Options& o, const Pair& pair, LS3D& ls3d, Cloud& aligned)
+{
+  ls3d.setAdjustmentSettings(o.settings);
+  ls3d.setConjugateRule(o.rule);
+  ls3d.setRobustEstimator(std::make_shared<pcl_ls3d::ZuoEstimator>(o.K));
+  ls3d.setInputSource(pair.source);
+  ls3d.setInputTarget(pair.target);
+  const auto verbosity = getVerbosityLevel();
+  setVerbosityLevel(L_ALWAYS);
+  ls3d.align(aligned);
+  setVerbosityLevel(verbosity);
+}
+
+/// No estimate at all: the JSON still says why, for a pipeline reading it.
+int
+failWithoutEstimate(const Options& o, const pcl_ls3d::AdjustmentReport& r)
+{
+  const nlohmann::json j = {{"converged", false},
+                            {"termination", pcl_ls3d::terminationTypeToString(r.termination)},
+                            {"message", r.message},
+                            {"iterations", r.iterations},
+                            {"transformation", nullptr}};
+  if (!o.json_path.empty() && !pcl_ls3d::tools::writeJsonFile(o.json_path, j))
+    return fail("cannot write " + o.json_path), 1;
+  return fail(std::string("registration failed: ") + pcl_ls3d::terminationTypeToString(r.termination) +
+              ": " + r.message), 1;
+}
+
+/// -truth: the error of the transformation over every point -o moves, printed and in the JSON.
+void
+reportTruthError(const Pair& pair, const Eigen::Matrix4d& T_input, const Eigen::Matrix4d& truth,
+                 nlohmann::json& j)
+{
+  const Cloud& whole = *pair.whole_source;
+  Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(whole.size()));
+  for (std::size_t i = 0; i < whole.size(); ++i)
+    pts.col(static_cast<Eigen::Index>(i)) = whole[i].getVector3fMap().cast<double>() + pair.tinfo.origin;
+  const auto e = pcl_ls3d::evaluation::computeTransformError(T_input, truth, pts);
+  // Significant digits: a fixed 4 decimals would show a 0.05 mm error on metre data as 0.
+  print_info("Error vs truth: mean displacement %.3g, max %.3g, max over bbox %.3g\n", e.mean, e.max,
+             e.max_bbox);
+  j["truth_error"] = {{"mean_displacement", e.mean}, {"max_displacement", e.max},
+                      {"max_displacement_bbox", e.max_bbox}};
+}
+
+/// -o: the source moved (a LAS source to LAS record by record, with its header and VLRs).
+bool
+writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentReport& r,
+             const Eigen::Matrix4d& T_input, Cloud& aligned, std::string& error)
+{
+  TicToc tt;
+  tt.tic();
+  pcl_ls3d::io::SaveOptions so;
+  so.overwrite = o.overwrite;
+  const bool las_to_las = pair.sinfo.format == "las" && pcl_ls3d::io::fileExtension(o.out_path) == "las";
+  if (!o.classes.empty() && !las_to_las)
+    pcl::transformPointCloud(*pair.whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));
+  if (las_to_las ? !writeMovedLas(o.source_path, T_input, o.out_path, o.overwrite, error)
+                 : !pcl_ls3d::io::saveCloud(o.out_path, aligned, pair.tinfo.origin, error, so))
+    return false;
+  print_info("Wrote %s in %.0f ms\n", o.out_path.c_str(), tt.toc());
+  return true;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  pcl_ls3d::tools::lineBufferedStdout();
+  if (find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
+    printHelp(argv[0]);
+    return 0;
+  }
+  Options o;
+  Pair pair;
+  std::string error;
+  if (!parseOptions(argc, argv, o, error) || !loadPair(o, pair, error))
+    return fail(error), 1;
+
+  TicToc tt;
   tt.tic();
   LS3D ls3d;
-  ls3d.setAdjustmentSettings(settings);
-  ls3d.setConjugateRule(rule);
-  ls3d.setRobustEstimator(std::make_shared<pcl_ls3d::ZuoEstimator>(K));
-  ls3d.setInputSource(source);
-  ls3d.setInputTarget(target);
   Cloud aligned;
-  {  // the library's own PCL_ERROR would be a second error line: the report's message is printed
-    const auto verbosity = getVerbosityLevel();
-    setVerbosityLevel(L_ALWAYS);
-    ls3d.align(aligned);
-    setVerbosityLevel(verbosity);
-  }
+  adjust(o, pair, ls3d, aligned);
   const double t_align = tt.toc();
   const pcl_ls3d::AdjustmentReport& r = ls3d.getReport();
-  if (!r.hasEstimate()) {  // a pipeline reading the report still finds why
-    const nlohmann::json j = {{"converged", false},
-                              {"termination", pcl_ls3d::terminationTypeToString(r.termination)},
-                              {"message", r.message},
-                              {"iterations", r.iterations},
-                              {"transformation", nullptr}};
-    if (!json_path.empty() && !pcl_ls3d::tools::writeJsonFile(json_path, j))
-      return fail("cannot write " + json_path), 1;
-    return fail(std::string("registration failed: ") + pcl_ls3d::terminationTypeToString(r.termination) +
-                ": " + r.message), 1;
-  }
+  if (!r.hasEstimate())
+    return failWithoutEstimate(o, r);
   // An estimate that failed the quality gate is shown (and in the JSON) but not written out.
   const bool trusted = r.isSolutionUsable();
 
   // Report: the local transform re-expressed in input coordinates (both clouds share the origin).
-  const Eigen::Matrix4d T_input = pcl_ls3d::localToGlobal(r.transformation, tinfo.origin, tinfo.origin);
+  const Eigen::Vector3d& origin = pair.tinfo.origin;
+  const Eigen::Matrix4d T_input = pcl_ls3d::localToGlobal(r.transformation, origin, origin);
   print_info("%s", r.fullReport().c_str());
   pcl_ls3d::tools::printTransformation("Transformation (SOURCE -> TARGET, input coordinates):", T_input);
-  print_info("Timings: load %.0f ms, adjustment %.0f ms\n", t_load, t_align);
+  print_info("Timings: load %.0f ms, adjustment %.0f ms\n", pair.load_ms, t_align);
+  nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), origin);
+  j["timings_ms"] = {{"load", pair.load_ms}, {"adjust", t_align}};
+  if (!o.truth_path.empty())
+    reportTruthError(pair, T_input, o.truth, j);
 
-  nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), tinfo.origin);
-  j["timings_ms"] = {{"load", t_load}, {"adjust", t_align}};
-  if (!truth_path.empty()) {
-    Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(whole_source->size()));  // every point -o moves
-    for (std::size_t i = 0; i < whole_source->size(); ++i)
-      pts.col(static_cast<Eigen::Index>(i)) = (*whole_source)[i].getVector3fMap().cast<double>() + tinfo.origin;
-    const auto e = pcl_ls3d::evaluation::computeTransformError(T_input, truth, pts);
-    // Significant digits: a fixed 4 decimals would show a 0.05 mm error on metre data as 0.
-    print_info("Error vs truth: mean displacement %.3g, max %.3g, max over bbox %.3g\n", e.mean, e.max,
-               e.max_bbox);
-    j["truth_error"] = {{"mean_displacement", e.mean}, {"max_displacement", e.max},
-                        {"max_displacement_bbox", e.max_bbox}};
-  }
-
-  if (!out_path.empty() && trusted) {
-    tt.tic();
-    pcl_ls3d::io::SaveOptions so;
-    so.overwrite = overwrite;
-    const bool las_to_las = sinfo.format == "las" && pcl_ls3d::io::fileExtension(out_path) == "las";
-    if (!classes.empty() && !las_to_las)
-      pcl::transformPointCloud(*whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));
-    if (las_to_las ? !writeMovedLas(source_path, T_input, out_path, overwrite, error)
-                   : !pcl_ls3d::io::saveCloud(out_path, aligned, tinfo.origin, error, so))
-      return fail(error), 1;
-    print_info("Wrote %s in %.0f ms\n", out_path.c_str(), tt.toc());
-  }
-  if (!json_path.empty() && !pcl_ls3d::tools::writeJsonFile(json_path, j))
-    return fail("cannot write " + json_path), 1;
+  if (!o.out_path.empty() && trusted && !writeAligned(o, pair, r, T_input, aligned, error))
+    return fail(error), 1;
+  if (!o.json_path.empty() && !pcl_ls3d::tools::writeJsonFile(o.json_path, j))
+    return fail("cannot write " + o.json_path), 1;
   if (!trusted)
     return fail(std::string("registration not trustworthy: ") +
                 pcl_ls3d::terminationTypeToString(r.termination) + ": " + r.message +
-                (out_path.empty() ? "" : " (" + out_path + " not written)")), 3;
+                (o.out_path.empty() ? "" : " (" + o.out_path + " not written)")), 3;
   return 0;
 }
