@@ -203,7 +203,8 @@ probeWritable(const std::string& path, std::string& why)
 }
 
 /// \brief Refuses an output file before any work: it names one of `inputs`, exists without
-///        `overwrite`, is a folder or another non-regular file (/dev/null), has a cloud format
+///        `overwrite`, is a folder or another non-regular file (/dev/null) or a symbolic link to
+///        nothing (no file is created through it), has a cloud format
 ///        saveCloud() cannot write (when `cloud`), or cannot be created or written (tried: see
 ///        probeWritable). Changes nothing. An empty path passes.
 inline bool
@@ -222,6 +223,9 @@ checkOutputFile(const std::string& path, const std::vector<std::string>& inputs,
   const fs::path parent = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
   if (cloud && !io::canSaveFormat(path, why))
     why = path + ": " + why;
+  else if (fs::is_symlink(fs::symlink_status(path, ec)) && !fs::exists(path, ec))
+    why = "output " + path + " is a symbolic link to the missing " +
+          fs::read_symlink(path, ec).string() + "; remove the link or name another output";
   else if (fs::is_directory(path, ec))
     why = "output " + path + " is a folder, not a file";
   else if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))

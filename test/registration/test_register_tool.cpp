@@ -169,6 +169,15 @@ TEST_F(RegisterTool, BadInputGivesOneErrorLineAndNonZeroExit)
     EXPECT_NE(r.code, 0) << args;
     EXPECT_EQ(errorLines(r.output), 1) << args << "\n" << r.output;
   }
+  // A symbolic link to a missing file is named as such (it said "File exists" before).
+  std::filesystem::create_symlink(path("nowhere/aligned.pcd"), path("dangling.pcd"));
+  for (const char* overwrite : {"", " -overwrite"}) {
+    const ToolRun r = runTool(s + " " + t + " -o " + path("dangling.pcd") + overwrite);
+    EXPECT_EQ(r.code, 1) << r.output;
+    EXPECT_EQ(errorLines(r.output), 1) << r.output;
+    EXPECT_NE(r.output.find("is a symbolic link to the missing"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Loaded"), std::string::npos) << r.output;
+  }
 }
 
 // Inputs that load but cannot be registered: NaN-only clouds and no overlap. Non-zero exit and
