@@ -75,9 +75,10 @@ printHelp(const char* name)
       "  -h            : this help\n");
 }
 
-/// A length option: a finite number > 0 (>= 0 with `zero_ok`), said plainly when it is not.
+/// A length or tolerance option: a finite number > 0 (>= 0 with `zero_ok`), said plainly when it
+/// is not.
 bool
-lengthOption(int argc, char** argv, const std::string& name, double& value, bool zero_ok,
+positiveOption(int argc, char** argv, const std::string& name, double& value, bool zero_ok,
              std::string& why)
 {
   if (!pcl_ls3d::tools::numberOption(argc, argv, name, value, why))
@@ -229,11 +230,11 @@ main(int argc, char** argv)
   double max_corr = ps.max_correspondence_distance, ndt_res = ps.ndt_resolution, rms_dist = 1.0;
   double thinning = 0.0;
   int iterations = 0;
-  if (!lengthOption(argc, argv, "-max_corr", max_corr, false, why) ||
-      !lengthOption(argc, argv, "-ndt_res", ndt_res, false, why) ||
-      !lengthOption(argc, argv, "-rms_dist", rms_dist, false, why) ||
-      !lengthOption(argc, argv, "-thinning", thinning, true, why) ||
-      !lengthOption(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance, false, why) ||
+  if (!positiveOption(argc, argv, "-max_corr", max_corr, false, why) ||
+      !positiveOption(argc, argv, "-ndt_res", ndt_res, false, why) ||
+      !positiveOption(argc, argv, "-rms_dist", rms_dist, false, why) ||
+      !positiveOption(argc, argv, "-thinning", thinning, true, why) ||
+      !positiveOption(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance, false, why) ||
       !pcl_ls3d::tools::integerOption(argc, argv, "-iter", iterations, why, 1, 1000000))
     return fail(why);
   const bool iterations_given = iterations > 0;
