@@ -79,7 +79,7 @@ printHelp(const char* name)
 /// is not.
 bool
 positiveOption(int argc, char** argv, const std::string& name, double& value, bool zero_ok,
-             std::string& why)
+               std::string& why)
 {
   if (!pcl_ls3d::tools::numberOption(argc, argv, name, value, why))
     return false;
