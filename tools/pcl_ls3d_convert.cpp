@@ -5,6 +5,7 @@
 #include "tool_arguments.h"
 #include "tool_output.h"
 
+#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_io.h>
 #include <pcl_ls3d/io/strip_tools.h>
@@ -15,6 +16,7 @@
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <set>
@@ -161,6 +163,20 @@ saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const Outpu
   return s;
 }
 
+/// A SEGMENTS.pcd of MRG or pcl_rg names no classes: its label holds segment ids, which the
+/// reader takes for the classification (clamped to a byte). They are not classes: left 0.
+void
+dropSegmentIds(const std::string& input, const pcl_ls3d::io::CloudInfo& info, Cloud& cloud)
+{
+  if (info.format != "pcd" || !pcl_ls3d::evaluation::isSegmentsFile(input) ||
+      std::find(info.fields.begin(), info.fields.end(), "classification") != info.fields.end())
+    return;
+  for (auto& p : cloud)
+    p.classification = 0;
+  print_warn("%s holds segment ids, not object classes (-mode mrg or pcl_rg): the "
+             "classification is left 0 (never classified)\n", input.c_str());
+}
+
 }  // namespace
 
 int
@@ -242,6 +258,7 @@ main(int argc, char** argv)
     print_error("Cannot load %s\n", error.c_str());
     return 1;
   }
+  dropSegmentIds(input, info, *cloud);
   print_info("Loaded ");
   print_value("%s", input.c_str());
   print_info(" (%s, ", info.format.c_str());

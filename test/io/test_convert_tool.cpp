@@ -17,6 +17,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <set>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -405,4 +406,35 @@ TEST_F(ConvertTool, SegmentsFileConvertsToLasInTheInputFrame)
   for (std::size_t i = 0; i < in.size(); ++i)
     worst = std::max(worst, (back[i] - in[i]).cwiseAbs().maxCoeff());
   EXPECT_LT(worst, 2e-3);  // float rounding 3e-5 and the 1 mm LAS quantum
+}
+
+// A SEGMENTS.pcd of IMRG gives the LAS its objects' classes; one of MRG names none, and its
+// segment ids (which the reader would clamp into the classification byte) are not passed off
+// as classes: classification 0 and a warning.
+TEST_F(ConvertTool, SegmentsFileGivesObjectClassesNeverSegmentIds)
+{
+  const std::string seg = segmentsFile(), mrg = dir_.file("MRG.pcd");
+  ASSERT_FALSE(HasFailure());
+  std::string out;
+  ASSERT_EQ(runProgram(kSegmentTool, dir_.file("in.las") + " -mode mrg -o " + mrg, out, dir_), 0) << out;
+  const std::set<int> object_codes = {1, 2, 5, 6, 14, 15, 64};
+  for (const auto& [file, expect_classes] : {std::pair{seg, true}, std::pair{mrg, false}}) {
+    const std::string las = file + ".las";
+    ASSERT_EQ(run(file + " " + las, out, dir_), 0) << out;
+    EXPECT_EQ(out.find("holds segment ids") != std::string::npos, !expect_classes) << out;
+    pcl::PointCloud<PointLiDAR> back;
+    io::CloudInfo info;
+    std::string error;
+    ASSERT_TRUE(io::loadCloud(las, back, info, error)) << error;
+    std::set<int> codes;
+    for (const auto& p : back)
+      codes.insert(p.classification);
+    if (expect_classes) {
+      EXPECT_TRUE(std::includes(object_codes.begin(), object_codes.end(), codes.begin(), codes.end()))
+          << *codes.begin() << " .. " << *codes.rbegin();
+    }
+    else {
+      EXPECT_EQ(codes, std::set<int>{0});
+    }
+  }
 }
