@@ -455,6 +455,12 @@ runMethods(const Options& o, const Input& in, const ev::ReferenceObjects& object
       if (r.selected.empty())
         print_warn("%s: every point lies in a cluster under the minimum size: all labels 0\n",
                    ev::toString(m).c_str());
+      const std::string dominant =
+          tools::dominantSegmentWarning(run.segments, run.classes, in.cloud.size());
+      if (!dominant.empty()) {
+        print_warn("Warning: %s\n", dominant.c_str());
+        report["warnings"].push_back(dominant);
+      }
     }
     if (o.evaluate && !evaluateRun(o, in, objects, m, run, report, r, error))
       return false;

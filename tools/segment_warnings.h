@@ -1,11 +1,13 @@
 #pragma once
 /// \file segment_warnings.h
-/// \brief What pcl_ls3d_segment says about its input before it runs: far outliers and data too
-///        sparse for whole objects.
+/// \brief What pcl_ls3d_segment says about its input before it runs (far outliers, data too
+///        sparse for whole objects) and about a result that found no structure.
 
 #include <pcl_ls3d/common/voxel_index.h>
+#include <pcl_ls3d/segmentation/object_classes.h>
 #include <pcl_ls3d/stats/descriptive.h>
 
+#include <pcl/PointIndices.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 
@@ -75,6 +77,30 @@ sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud, double metres_per
                 "segmentation wants at least 2-4 points per m²",
                 density, spacing);
   return buf;
+}
+
+/// One unclassified object holding nearly every point means the segmentation found no structure
+/// (IGN's La Réunion sample, a wooded ravine: one segment of 99.5 %): said, so that nobody takes
+/// that one segment for a result. "" otherwise (also without classes; a tile that is all
+/// ground, all wood or one roof is a result).
+inline std::string
+dominantSegmentWarning(const std::vector<pcl::PointIndices>& segments,
+                       const std::vector<segmentation::ObjectClass>& classes, std::size_t points)
+{
+  if (points < 1000 || classes.size() != segments.size())
+    return "";
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    const double share = static_cast<double>(segments[s].indices.size()) / static_cast<double>(points);
+    if (share > 0.9 && classes[s] == segmentation::ObjectClass::Unclassified) {
+      char buf[300];
+      std::snprintf(buf, sizeof(buf),
+                    "one unclassified segment holds %.1f %% of the points: no structure was found "
+                    "(steep or densely wooded terrain, or too few points per object)",
+                    100.0 * share);
+      return buf;
+    }
+  }
+  return "";
 }
 
 }  // namespace tools

@@ -219,14 +219,19 @@ raisedAbove(const ObjectShape& s, double middle, double others, const ObjectClas
 }
 
 ObjectClass
-surfaceClass(const ObjectShape& s, double top, const ObjectClassSettings& c)
+surfaceClass(const ObjectShape& s, double low, double top, double level,
+             const ObjectClassSettings& c)
 {
-  const bool known = std::isfinite(top);
-  if (known && top <= c.car_max_height && s.length() >= c.car_min_length &&
+  const bool known = std::isfinite(level);
+  if (known && top - level <= c.car_max_height && s.length() >= c.car_min_length &&
       s.length() <= c.car_max_length && s.width() >= c.car_min_width &&
       s.width() <= c.car_max_width)
     return ObjectClass::Car;
-  if ((!known || top >= c.min_building_height) &&
+  // A building stands on the terrain: its low points are not far below the ground around it.
+  // A surface reaching min_building_height below it is the terrain itself (a wooded ravine
+  // grown into one segment, IGN's La Réunion sample).
+  const bool standing = !known || low - level >= -c.min_building_height;
+  if ((!known || top - level >= c.min_building_height) && standing &&
       s.length() * s.width() >= c.min_building_area)
     return ObjectClass::Building;
   return ObjectClass::Unclassified;
@@ -327,7 +332,7 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     if (standsUpright(s, low, middle, top, settings))
       classes[o] = ObjectClass::Pole;
     else
-      classes[o] = family == kSurface ? surfaceClass(s, top - level, settings)
+      classes[o] = family == kSurface ? surfaceClass(s, low, top, level, settings)
                                       : linearClass(s, low - level, settings);
   }
   return classes;

@@ -18,8 +18,11 @@
 ///    lattice tower; a piece of wall is thin): Pole;
 ///  - surface: Car when car-sized (top at most car_max_height above the terrain,
 ///    car_min_length..car_max_length long, car_min_width..car_max_width wide); Building when
-///    its top is at least min_building_height above the terrain and its plan box covers at
-///    least min_building_area; else Unclassified (a low wall, a shelter's roof piece);
+///    its top is at least min_building_height above the terrain, its low points (5th
+///    percentile) not min_building_height below it (a building stands on the terrain; a
+///    surface reaching below it is terrain grown into one segment: a wooded ravine) and its
+///    plan box covers at least min_building_area; else Unclassified (a low wall, a shelter's
+///    roof piece);
 ///  - linear: Wire when even its low points hang min_wire_height above the terrain, it is at
 ///    least min_wire_length long and thin (its points occupy at most max_wire_cover × length /
 ///    wire_cell plan cells of edge wire_cell: a canopy edge or a row of roofs grown as a line
