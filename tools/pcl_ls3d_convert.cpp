@@ -177,87 +177,68 @@ dropSegmentIds(const std::string& input, const pcl_ls3d::io::CloudInfo& info, Cl
              "classification is left 0 (never classified)\n", input.c_str());
 }
 
-}  // namespace
-
-int
-main(int argc, char** argv)
+/// Everything the command line asks for, checked before the input is read (which can take long).
+struct Options
 {
-  pcl_ls3d::tools::lineBufferedStdout();
-  if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
-    printHelp(argv[0]);
-    return argc < 2 ? 1 : 0;
-  }
-  std::vector<std::string> files;
-  if (!checkOptions(argc, argv, files))
-    return 1;
-  std::string split_dir, format, classes_text, origin_text, columns;
-  parse_argument(argc, argv, "-split_strips", split_dir);
-  parse_argument(argc, argv, "-format", format);
-  parse_argument(argc, argv, "-classes", classes_text);
-  parse_argument(argc, argv, "-origin", origin_text);
-  parse_argument(argc, argv, "-columns", columns);
-  const bool splitting = !split_dir.empty();
-  if (files.size() != (splitting ? 1u : 2u)) {
-    print_error("Expected %s, got %zu file names (see -h).\n",
-                splitting ? "one input file with -split_strips" : "an input and an output file",
-                files.size());
-    return 1;
-  }
-  const std::string input = files[0];
-
+  std::vector<std::string> files;  ///< input, and the output unless splitting
+  std::string split_dir, format, classes_text;
+  std::set<std::uint8_t> classes;
   pcl_ls3d::io::LoadOptions load;
-  load.xyz_columns = columns;
+  OutputOverrides overrides;
+  bool overwrite = false, ascii = false;
+};
+
+bool
+parseOptions(int argc, char** argv, Options& o, std::string& why)
+{
+  std::string origin_text;
+  parse_argument(argc, argv, "-split_strips", o.split_dir);
+  parse_argument(argc, argv, "-format", o.format);
+  parse_argument(argc, argv, "-classes", o.classes_text);
+  parse_argument(argc, argv, "-origin", origin_text);
+  parse_argument(argc, argv, "-columns", o.load.xyz_columns);
+  o.overwrite = find_switch(argc, argv, "-overwrite");
+  o.ascii = find_switch(argc, argv, "-ascii");
+  const bool splitting = !o.split_dir.empty();
+  if (o.files.size() != (splitting ? 1u : 2u))
+    return (why = std::string("Expected ") +
+                  (splitting ? "one input file with -split_strips" : "an input and an output file") +
+                  ", got " + std::to_string(o.files.size()) + " file names (see -h)."),
+           false;
   std::vector<double> values;
   if (!origin_text.empty()) {
-    if (!pcl_ls3d::tools::parseNumberList(origin_text, values) || values.size() != 3) {
-      print_error("-origin needs three finite numbers x,y,z, got '%s'.\n", origin_text.c_str());
-      return 1;
-    }
-    load.use_origin = true;
-    load.origin = Eigen::Vector3d(values[0], values[1], values[2]);
+    if (!pcl_ls3d::tools::parseNumberList(origin_text, values) || values.size() != 3)
+      return (why = "-origin needs three finite numbers x,y,z, got '" + origin_text + "'."), false;
+    o.load.use_origin = true;
+    o.load.origin = Eigen::Vector3d(values[0], values[1], values[2]);
   }
-  std::set<std::uint8_t> classes;
-  std::string why;
-  if (!classes_text.empty() && !pcl_ls3d::tools::parseClassList("-classes", classes_text, classes, why)) {
-    print_error("%s\n", why.c_str());
-    return 1;
-  }
+  if (!o.classes_text.empty() &&
+      !pcl_ls3d::tools::parseClassList("-classes", o.classes_text, o.classes, why))
+    return false;
+  if (!parseOverrides(argc, argv, o.overrides, why))
+    return false;
+  const std::string& input = o.files[0];
+  if (splitting && o.format.empty())
+    o.format = pcl_ls3d::io::fileExtension(input);
+  if (splitting && o.format != "las" && o.format != "pcd" && o.format != "ply" && o.format != "xyz" &&
+      o.format != "txt")
+    return (why = "-format must be las, pcd, ply, xyz or txt, got '" + o.format + "'."), false;
+  if (!splitting && pcl_ls3d::io::isSameFile(input, o.files[1]))
+    return (why = "Output " + o.files[1] + " is the input file; refusing to overwrite it."), false;
+  return splitting ? pcl_ls3d::tools::checkOutputFolder(o.split_dir, why)
+                   : pcl_ls3d::tools::checkOutputFile(o.files[1], {input}, o.overwrite, why, true);
+}
 
-  OutputOverrides overrides;
-  if (!parseOverrides(argc, argv, overrides, why)) {
-    print_error("%s\n", why.c_str());
-    return 1;
-  }
-  if (splitting && format.empty())
-    format = pcl_ls3d::io::fileExtension(input);
-  if (splitting && format != "las" && format != "pcd" && format != "ply" && format != "xyz" &&
-      format != "txt") {
-    print_error("-format must be las, pcd, ply, xyz or txt, got '%s'.\n", format.c_str());
-    return 1;
-  }
-
-  // Outputs are checked before the input is read (which can take long).
-  const bool overwrite = find_switch(argc, argv, "-overwrite");
-  if (!splitting && pcl_ls3d::io::isSameFile(input, files[1])) {
-    print_error("Output %s is the input file; refusing to overwrite it.\n", files[1].c_str());
-    return 1;
-  }
-  if (splitting ? !pcl_ls3d::tools::checkOutputFolder(split_dir, why)
-                : !pcl_ls3d::tools::checkOutputFile(files[1], {input}, overwrite, why, true)) {
-    print_error("%s\n", why.c_str());
-    return 1;
-  }
-
-  // Load.
+/// Loads the input and says what came in and in which frame.
+bool
+loadInput(const Options& o, Cloud::Ptr& cloud, pcl_ls3d::io::CloudInfo& info, std::string& why)
+{
+  const std::string& input = o.files[0];
   TicToc tt;
   tt.tic();
-  Cloud::Ptr cloud(new Cloud);
-  pcl_ls3d::io::CloudInfo info;
-  std::string error;
-  if (!pcl_ls3d::io::loadCloud(input, *cloud, info, error, load)) {
-    print_error("Cannot load %s\n", error.c_str());
-    return 1;
-  }
+  cloud.reset(new Cloud);
+  if (!pcl_ls3d::io::loadCloud(input, *cloud, info, why, o.load))
+    return (why = "Cannot load " + why), false;
   dropSegmentIds(input, info, *cloud);
   print_info("Loaded ");
   print_value("%s", input.c_str());
@@ -272,53 +253,85 @@ main(int argc, char** argv)
   if (info.xyz_unmapped_columns)
     print_info("Note: %zu column(s) of the XYZ input are not used (name them with -columns).\n",
                info.xyz_unmapped_columns);
-  print_info("Local origin (%s): ", load.use_origin            ? "forced"
+  print_info("Local origin (%s): ", o.load.use_origin      ? "forced"
                                     : info.has_file_origin ? "recorded in the file"
-                                                                 : "auto");
+                                                           : "auto");
   print_value("%.3f %.3f %.3f\n", info.origin[0], info.origin[1], info.origin[2]);
+  return true;
+}
 
-  if (!classes.empty()) {
-    const pcl::Indices kept = pcl_ls3d::io::filterByClassification(*cloud, classes, true);
-    Cloud::Ptr filtered(new Cloud);
-    pcl::copyPointCloud(*cloud, kept, *filtered);
-    print_info("Kept %zu of %zu points in classes %s\n", filtered->size(), cloud->size(),
-               classes_text.c_str());
-    if (filtered->empty()) {
-      print_error("No point of %s is in classes %s.\n", input.c_str(), classes_text.c_str());
-      return 1;
-    }
-    cloud = filtered;
-  }
+/// -classes: keeps the points of those classes; false when none is left.
+bool
+keepClasses(const Options& o, Cloud::Ptr& cloud, std::string& why)
+{
+  if (o.classes.empty())
+    return true;
+  const pcl::Indices kept = pcl_ls3d::io::filterByClassification(*cloud, o.classes, true);
+  Cloud::Ptr filtered(new Cloud);
+  pcl::copyPointCloud(*cloud, kept, *filtered);
+  print_info("Kept %zu of %zu points in classes %s\n", filtered->size(), cloud->size(),
+             o.classes_text.c_str());
+  if (filtered->empty())
+    return (why = "No point of " + o.files[0] + " is in classes " + o.classes_text + "."), false;
+  cloud = filtered;
+  return true;
+}
 
-  pcl_ls3d::io::SaveOptions save_options = saveOptions(*cloud, info, overrides);
-  save_options.overwrite = overwrite;
-  save_options.binary = !find_switch(argc, argv, "-ascii");
-
-  if (!splitting) {
-    return save(files[1], *cloud, info, save_options) ? 0 : 1;
-  }
-
-  // -split_strips DIR: one file per point-source id.
+/// -split_strips DIR: one file per point-source id.
+bool
+writeStrips(const Options& o, const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info,
+            const pcl_ls3d::io::SaveOptions& save_options, std::string& why)
+{
   std::error_code ec;
-  fs::create_directories(split_dir, ec);
-  if (!fs::is_directory(split_dir, ec)) {
-    print_error("Cannot create the output directory %s.\n", split_dir.c_str());
-    return 1;
-  }
-  const auto strips = pcl_ls3d::io::splitByPointSource(*cloud);
+  fs::create_directories(o.split_dir, ec);
+  if (!fs::is_directory(o.split_dir, ec))
+    return (why = "Cannot create the output directory " + o.split_dir + "."), false;
+  const auto strips = pcl_ls3d::io::splitByPointSource(cloud);
   print_info("Splitting into %zu strips\n", strips.size());
-  const std::string stem = fs::path(input).stem().string();
+  const std::string stem = fs::path(o.files[0]).stem().string();
   for (const auto& [id, indices] : strips) {
     const std::string path =
-        (fs::path(split_dir) / (stem + "_psid" + std::to_string(id) + "." + format)).string();
-    if (pcl_ls3d::io::isSameFile(input, path)) {
-      print_error("Output %s is the input file; refusing to overwrite it.\n", path.c_str());
-      return 1;
-    }
+        (fs::path(o.split_dir) / (stem + "_psid" + std::to_string(id) + "." + o.format)).string();
+    if (pcl_ls3d::io::isSameFile(o.files[0], path))
+      return (why = "Output " + path + " is the input file; refusing to overwrite it."), false;
     Cloud strip;
-    pcl::copyPointCloud(*cloud, indices, strip);
+    pcl::copyPointCloud(cloud, indices, strip);
     if (!save(path, strip, info, save_options))
-      return 1;
+      return false;  // save() said why
+  }
+  return true;
+}
+
+}  // namespace
+
+int
+main(int argc, char** argv)
+{
+  pcl_ls3d::tools::lineBufferedStdout();
+  if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
+    printHelp(argv[0]);
+    return argc < 2 ? 1 : 0;
+  }
+  Options o;
+  if (!checkOptions(argc, argv, o.files))
+    return 1;
+  Cloud::Ptr cloud;
+  pcl_ls3d::io::CloudInfo info;
+  std::string why;
+  if (!parseOptions(argc, argv, o, why) || !loadInput(o, cloud, info, why) ||
+      !keepClasses(o, cloud, why)) {
+    print_error("%s\n", why.c_str());
+    return 1;
+  }
+  pcl_ls3d::io::SaveOptions save_options = saveOptions(*cloud, info, o.overrides);
+  save_options.overwrite = o.overwrite;
+  save_options.binary = !o.ascii;
+  if (o.split_dir.empty())
+    return save(o.files[1], *cloud, info, save_options) ? 0 : 1;
+  if (!writeStrips(o, *cloud, info, save_options, why)) {
+    if (!why.empty())
+      print_error("%s\n", why.c_str());
+    return 1;
   }
   return 0;
 }
