@@ -200,6 +200,139 @@ fail(const std::string& why)
   return 1;
 }
 
+/// Everything the command line asks for, checked before the clouds are read.
+struct Options
+{
+  std::string source_path, target_path, truth_path, json_path;
+  std::vector<std::string> methods;
+  bool overwrite = false;
+  PclMethodSettings ps;
+  Ls3dMethodSettings ls;
+  double rms_dist = 1.0;  ///< RMS over nearest-neighbour distances within this
+  bool has_truth = false;
+  Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();  ///< input coordinates
+};
+
+bool
+parseOptions(int argc, char** argv, Options& o, std::string& why)
+{
+  std::vector<std::string> files;
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, kValueOptions, kSwitches, files, why))
+    return false;
+  if (files.size() != 2)
+    return (why = "expected exactly two input files (SOURCE TARGET), got " +
+                  std::to_string(files.size())),
+           false;
+  o.source_path = files[0];
+  o.target_path = files[1];
+  std::string methods_text = "all";
+  parse_argument(argc, argv, "-truth", o.truth_path);
+  parse_argument(argc, argv, "-json", o.json_path);
+  parse_argument(argc, argv, "-methods", methods_text);
+  o.overwrite = find_switch(argc, argv, "-overwrite");
+  double max_corr = o.ps.max_correspondence_distance, ndt_res = o.ps.ndt_resolution;
+  double thinning = 0.0;
+  int iterations = 0;
+  if (!positiveOption(argc, argv, "-max_corr", max_corr, false, why) ||
+      !positiveOption(argc, argv, "-ndt_res", ndt_res, false, why) ||
+      !positiveOption(argc, argv, "-rms_dist", o.rms_dist, false, why) ||
+      !positiveOption(argc, argv, "-thinning", thinning, true, why) ||
+      !positiveOption(argc, argv, "-gicp_grad", o.ps.gicp_gradient_tolerance, false, why) ||
+      !pcl_ls3d::tools::integerOption(argc, argv, "-iter", iterations, why, 1, 1000000))
+    return false;
+  o.ps.max_correspondence_distance = o.ls.max_correspondence_distance = max_corr;
+  o.ps.ndt_resolution = ndt_res;
+  o.ls.source_thinning = thinning;
+  if (iterations > 0)
+    o.ps.max_iterations = o.ls.max_iterations = iterations;
+  if (!parseMethods(methods_text, o.methods, why) ||
+      !pcl_ls3d::tools::checkOutputFile(o.json_path, {o.source_path, o.target_path, o.truth_path},
+                                        o.overwrite, why))
+    return false;
+  o.has_truth = !o.truth_path.empty();  // read before the clouds
+  return !o.has_truth || loadTruth(o.truth_path, o.truth, why);
+}
+
+/// Both clouds in one local frame: the target first, the source in its origin.
+struct Clouds
+{
+  pcl::PointCloud<pcl::PointXYZ>::Ptr source, target;
+  pcl_ls3d::io::CloudInfo source_info, target_info;
+};
+
+bool
+loadClouds(const Options& o, Clouds& c, std::string& why)
+{
+  TicToc tt;
+  tt.tic();
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> target_lidar, source_lidar;
+  if (!pcl_ls3d::io::loadCloud(o.target_path, target_lidar, c.target_info, why))
+    return false;
+  pcl_ls3d::io::LoadOptions with_origin;
+  with_origin.use_origin = true;
+  with_origin.origin = c.target_info.origin;
+  if (!pcl_ls3d::io::loadCloud(o.source_path, source_lidar, c.source_info, why, with_origin))
+    return false;
+  c.source = toXYZ(source_lidar);
+  c.target = toXYZ(target_lidar);
+  print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "
+             "(%.3f, %.3f, %.3f), in %.0f ms\n",
+             o.source_path.c_str(), c.source->size(), o.target_path.c_str(), c.target->size(),
+             c.target_info.origin.x(), c.target_info.origin.y(), c.target_info.origin.z(), tt.toc());
+  return true;
+}
+
+/// Every method on the same pair, scored in the same process; returns how many were usable.
+std::size_t
+runAll(const Options& o, const Clouds& c, std::vector<RegistrationRun>& runs)
+{
+  const Eigen::Vector3d& origin = c.target_info.origin;
+  const Eigen::Matrix4d truth_local = o.has_truth ? pcl_ls3d::globalToLocal(o.truth, origin, origin)
+                                                  : Eigen::Matrix4d::Identity();
+  RunEvaluation evaluation(c.source, c.target, o.rms_dist);
+  std::size_t usable = 0;
+  for (const auto& m : o.methods) {
+    print_info("Running %s ... ", m.c_str());
+    {  // PCL's own warnings and errors would land in the middle of the table: the row says it
+      const auto verbosity = getVerbosityLevel();
+      setVerbosityLevel(L_ALWAYS);
+      runs.push_back(runMethod(m, c.source, c.target, o.ps, o.ls));
+      setVerbosityLevel(verbosity);
+    }
+    evaluation.evaluate(runs.back(), o.has_truth ? &truth_local : nullptr);
+    const RegistrationRun& r = runs.back();
+    // Converged by its own criterion (not at the iteration limit; for LS3D and the robust rows
+    // also past the quality gate, which turns a refused CONVERGED into UNRELIABLE) and finite.
+    const bool ok = r.ran && r.converged && r.transformation.allFinite();
+    usable += ok;
+    print_info("%.3f s%s%s\n", r.time_s, ok ? "" : ", failed: ", ok ? "" : r.message.c_str());
+  }
+  return usable;
+}
+
+bool
+writeJson(const Options& o, const Clouds& c, const std::vector<RegistrationRun>& runs,
+          const std::string& unit, std::string& why)
+{
+  ComparisonContext context;
+  context.source = o.source_path;
+  context.target = o.target_path;
+  context.origin = c.target_info.origin;
+  context.source_points = c.source->size();
+  context.target_points = c.target->size();
+  context.has_truth = o.has_truth;
+  context.rms_max_distance = o.rms_dist;
+  context.unit = unit;
+  context.pcl_settings = o.ps.describe(unit);
+  context.ls3d_settings = o.ls.describe(unit);
+  std::ofstream out(o.json_path);
+  out << comparisonJson(runs, context) << "\n";
+  if (!out)
+    return (why = "cannot write " + o.json_path), false;
+  print_info("Wrote %s\n", o.json_path.c_str());
+  return true;
+}
+
 }  // namespace
 
 int
@@ -210,121 +343,24 @@ main(int argc, char** argv)
     printHelp(argv[0]);
     return argc < 2 ? 1 : 0;
   }
-  std::vector<std::string> files;
+  Options o;
+  Clouds c;
   std::string why;
-  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, kValueOptions, kSwitches, files, why))
+  if (!parseOptions(argc, argv, o, why) || !loadClouds(o, c, why))
     return fail(why);
-  if (files.size() != 2)
-    return fail("expected exactly two input files (SOURCE TARGET), got " +
-                std::to_string(files.size()));
-  const std::string& source_path = files[0];
-  const std::string& target_path = files[1];
-
-  std::string truth_path, json_path, methods_text = "all";
-  parse_argument(argc, argv, "-truth", truth_path);
-  parse_argument(argc, argv, "-json", json_path);
-  parse_argument(argc, argv, "-methods", methods_text);
-  const bool overwrite = find_switch(argc, argv, "-overwrite");
-  PclMethodSettings ps;
-  Ls3dMethodSettings ls;
-  double max_corr = ps.max_correspondence_distance, ndt_res = ps.ndt_resolution, rms_dist = 1.0;
-  double thinning = 0.0;
-  int iterations = 0;
-  if (!positiveOption(argc, argv, "-max_corr", max_corr, false, why) ||
-      !positiveOption(argc, argv, "-ndt_res", ndt_res, false, why) ||
-      !positiveOption(argc, argv, "-rms_dist", rms_dist, false, why) ||
-      !positiveOption(argc, argv, "-thinning", thinning, true, why) ||
-      !positiveOption(argc, argv, "-gicp_grad", ps.gicp_gradient_tolerance, false, why) ||
-      !pcl_ls3d::tools::integerOption(argc, argv, "-iter", iterations, why, 1, 1000000))
-    return fail(why);
-  const bool iterations_given = iterations > 0;
-  ps.max_correspondence_distance = ls.max_correspondence_distance = max_corr;
-  ps.ndt_resolution = ndt_res;
-  ls.source_thinning = thinning;
-  if (iterations_given)
-    ps.max_iterations = ls.max_iterations = iterations;
-  std::vector<std::string> methods;
-  if (!parseMethods(methods_text, methods, why))
-    return fail(why);
-
-  if (!pcl_ls3d::tools::checkOutputFile(json_path, {source_path, target_path, truth_path},
-                                        overwrite, why))
-    return fail(why);
-  Eigen::Matrix4d truth_file = Eigen::Matrix4d::Identity();  // read before the clouds
-  const bool has_truth = !truth_path.empty();
-  if (has_truth && !loadTruth(truth_path, truth_file, why))
-    return fail(why);
-
-  // Target first; the source shares its origin so both live in one local frame.
-  TicToc tt;
-  tt.tic();
-  pcl::PointCloud<pcl_ls3d::PointLiDAR> target_lidar, source_lidar;
-  pcl_ls3d::io::CloudInfo target_info, source_info;
-  if (!pcl_ls3d::io::loadCloud(target_path, target_lidar, target_info, why))
-    return fail(why);
-  pcl_ls3d::io::LoadOptions with_origin;
-  with_origin.use_origin = true;
-  with_origin.origin = target_info.origin;
-  if (!pcl_ls3d::io::loadCloud(source_path, source_lidar, source_info, why, with_origin))
-    return fail(why);
-  const auto source = toXYZ(source_lidar);
-  const auto target = toXYZ(target_lidar);
-  print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "
-             "(%.3f, %.3f, %.3f), in %.0f ms\n",
-             source_path.c_str(), source->size(), target_path.c_str(), target->size(),
-             target_info.origin.x(), target_info.origin.y(), target_info.origin.z(), tt.toc());
-
-  const Eigen::Matrix4d truth_local =
-      has_truth ? pcl_ls3d::globalToLocal(truth_file, target_info.origin, target_info.origin)
-                : Eigen::Matrix4d::Identity();
-
-  const std::string unit = lengthUnit(target_info, source_info);
-  print_info("PCL settings : %s\nLS3D settings: %s\n", ps.describe(unit).c_str(),
-             ls.describe(unit).c_str());
-  RunEvaluation evaluation(source, target, rms_dist);
+  const std::string unit = lengthUnit(c.target_info, c.source_info);
+  print_info("PCL settings : %s\nLS3D settings: %s\n", o.ps.describe(unit).c_str(),
+             o.ls.describe(unit).c_str());
   std::vector<RegistrationRun> runs;
-  std::size_t usable = 0;
-  for (const auto& m : methods) {
-    print_info("Running %s ... ", m.c_str());
-    {  // PCL's own warnings and errors would land in the middle of the table: the row says it
-      const auto verbosity = getVerbosityLevel();
-      setVerbosityLevel(L_ALWAYS);
-      runs.push_back(runMethod(m, source, target, ps, ls));
-      setVerbosityLevel(verbosity);
-    }
-    evaluation.evaluate(runs.back(), has_truth ? &truth_local : nullptr);
-    const RegistrationRun& r = runs.back();
-    // Converged by its own criterion (not at the iteration limit; for LS3D and the robust rows
-    // also past the quality gate, which turns a refused CONVERGED into UNRELIABLE) and finite.
-    const bool ok = r.ran && r.converged && r.transformation.allFinite();
-    usable += ok;
-    print_info("%.3f s%s%s\n", r.time_s, ok ? "" : ", failed: ", ok ? "" : r.message.c_str());
-  }
-  std::printf("\n%s", formatComparisonTable(runs, has_truth, unit).c_str());
-  std::printf("RMS: nearest-neighbour distances within %g %s. %s\n", rms_dist, unit.c_str(),
-              has_truth ? "Errors vs truth; parameter errors in the local frame "
-                          "(rotation about the local origin)."
-                        : "");
-
-  if (!json_path.empty()) {
-    ComparisonContext c;
-    c.source = source_path;
-    c.target = target_path;
-    c.origin = target_info.origin;
-    c.source_points = source->size();
-    c.target_points = target->size();
-    c.has_truth = has_truth;
-    c.rms_max_distance = rms_dist;
-    c.unit = unit;
-    c.pcl_settings = ps.describe(unit);
-    c.ls3d_settings = ls.describe(unit);
-    std::ofstream out(json_path);
-    out << comparisonJson(runs, c) << "\n";
-    if (!out)
-      return fail("cannot write " + json_path);
-    print_info("Wrote %s\n", json_path.c_str());
-  }
+  const std::size_t usable = runAll(o, c, runs);
+  std::printf("\n%s", formatComparisonTable(runs, o.has_truth, unit).c_str());
+  std::printf("RMS: nearest-neighbour distances within %g %s. %s\n", o.rms_dist, unit.c_str(),
+              o.has_truth ? "Errors vs truth; parameter errors in the local frame "
+                            "(rotation about the local origin)."
+                          : "");
+  if (!o.json_path.empty() && !writeJson(o, c, runs, unit, why))
+    return fail(why);
   if (usable == 0)
-    return fail("every method failed on " + source_path + " -> " + target_path);
+    return fail("every method failed on " + o.source_path + " -> " + o.target_path);
   return 0;
 }
