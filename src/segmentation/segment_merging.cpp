@@ -23,7 +23,106 @@
 
 namespace pcl_ls3d {
 namespace segmentation {
+namespace {
+
 using detail::MergeState;
+
+/// The nearest segment of every segment (§3.2.2, 1), and its distances: the sample D of d_t.
+std::vector<std::pair<int, double>>
+nearestSegments(const MergeState& st, int n_segments, int threads, std::vector<double>& D)
+{
+  std::vector<std::pair<int, double>> nearest(static_cast<std::size_t>(n_segments));
+#pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
+  for (int s = 0; s < n_segments; ++s)
+    nearest[s] = detail::initialNearestSegment(st, s);
+  D.clear();
+  for (int s = 0; s < n_segments; ++s)
+    if (nearest[s].first >= 0)
+      D.push_back(nearest[s].second);
+  return nearest;
+}
+
+/// s_t: the smallest gap between 3 k-means centres of the segment residuals R_i (eq. 1).
+double
+similarityOf(const MergeState& st, int n_segments, const MergeSettings& settings)
+{
+  if (settings.similarity_threshold >= 0.0)
+    return settings.similarity_threshold;
+  std::vector<double> R(static_cast<std::size_t>(n_segments));
+  for (int s = 0; s < n_segments; ++s)
+    R[s] = st.meanResidual(s);
+  return similarityThreshold(R, settings.kmeans_centres);
+}
+
+/// V_t from ΔV over the nearest pairs that pass d_t and s_t, smaller segment into larger, in
+/// the order the merge loop will visit them; \a candidate_dv keeps each ΔV (−1: no candidate)
+/// for the loop to reuse while neither segment has changed.
+double
+volumeOf(const MergeState& st, const std::vector<std::pair<int, double>>& nearest,
+         const MergeSettings& settings, double floor, int threads, MergeReport& rep,
+         std::vector<double>& candidate_dv)
+{
+  if (settings.volume_threshold >= 0.0)
+    return settings.volume_threshold;
+  const int n_segments = static_cast<int>(nearest.size());
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
+  for (int s = 0; s < n_segments; ++s) {
+    const int j = nearest[s].first;
+    if (j < 0 || nearest[s].second > rep.distance_threshold ||
+        std::abs(st.meanResidual(s) - st.meanResidual(j)) > rep.similarity_threshold)
+      continue;
+    const bool s_first = st.members[s].size() < st.members[j].size() ||
+                         (st.members[s].size() == st.members[j].size() && s < j);
+    candidate_dv[s] = s_first ? detail::volumeChange(st, s, j, floor, nullptr)
+                              : detail::volumeChange(st, j, s, floor, nullptr);
+  }
+  std::vector<double> dV;
+  for (int s = 0; s < n_segments; ++s)
+    if (candidate_dv[s] >= 0.0)
+      dV.push_back(candidate_dv[s]);
+  rep.volume_samples = dV.size();
+  return volumeChangeThreshold(dV, settings.alpha);
+}
+
+/// Merges S_s into S_j (Fig. 8): union-find, members, residual sum, the new hull H_j.
+void
+mergeInto(MergeState& st, int s, int j, SegmentHull& merged)
+{
+  st.parent[s] = j;
+  st.residual_sum[j] += st.residual_sum[s];
+  st.members[j].insert(st.members[j].end(), st.members[s].begin(), st.members[s].end());
+  st.members[s].clear();
+  for (const int c : st.contour[j])
+    st.contour_active[c] = 0;
+  for (const int c : st.contour[s])
+    st.contour_active[c] = 0;
+  for (const int c : merged.contour)
+    st.contour_active[c] = 1;
+  st.contour[j] = merged.contour;
+  st.contour[s].clear();
+  st.volume[j] = merged.volume;
+  st.planes[j] = std::move(merged.planes);
+  st.planes[s].clear();
+}
+
+/// Labels of the merged segments' roots, dense from 0; returns their number.
+std::size_t
+relabelRoots(MergeState& st, int n_segments, std::vector<int>& labels)
+{
+  std::vector<int> dense(static_cast<std::size_t>(n_segments), -1);
+  int next = 0;
+  for (int& l : labels) {
+    if (l < 0)
+      continue;
+    const int root = st.find(l);
+    if (dense[root] < 0)
+      dense[root] = next++;
+    l = dense[root];
+  }
+  return static_cast<std::size_t>(next);
+}
+
+}  // namespace
 
 MergeReport
 mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labels,
@@ -54,63 +153,18 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
   rep.hulls_flat = st.hull_kinds[static_cast<int>(HullKind::Flat)];
   rep.hulls_solid = st.hull_kinds[static_cast<int>(HullKind::Solid)];
 
-  // Nearest neighbour segment of every segment: the sample D (§3.2.2, 1).
-  std::vector<std::pair<int, double>> nearest(n_segments);
-#pragma omp parallel for schedule(dynamic, 64) num_threads(threads)
-  for (int s = 0; s < n_segments; ++s)
-    nearest[s] = detail::initialNearestSegment(st, s);
   std::vector<double> D;
-  for (int s = 0; s < n_segments; ++s)
-    if (nearest[s].first >= 0)
-      D.push_back(nearest[s].second);
+  const std::vector<std::pair<int, double>> nearest = nearestSegments(st, n_segments, threads, D);
   rep.distance_samples = D.size();
   const double t_nearest = watch.getTimeSeconds();
   rep.distance_threshold = settings.distance_threshold >= 0.0
                                ? settings.distance_threshold
                                : distanceThreshold(D, settings.alpha);
-
-  // s_t: smallest gap between 3 k-means centres of the segment residuals R_i (eq. 1).
-  rep.similarity_threshold = std::numeric_limits<double>::infinity();
-  if (full) {
-    if (settings.similarity_threshold >= 0.0) {
-      rep.similarity_threshold = settings.similarity_threshold;
-    } else {
-      std::vector<double> R(n_segments);
-      for (int s = 0; s < n_segments; ++s)
-        R[s] = st.meanResidual(s);
-      rep.similarity_threshold = similarityThreshold(R, settings.kmeans_centres);
-    }
-  }
-
-  // ΔV of segment s into its initial nearest segment (−1: not a candidate); reused by the loop
-  // while neither segment has changed.
-  std::vector<double> candidate_dv(n_segments, -1.0);
-  // V_t: ΔV over the nearest pairs that pass d_t and s_t, smaller segment into larger.
-  rep.volume_threshold = std::numeric_limits<double>::infinity();
-  if (full) {
-    if (settings.volume_threshold >= 0.0) {
-      rep.volume_threshold = settings.volume_threshold;
-    } else {
-#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
-      for (int s = 0; s < n_segments; ++s) {
-        const int j = nearest[s].first;
-        if (j < 0 || nearest[s].second > rep.distance_threshold ||
-            std::abs(st.meanResidual(s) - st.meanResidual(j)) > rep.similarity_threshold)
-          continue;
-        // Smaller into larger, in the order the merge loop will visit the pair.
-        const bool s_first = st.members[s].size() < st.members[j].size() ||
-                             (st.members[s].size() == st.members[j].size() && s < j);
-        candidate_dv[s] = s_first ? detail::volumeChange(st, s, j, floor, nullptr)
-                                  : detail::volumeChange(st, j, s, floor, nullptr);
-      }
-      std::vector<double> dV;
-      for (int s = 0; s < n_segments; ++s)
-        if (candidate_dv[s] >= 0.0)
-          dV.push_back(candidate_dv[s]);
-      rep.volume_samples = dV.size();
-      rep.volume_threshold = volumeChangeThreshold(dV, settings.alpha);
-    }
-  }
+  const double inf = std::numeric_limits<double>::infinity();
+  rep.similarity_threshold = full ? similarityOf(st, n_segments, settings) : inf;
+  std::vector<double> candidate_dv(static_cast<std::size_t>(n_segments), -1.0);
+  rep.volume_threshold =
+      full ? volumeOf(st, nearest, settings, floor, threads, rep, candidate_dv) : inf;
 
   const double t_thresholds = watch.getTimeSeconds();
   // Fig. 8: smallest segment first; merge into its nearest unfinished segment or finish it.
@@ -140,22 +194,7 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
       ids.insert(ids.end(), st.contour[s].begin(), st.contour[s].end());
       merged = detail::hullOfContour(st, ids);
     }
-    // Merge S_1 into S_j: union-find, members, residual sum, new hull H_j (Fig. 8).
-    st.parent[s] = j;
-    st.residual_sum[j] += st.residual_sum[s];
-    st.members[j].insert(st.members[j].end(), st.members[s].begin(), st.members[s].end());
-    st.members[s].clear();
-    for (const int c : st.contour[j])
-      st.contour_active[c] = 0;
-    for (const int c : st.contour[s])
-      st.contour_active[c] = 0;
-    for (const int c : merged.contour)
-      st.contour_active[c] = 1;
-    st.contour[j] = merged.contour;
-    st.contour[s].clear();
-    st.volume[j] = merged.volume;
-    st.planes[j] = std::move(merged.planes);
-    st.planes[s].clear();
+    mergeInto(st, s, j, merged);
     changed[j] = 1;
     ++rep.merges;
   }
@@ -164,18 +203,7 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
             "thresholds %.2f s, loop %.2f s; %zu contour points.\n", t_hulls,
             t_nearest - t_hulls, t_thresholds - t_nearest, watch.getTimeSeconds() - t_thresholds,
             st.contour_xyz.size());
-  // Dense relabelling of the roots.
-  std::vector<int> dense(n_segments, -1);
-  int next = 0;
-  for (int& l : labels) {
-    if (l < 0)
-      continue;
-    const int root = st.find(l);
-    if (dense[root] < 0)
-      dense[root] = next++;
-    l = dense[root];
-  }
-  rep.segments_after = static_cast<std::size_t>(next);
+  rep.segments_after = relabelRoots(st, n_segments, labels);
   return rep;
 }
 
