@@ -76,20 +76,12 @@ checkOptions(const pcl::PointCloud<PointLiDAR>& cloud, const SaveOptions& o, std
   return true;
 }
 
-}  // namespace
-
+/// The LAS offset (the rounded box centre of the file coordinates unless given); false when a
+/// point is not finite or the extent does not fit in 32-bit integers at the scale.
 bool
-writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
-         std::vector<std::uint8_t>& out, std::string& error, const SaveOptions& o)
+chooseOffset(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+             const SaveOptions& o, Eigen::Vector3d& offset, std::string& error)
 {
-  if (!checkOptions(cloud, o, error))
-    return false;
-  const int format = o.las_point_format, minor = o.las_minor_version;
-  const std::size_t n = cloud.size();
-  const std::size_t header_size = las::headerSizeFor(minor);
-  const std::size_t record_length = lasPointRecordLength(format);
-
-  // File coordinates in double; offset = rounded bbox centre unless given.
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
   for (const auto& p : cloud) {
@@ -101,10 +93,11 @@ writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
   }
-  Eigen::Vector3d offset = o.las_offset;
+  const bool empty = cloud.empty();
+  offset = o.las_offset;
   if (!o.las_use_offset)
-    offset = n ? Eigen::Vector3d((0.5 * (lo + hi)).array().round()) : Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3 && n; ++k) {
+    offset = empty ? Eigen::Vector3d::Zero() : Eigen::Vector3d((0.5 * (lo + hi)).array().round());
+  for (int k = 0; k < 3 && !empty; ++k) {
     const double a = (lo[k] - offset[k]) / o.las_scale[k], b = (hi[k] - offset[k]) / o.las_scale[k];
     if (std::max(std::abs(a), std::abs(b)) > 2147483000.0) {
       error = std::string("the ") + "xyz"[k] +
@@ -112,69 +105,79 @@ writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
       return false;
     }
   }
+  return true;
+}
 
-  // VLRs that describe the input's records (extra bytes, LASzip) would lie about ours: drop them.
-  std::vector<const LasVlr*> vlrs;
-  for (const auto& v : o.las_vlrs)
-    if (!(v.user_id == "LASF_Spec" && v.record_id == 4) && v.user_id != "laszip encoded")
-      vlrs.push_back(&v);
-  std::size_t vlr_bytes = 0;
-  for (const LasVlr* pv : vlrs) {
-    const LasVlr& v = *pv;
+/// The VLRs to write: those that describe the input's records (extra bytes, LASzip) would lie
+/// about ours and are dropped; false when one is too large for a VLR.
+bool
+keptVlrs(const SaveOptions& o, std::vector<const LasVlr*>& vlrs, std::size_t& bytes,
+         std::string& error)
+{
+  vlrs.clear();
+  bytes = 0;
+  for (const auto& v : o.las_vlrs) {
+    if ((v.user_id == "LASF_Spec" && v.record_id == 4) || v.user_id == "laszip encoded")
+      continue;
     if (v.data.size() > 65535) {
       error = "VLR " + v.user_id + "/" + std::to_string(v.record_id) + " exceeds 65535 bytes";
       return false;
     }
-    vlr_bytes += las::kVlrHeaderSize + v.data.size();
+    vlrs.push_back(&v);
+    bytes += las::kVlrHeaderSize + v.data.size();
   }
-  const std::size_t offset_to_points = header_size + vlr_bytes;
-  if (offset_to_points > std::numeric_limits<std::uint32_t>::max()) {
-    error = "VLRs too large";
-    return false;
-  }
-  out.assign(offset_to_points + n * record_length, 0);
-  std::uint8_t* h = out.data();
+  return true;
+}
 
-  // Point records, with quantised bounds and return counts.
-  const bool new_layout = format >= 6;
-  const std::size_t gps_offset = las::gpsTimeOffset(format);
-  std::int32_t qlo[3] = {std::numeric_limits<std::int32_t>::max(),
-                         std::numeric_limits<std::int32_t>::max(),
-                         std::numeric_limits<std::int32_t>::max()};
-  std::int32_t qhi[3] = {std::numeric_limits<std::int32_t>::min(),
-                         std::numeric_limits<std::int32_t>::min(),
-                         std::numeric_limits<std::int32_t>::min()};
+/// What the header says about the records: quantised bounds and points per return number.
+struct RecordSummary
+{
+  std::int32_t lo[3] = {std::numeric_limits<std::int32_t>::max(),
+                        std::numeric_limits<std::int32_t>::max(),
+                        std::numeric_limits<std::int32_t>::max()};
+  std::int32_t hi[3] = {std::numeric_limits<std::int32_t>::min(),
+                        std::numeric_limits<std::int32_t>::min(),
+                        std::numeric_limits<std::int32_t>::min()};
   std::uint64_t by_return[15] = {};
-  for (std::size_t i = 0; i < n; ++i) {
-    const PointLiDAR& p = cloud[i];
-    std::uint8_t* r = h + offset_to_points + i * record_length;
-    for (int k = 0; k < 3; ++k) {
-      const double x = static_cast<double>(p.data[k]) + origin[k];
-      const auto q = static_cast<std::int32_t>(std::llround((x - offset[k]) / o.las_scale[k]));
-      las::put<std::int32_t>(r + 4 * k, q);
-      qlo[k] = std::min(qlo[k], q);
-      qhi[k] = std::max(qhi[k], q);
-    }
-    const float in = p.intensity;
-    las::put<std::uint16_t>(r + 12, !(in > 0.f) ? 0 : (in >= 65535.f ? 65535 : static_cast<std::uint16_t>(std::lround(in))));
-    if (new_layout) {
-      r[14] = static_cast<std::uint8_t>((p.return_number & 0x0F) | (p.number_of_returns << 4));
-      r[16] = p.classification;
-      las::put<std::uint16_t>(r + 20, p.point_source_id);
-    }
-    else {
-      r[14] = static_cast<std::uint8_t>((p.return_number & 0x07) |
-                                        ((p.number_of_returns & 0x07) << 3));
-      r[15] = p.classification & 0x1F;
-      las::put<std::uint16_t>(r + 18, p.point_source_id);
-    }
-    if (gps_offset)
-      las::put<double>(r + gps_offset, p.gps_time);
-    if (p.return_number >= 1 && p.return_number <= 15)
-      ++by_return[p.return_number - 1];
-  }
+};
 
-  // Public header.
+/// One point record of \a format at \a r.
+void
+putRecord(const PointLiDAR& p, const Eigen::Vector3d& origin, const Eigen::Vector3d& offset,
+          const SaveOptions& o, int format, std::uint8_t* r, RecordSummary& sum)
+{
+  for (int k = 0; k < 3; ++k) {
+    const double x = static_cast<double>(p.data[k]) + origin[k];
+    const auto q = static_cast<std::int32_t>(std::llround((x - offset[k]) / o.las_scale[k]));
+    las::put<std::int32_t>(r + 4 * k, q);
+    sum.lo[k] = std::min(sum.lo[k], q);
+    sum.hi[k] = std::max(sum.hi[k], q);
+  }
+  const float in = p.intensity;
+  las::put<std::uint16_t>(r + 12, !(in > 0.f) ? 0 : (in >= 65535.f ? 65535 : static_cast<std::uint16_t>(std::lround(in))));
+  if (format >= 6) {
+    r[14] = static_cast<std::uint8_t>((p.return_number & 0x0F) | (p.number_of_returns << 4));
+    r[16] = p.classification;
+    las::put<std::uint16_t>(r + 20, p.point_source_id);
+  }
+  else {
+    r[14] = static_cast<std::uint8_t>((p.return_number & 0x07) |
+                                      ((p.number_of_returns & 0x07) << 3));
+    r[15] = p.classification & 0x1F;
+    las::put<std::uint16_t>(r + 18, p.point_source_id);
+  }
+  if (const std::size_t gps_offset = las::gpsTimeOffset(format))
+    las::put<double>(r + gps_offset, p.gps_time);
+  if (p.return_number >= 1 && p.return_number <= 15)
+    ++sum.by_return[p.return_number - 1];
+}
+
+/// The public header of \a n records after \a vlr_count VLRs.
+void
+putHeader(std::uint8_t* h, std::size_t n, std::size_t vlr_count, std::size_t offset_to_points,
+          const Eigen::Vector3d& offset, const RecordSummary& sum, const SaveOptions& o)
+{
+  const int format = o.las_point_format, minor = o.las_minor_version;
   std::memcpy(h, "LASF", 4);
   std::uint16_t encoding = 0;
   if (minor >= 2 && o.las_adjusted_standard_gps_time)
@@ -194,32 +197,36 @@ writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
   gmtime_r(&now, &utc);
   las::put<std::uint16_t>(h + las::kCreationDay, static_cast<std::uint16_t>(utc.tm_yday + 1));
   las::put<std::uint16_t>(h + las::kCreationYear, static_cast<std::uint16_t>(utc.tm_year + 1900));
-  las::put<std::uint16_t>(h + las::kHeaderSize, static_cast<std::uint16_t>(header_size));
+  las::put<std::uint16_t>(h + las::kHeaderSize, static_cast<std::uint16_t>(las::headerSizeFor(minor)));
   las::put<std::uint32_t>(h + las::kOffsetToPoints, static_cast<std::uint32_t>(offset_to_points));
-  las::put<std::uint32_t>(h + las::kNumberOfVlrs, static_cast<std::uint32_t>(vlrs.size()));
+  las::put<std::uint32_t>(h + las::kNumberOfVlrs, static_cast<std::uint32_t>(vlr_count));
   h[las::kPointFormat] = static_cast<std::uint8_t>(format);
-  las::put<std::uint16_t>(h + las::kRecordLength, static_cast<std::uint16_t>(record_length));
+  las::put<std::uint16_t>(h + las::kRecordLength, static_cast<std::uint16_t>(lasPointRecordLength(format)));
   // LAS 1.4 with formats 6-10: the legacy count and legacy by-return counts must be zero.
   const bool legacy = !(minor >= 4 && format >= 6) && n <= std::numeric_limits<std::uint32_t>::max();
   if (legacy) {
     las::put<std::uint32_t>(h + las::kLegacyCount, static_cast<std::uint32_t>(n));
     for (int r = 0; r < 5; ++r)
-      las::put<std::uint32_t>(h + las::kLegacyByReturn + 4 * r, static_cast<std::uint32_t>(by_return[r]));
+      las::put<std::uint32_t>(h + las::kLegacyByReturn + 4 * r, static_cast<std::uint32_t>(sum.by_return[r]));
   }
   for (int k = 0; k < 3; ++k) {
     las::put<double>(h + las::kScale + 8 * k, o.las_scale[k]);
     las::put<double>(h + las::kOffset + 8 * k, offset[k]);
-    las::put<double>(h + las::kMaxX + 16 * k, n ? qhi[k] * o.las_scale[k] + offset[k] : 0.0);
-    las::put<double>(h + las::kMaxX + 16 * k + 8, n ? qlo[k] * o.las_scale[k] + offset[k] : 0.0);
+    las::put<double>(h + las::kMaxX + 16 * k, n ? sum.hi[k] * o.las_scale[k] + offset[k] : 0.0);
+    las::put<double>(h + las::kMaxX + 16 * k + 8, n ? sum.lo[k] * o.las_scale[k] + offset[k] : 0.0);
   }
   if (minor >= 4) {
     las::put<std::uint64_t>(h + las::kCount64, n);
     for (int r = 0; r < 15; ++r)
-      las::put<std::uint64_t>(h + las::kByReturn64 + 8 * r, by_return[r]);
+      las::put<std::uint64_t>(h + las::kByReturn64 + 8 * r, sum.by_return[r]);
   }
   // Waveform start (1.3+) and EVLR start/count (1.4) stay 0: none are written.
+}
 
-  std::uint8_t* v = h + header_size;
+/// The VLRs, one after another from \a v.
+void
+putVlrs(std::uint8_t* v, const std::vector<const LasVlr*>& vlrs)
+{
   for (const LasVlr* pv : vlrs) {
     const LasVlr& vlr = *pv;
     putString(v + 2, vlr.user_id, 16);
@@ -230,6 +237,34 @@ writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
       std::memcpy(v + las::kVlrHeaderSize, vlr.data.data(), vlr.data.size());
     v += las::kVlrHeaderSize + vlr.data.size();
   }
+}
+
+}  // namespace
+
+bool
+writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+         std::vector<std::uint8_t>& out, std::string& error, const SaveOptions& o)
+{
+  Eigen::Vector3d offset;
+  std::vector<const LasVlr*> vlrs;
+  std::size_t vlr_bytes = 0;
+  if (!checkOptions(cloud, o, error) || !chooseOffset(cloud, origin, o, offset, error) ||
+      !keptVlrs(o, vlrs, vlr_bytes, error))
+    return false;
+  const std::size_t header_size = las::headerSizeFor(o.las_minor_version);
+  const std::size_t offset_to_points = header_size + vlr_bytes;
+  if (offset_to_points > std::numeric_limits<std::uint32_t>::max()) {
+    error = "VLRs too large";
+    return false;
+  }
+  const std::size_t n = cloud.size(), record_length = lasPointRecordLength(o.las_point_format);
+  out.assign(offset_to_points + n * record_length, 0);
+  RecordSummary sum;
+  for (std::size_t i = 0; i < n; ++i)
+    putRecord(cloud[i], origin, offset, o, o.las_point_format,
+              out.data() + offset_to_points + i * record_length, sum);
+  putHeader(out.data(), n, vlrs.size(), offset_to_points, offset, sum, o);
+  putVlrs(out.data() + header_size, vlrs);
   return true;
 }
 
