@@ -328,6 +328,7 @@ main(int argc, char** argv)
   save_options.binary = !o.ascii;
   if (o.split_dir.empty())
     return save(o.files[1], *cloud, info, save_options) ? 0 : 1;
+  why.clear();  // save() prints its own reason
   if (!writeStrips(o, *cloud, info, save_options, why)) {
     if (!why.empty())
       print_error("%s\n", why.c_str());

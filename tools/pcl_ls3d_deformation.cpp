@@ -583,8 +583,8 @@ main(int argc, char** argv)
       !analyse(o, e, result, run_ms, error))
     return fail(error), 1;
   const pcl_ls3d::RobustMatchingReport& mr = result.matching;
-  const CentroidShift shift = centroidShift(e, mr.adjustment.transformation);
-  printResult(e, result, shift, run_ms);
+  const CentroidShift centroid = centroidShift(e, mr.adjustment.transformation);
+  printResult(e, result, centroid, run_ms);
 
   if (!o.out_path.empty()) {
     if (!writeResiduals(o.out_path, *e.epoch, result, e.rinfo.origin, error))
@@ -602,7 +602,7 @@ main(int argc, char** argv)
                crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");
   }
   if (!o.json_path.empty() &&
-      !pcl_ls3d::tools::writeJsonFile(o.json_path, reportJson(o, e, result, shift, run_ms)))
+      !pcl_ls3d::tools::writeJsonFile(o.json_path, reportJson(o, e, result, centroid, run_ms)))
     return fail("cannot write " + o.json_path), 1;
   if (mr.termination != pcl_ls3d::TerminationType::CONVERGED) {
     print_warn("Warning: the matching ended %s, not CONVERGED: the transformation and the residuals "

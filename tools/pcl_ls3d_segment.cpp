@@ -224,12 +224,13 @@ parseOptions(int argc, char** argv, Options& o, std::string& error)
   o.overwrite = find_switch(argc, argv, "-overwrite");
   o.evaluate = find_switch(argc, argv, "-evaluate");
   double min_size = 0;
-  if (!parseNumber(argc, argv, "-eval_min_size", min_size, error) ||
-      !parseNumber(argc, argv, "-object_radius", o.object_radius, error))
+  if (!parseNumber(argc, argv, "-eval_min_size", min_size, error))
     return false;
   if (min_size < 0 || min_size != std::floor(min_size))
     return (error = "-eval_min_size must be a non-negative integer"), false;
   o.eval.min_segment_size = static_cast<std::size_t>(min_size);
+  if (!parseNumber(argc, argv, "-object_radius", o.object_radius, error))
+    return false;
   if (o.object_radius == 0.0 || o.object_radius > 1e6)
     return (error = "-object_radius must be positive (metres), or negative for automatic"), false;
   std::string class_spec;

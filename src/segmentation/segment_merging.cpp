@@ -44,7 +44,7 @@ nearestSegments(const MergeState& st, int n_segments, int threads, std::vector<d
 
 /// s_t: the smallest gap between 3 k-means centres of the segment residuals R_i (eq. 1).
 double
-similarityOf(const MergeState& st, int n_segments, const MergeSettings& settings)
+chooseSimilarityThreshold(const MergeState& st, int n_segments, const MergeSettings& settings)
 {
   if (settings.similarity_threshold >= 0.0)
     return settings.similarity_threshold;
@@ -54,11 +54,12 @@ similarityOf(const MergeState& st, int n_segments, const MergeSettings& settings
   return similarityThreshold(R, settings.kmeans_centres);
 }
 
-/// V_t from ΔV over the nearest pairs that pass d_t and s_t, smaller segment into larger, in
-/// the order the merge loop will visit them; \a candidate_dv keeps each ΔV (−1: no candidate)
-/// for the loop to reuse while neither segment has changed.
+/// V_t (given, or from ΔV over the nearest pairs that pass d_t and s_t, smaller segment into
+/// larger, in the order the merge loop will visit them); also fills rep.volume_samples, and
+/// \a candidate_dv keeps each ΔV (−1: no candidate) for the loop to reuse while neither
+/// segment has changed.
 double
-volumeOf(const MergeState& st, const std::vector<std::pair<int, double>>& nearest,
+chooseVolumeThreshold(const MergeState& st, const std::vector<std::pair<int, double>>& nearest,
          const MergeSettings& settings, double floor, int threads, MergeReport& rep,
          std::vector<double>& candidate_dv)
 {
@@ -84,7 +85,8 @@ volumeOf(const MergeState& st, const std::vector<std::pair<int, double>>& neares
   return volumeChangeThreshold(dV, settings.alpha);
 }
 
-/// Merges S_s into S_j (Fig. 8): union-find, members, residual sum, the new hull H_j.
+/// Merges S_s into S_j (Fig. 8): union-find, members, residual sum, the new hull H_j (its
+/// planes are moved out of \a merged).
 void
 mergeInto(MergeState& st, int s, int j, SegmentHull& merged)
 {
@@ -161,10 +163,10 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
                                ? settings.distance_threshold
                                : distanceThreshold(D, settings.alpha);
   const double inf = std::numeric_limits<double>::infinity();
-  rep.similarity_threshold = full ? similarityOf(st, n_segments, settings) : inf;
+  rep.similarity_threshold = full ? chooseSimilarityThreshold(st, n_segments, settings) : inf;
   std::vector<double> candidate_dv(static_cast<std::size_t>(n_segments), -1.0);
   rep.volume_threshold =
-      full ? volumeOf(st, nearest, settings, floor, threads, rep, candidate_dv) : inf;
+      full ? chooseVolumeThreshold(st, nearest, settings, floor, threads, rep, candidate_dv) : inf;
 
   const double t_thresholds = watch.getTimeSeconds();
   // Fig. 8: smallest segment first; merge into its nearest unfinished segment or finish it.
