@@ -241,6 +241,36 @@ TEST(ObjectClasses, ImrgClassesOnAGeneratedScene)
   EXPECT_TRUE(seg.getClusterClasses(Segmenter::Level::Objects).empty());
 }
 
+namespace {
+
+/// A real LAS file through IMRG with its defaults: the points (with their reference classes),
+/// the objects and their classes.
+struct RealRun
+{
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> las;
+  std::vector<pcl::PointIndices> objects;
+  std::vector<ObjectClass> classes;
+};
+
+void
+segmentRealFile(const std::string& path, RealRun& run)
+{
+  pcl_ls3d::io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::io::loadCloud(path, run.las, info, error)) << error;
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
+  for (const auto& p : run.las)
+    cloud->push_back(pcl::PointXYZ(p.x, p.y, p.z));
+  using Segmenter = pcl_ls3d::MultiRuleRegionGrowing<pcl::PointXYZ>;
+  Segmenter seg;
+  seg.setInputCloud(cloud);
+  seg.extract(run.objects);
+  run.classes = seg.getClusterClasses(Segmenter::Level::Objects);
+  ASSERT_EQ(run.classes.size(), run.objects.size());
+}
+
+}  // namespace
+
 // Real data (skipped without ../shared/data): PDAL's sample_c is one roof over most of an
 // 84 m × 75 m tile, wider than what the ground filter removes beside so little terrain, so its
 // segments are of the ground kind; the roof stands 10-25 m above the terrain around it and
@@ -250,22 +280,15 @@ TEST(ObjectClasses, SampleCRoofIsABuildingNotGround)
 {
   const std::string path =
       std::string(PCL_LS3D_SHARED_DATA_DIR) + "/segmentation/pdal__sample_c.las";
-  pcl::PointCloud<pcl_ls3d::PointLiDAR> las;
-  pcl_ls3d::io::CloudInfo info;
-  std::string error;
   if (!std::ifstream(path).good())
     GTEST_SKIP() << "shared data not found: " << path << "; skipped";
-  ASSERT_TRUE(pcl_ls3d::io::loadCloud(path, las, info, error)) << error;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  for (const auto& p : las)
-    cloud->push_back(pcl::PointXYZ(p.x, p.y, p.z));
-  using Segmenter = pcl_ls3d::MultiRuleRegionGrowing<pcl::PointXYZ>;
-  Segmenter seg;
-  seg.setInputCloud(cloud);
-  std::vector<pcl::PointIndices> objects;
-  seg.extract(objects);
-  const auto& classes = seg.getClusterClasses(Segmenter::Level::Objects);
-  ASSERT_EQ(classes.size(), objects.size());
+  RealRun run;
+  segmentRealFile(path, run);
+  if (HasFatalFailure())
+    return;
+  const auto& las = run.las;
+  const auto& objects = run.objects;
+  const auto& classes = run.classes;
   std::map<int, std::size_t> hits, total;  // per reference code: points given that class
   for (std::size_t o = 0; o < objects.size(); ++o)
     for (const auto i : objects[o].indices) {
@@ -289,24 +312,16 @@ TEST(ObjectClasses, WoodedRavineIsNoBuilding)
                            "/registration/ign_lidarhd/sample_lareunion_epsg2975.las";
   if (!std::ifstream(path).good())
     GTEST_SKIP() << "shared data not found: " << path << "; skipped";
-  pcl::PointCloud<pcl_ls3d::PointLiDAR> las;
-  pcl_ls3d::io::CloudInfo info;
-  std::string error;
-  ASSERT_TRUE(pcl_ls3d::io::loadCloud(path, las, info, error)) << error;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  for (const auto& p : las)
-    cloud->push_back(pcl::PointXYZ(p.x, p.y, p.z));
-  using Segmenter = pcl_ls3d::MultiRuleRegionGrowing<pcl::PointXYZ>;
-  Segmenter seg;
-  seg.setInputCloud(cloud);
-  std::vector<pcl::PointIndices> objects;
-  seg.extract(objects);
-  const auto& classes = seg.getClusterClasses(Segmenter::Level::Objects);
-  ASSERT_EQ(classes.size(), objects.size());
+  RealRun run;
+  segmentRealFile(path, run);
+  if (HasFatalFailure())
+    return;
+  const auto& objects = run.objects;
+  const auto& classes = run.classes;
   std::size_t building = 0;
   for (std::size_t o = 0; o < objects.size(); ++o)
     building += classes[o] == ObjectClass::Building ? objects[o].indices.size() : 0;
-  EXPECT_LT(building, cloud->size() / 10) << "points called building";
+  EXPECT_LT(building, run.las.size() / 10) << "points called building";
 
   const std::string tool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_segment";
   const std::string log = ::testing::TempDir() + "ravine.log";
