@@ -156,11 +156,7 @@ printParameters(const pcl_ls3d::AdjustmentReport& a, const Eigen::Vector3d& o_s,
   print_info(exact_fit ? "; sigma not estimable (exact fit)\n" : "\n");
 }
 
-nlohmann::json
-finiteOrNull(double v)
-{
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
+using pcl_ls3d::tools::finiteOrNull;
 
 nlohmann::json
 matrixJson(const Eigen::Matrix4d& T)

@@ -122,11 +122,7 @@ matrixJson(const Eigen::Matrix4d& T)
   return rows;
 }
 
-nlohmann::json
-finiteOrNull(double v)
-{
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
+using pcl_ls3d::tools::finiteOrNull;
 
 nlohmann::json
 reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, bool converged,

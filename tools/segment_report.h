@@ -8,6 +8,8 @@
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/segmentation/object_classes.h>
 
+#include "tool_output.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -27,20 +29,21 @@ namespace ev = pcl_ls3d::evaluation;
 inline json
 runToJson(const ev::SegmentationRun& r)
 {
-  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json j;
   j["method"] = ev::toString(r.method);
   j["segments"] = r.segments.size();
   j["segments_before_merging"] = r.segments_before_merge;
   j["segments_after_merging"] = r.segments_after_merge;
   j["merges"] = r.merges;
-  j["thresholds"] = {{"v_t_m", num(r.residual_threshold)}, {"d_t_m", num(r.distance_threshold)},
-                     {"s_t_m", num(r.similarity_threshold)}, {"V_t", num(r.volume_threshold)},
+  j["thresholds"] = {{"v_t_m", finiteOrNull(r.residual_threshold)},
+                     {"d_t_m", finiteOrNull(r.distance_threshold)},
+                     {"s_t_m", finiteOrNull(r.similarity_threshold)},
+                     {"V_t", finiteOrNull(r.volume_threshold)},
                      {"distance_samples", r.distance_samples},
                      {"volume_samples", r.volume_samples}};
-  j["spacing_m"] = num(r.spacing);
-  j["growth_radius_m"] = num(r.growth_radius);
-  j["volumetric_radius_m"] = num(r.volumetric_radius);
+  j["spacing_m"] = finiteOrNull(r.spacing);
+  j["growth_radius_m"] = finiteOrNull(r.growth_radius);
+  j["volumetric_radius_m"] = finiteOrNull(r.volumetric_radius);
   j["dimensionality"] = {{"linear", r.linear}, {"planar", r.planar},
                          {"volumetric", r.volumetric}, {"invalid", r.invalid}};
   j["fragments_absorbed"] = r.fragments_absorbed;
@@ -54,10 +57,18 @@ runToJson(const ev::SegmentationRun& r)
   return j;
 }
 
+/// P, R, F1 (null where undefined) and the counts of one class, per point or per object.
+template <typename Scores>
+inline json
+scoresJson(const Scores& c)
+{
+  return {{"precision", finiteOrNull(c.precision)}, {"recall", finiteOrNull(c.recall)},
+          {"f1", finiteOrNull(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn}};
+}
+
 inline json
 evaluationToJson(const ev::SegmentationEvaluation& e)
 {
-  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json j;
   j["method"] = e.method;
   j["seconds"] = e.seconds;
@@ -65,17 +76,17 @@ evaluationToJson(const ev::SegmentationEvaluation& e)
   j["points_evaluated"] = e.points_evaluated;
   j["points_unsegmented"] = e.points_unsegmented;
   j["segments_under_min_size"] = e.segments_too_small;
-  for (const auto& c : e.classes)
-    j["classes"][c.name] = {{"precision", num(c.precision)}, {"recall", num(c.recall)},
-                            {"f1", num(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn},
-                            {"reference_points", c.reference_points}, {"segments", c.segments}};
+  for (const auto& c : e.classes) {
+    json& k = j["classes"][c.name] = scoresJson(c);
+    k["reference_points"] = c.reference_points;
+    k["segments"] = c.segments;
+  }
   return j;
 }
 
 inline json
 objectEvaluationToJson(const ev::ObjectEvaluation& e)
 {
-  auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json j;
   j["method"] = e.method;
   j["seconds"] = e.seconds;
@@ -84,13 +95,14 @@ objectEvaluationToJson(const ev::ObjectEvaluation& e)
     j["failure"] = e.failure;
     return j;
   }
-  for (const auto& c : e.classes)
-    j["classes"][c.name] = {{"precision", num(c.precision)}, {"recall", num(c.recall)},
-                            {"f1", num(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn},
-                            {"objects", c.objects}, {"recognised", c.recognised},
-                            {"large_objects", c.large_objects},
-                            {"median_valid_segments", num(c.median_valid_segments)},
-                            {"median_largest_share", num(c.median_largest_share)}};
+  for (const auto& c : e.classes) {
+    json& k = j["classes"][c.name] = scoresJson(c);
+    k["objects"] = c.objects;
+    k["recognised"] = c.recognised;
+    k["large_objects"] = c.large_objects;
+    k["median_valid_segments"] = finiteOrNull(c.median_valid_segments);
+    k["median_largest_share"] = finiteOrNull(c.median_largest_share);
+  }
   return j;
 }
 
@@ -111,7 +123,8 @@ classSummary(const std::vector<pcl::PointIndices>& segments,
     char buf[96];
     std::snprintf(buf, sizeof(buf), "%s%s %zu (%.1f %%)", text.empty() ? "" : ", ",
                   segmentation::toString(c), n.first,
-                  100.0 * static_cast<double>(n.second) / static_cast<double>(std::max<std::size_t>(points, 1)));
+                  100.0 * static_cast<double>(n.second) /
+                      static_cast<double>(std::max<std::size_t>(points, 1)));
     text += buf;
     j[segmentation::toString(c)] = {{"segments", n.first}, {"points", n.second}};
   }

@@ -8,6 +8,9 @@
 
 #include <Eigen/Core>
 
+#include <nlohmann/json.hpp>
+
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -22,6 +25,13 @@ inline void
 lineBufferedStdout()
 {
   std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+}
+
+/// \brief A finite number as JSON, or null (JSON has no NaN or infinity).
+inline nlohmann::json
+finiteOrNull(double v)
+{
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
 /// \brief Writes a JSON report (io::toJsonText, indent 2, a final newline); false when it could

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_set>
 
 namespace pcl_ls3d {
@@ -41,15 +42,28 @@ cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis)
 std::size_t
 occupiedCells(const std::vector<Eigen::Vector3d>& points, int a, int b, double cell)
 {
-  std::unordered_set<std::int64_t> cells;
+  std::unordered_set<std::uint64_t> cells;
   for (const Eigen::Vector3d& p : points)
-    if (p.allFinite()) {
-      const std::int64_t u = voxelCoordinate(p[a], cell);
-      const std::int64_t v = voxelCoordinate(p[b], cell);
-      cells.insert(static_cast<std::int64_t>((static_cast<std::uint64_t>(u) << 32) ^
-                                              (static_cast<std::uint64_t>(v) & 0xffffffffu)));  // no UB for u < 0
-    }
+    if (p.allFinite())
+      cells.insert(planCellKey(planCellCoordinate(p[a], cell), planCellCoordinate(p[b], cell)));
   return cells.size();
+}
+
+std::int64_t
+planCellCoordinate(double x, double cell)
+{
+  constexpr std::int64_t kLimit = std::numeric_limits<std::int32_t>::max();
+  return std::clamp<std::int64_t>(voxelCoordinate(x, cell), -kLimit, kLimit);
+}
+
+std::uint64_t
+planCellKey(std::int64_t u, std::int64_t v)
+{
+  const auto saturate = [](std::int64_t c) {
+    constexpr std::int64_t kLimit = std::numeric_limits<std::int32_t>::max();
+    return static_cast<std::uint32_t>(static_cast<std::int32_t>(std::clamp(c, -kLimit, kLimit)));
+  };
+  return static_cast<std::uint64_t>(saturate(u)) << 32 | saturate(v);
 }
 
 std::int64_t

@@ -3,9 +3,11 @@
 /// \brief Private LAS layout constants and little-endian byte access shared by reader and writer
 ///        (offsets from the ASPRS LAS 1.4 R15 specification, tables 3 and 7–17).
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 namespace pcl_ls3d {
 namespace io {
@@ -45,6 +47,24 @@ gpsTimeOffset(int format)
     return 22;
   return 0;
 }
+
+/// Bounds of the records' integer X, Y, Z (lo > hi while empty): what the header's min/max
+/// are made of.
+struct IntegerBox
+{
+  std::int32_t lo[3] = {std::numeric_limits<std::int32_t>::max(),
+                        std::numeric_limits<std::int32_t>::max(),
+                        std::numeric_limits<std::int32_t>::max()};
+  std::int32_t hi[3] = {std::numeric_limits<std::int32_t>::min(),
+                        std::numeric_limits<std::int32_t>::min(),
+                        std::numeric_limits<std::int32_t>::min()};
+
+  void add(int k, std::int32_t v)
+  {
+    lo[k] = std::min(lo[k], v);
+    hi[k] = std::max(hi[k], v);
+  }
+};
 
 template <typename T>
 inline T

@@ -217,20 +217,14 @@ readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
     info.fields.push_back("gps_time");
 
   // Pass 1: integer bounds -> file bounds -> origin.
-  std::int32_t lo[3] = {std::numeric_limits<std::int32_t>::max(),
-                        std::numeric_limits<std::int32_t>::max(),
-                        std::numeric_limits<std::int32_t>::max()};
-  std::int32_t hi[3] = {std::numeric_limits<std::int32_t>::min(),
-                        std::numeric_limits<std::int32_t>::min(),
-                        std::numeric_limits<std::int32_t>::min()};
+  las::IntegerBox box;
   for (std::size_t i = 0; i < n; ++i) {
     const std::uint8_t* r = block + i * stride;
-    for (int k = 0; k < 3; ++k) {
-      const std::int32_t v = las::get<std::int32_t>(r + 4 * k);
-      lo[k] = std::min(lo[k], v);
-      hi[k] = std::max(hi[k], v);
-    }
+    for (int k = 0; k < 3; ++k)
+      box.add(k, las::get<std::int32_t>(r + 4 * k));
   }
+  const std::int32_t* lo = box.lo;
+  const std::int32_t* hi = box.hi;
   if (n > 0) {
     for (int k = 0; k < 3; ++k) {
       const double a = lo[k] * h.scale[k] + h.offset[k], b = hi[k] * h.scale[k] + h.offset[k];

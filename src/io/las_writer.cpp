@@ -132,12 +132,7 @@ keptVlrs(const SaveOptions& o, std::vector<const LasVlr*>& vlrs, std::size_t& by
 /// What the header says about the records: quantised bounds and points per return number.
 struct RecordSummary
 {
-  std::int32_t lo[3] = {std::numeric_limits<std::int32_t>::max(),
-                        std::numeric_limits<std::int32_t>::max(),
-                        std::numeric_limits<std::int32_t>::max()};
-  std::int32_t hi[3] = {std::numeric_limits<std::int32_t>::min(),
-                        std::numeric_limits<std::int32_t>::min(),
-                        std::numeric_limits<std::int32_t>::min()};
+  las::IntegerBox box;
   std::uint64_t by_return[15] = {};
 };
 
@@ -150,8 +145,7 @@ putRecord(const PointLiDAR& p, const Eigen::Vector3d& origin, const Eigen::Vecto
     const double x = static_cast<double>(p.data[k]) + origin[k];
     const auto q = static_cast<std::int32_t>(std::llround((x - offset[k]) / o.las_scale[k]));
     las::put<std::int32_t>(r + 4 * k, q);
-    sum.lo[k] = std::min(sum.lo[k], q);
-    sum.hi[k] = std::max(sum.hi[k], q);
+    sum.box.add(k, q);
   }
   const float in = p.intensity;
   las::put<std::uint16_t>(r + 12, !(in > 0.f) ? 0 : (in >= 65535.f ? 65535 : static_cast<std::uint16_t>(std::lround(in))));
@@ -212,8 +206,8 @@ putHeader(std::uint8_t* h, std::size_t n, std::size_t vlr_count, std::size_t off
   for (int k = 0; k < 3; ++k) {
     las::put<double>(h + las::kScale + 8 * k, o.las_scale[k]);
     las::put<double>(h + las::kOffset + 8 * k, offset[k]);
-    las::put<double>(h + las::kMaxX + 16 * k, n ? sum.hi[k] * o.las_scale[k] + offset[k] : 0.0);
-    las::put<double>(h + las::kMaxX + 16 * k + 8, n ? sum.lo[k] * o.las_scale[k] + offset[k] : 0.0);
+    las::put<double>(h + las::kMaxX + 16 * k, n ? sum.box.hi[k] * o.las_scale[k] + offset[k] : 0.0);
+    las::put<double>(h + las::kMaxX + 16 * k + 8, n ? sum.box.lo[k] * o.las_scale[k] + offset[k] : 0.0);
   }
   if (minor >= 4) {
     las::put<std::uint64_t>(h + las::kCount64, n);

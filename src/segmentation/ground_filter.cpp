@@ -3,6 +3,8 @@
 
 #include <pcl_ls3d/segmentation/ground_filter.h>
 
+#include <pcl_ls3d/common/voxel_index.h>
+
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 
@@ -174,24 +176,16 @@ struct CellMoments
   double xx = 0.0, xy = 0.0, yy = 0.0, xz = 0.0, yz = 0.0;
 };
 
-/// Cell key of (col, row) on a grid of edge \a cell from the origin: no cell count cap, so a
-/// far outlier neither enlarges the window nor costs memory (only occupied cells are stored).
-std::int64_t
-cellKey(std::int64_t col, std::int64_t row)
-{
-  return col * 0x100000000LL + row;
-}
+/// Cells keyed by planCellKey (voxel_index.h): no cell count cap, so a far outlier neither
+/// enlarges the window nor costs memory (only occupied cells are stored).
+using GroundMoments = std::unordered_map<std::uint64_t, CellMoments>;
 
-/// Cell index of a coordinate in cells, clamped to ±2^30 so that cellKey cannot overflow (only
-/// absurd outliers are clamped; they share edge cells far from any terrain).
+/// Column or row of a coordinate already in cells.
 std::int64_t
 cellIndex(double v)
 {
-  constexpr double kLimit = 1073741824.0;
-  return static_cast<std::int64_t>(std::floor(std::clamp(v, -kLimit, kLimit)));
+  return planCellCoordinate(v, 1.0);
 }
-
-using GroundMoments = std::unordered_map<std::int64_t, CellMoments>;
 
 /// Moments of the ground points per occupied cell; coordinates in cells about \a origin.
 GroundMoments
@@ -203,7 +197,7 @@ groundMoments(const std::vector<Eigen::Vector3f>& points, const std::vector<char
     const Eigen::Vector2d c = (points[i].head<2>().cast<double>() - origin) / cell;
     return Eigen::Vector3d(c.x(), c.y(), points[i].z());
   };
-  const auto keyOf = [](const Eigen::Vector3d& c) { return cellKey(cellIndex(c.x()), cellIndex(c.y())); };
+  const auto keyOf = [](const Eigen::Vector3d& c) { return planCellKey(cellIndex(c.x()), cellIndex(c.y())); };
   for (std::size_t i = 0; i < points.size(); ++i)
     if (ground[i] && points[i].allFinite()) {
       const Eigen::Vector3d c = at(i);
@@ -258,7 +252,7 @@ heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector
     const std::int64_t col = cellIndex(q.x()), row = cellIndex(q.y());
     for (std::int64_t r = row - 1; r <= row + 1; ++r)
       for (std::int64_t k = col - 1; k <= col + 1; ++k) {
-        const auto found = moments.find(cellKey(k, r));
+        const auto found = moments.find(planCellKey(k, r));
         if (found == moments.end())
           continue;
         const CellMoments& m = found->second;

@@ -31,12 +31,6 @@ familyOf(SegmentKind k)
   }
 }
 
-bool
-finite(const Eigen::Vector3f& p)
-{
-  return p.allFinite();
-}
-
 /// What one object looks like: kind votes, z sample, plan moments and box along its axes.
 struct ObjectShape
 {
@@ -66,7 +60,7 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
   const int n_objects = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
   std::vector<ObjectShape> shapes(static_cast<std::size_t>(std::max(0, n_objects)));
   for (std::size_t p = 0; p < points.size(); ++p) {
-    if (labels[p] < 0 || !finite(points[p]))
+    if (labels[p] < 0 || !points[p].allFinite())
       continue;
     ObjectShape& s = shapes[static_cast<std::size_t>(labels[p])];
     const Eigen::Vector2d xy = points[p].head<2>().cast<double>();
@@ -88,7 +82,7 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
     s.axis = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(cov).eigenvectors().col(1);
   }
   for (std::size_t p = 0; p < points.size(); ++p) {
-    if (labels[p] < 0 || !finite(points[p]))
+    if (labels[p] < 0 || !points[p].allFinite())
       continue;
     ObjectShape& s = shapes[static_cast<std::size_t>(labels[p])];
     const Eigen::Vector2d d = points[p].head<2>().cast<double>() - s.origin;
@@ -99,19 +93,11 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
   return shapes;
 }
 
-/// A plan cell's index, saturated to 32 bits so that keys and box ranges agree everywhere.
-std::int64_t
-cellIndex(double x, double cell)
-{
-  constexpr std::int64_t kLimit = std::numeric_limits<std::int32_t>::max();
-  return std::clamp<std::int64_t>(voxelCoordinate(x, cell), -kLimit, kLimit);
-}
-
+/// The hash key of the plan cell of edge \a cell holding \a p.
 std::uint64_t
-cellKey(std::int64_t x, std::int64_t y)
+planCellOf(const Eigen::Vector3f& p, double cell)
 {
-  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(x)) << 32 |
-         static_cast<std::uint32_t>(y);
+  return planCellKey(planCellCoordinate(p.x(), cell), planCellCoordinate(p.y(), cell));
 }
 
 /// Plan cells of edge \a cell that the points of each linear-family object occupy: a wire's
@@ -122,11 +108,11 @@ countLinearCover(const std::vector<Eigen::Vector3f>& points, const std::vector<i
 {
   std::vector<std::unordered_set<std::uint64_t>> cells(shapes.size());
   for (std::size_t p = 0; p < points.size(); ++p) {
-    if (labels[p] < 0 || !finite(points[p]))
+    if (labels[p] < 0 || !points[p].allFinite())
       continue;
     const auto o = static_cast<std::size_t>(labels[p]);
     if (shapes[o].family() == kLinear)
-      cells[o].insert(cellKey(cellIndex(points[p].x(), cell), cellIndex(points[p].y(), cell)));
+      cells[o].insert(planCellOf(points[p], cell));
   }
   for (std::size_t o = 0; o < shapes.size(); ++o)
     shapes[o].cover = cells[o].size();
@@ -143,11 +129,10 @@ public:
   : cell_(cell)
   {
     for (std::size_t p = 0; p < points.size(); ++p) {
-      if (!ground[p] || !finite(points[p]))
+      if (!ground[p] || !points[p].allFinite())
         continue;
       const Lowest here{points[p].z(), labels[p]};
-      const auto [it, fresh] = cells_.try_emplace(
-          cellKey(cellIndex(points[p].x(), cell_), cellIndex(points[p].y(), cell_)), here);
+      const auto [it, fresh] = cells_.try_emplace(planCellOf(points[p], cell_), here);
       if (!fresh && here.z < it->second.z)
         it->second = here;
     }
@@ -157,10 +142,10 @@ public:
   /// point is not of object \a except (−2: take all); NaN when there is none.
   double levelAround(const ObjectShape& s, double margin, int except) const
   {
-    const std::int64_t x0 = cellIndex(s.box_lo.x() - margin, cell_);
-    const std::int64_t x1 = cellIndex(s.box_hi.x() + margin, cell_);
-    const std::int64_t y0 = cellIndex(s.box_lo.y() - margin, cell_);
-    const std::int64_t y1 = cellIndex(s.box_hi.y() + margin, cell_);
+    const std::int64_t x0 = planCellCoordinate(s.box_lo.x() - margin, cell_);
+    const std::int64_t x1 = planCellCoordinate(s.box_hi.x() + margin, cell_);
+    const std::int64_t y0 = planCellCoordinate(s.box_lo.y() - margin, cell_);
+    const std::int64_t y1 = planCellCoordinate(s.box_hi.y() + margin, cell_);
     std::vector<double> levels;
     const auto take = [&](const Lowest& l) {
       if (l.object != except)
@@ -179,7 +164,7 @@ public:
     else {
       for (std::int64_t x = x0; x <= x1; ++x)
         for (std::int64_t y = y0; y <= y1; ++y)
-          if (const auto it = cells_.find(cellKey(x, y)); it != cells_.end())
+          if (const auto it = cells_.find(planCellKey(x, y)); it != cells_.end())
             take(it->second);
     }
     return stats::median(std::move(levels));

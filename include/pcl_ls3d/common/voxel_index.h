@@ -41,6 +41,17 @@ constexpr std::int64_t kVoxelCoordinateLimit = std::int64_t{1} << 52;
 std::int64_t
 voxelCoordinate(double x, double cell);
 
+/// \brief voxelCoordinate() saturated to the 32-bit range that planCellKey() packs: a plan
+///        cell's column or row for hashed 2-D grids (only absurd outliers are clamped; they
+///        share edge cells far from any data).
+std::int64_t
+planCellCoordinate(double x, double cell);
+
+/// \brief One hash key for the plan cell (u, v) (planCellCoordinate()s; values outside 32 bits
+///        are saturated first, so keys and cell ranges agree).
+std::uint64_t
+planCellKey(std::int64_t u, std::int64_t v);
+
 /// \brief Points hashed into cubic voxels of edge `cell` (non-finite points are left out).
 class VoxelIndex
 {
