@@ -75,10 +75,14 @@ LowestPointGrid::LowestPointGrid(const std::vector<Eigen::Vector3f>& points, dou
   cols_ = static_cast<int>((hi.x() - lo.x()) / cell_) + 1;
   rows_ = static_cast<int>((hi.y() - lo.y()) / cell_) + 1;
   lowest_.assign(static_cast<std::size_t>(rows_) * cols_, std::numeric_limits<float>::quiet_NaN());
-  for (const auto& p : points) {
-    float& z = lowest_[static_cast<std::size_t>(cellOf(p))];
-    if (!(z <= p.z()))
-      z = p.z();
+  lowest_point_.assign(lowest_.size(), -1);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto cell_index = static_cast<std::size_t>(cellOf(points[i]));
+    float& z = lowest_[cell_index];
+    if (!(z <= points[i].z())) {
+      z = points[i].z();
+      lowest_point_[cell_index] = static_cast<int>(i);
+    }
   }
 }
 
@@ -124,6 +128,58 @@ paddedSurface(const LowestPointGrid& grid, int pad)
   return z;
 }
 
+/// The smaller of two differences of the same sign, 0 if their signs differ (the minmod
+/// limiter): equal on a plane, 0 at a step or a ridge.
+float
+minmod(float a, float b)
+{
+  if (a * b <= 0.f)
+    return 0.f;
+  return std::abs(a) < std::abs(b) ? a : b;
+}
+
+/// Slope per cell along one axis of the opened surface \a z (padded by \a pad, \a stride the
+/// axis step in the padded grid, \a along the cell's position along that axis, \a length the
+/// real grid's length along it). Only occupied real cells count; where a neighbour is missing,
+/// the two differences on the other side stand in. In height per cell.
+float
+axisSlope(const std::vector<float>& z, const std::vector<char>& occupied, std::size_t at,
+          std::ptrdiff_t stride, int along, int length)
+{
+  const auto usable = [&](int k) {
+    return k >= 0 && k < length && occupied[static_cast<std::size_t>(at + (k - along) * stride)];
+  };
+  const auto difference = [&](int k) {  // z(k + 1) − z(k), or NaN
+    if (!usable(k) || !usable(k + 1))
+      return std::numeric_limits<float>::quiet_NaN();
+    return z[static_cast<std::size_t>(at + (k + 1 - along) * stride)] -
+           z[static_cast<std::size_t>(at + (k - along) * stride)];
+  };
+  const float before = difference(along - 1), after = difference(along);
+  if (!std::isnan(before) && !std::isnan(after))
+    return minmod(before, after);
+  const float outer = std::isnan(before) ? difference(along + 1) : difference(along - 2);
+  const float inner = std::isnan(before) ? after : before;
+  return std::isnan(inner) || std::isnan(outer) ? 0.f : minmod(inner, outer);
+}
+
+/// Slopes (x, y) per cell of the padded opened surface, in height per cell; 0 in padding.
+std::vector<Eigen::Vector2f>
+surfaceSlopes(const std::vector<float>& z, const std::vector<char>& occupied,
+              const LowestPointGrid& grid, int pad)
+{
+  const int cols = grid.cols() + 2 * pad;
+  std::vector<Eigen::Vector2f> slope(z.size(), Eigen::Vector2f::Zero());
+  for (int r = 0; r < grid.rows(); ++r)
+    for (int c = 0; c < grid.cols(); ++c) {
+      const std::size_t at = static_cast<std::size_t>(r + pad) * cols + (c + pad);
+      if (occupied[at])
+        slope[at] = Eigen::Vector2f(axisSlope(z, occupied, at, 1, c, grid.cols()),
+                                    axisSlope(z, occupied, at, cols, r, grid.rows()));
+    }
+  return slope;
+}
+
 }  // namespace
 
 std::vector<char>
@@ -137,10 +193,15 @@ groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSetti
   const int pad = halves.back();
   const int rows = grid.rows() + 2 * pad, cols = grid.cols() + 2 * pad;
   std::vector<std::size_t> cell_of(points.size());
+  std::vector<Eigen::Vector2f> offset(points.size());  // from the cell's lowest point, in cells
+  std::vector<char> occupied(static_cast<std::size_t>(rows) * cols, 0);
   for (std::size_t i = 0; i < points.size(); ++i) {
     const int c = grid.cellOf(points[i]);
     cell_of[i] = static_cast<std::size_t>(c / grid.cols() + pad) * cols +
                  static_cast<std::size_t>(c % grid.cols() + pad);
+    occupied[cell_of[i]] = 1;
+    const Eigen::Vector3f& lowest = points[static_cast<std::size_t>(grid.lowestPoint()[c])];
+    offset[i] = (points[i].head<2>() - lowest.head<2>()) / static_cast<float>(grid.cell());
   }
   std::vector<float> z = paddedSurface(grid, pad);
   int previous_window = 1;
@@ -158,8 +219,9 @@ groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSetti
         half == 1 ? s.initial_distance
                   : std::min(s.max_distance, s.initial_distance +
                                                  s.slope * (window - previous_window) * grid.cell());
+    const std::vector<Eigen::Vector2f> slope = surfaceSlopes(z, occupied, grid, pad);
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (ground[i] && points[i].z() - z[cell_of[i]] > dh)
+      if (ground[i] && points[i].z() - z[cell_of[i]] - slope[cell_of[i]].dot(offset[i]) > dh)
         ground[i] = 0;
     previous_window = window;
   }

@@ -31,11 +31,11 @@ familyOf(SegmentKind k)
   }
 }
 
-/// What one object looks like: kind votes, z sample, plan moments and box along its axes.
+/// What one object looks like: kind votes, point count, plan moments and box along its axes.
 struct ObjectShape
 {
   std::size_t votes[kFamilies] = {0, 0, 0, 0};
-  std::vector<double> z;
+  std::size_t points = 0;
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< first point (moments are relative)
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   Eigen::Matrix2d sum_sq = Eigen::Matrix2d::Zero();
@@ -64,10 +64,9 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
       continue;
     ObjectShape& s = shapes[static_cast<std::size_t>(labels[p])];
     const Eigen::Vector2d xy = points[p].head<2>().cast<double>();
-    if (s.z.empty())
+    if (s.points++ == 0)
       s.origin = xy;
     ++s.votes[familyOf(point_kind[p])];
-    s.z.push_back(points[p].z());
     const Eigen::Vector2d d = xy - s.origin;
     s.sum += d;
     s.sum_sq += d * d.transpose();
@@ -75,7 +74,7 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
     s.box_hi = s.box_hi.cwiseMax(xy);
   }
   for (ObjectShape& s : shapes) {
-    const double n = static_cast<double>(s.z.size());
+    const double n = static_cast<double>(s.points);
     if (n < 2.0)
       continue;
     const Eigen::Matrix2d cov = s.sum_sq / n - (s.sum / n) * (s.sum / n).transpose();
@@ -118,6 +117,21 @@ countLinearCover(const std::vector<Eigen::Vector3f>& points, const std::vector<i
     shapes[o].cover = cells[o].size();
 }
 
+/// The terrain around an object as a plane: z = level + tilt · (xy − centre). Where no ground
+/// lies near, level is NaN and tilt 0.
+struct TerrainPlane
+{
+  double level = std::numeric_limits<double>::quiet_NaN();
+  Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
+  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+
+  /// z with the terrain's slope taken out: its height above the terrain is detrended − level.
+  double detrended(const Eigen::Vector3f& p) const
+  {
+    return p.z() - tilt.dot(p.head<2>().cast<double>() - centre);
+  }
+};
+
 /// The lowest ground-filter point per plan cell and the object it belongs to (−1: none): the
 /// terrain under and around an object, and what the other ground objects show around a
 /// ground object.
@@ -131,26 +145,44 @@ public:
     for (std::size_t p = 0; p < points.size(); ++p) {
       if (!ground[p] || !points[p].allFinite())
         continue;
-      const Lowest here{points[p].z(), labels[p]};
+      const Lowest here{points[p], labels[p]};
       const auto [it, fresh] = cells_.try_emplace(planCellOf(points[p], cell_), here);
-      if (!fresh && here.z < it->second.z)
+      if (!fresh && here.point.z() < it->second.point.z())
         it->second = here;
     }
   }
 
-  /// Median lowest point of the cells within \a margin of the object's plan box whose lowest
-  /// point is not of object \a except (−2: take all); NaN when there is none.
-  double levelAround(const ObjectShape& s, double margin, int except) const
+  /// The terrain plane around the object's plan box (cells within \a margin of it): its slope
+  /// from all of them, its level the median over the cells whose lowest point is not of object
+  /// \a except (−2: take all).
+  TerrainPlane planeAround(const ObjectShape& s, double margin, int except) const
+  {
+    const std::vector<Lowest> near = cellsNear(s, margin);
+    TerrainPlane plane;
+    plane.centre = 0.5 * (s.box_lo + s.box_hi);
+    plane.tilt = robustSlope(near, plane.centre);
+    std::vector<double> levels;
+    for (const Lowest& l : near)
+      if (l.object != except)
+        levels.push_back(plane.detrended(l.point));
+    plane.level = stats::median(std::move(levels));
+    return plane;
+  }
+
+private:
+  struct Lowest
+  {
+    Eigen::Vector3f point;
+    int object;
+  };
+
+  std::vector<Lowest> cellsNear(const ObjectShape& s, double margin) const
   {
     const std::int64_t x0 = planCellCoordinate(s.box_lo.x() - margin, cell_);
     const std::int64_t x1 = planCellCoordinate(s.box_hi.x() + margin, cell_);
     const std::int64_t y0 = planCellCoordinate(s.box_lo.y() - margin, cell_);
     const std::int64_t y1 = planCellCoordinate(s.box_hi.y() + margin, cell_);
-    std::vector<double> levels;
-    const auto take = [&](const Lowest& l) {
-      if (l.object != except)
-        levels.push_back(l.z);
-    };
+    std::vector<Lowest> near;
     // Scan the smaller of the box's cells and the occupied cells.
     if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) >
         static_cast<double>(cells_.size())) {
@@ -158,27 +190,80 @@ public:
         const std::int64_t x = static_cast<std::int32_t>(key >> 32);
         const std::int64_t y = static_cast<std::int32_t>(key & 0xffffffffu);
         if (x >= x0 && x <= x1 && y >= y0 && y <= y1)
-          take(lowest);
+          near.push_back(lowest);
       }
     }
     else {
       for (std::int64_t x = x0; x <= x1; ++x)
         for (std::int64_t y = y0; y <= y1; ++y)
           if (const auto it = cells_.find(planCellKey(x, y)); it != cells_.end())
-            take(it->second);
+            near.push_back(it->second);
     }
-    return stats::median(std::move(levels));
+    return near;
   }
 
-private:
-  struct Lowest
+  /// Slope of the least-squares plane through the cells' lowest points, refitted twice
+  /// without the cells more than 3 robust sigmas (at least half a metre) off it: roofs the
+  /// filter kept and holes do not tilt it. Zero where the cells span less than two cells
+  /// across in some direction (a strip along a road tells nothing of the slope across it).
+  Eigen::Vector2d robustSlope(const std::vector<Lowest>& near, const Eigen::Vector2d& centre) const
   {
-    float z;
-    int object;
-  };
+    std::vector<char> kept(near.size(), 1);
+    Eigen::Vector3d plane = Eigen::Vector3d::Zero();  // a + b·dx + c·dy
+    for (int pass = 0; pass < 3; ++pass) {
+      Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+      Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+      for (std::size_t i = 0; i < near.size(); ++i)
+        if (kept[i]) {
+          const Eigen::Vector2d d = near[i].point.head<2>().cast<double>() - centre;
+          const Eigen::Vector3d row(1.0, d.x(), d.y());
+          normal += row * row.transpose();
+          rhs += row * near[i].point.z();
+        }
+      if (!spansTwoCells(normal))
+        return Eigen::Vector2d::Zero();
+      plane = normal.ldlt().solve(rhs);
+      std::vector<double> residuals(near.size());
+      for (std::size_t i = 0; i < near.size(); ++i) {
+        const Eigen::Vector2d d = near[i].point.head<2>().cast<double>() - centre;
+        residuals[i] = near[i].point.z() - plane.dot(Eigen::Vector3d(1.0, d.x(), d.y()));
+      }
+      const double limit = std::max(0.5, 3.0 * 1.4826 * stats::mad(residuals));
+      for (std::size_t i = 0; i < near.size(); ++i)
+        kept[i] = std::abs(residuals[i]) <= limit;
+    }
+    return plane.tail<2>();
+  }
+
+  /// The normal matrix's points spread at least two cells (standard deviation one cell) across.
+  bool spansTwoCells(const Eigen::Matrix3d& normal) const
+  {
+    const double n = normal(0, 0);
+    if (n < 6.0)
+      return false;
+    const Eigen::Vector2d mean(normal(0, 1) / n, normal(0, 2) / n);
+    const Eigen::Matrix2d spread = normal.bottomRightCorner<2, 2>() / n - mean * mean.transpose();
+    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread, Eigen::EigenvaluesOnly)
+               .eigenvalues()(0) >= cell_ * cell_;
+  }
+
   double cell_;
   std::unordered_map<std::uint64_t, Lowest> cells_;
 };
+
+/// Per object, its points' z with the slope of its terrain plane taken out.
+std::vector<std::vector<double>>
+detrendedHeights(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+                 const std::vector<TerrainPlane>& planes)
+{
+  std::vector<std::vector<double>> heights(planes.size());
+  for (std::size_t p = 0; p < points.size(); ++p)
+    if (labels[p] >= 0 && points[p].allFinite()) {
+      const auto o = static_cast<std::size_t>(labels[p]);
+      heights[o].push_back(planes[o].detrended(points[p]));
+    }
+  return heights;
+}
 
 /// Poles and lattice towers are taller than wide and hold their points all the way up (a tall
 /// narrow building seen from above holds most of them in its roof). A lattice tower's surfaces
@@ -295,25 +380,31 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   std::vector<ObjectShape> shapes = objectShapes(points, labels, point_kind);
   countLinearCover(points, labels, settings.wire_cell, shapes);
   const TerrainCells terrain(points, labels, ground, settings.terrain_cell);
+  std::vector<TerrainPlane> planes(shapes.size());
+  for (std::size_t o = 0; o < shapes.size(); ++o)
+    if (shapes[o].points > 0)
+      planes[o] = terrain.planeAround(shapes[o], settings.terrain_margin,
+                                      shapes[o].family() == kGround ? static_cast<int>(o) : -2);
+  const std::vector<std::vector<double>> detrended = detrendedHeights(points, labels, planes);
   std::vector<ObjectClass> classes(shapes.size(), ObjectClass::Unclassified);
   for (std::size_t o = 0; o < shapes.size(); ++o) {
     const ObjectShape& s = shapes[o];
-    if (s.z.empty())
+    if (s.points == 0)
       continue;
     const int family = s.family();
     if (family == kRough) {
       classes[o] = ObjectClass::Vegetation;
       continue;
     }
-    const std::vector<double> z = stats::quantiles(s.z, {0.05, 0.5, 0.95});
-    const double low = z[0], middle = z[1], top = z[2];
+    // Heights along the terrain's slope; the ground family against the other ground only.
+    const TerrainPlane& plane = planes[o];
+    const std::vector<double> z = stats::quantiles(detrended[o], {0.05, 0.5, 0.95});
+    const double low = z[0], middle = z[1], top = z[2], level = plane.level;
     if (family == kGround) {
-      const double others = terrain.levelAround(s, settings.terrain_margin, static_cast<int>(o));
-      classes[o] = raisedAbove(s, middle, others, settings) ? ObjectClass::Building
-                                                            : ObjectClass::Ground;
+      classes[o] = raisedAbove(s, middle, level, settings) ? ObjectClass::Building
+                                                           : ObjectClass::Ground;
       continue;
     }
-    const double level = terrain.levelAround(s, settings.terrain_margin, -2);
     if (standsUpright(s, low, middle, top, settings))
       classes[o] = ObjectClass::Pole;
     else

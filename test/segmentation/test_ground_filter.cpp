@@ -77,6 +77,48 @@ TEST(GroundFilter, TerrainIsGroundRoofsAndCarsAreNot)
   EXPECT_GT(roof_kept, 1000u);
 }
 
+// A mountain slope of 40° (IGN's target_cloud_crop): within one 0.8 m cell the terrain rises
+// 0.67 m, more than the 0.3 m the first window allows above the cell's lowest point, so a
+// filter comparing with a flat cell kept only the lower part of each cell (on that file 56 % of
+// the ground). The opened surface follows the slope within the cell: every terrain point is
+// ground, while a 1.5 m high car and a shrub layer 1 m above the slope are not.
+TEST(GroundFilter, SteepSlopeIsGround)
+{
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<float> u(0.f, 30.f);
+  std::normal_distribution<float> noise(0.f, 0.03f);
+  const float rise = std::tan(40.f * 3.14159265f / 180.f);
+  std::vector<Eigen::Vector3f> pts;
+  std::vector<int> truth;  // 1 terrain, 0 object
+  for (int i = 0; i < 20000; ++i) {
+    const float x = u(rng), y = u(rng);
+    float z = rise * x;
+    int t = 1;
+    if (x > 10.f && x < 14.5f && y > 10.f && y < 11.8f) {
+      z += 1.5f;
+      t = 0;
+    }
+    else if (x > 20.f && x < 26.f && y > 20.f && y < 26.f && i % 2 == 0) {
+      z += 1.f;
+      t = 0;
+    }
+    pts.emplace_back(x, y, z + noise(rng));
+    truth.push_back(t);
+  }
+  GroundFilterSettings s;
+  s.cell = 0.8;
+  s.max_window = 20.0;
+  const std::vector<char> ground = groundPoints(pts, s);
+  std::size_t terrain = 0, terrain_kept = 0, object_kept = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    terrain += truth[i];
+    terrain_kept += truth[i] == 1 && ground[i];
+    object_kept += truth[i] == 0 && ground[i];
+  }
+  EXPECT_GT(terrain_kept, terrain * 99 / 100);
+  EXPECT_EQ(object_kept, 0u);
+}
+
 TEST(GroundFilter, LowestPointGridAndEmptyInput)
 {
   const std::vector<Eigen::Vector3f> pts{{0.f, 0.f, 5.f}, {0.5f, 0.5f, 3.f}, {2.5f, 0.f, 1.f}};
@@ -84,7 +126,9 @@ TEST(GroundFilter, LowestPointGridAndEmptyInput)
   EXPECT_EQ(grid.cols(), 3);
   EXPECT_EQ(grid.rows(), 1);
   EXPECT_FLOAT_EQ(grid.lowest()[static_cast<std::size_t>(grid.cellOf(pts[0]))], 3.f);
+  EXPECT_EQ(grid.lowestPoint()[static_cast<std::size_t>(grid.cellOf(pts[0]))], 1);
   EXPECT_TRUE(std::isnan(grid.lowest()[1]));  // nothing fell in the middle cell
+  EXPECT_EQ(grid.lowestPoint()[1], -1);
   EXPECT_TRUE(groundPoints({}, {}).empty());
 }
 

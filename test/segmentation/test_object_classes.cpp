@@ -147,6 +147,39 @@ TEST(ObjectClasses, RoofThatPassedTheGroundFilterIsABuilding)
   EXPECT_EQ(c[2], ObjectClass::Ground);
 }
 
+// On a hillside of 35° (z = 0.7 x) heights are taken above the terrain's plane, not above the
+// median of the ground around: the upper half of the slope, grown into its own ground object,
+// is no roof standing over the lower half; a roof 6 m above the slope is a building, a car-sized
+// box 1.5 m above it a car, and an 8 m × 8 m layer of shrubs 1 m above it (grown as a surface)
+// nothing it could name. (IGN's target_cloud_crop: a mountain slope at 2 550 m was a building.)
+TEST(ObjectClasses, HeightsFollowASlope)
+{
+  Scene s;
+  const auto slope = [](float x) { return 0.7f * x; };
+  const auto inHole = [](float x, float y) {
+    return (x >= -21.0f && x <= -9.0f && y >= 9.0f && y <= 21.0f) ||
+           (x >= 9.5f && x <= 15.0f && y >= -20.5f && y <= -17.7f);
+  };
+  for (float x = -40.0f; x <= 40.0f; x += 0.5f)
+    for (float y = -40.0f; y <= 40.0f; y += 0.5f)
+      if (!inHole(x, y))
+        s.add(x, y, slope(x), x < 0.0f ? 0 : 1, SegmentKind::Ground, true);
+  s.rectangle(-20.0f, -10.0f, 10.0f, 20.0f, slope(-10.0f) + 6.0f, 0.5f, 2, SegmentKind::Solid);
+  for (float x = 10.0f; x <= 14.5f; x += 0.2f)  // car
+    for (float y = -20.0f; y <= -18.2f; y += 0.2f)
+      s.add(x, y, slope(x) + 1.5f, 3, SegmentKind::Solid);
+  for (float x = 20.0f; x <= 28.0f; x += 0.25f)  // shrubs along the slope
+    for (float y = 20.0f; y <= 28.0f; y += 0.25f)
+      s.add(x, y, slope(x) + 1.0f, 4, SegmentKind::Solid);
+  const std::vector<ObjectClass> c = s.classify();
+  ASSERT_EQ(c.size(), 5u);
+  EXPECT_EQ(c[0], ObjectClass::Ground);
+  EXPECT_EQ(c[1], ObjectClass::Ground);
+  EXPECT_EQ(c[2], ObjectClass::Building);
+  EXPECT_EQ(c[3], ObjectClass::Car);
+  EXPECT_EQ(c[4], ObjectClass::Unclassified);
+}
+
 // Without any ground point the height tests cannot run: a flat object of more than
 // min_building_area is a building (a roof-only crop), a 2 m × 2 m one nothing it could name;
 // inputs of unequal sizes give no classes at all.

@@ -26,12 +26,15 @@ public:
   int cellOf(const Eigen::Vector3f& p) const;
   /// Lowest z per cell, row-major; NaN where no point fell.
   const std::vector<float>& lowest() const { return lowest_; }
+  /// Index of the point holding each cell's lowest z; −1 where no point fell.
+  const std::vector<int>& lowestPoint() const { return lowest_point_; }
 
 private:
   double cell_ = 1.0;
   Eigen::Vector2d min_ = Eigen::Vector2d::Zero();
   int rows_ = 0, cols_ = 0;
   std::vector<float> lowest_;
+  std::vector<int> lowest_point_;
 };
 
 /// \brief Settings of groundPoints(); lengths in cloud units.
@@ -49,6 +52,10 @@ struct GroundFilterSettings
 ///        separable, O(1) per cell with a monotone queue) and a point higher than the opened
 ///        surface by more than dh_k = min(max_distance, initial + slope · (w_k − w_{k−1}) · cell)
 ///        (dh_0 = initial) is not ground. Empty cells take the values their windows give them.
+///        The opened surface is not flat within a cell: it runs through the cell's lowest point
+///        with the slope the opened grid has there (per axis the smaller of the two one-sided
+///        differences, 0 where they disagree in sign: a step or a ridge adds no tilt), so that
+///        points on a slope steeper than initial / cell are not cut off at the top of each cell.
 /// \return per point: 1 ground, 0 not ground
 std::vector<char>
 groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSettings& settings);
