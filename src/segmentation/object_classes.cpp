@@ -289,7 +289,7 @@ raisedAbove(const ObjectShape& s, double middle, double others, const ObjectClas
 }
 
 ObjectClass
-surfaceClass(const ObjectShape& s, double low, double top, double level,
+surfaceClass(const ObjectShape& s, double low, double middle, double top, double level,
              const ObjectClassSettings& c)
 {
   const bool known = std::isfinite(level);
@@ -301,7 +301,11 @@ surfaceClass(const ObjectShape& s, double low, double top, double level,
   // A surface reaching min_building_height below it is the terrain itself (a wooded ravine
   // grown into one segment, IGN's La Réunion sample).
   const bool standing = !known || low - level >= -c.min_building_height;
-  if ((!known || top - level >= c.min_building_height) && standing &&
+  // Most of a building's points are its roof: its median stands at least half its minimum
+  // height up (a shrub layer grown together with the slope under it reaches 2 m with its top
+  // only: IGN's target_cloud_crop).
+  const bool roof_up = !known || middle - level >= 0.5 * c.min_building_height;
+  if ((!known || top - level >= c.min_building_height) && standing && roof_up &&
       s.length() * s.width() >= c.min_building_area)
     return ObjectClass::Building;
   return ObjectClass::Unclassified;
@@ -408,7 +412,7 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     if (standsUpright(s, low, middle, top, settings))
       classes[o] = ObjectClass::Pole;
     else
-      classes[o] = family == kSurface ? surfaceClass(s, low, top, level, settings)
+      classes[o] = family == kSurface ? surfaceClass(s, low, middle, top, level, settings)
                                       : linearClass(s, low - level, settings);
   }
   return classes;

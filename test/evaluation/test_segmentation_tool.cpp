@@ -440,7 +440,7 @@ TEST_F(SegmentTool, TopViewRefusesEmptyInputAndUnwritableOutput)
   EXPECT_EQ(r.out.find("Wrote"), std::string::npos) << r.out;
   // Options are checked like every tool's: one line, exit 1, the existing PNG kept.
   const auto before = fs::last_write_time(png);
-  for (const std::string& bad : {" -foo", " -by colour", " -pixel 0.1x", " -crop 5,1,0,1", ""}) {
+  for (const char* bad : {" -foo", " -by colour", " -pixel 0.1x", " -crop 5,1,0,1", ""}) {
     r = run(seg.string() + " " + png.string() + bad);  // "": exists, no -overwrite
     EXPECT_EQ(r.code, 1) << bad;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << bad << ": " << r.err;

@@ -151,7 +151,9 @@ TEST(ObjectClasses, RoofThatPassedTheGroundFilterIsABuilding)
 // median of the ground around: the upper half of the slope, grown into its own ground object,
 // is no roof standing over the lower half; a roof 6 m above the slope is a building, a car-sized
 // box 1.5 m above it a car, and an 8 m × 8 m layer of shrubs 1 m above it (grown as a surface)
-// nothing it could name. (IGN's target_cloud_crop: a mountain slope at 2 550 m was a building.)
+// nothing it could name, nor a surface holding both the slope and shrubs whose tops reach 2.5 m
+// (its median lies on the slope). (IGN's target_cloud_crop: a mountain slope at 2 550 m was a
+// building.)
 TEST(ObjectClasses, HeightsFollowASlope)
 {
   Scene s;
@@ -171,13 +173,18 @@ TEST(ObjectClasses, HeightsFollowASlope)
   for (float x = 20.0f; x <= 28.0f; x += 0.25f)  // shrubs along the slope
     for (float y = 20.0f; y <= 28.0f; y += 0.25f)
       s.add(x, y, slope(x) + 1.0f, 4, SegmentKind::Solid);
+  int i = 0;  // terrain and shrubs grown into one surface: 30 % of it 2.5 m up, the rest 0.2 m
+  for (float x = -30.0f; x <= -24.0f; x += 0.25f)
+    for (float y = -30.0f; y <= -24.0f; y += 0.25f)
+      s.add(x, y, slope(x) + (i++ % 10 < 3 ? 2.5f : 0.2f), 5, SegmentKind::Solid);
   const std::vector<ObjectClass> c = s.classify();
-  ASSERT_EQ(c.size(), 5u);
+  ASSERT_EQ(c.size(), 6u);
   EXPECT_EQ(c[0], ObjectClass::Ground);
   EXPECT_EQ(c[1], ObjectClass::Ground);
   EXPECT_EQ(c[2], ObjectClass::Building);
   EXPECT_EQ(c[3], ObjectClass::Car);
   EXPECT_EQ(c[4], ObjectClass::Unclassified);
+  EXPECT_EQ(c[5], ObjectClass::Unclassified);
 }
 
 // Without any ground point the height tests cannot run: a flat object of more than

@@ -19,7 +19,9 @@
 ///    lattice tower; a piece of wall is thin): Pole;
 ///  - surface: Car when car-sized (top at most car_max_height above the terrain,
 ///    car_min_length..car_max_length long, car_min_width..car_max_width wide); Building when
-///    its top is at least min_building_height above the terrain, its low points (5th
+///    its top is at least min_building_height above the terrain, its median at least half
+///    that (most of a building's points are its roof; a shrub layer grown together with the
+///    slope under it reaches that height with its top only), its low points (5th
 ///    percentile) not min_building_height below it (a building stands on the terrain; a
 ///    surface reaching below it is terrain grown into one segment: a wooded ravine) and its
 ///    plan box covers at least min_building_area; else Unclassified (a low wall, a shelter's
