@@ -118,10 +118,9 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
     meaning.crs = pcl_ls3d::maps::crsName(wkt);
     meaning.unit = pcl_ls3d::maps::crsLinearUnitName(wkt);
   }
-  if (by == "class" && pcl_ls3d::io::fileExtension(path) == "pcd" &&
-      pcl_ls3d::evaluation::isSegmentsFile(path)) {
+  if (by == "class" && info.segments_file) {
     // Its classification field holds the object classes; without one, the labels are ids.
-    if (!pcdHasField(path, "classification")) {
+    if (std::find(info.fields.begin(), info.fields.end(), "classification") == info.fields.end()) {
       std::fprintf(stderr, "render_top_view: %s holds segment ids but no object classes (made with "
                            "-mode mrg or pcl_rg, or by an older pcl_ls3d_segment): use "
                            "-by rgb or -by label\n", path.c_str());
@@ -130,7 +129,7 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
     meaning.object_classes = true;
   }
   if (by != "class" && pcl_ls3d::io::fileExtension(path) == "pcd") {
-    meaning.labels = pcl_ls3d::evaluation::isSegmentsFile(path) ? "segments" : "labels";
+    meaning.labels = info.segments_file ? "segments" : "labels";
     // Its rgba and label fields, which PointLiDAR does not carry; without colours, by label.
     const bool has_rgb = pcdHasField(path, "rgba") || pcdHasField(path, "rgb");
     if (by == "rgb" && !has_rgb)

@@ -5,7 +5,6 @@
 #include "tool_arguments.h"
 #include "tool_output.h"
 
-#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_io.h>
 #include <pcl_ls3d/io/strip_tools.h>
@@ -163,16 +162,14 @@ saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const Outpu
   return s;
 }
 
-/// A SEGMENTS.pcd of MRG or pcl_rg names no classes: its label holds segment ids, which the
-/// reader takes for the classification (clamped to a byte). They are not classes: left 0.
+/// A SEGMENTS.pcd of MRG or pcl_rg names no classes: the reader leaves its segment ids out of
+/// the classification, which stays 0. Said, so that nobody looks for classes in the output.
 void
-dropSegmentIds(const std::string& input, const pcl_ls3d::io::CloudInfo& info, Cloud& cloud)
+warnNoClasses(const std::string& input, const pcl_ls3d::io::CloudInfo& info)
 {
-  if (info.format != "pcd" || !pcl_ls3d::evaluation::isSegmentsFile(input) ||
+  if (!info.segments_file ||
       std::find(info.fields.begin(), info.fields.end(), "classification") != info.fields.end())
     return;
-  for (auto& p : cloud)
-    p.classification = 0;
   print_warn("%s holds segment ids, not object classes (-mode mrg or pcl_rg): the "
              "classification is left 0 (never classified)\n", input.c_str());
 }
@@ -239,7 +236,7 @@ loadInput(const Options& o, Cloud::Ptr& cloud, pcl_ls3d::io::CloudInfo& info, st
   cloud.reset(new Cloud);
   if (!pcl_ls3d::io::loadCloud(input, *cloud, info, why, o.load))
     return (why = "Cannot load " + why), false;
-  dropSegmentIds(input, info, *cloud);
+  warnNoClasses(input, info);
   print_info("Loaded ");
   print_value("%s", input.c_str());
   print_info(" (%s, ", info.format.c_str());

@@ -113,7 +113,7 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
     l["vlrs"] = vlrs;
     j["las"] = l;
   }
-  const bool segments = info.format == "pcd" && pcl_ls3d::evaluation::isSegmentsFile(path);
+  const bool segments = info.segments_file;
   if (segments)
     j["segments"] = describeSegments(path);
   // A SEGMENTS.pcd's own classification field holds its objects' classes (IMRG).

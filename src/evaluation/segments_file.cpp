@@ -101,7 +101,7 @@ saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& c
   if (!segment_codes.empty())
     appendClassification(out, segment_codes, blob);
   // The origin line is io's, so that io::loadCloud() reads the file in the input's frame.
-  std::string comments = kSegmentsMarker + std::string("\n");
+  std::string comments = io::kPcdSegmentsMarker + std::string("\n");
   if (!layout.crs_wkt.empty())
     comments += io::pcdCrsLine(layout.crs_wkt) + "\n";
   return io::savePcdBinaryWithOrigin(path, blob, layout.origin, comments, error);
@@ -126,7 +126,7 @@ anyHeaderLine(const std::string& path, const std::function<bool(const std::strin
 bool
 isSegmentsFile(const std::string& path)
 {
-  return anyHeaderLine(path, [](const std::string& line) { return line == kSegmentsMarker; });
+  return anyHeaderLine(path, [](const std::string& line) { return line == io::kPcdSegmentsMarker; });
 }
 
 bool

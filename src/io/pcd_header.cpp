@@ -201,6 +201,15 @@ originComment(const std::vector<std::string_view>& tokens, PcdHeader& h, std::st
   return true;
 }
 
+/// The line without trailing carriage returns and spaces.
+std::string_view
+withoutLineEnd(std::string_view line)
+{
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' '))
+    line.remove_suffix(1);
+  return line;
+}
+
 /// A "# pcl_ls3d crs WKT" comment line: the first one gives the file's CRS (pcd_io.h).
 void
 crsComment(std::string_view line, PcdHeader& h)
@@ -209,9 +218,7 @@ crsComment(std::string_view line, PcdHeader& h)
   if (!h.crs_wkt.empty() || line.substr(0, kPrefix.size()) != kPrefix)
     return;
   line.remove_prefix(kPrefix.size());
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' '))
-    line.remove_suffix(1);
-  h.crs_wkt = std::string(line);
+  h.crs_wkt = std::string(withoutLineEnd(line));
 }
 
 }  // namespace
@@ -230,8 +237,10 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
     pos = nl ? end + 1 : size;
     if (!tokens.empty() && tokens[0][0] == '#' && !originComment(tokens, h, error))
       return false;
-    if (!tokens.empty() && tokens[0][0] == '#')
+    if (!tokens.empty() && tokens[0][0] == '#') {
       crsComment(line, h);
+      h.segments_marker = h.segments_marker || withoutLineEnd(line) == kPcdSegmentsMarker;
+    }
     if (tokens.empty() || tokens[0][0] == '#')
       continue;
     if (!headerLine(tokens, h, error))

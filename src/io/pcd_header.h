@@ -37,6 +37,7 @@ struct PcdHeader
   bool has_origin = false;  ///< a "# pcl_ls3d origin" line was read (pcd_io.h)
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< x_file = stored value + origin
   std::string crs_wkt;  ///< the first "# pcl_ls3d crs" line's WKT (pcd_io.h), empty if none
+  bool segments_marker = false;  ///< a kPcdSegmentsMarker line was read: label is no class
 };
 
 /// Parses and checks the header; h.data_offset is the first byte after the DATA line.

@@ -142,7 +142,9 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
   PcdHeader h;
   if (!detail::parsePcdHeader(data, size, h, error))
     return false;
-  const std::vector<Attribute> attributes = detail::mapAttributes(h.names, info.fields);
+  info.segments_file = h.segments_marker;
+  const std::vector<Attribute> attributes =
+      detail::mapAttributes(h.names, info.fields, !h.segments_marker);
   if (!detail::hasXyz(attributes))
     return fail(error, "file has no x, y, z fields");
   const std::vector<MappedField> fields = mappedFields(h, attributes);

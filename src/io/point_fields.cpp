@@ -73,7 +73,8 @@ readScalar(const std::uint8_t* p, Scalar type, bool big_endian)
 }
 
 std::vector<Attribute>
-mapAttributes(const std::vector<std::string>& names, std::vector<std::string>& mapped)
+mapAttributes(const std::vector<std::string>& names, std::vector<std::string>& mapped,
+              bool label_is_class)
 {
   static const std::pair<const char*, Attribute> kNames[] = {
       {"x", Attribute::X},
@@ -91,7 +92,7 @@ mapAttributes(const std::vector<std::string>& names, std::vector<std::string>& m
   std::vector<Attribute> out(names.size(), Attribute::None);
   mapped.clear();
   for (const auto& [name, attribute] : kNames) {
-    if (std::strcmp(name, "label") == 0 && has_classification)
+    if (std::strcmp(name, "label") == 0 && (has_classification || !label_is_class))
       continue;
     const auto it = std::find(names.begin(), names.end(), name);
     if (it == names.end())

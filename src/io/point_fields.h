@@ -32,11 +32,13 @@ enum class Attribute : std::uint8_t { None, X, Y, Z, Intensity, GpsTime, PointSo
                                       Classification, ReturnNumber, NumberOfReturns };
 
 /// One attribute per field name, in order: x y z intensity gps_time point_source_id
-/// classification (or label when there is no classification) return_number number_of_returns;
-/// a repeated name maps only its first field; anything else is Attribute::None. `mapped` gets the
-/// names of the mapped fields in the order above (CloudInfo::fields).
+/// classification (or label when there is no classification and `label_is_class`: a
+/// SEGMENTS.pcd's labels are segment ids) return_number number_of_returns; a repeated name maps
+/// only its first field; anything else is Attribute::None. `mapped` gets the names of the
+/// mapped fields in the order above (CloudInfo::fields).
 std::vector<Attribute>
-mapAttributes(const std::vector<std::string>& names, std::vector<std::string>& mapped);
+mapAttributes(const std::vector<std::string>& names, std::vector<std::string>& mapped,
+              bool label_is_class = true);
 
 /// True when `attributes` maps x, y and z.
 bool

@@ -132,8 +132,9 @@ TEST_F(CompareTool, AllMethodsWithTruth)
     for (const auto& row : m["transformation"])
       for (const auto& v : row)
         EXPECT_FALSE(v.is_null());
-    if (name.rfind("LS3D", 0) == 0)
+    if (name.rfind("LS3D", 0) == 0) {
       EXPECT_FALSE(m["sigma0"].is_null());
+    }
     if (name == "LS3D-LND") {
       EXPECT_TRUE(m["converged"].get<bool>());
       EXPECT_LT(m["error"]["mean"].get<double>(), 0.05);

@@ -128,8 +128,9 @@ TEST(HostileFiles, PlyListCountsAreChecked)
                                 cloud, info, error);
     EXPECT_EQ(ok, expect.empty()) << error;
     EXPECT_NE(error.find(expect), std::string::npos) << error;
-    if (ok)
+    if (ok) {
       EXPECT_EQ(cloud.size(), 1u);
+    }
   }
 }
 

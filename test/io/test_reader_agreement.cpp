@@ -74,10 +74,12 @@ expectAgreement(const std::string& path, bool ply)
     EXPECT_LT((got - x).cwiseAbs().maxCoeff(), 1e-6 * (1.0 + x.cwiseAbs().maxCoeff()) +
                                                    (info.origin.isZero() ? 0.0 : 1e-3));
     const double intensity = valueOf(ref, i, "intensity");
-    if (std::isfinite(intensity))
+    if (std::isfinite(intensity)) {
       EXPECT_FLOAT_EQ(cloud[j].intensity, static_cast<float>(intensity));
-    if (has_label)
+    }
+    if (has_label) {
       EXPECT_EQ(cloud[j].classification, std::min(255.0, valueOf(ref, i, "label")));
+    }
     ++j;
   }
   EXPECT_EQ(j, cloud.size());

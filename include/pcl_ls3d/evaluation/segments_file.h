@@ -17,7 +17,7 @@
 ///   # pcl_ls3d origin X Y Z
 /// (io::pcdOriginLine(), %.17g, so the double comes back exactly); readSegmentsOrigin() parses it
 /// back, and io::loadCloud() reads the file in the input's frame (local floats, CloudInfo::origin
-/// = this origin, as for the LAS input). A second comment line (kSegmentsMarker) says the labels
+/// = this origin, as for the LAS input). A second comment line (io::kPcdSegmentsMarker) says the labels
 /// are segment ids; when the input declared a CRS, a third (io::pcdCrsLine(), "# pcl_ls3d crs
 /// WKT") records it, so that pictures get their unit and a LAS converted from the file its CRS.
 /// Points whose input coordinates were not finite keep their place with NaN
@@ -59,11 +59,9 @@ saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& c
                 const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
                 std::string& error, const std::vector<std::uint8_t>& segment_codes = {});
 
-/// Header comment line that marks a SEGMENTS.pcd: its label field holds segment ids, never
-/// classes (pcl_ls3d_segment -evaluate refuses such a file as its own reference).
-constexpr const char* kSegmentsMarker = "# pcl_ls3d segments: label = segment id + 1, not a class";
-
-/// \brief True when \a path's header carries kSegmentsMarker.
+/// \brief True when \a path's header carries io::kPcdSegmentsMarker (pcd_io.h): its labels are
+///        segment ids, never classes (pcl_ls3d_segment -evaluate refuses such a file as its own
+///        reference before reading it; io::loadCloud() reports it as CloudInfo::segments_file).
 bool
 isSegmentsFile(const std::string& path);
 

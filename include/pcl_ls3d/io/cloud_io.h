@@ -111,6 +111,9 @@ struct CloudInfo
   /// PCD: the OGC WKT its header records ("# pcl_ls3d crs", pcd_io.h); empty for other files
   /// (a LAS file's CRS is in las.vlrs).
   std::string file_crs_wkt;
+  /// PCD: its header marks it as pcl_ls3d_segment's SEGMENTS.pcd (kPcdSegmentsMarker, pcd_io.h):
+  /// its label field holds segment ids and is not read as the classification.
+  bool segments_file = false;
   std::size_t points_in_file = 0, points_loaded = 0, points_dropped_nonfinite = 0;
   std::vector<std::size_t> nonfinite_indices;        ///< file indices of the dropped points, ascending
   Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units

@@ -25,6 +25,11 @@
 /// (SEGMENTS.pcd of a georeferenced LAS) in one comment line holding OGC WKT:
 ///   # pcl_ls3d crs PROJCS["RGF93 v1 / Lambert-93",...]
 /// readPcd() returns it as CloudInfo::file_crs_wkt (the first such line; not interpreted here).
+///
+/// Segments. pcl_ls3d_segment's SEGMENTS.pcd stores segment ids in PCL's `label` field, which
+/// other PCDs use for classes; the header line kPcdSegmentsMarker says so, and readPcd() then
+/// leaves `label` out of the classification (CloudInfo::segments_file; a `classification`
+/// field, the object classes, is read as usual).
 
 #include <pcl_ls3d/io/cloud_io.h>
 
@@ -39,6 +44,10 @@
 
 namespace pcl_ls3d {
 namespace io {
+
+/// Header comment line of a SEGMENTS.pcd: its label field holds segment ids, never classes.
+constexpr const char* kPcdSegmentsMarker =
+    "# pcl_ls3d segments: label = segment id + 1, not a class";
 
 /// Parses an in-memory PCD file into local coordinates (cloud_io.h describes the origin rule).
 /// Never reads outside [data, data + size); returns false with a one-line reason.
