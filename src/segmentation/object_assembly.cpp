@@ -270,6 +270,116 @@ restoreTerrainPieces(const std::vector<SegmentKind>& kind, std::size_t first,
   return kept;
 }
 
+/// Kinds of the segments; pieces detached from the ground are judged by their points too: a
+/// flat patch of low vegetation, rough in its points, is vegetation standing on the terrain,
+/// not a roof.
+std::vector<SegmentKind>
+segmentKinds(const std::vector<SegmentShape>& shapes, std::size_t first_piece,
+             double ground_residual, const KindSettings& settings)
+{
+  std::vector<SegmentKind> kind(shapes.size());
+  for (std::size_t s = 0; s < shapes.size(); ++s) {
+    kind[s] = kindOf(shapes[s], ground_residual, settings);
+    if (s >= first_piece && kind[s] != SegmentKind::Linear &&
+        hasRoughPoints(shapes[s], ground_residual, settings))
+      kind[s] = SegmentKind::Rough;
+  }
+  return kind;
+}
+
+/// Stage 1: raised points leave their ground segments (detachRaisedPoints), pieces as smooth as
+/// terrain go back (restoreTerrainPieces). Returns the segments' shapes and kinds afterwards.
+std::vector<SegmentShape>
+detachStage(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
+            int graph_k, const std::vector<float>& residuals, const std::vector<char>& ground,
+            const AssemblySettings& settings, std::vector<int>& labels,
+            std::vector<SegmentKind>& kind, AssemblyReport& rep)
+{
+  std::vector<SegmentShape> shapes = segmentShapes(points, labels, residuals, ground);
+  rep.segments_before = shapes.size();
+  kind = segmentKinds(shapes, shapes.size(), rep.ground_residual, settings.kinds);
+  if (!settings.detach_raised_points)
+    return shapes;
+  std::vector<int> origin;
+  const std::vector<char> raised =
+      raisedPoints(points, ground, kind, labels,
+                   settings.raised_noise_multiple * rep.ground_residual,
+                   2.0 * settings.max_link_length);
+  rep.detached_points = detachRaisedPoints(points, graph, graph_k, raised, kind,
+                                           settings.max_link_length, labels, origin);
+  if (rep.detached_points == 0)
+    return shapes;
+  const auto pieces = segmentShapes(points, labels, residuals, ground);
+  rep.detached_points = restoreTerrainPieces(
+      segmentKinds(pieces, rep.segments_before, rep.ground_residual, settings.kinds),
+      rep.segments_before, origin, labels);
+  shapes = segmentShapes(points, labels, residuals, ground);
+  kind = segmentKinds(shapes, rep.segments_before, rep.ground_residual, settings.kinds);
+  return shapes;
+}
+
+/// Stage 2: touching segments whose kinds belong together join; crowns only through links as
+/// short as the volumetric growth steps (two trees whose crowns come within the longer
+/// roof-growth radius stay two trees), and never what hangs under a roof with what lies outside
+/// it (a balcony row under the eaves, the hedge at the facade's foot). Pieces detached from the
+/// ground then take their one neighbour group.
+void
+joinTouching(const Contacts& contacts, const std::vector<SegmentLink>& adjacency,
+             const std::vector<SegmentKind>& kind, const std::vector<char>& on_terrain,
+             const AssemblySettings& settings, Groups& groups)
+{
+  const auto isRough = [&kind](int s) { return kind[static_cast<std::size_t>(s)] == SegmentKind::Rough; };
+  for (const SegmentLink& l : adjacency)
+    if (!(isRough(l.a) && isRough(l.b)) && joinable(l.a, l.b, l.links, kind, on_terrain, settings))
+      groups.unite(l.a, l.b);
+  const double rough_length = settings.rough_link_length > 0.0
+                                  ? std::min(settings.rough_link_length, settings.max_link_length)
+                                  : settings.max_link_length;
+  const std::vector<std::int8_t> side = detail::roofSides(contacts, kind, settings, groups);
+  for (const SegmentLink& l : segmentAdjacency(contacts.points, contacts.graph, contacts.graph_k,
+                                               contacts.labels, rough_length))
+    if (isRough(l.a) && isRough(l.b) &&
+        side[static_cast<std::size_t>(l.a)] * side[static_cast<std::size_t>(l.b)] >= 0 &&
+        joinable(l.a, l.b, l.links, kind, on_terrain, settings))
+      groups.unite(l.a, l.b);
+  attachTerrainPieces(adjacency, kind, on_terrain, settings, groups);
+}
+
+/// Stage 3: attachments see groups, and each one can complete another (a roof takes its
+/// chimney, then the edge line along both): repeated until nothing joins.
+void
+attachUntilStable(const Contacts& contacts, const std::vector<SegmentLink>& adjacency,
+                  const std::vector<SegmentShape>& shapes, const std::vector<SegmentKind>& kind,
+                  const std::vector<char>& on_terrain, const AssemblySettings& settings,
+                  Groups& groups)
+{
+  std::vector<char> building(shapes.size(), 0);  // per segment: in a building group
+  for (std::size_t before = 0, after = 1; before != after;) {
+    before = countRoots(groups, shapes.size());
+    attachLines(contacts, shapes, kind, settings, groups);
+    attachEnclosed(adjacency, shapes, kind, on_terrain, settings, groups);
+    detail::attachUnderRoofs(contacts, kind, settings, groups, building);
+    after = countRoots(groups, shapes.size());
+  }
+}
+
+/// Labels become dense object ids, one per group; returns the number of objects.
+std::size_t
+relabelByGroup(Groups& groups, std::size_t segments, std::vector<int>& labels)
+{
+  std::vector<int> dense(segments, -1);
+  int next = 0;
+  for (int& l : labels) {
+    if (l < 0)
+      continue;
+    const int root = groups.find(l);
+    if (dense[static_cast<std::size_t>(root)] < 0)
+      dense[static_cast<std::size_t>(root)] = next++;
+    l = dense[static_cast<std::size_t>(root)];
+  }
+  return static_cast<std::size_t>(next);
+}
+
 }  // namespace
 
 AssemblyReport
@@ -282,41 +392,9 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
       residuals.size() != labels.size())
     return rep;
   rep.ground_residual = groundResidual(residuals, ground);
-  const auto kindsOf = [&](const std::vector<SegmentShape>& shapes) {
-    std::vector<SegmentKind> kind(shapes.size());
-    for (std::size_t s = 0; s < shapes.size(); ++s)
-      kind[s] = kindOf(shapes[s], rep.ground_residual, settings.kinds);
-    return kind;
-  };
-  auto shapes = segmentShapes(points, labels, residuals, ground);
-  rep.segments_before = shapes.size();
-  // Pieces detached from the ground are judged by their points: a flat patch of low
-  // vegetation, rough in its points, is vegetation standing on the terrain, not a roof.
-  const auto pieceKinds = [&](const std::vector<SegmentShape>& all) {
-    std::vector<SegmentKind> kind = kindsOf(all);
-    for (std::size_t s = rep.segments_before; s < all.size(); ++s)
-      if (kind[s] != SegmentKind::Linear &&
-          hasRoughPoints(all[s], rep.ground_residual, settings.kinds))
-        kind[s] = SegmentKind::Rough;
-    return kind;
-  };
-  std::vector<SegmentKind> kind = kindsOf(shapes);
-  if (settings.detach_raised_points) {
-    std::vector<int> origin;
-    const std::vector<char> raised =
-        raisedPoints(points, ground, kind, labels,
-                     settings.raised_noise_multiple * rep.ground_residual,
-                     2.0 * settings.max_link_length);
-    rep.detached_points = detachRaisedPoints(points, graph, graph_k, raised, kind,
-                                             settings.max_link_length, labels, origin);
-    if (rep.detached_points > 0) {
-      const auto pieces = segmentShapes(points, labels, residuals, ground);
-      rep.detached_points =
-          restoreTerrainPieces(pieceKinds(pieces), rep.segments_before, origin, labels);
-      shapes = segmentShapes(points, labels, residuals, ground);
-      kind = pieceKinds(shapes);
-    }
-  }
+  std::vector<SegmentKind> kind;
+  const std::vector<SegmentShape> shapes =
+      detachStage(points, graph, graph_k, residuals, ground, settings, labels, kind, rep);
   for (const SegmentKind k : kind)
     ++rep.kind_count[static_cast<int>(k)];
   rep.point_kind.assign(labels.size(), SegmentKind::Solid);
@@ -330,48 +408,13 @@ assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   for (std::size_t i = rep.segments_before; i < shapes.size(); ++i)
     on_terrain[i] = 1;
   Groups groups(shapes.size());
-  const std::vector<SegmentLink> adjacency = segmentAdjacency(points, graph, graph_k, labels, settings.max_link_length);
-  const auto isRough = [&kind](int s) { return kind[static_cast<std::size_t>(s)] == SegmentKind::Rough; };
-  for (const SegmentLink& l : adjacency)
-    if (!(isRough(l.a) && isRough(l.b)) && joinable(l.a, l.b, l.links, kind, on_terrain, settings))
-      groups.unite(l.a, l.b);
-  // Crowns join crowns only through links as short as the volumetric growth steps: two trees
-  // whose crowns come within the (longer) roof-growth radius of each other stay two trees.
-  // What hangs under a roof (a balcony row under the eaves) and what lies outside it (the hedge
-  // at the facade's foot) are not one tree, however rough both are.
-  const double rough_length = settings.rough_link_length > 0.0
-                                  ? std::min(settings.rough_link_length, settings.max_link_length)
-                                  : settings.max_link_length;
+  const std::vector<SegmentLink> adjacency =
+      segmentAdjacency(points, graph, graph_k, labels, settings.max_link_length);
   const Contacts contacts{points, graph, graph_k, labels,
                           settings.max_link_length * settings.max_link_length};
-  const std::vector<std::int8_t> side = detail::roofSides(contacts, kind, settings, groups);
-  for (const SegmentLink& l : segmentAdjacency(points, graph, graph_k, labels, rough_length))
-    if (isRough(l.a) && isRough(l.b) &&
-        side[static_cast<std::size_t>(l.a)] * side[static_cast<std::size_t>(l.b)] >= 0 &&
-        joinable(l.a, l.b, l.links, kind, on_terrain, settings))
-      groups.unite(l.a, l.b);
-  attachTerrainPieces(adjacency, kind, on_terrain, settings, groups);
-  // Attachments see groups, and each one can complete another (a roof takes its chimney, then
-  // the edge line along both): repeat until nothing joins.
-  std::vector<char> building(shapes.size(), 0);  // per segment: in a building group
-  for (std::size_t before = 0, after = 1; before != after;) {
-    before = countRoots(groups, shapes.size());
-    attachLines(contacts, shapes, kind, settings, groups);
-    attachEnclosed(adjacency, shapes, kind, on_terrain, settings, groups);
-    detail::attachUnderRoofs(contacts, kind, settings, groups, building);
-    after = countRoots(groups, shapes.size());
-  }
-  std::vector<int> dense(shapes.size(), -1);
-  int next = 0;
-  for (int& l : labels) {
-    if (l < 0)
-      continue;
-    const int root = groups.find(l);
-    if (dense[static_cast<std::size_t>(root)] < 0)
-      dense[static_cast<std::size_t>(root)] = next++;
-    l = dense[static_cast<std::size_t>(root)];
-  }
-  rep.objects = static_cast<std::size_t>(next);
+  joinTouching(contacts, adjacency, kind, on_terrain, settings, groups);
+  attachUntilStable(contacts, adjacency, shapes, kind, on_terrain, settings, groups);
+  rep.objects = relabelByGroup(groups, shapes.size(), labels);
   return rep;
 }
 
