@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdarg>
 #include <cstdio>
+#include <functional>
+#include <utility>
 
 namespace pcl_ls3d {
 namespace strips {
@@ -38,6 +40,112 @@ format(const char* fmt, ...)
   return buf;
 }
 
+using Say = std::function<void(const std::string&)>;
+
+/// Stage "observations": per overlap its stable surfaces, thinned, in both directions, and the
+/// matcher and discrepancy evaluator that keep them across the iterations.
+std::vector<OverlapWork>
+prepareOverlaps(const std::vector<Strip>& strips, const StripPlan& plan,
+                const std::vector<int>& jobs, const Footprints& footprints,
+                const StripAdjustmentSettings& settings, const ConjugateRule& rule,
+                const RobustEstimator& estimator, const Say& say)
+{
+  std::vector<OverlapWork> work(jobs.size());
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    OverlapWork& w = work[k];
+    w.index = jobs[k];
+    const Overlap& o = plan.overlaps[static_cast<std::size_t>(w.index)];
+    const auto i = static_cast<std::size_t>(o.i), j = static_cast<std::size_t>(o.j);
+    w.selection = selectObservations(strips, o, footprints, settings);
+    const double noise_i = stripNoise(*w.selection.backward.surface, footprints.density(i));
+    const double noise_j = stripNoise(*w.selection.forward.surface, footprints.density(j));
+    w.matcher = std::make_unique<OverlapMatcher>(w.selection, rule, estimator, settings, noise_i, noise_j);
+    w.evaluator = std::make_unique<DiscrepancyEvaluator>(w.selection, settings.max_distance);
+    say(format("overlap %zu of %zu (%s-%s): %zu + %zu observed points, spacing %.3g", k + 1, jobs.size(),
+               strips[i].name.c_str(), strips[j].name.c_str(), w.selection.forward.points.size(),
+               w.selection.backward.points.size(), w.selection.spacing));
+  }
+  return work;
+}
+
+/// The two parameter blocks of an overlap's strips.
+std::pair<const ParameterBlock&, const ParameterBlock&>
+blocksOf(const std::vector<ParameterBlock>& blocks, const Overlap& o)
+{
+  return {blocks[static_cast<std::size_t>(o.i)], blocks[static_cast<std::size_t>(o.j)]};
+}
+
+/// A contribution labelled with its overlap, its strips and its observation spacing.
+OverlapContribution
+labelled(OverlapContribution c, const OverlapWork& w, const Overlap& o)
+{
+  c.overlap = w.index;
+  c.i = o.i;
+  c.j = o.j;
+  c.spacing = w.selection.spacing;
+  return c;
+}
+
+/// Discrepancies of every overlap at the initial poses.
+void
+discrepanciesBefore(const std::vector<OverlapWork>& work, const StripPlan& plan,
+                    const BlockState& state, std::vector<OverlapSamples>& samples)
+{
+  const std::vector<ParameterBlock> blocks = state.blocks(plan);
+  for (const OverlapWork& w : work) {
+    const auto [bi, bj] = blocksOf(blocks, plan.overlaps[static_cast<std::size_t>(w.index)]);
+    samples[static_cast<std::size_t>(w.index)].before = w.evaluator->evaluate(bi, bj);
+  }
+}
+
+/// Stage "iterate": match every overlap at the current poses, solve, decide (Zuo §4), until
+/// the state leaves its iterating phase.
+void
+iterate(std::vector<OverlapWork>& work, const StripPlan& plan, BlockState& state,
+        const pcl::StopWatch& watch, const Say& say)
+{
+  while (state.phase == BlockState::Phase::ITERATE) {
+    const std::vector<ParameterBlock> blocks = state.blocks(plan);
+    std::vector<OverlapContribution> contributions;
+    for (OverlapWork& w : work) {
+      const Overlap& o = plan.overlaps[static_cast<std::size_t>(w.index)];
+      const auto [bi, bj] = blocksOf(blocks, o);
+      contributions.push_back(
+          labelled(w.matcher->contribute(bi, bj, matchInput(plan, state, o.i, o.j)), w, o));
+    }
+    solveIteration(plan, contributions, state);
+    if (!state.log.empty() && state.log.back().iteration == state.iteration) {
+      const BlockIterationRecord& r = state.log.back();
+      say(format("iteration %d: sigma0 %.4g, %zu of %zu observations used, max change %.2e rad / %.2e%s%s, %.1f s",
+                 r.iteration, r.sigma0, r.used, r.observations, r.max_angle_change, r.max_translation_change,
+                 r.coarse ? ", coarse" : "", r.frozen ? ", frozen" : "", watch.getTimeSeconds()));
+    }
+  }
+}
+
+/// Stage "evaluate": a last pass at the adjusted poses gives the precision cells and the
+/// discrepancies after (nothing when the iterations did not end in the evaluating phase).
+std::vector<OverlapContribution>
+finalPass(std::vector<OverlapWork>& work, const StripPlan& plan, BlockState& state,
+          std::vector<OverlapSamples>& samples)
+{
+  std::vector<OverlapContribution> final_pass;
+  if (state.phase != BlockState::Phase::EVALUATE)
+    return final_pass;
+  const std::vector<ParameterBlock> blocks = state.blocks(plan);
+  for (OverlapWork& w : work) {
+    const Overlap& o = plan.overlaps[static_cast<std::size_t>(w.index)];
+    const auto [bi, bj] = blocksOf(blocks, o);
+    final_pass.push_back(labelled(
+        w.matcher->evaluate(bi, bj, matchInput(plan, state, o.i, o.j), plan.precision_cell), w, o));
+    OverlapSamples& s = samples[static_cast<std::size_t>(w.index)];
+    s.after = w.evaluator->evaluate(bi, bj);
+    s.noise = w.evaluator->ownNoise(bi, bj);
+  }
+  state.phase = BlockState::Phase::DONE;
+  return final_pass;
+}
+
 }  // namespace
 
 StripBlockAdjustment::StripBlockAdjustment() = default;
@@ -47,7 +155,7 @@ bool
 StripBlockAdjustment::run(const std::vector<Strip>& strips, StripAdjustmentReport& report,
                           std::string& error)
 {
-  auto say = [this](const std::string& line) {
+  const Say say = [this](const std::string& line) {
     if (progress_)
       progress_(line);
   };
@@ -65,81 +173,20 @@ StripBlockAdjustment::run(const std::vector<Strip>& strips, StripAdjustmentRepor
              jobs.size(), plan_.overlaps.size(), plan_.grid.cell));
   timings.push_back(watch.getTimeSeconds());
 
-  // Observations per overlap (stable surfaces, thinned, both directions) and their matchers.
-  std::vector<OverlapWork> work(jobs.size());
-  for (std::size_t k = 0; k < jobs.size(); ++k) {
-    OverlapWork& w = work[k];
-    w.index = jobs[k];
-    const Overlap& o = plan_.overlaps[static_cast<std::size_t>(w.index)];
-    w.selection = selectObservations(strips, o, footprints, settings_);
-    const double noise_i = stripNoise(*w.selection.backward.surface, footprints.density(static_cast<std::size_t>(o.i)));
-    const double noise_j = stripNoise(*w.selection.forward.surface, footprints.density(static_cast<std::size_t>(o.j)));
-    w.matcher = std::make_unique<OverlapMatcher>(w.selection, *rule, *estimator, settings_, noise_i, noise_j);
-    w.evaluator = std::make_unique<DiscrepancyEvaluator>(w.selection, settings_.max_distance);
-    say(format("overlap %zu of %zu (%s-%s): %zu + %zu observed points, spacing %.3g", k + 1, jobs.size(),
-               strips[static_cast<std::size_t>(o.i)].name.c_str(), strips[static_cast<std::size_t>(o.j)].name.c_str(),
-               w.selection.forward.points.size(), w.selection.backward.points.size(), w.selection.spacing));
-  }
+  std::vector<OverlapWork> work =
+      prepareOverlaps(strips, plan_, jobs, footprints, settings_, *rule, *estimator, say);
   timings.push_back(watch.getTimeSeconds() - timings.back());
 
-  // Discrepancies before adjustment.
   samples_.assign(plan_.overlaps.size(), OverlapSamples());
   BlockState state = initialState(plan_);
-  {
-    const std::vector<ParameterBlock> blocks = state.blocks(plan_);
-    for (OverlapWork& w : work) {
-      const Overlap& o = plan_.overlaps[static_cast<std::size_t>(w.index)];
-      samples_[static_cast<std::size_t>(w.index)].before =
-          w.evaluator->evaluate(blocks[static_cast<std::size_t>(o.i)], blocks[static_cast<std::size_t>(o.j)]);
-    }
-  }
+  discrepanciesBefore(work, plan_, state, samples_);
 
-  // Iterations: match every overlap at the current poses, solve, decide (Zuo §4).
   const double t_iterate = watch.getTimeSeconds();
-  while (state.phase == BlockState::Phase::ITERATE) {
-    const std::vector<ParameterBlock> blocks = state.blocks(plan_);
-    std::vector<OverlapContribution> contributions;
-    for (OverlapWork& w : work) {
-      const Overlap& o = plan_.overlaps[static_cast<std::size_t>(w.index)];
-      OverlapContribution c = w.matcher->contribute(blocks[static_cast<std::size_t>(o.i)], blocks[static_cast<std::size_t>(o.j)],
-                                                    matchInput(plan_, state, o.i, o.j));
-      c.overlap = w.index;
-      c.i = o.i;
-      c.j = o.j;
-      c.spacing = w.selection.spacing;
-      contributions.push_back(std::move(c));
-    }
-    solveIteration(plan_, contributions, state);
-    if (!state.log.empty() && state.log.back().iteration == state.iteration) {
-      const BlockIterationRecord& r = state.log.back();
-      say(format("iteration %d: sigma0 %.4g, %zu of %zu observations used, max change %.2e rad / %.2e%s%s, %.1f s",
-                 r.iteration, r.sigma0, r.used, r.observations, r.max_angle_change, r.max_translation_change,
-                 r.coarse ? ", coarse" : "", r.frozen ? ", frozen" : "", watch.getTimeSeconds()));
-    }
-  }
+  iterate(work, plan_, state, watch, say);
   timings.push_back(watch.getTimeSeconds() - t_iterate);
 
-  // Final pass at the adjusted poses: precision cells and discrepancies after.
   const double t_eval = watch.getTimeSeconds();
-  std::vector<OverlapContribution> final_pass;
-  if (state.phase == BlockState::Phase::EVALUATE) {
-    const std::vector<ParameterBlock> blocks = state.blocks(plan_);
-    for (OverlapWork& w : work) {
-      const Overlap& o = plan_.overlaps[static_cast<std::size_t>(w.index)];
-      const ParameterBlock &bi = blocks[static_cast<std::size_t>(o.i)], &bj = blocks[static_cast<std::size_t>(o.j)];
-      MatchInput in = matchInput(plan_, state, o.i, o.j);
-      OverlapContribution c = w.matcher->evaluate(bi, bj, in, plan_.precision_cell);
-      c.overlap = w.index;
-      c.i = o.i;
-      c.j = o.j;
-      c.spacing = w.selection.spacing;
-      final_pass.push_back(std::move(c));
-      OverlapSamples& s = samples_[static_cast<std::size_t>(w.index)];
-      s.after = w.evaluator->evaluate(bi, bj);
-      s.noise = w.evaluator->ownNoise(bi, bj);
-    }
-    state.phase = BlockState::Phase::DONE;
-  }
+  const std::vector<OverlapContribution> final_pass = finalPass(work, plan_, state, samples_);
   report = makeReport(plan_, state, final_pass, samples_);
   timings.push_back(watch.getTimeSeconds() - t_eval);
   report.timings_s = timings;
