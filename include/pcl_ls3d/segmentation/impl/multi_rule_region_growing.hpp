@@ -332,9 +332,17 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
   a.rough_link_length = 0.5 * (grow_.volumetric_radius + grow_.growth_radius);
   assembly_report_ = segmentation::assembleObjects(points_, graph_, grow_.graph_k, residuals,
                                                    ground, a, segment_of_);
-  if (min_fragment_size_ > 1)
+  if (min_fragment_size_ > 1) {
+    // The assembly's rule holds here too: nothing joins the ground, so vegetation it left
+    // alone (a bush of a few points on a lawn) stays its own object.
+    const std::vector<segmentation::SegmentKind>& kind = assembly_report_.point_kind;
+    const auto not_into_ground = [&kind](int p, int q) {
+      return !(kind[static_cast<std::size_t>(p)] == segmentation::SegmentKind::Rough &&
+               kind[static_cast<std::size_t>(q)] == segmentation::SegmentKind::Ground);
+    };
     absorbed_fragments_ += segmentation::absorbFragments(graph_, grow_.graph_k, segment_of_,
-                                                         min_fragment_size_);
+                                                         min_fragment_size_, not_into_ground);
+  }
   object_class_ = segmentation::classifyObjects(points_, segment_of_, assembly_report_.point_kind,
                                                 ground, classes_);
 }
