@@ -8,7 +8,6 @@
 #include "tool_arguments.h"
 #include "tool_output.h"
 
-#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/io/strip_tools.h>

@@ -5,8 +5,9 @@
 
 #include <pcl_ls3d/common/voxel_index.h>
 
+#include "terrain_cells.h"
+
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -60,14 +61,15 @@ filter2D(std::vector<float>& z, int rows, int cols, int h, float sign)
 LowestPointGrid::LowestPointGrid(const std::vector<Eigen::Vector3f>& points, double cell)
 : cell_(cell > 0.0 ? cell : 1.0)
 {
-  if (points.empty())
-    return;
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
-  for (const auto& p : points) {
-    lo = lo.cwiseMin(p.head<2>().cast<double>());
-    hi = hi.cwiseMax(p.head<2>().cast<double>());
-  }
+  for (const auto& p : points)
+    if (p.allFinite()) {
+      lo = lo.cwiseMin(p.head<2>().cast<double>());
+      hi = hi.cwiseMax(p.head<2>().cast<double>());
+    }
+  if (!lo.allFinite())
+    return;  // no finite point: an empty grid
   min_ = lo;
   // Guard against absurd grids (a stray point km away): at most ~64 M cells.
   const double span = std::max(hi.x() - lo.x(), hi.y() - lo.y());
@@ -77,6 +79,8 @@ LowestPointGrid::LowestPointGrid(const std::vector<Eigen::Vector3f>& points, dou
   lowest_.assign(static_cast<std::size_t>(rows_) * cols_, std::numeric_limits<float>::quiet_NaN());
   lowest_point_.assign(lowest_.size(), -1);
   for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite())
+      continue;
     const auto cell_index = static_cast<std::size_t>(cellOf(points[i]));
     float& z = lowest_[cell_index];
     if (!(z <= points[i].z())) {
@@ -163,20 +167,21 @@ axisSlope(const std::vector<float>& z, const std::vector<char>& occupied, std::s
   return std::isnan(inner) || std::isnan(outer) ? 0.f : minmod(inner, outer);
 }
 
-/// Slopes (x, y) per cell of the padded opened surface, in height per cell; 0 in padding.
+/// Slopes (x, y) of the padded opened surface at the \a cells that hold points, in height per
+/// cell.
 std::vector<Eigen::Vector2f>
 surfaceSlopes(const std::vector<float>& z, const std::vector<char>& occupied,
-              const LowestPointGrid& grid, int pad)
+              const std::vector<std::size_t>& cells, const LowestPointGrid& grid, int pad)
 {
-  const int cols = grid.cols() + 2 * pad;
-  std::vector<Eigen::Vector2f> slope(z.size(), Eigen::Vector2f::Zero());
-  for (int r = 0; r < grid.rows(); ++r)
-    for (int c = 0; c < grid.cols(); ++c) {
-      const std::size_t at = static_cast<std::size_t>(r + pad) * cols + (c + pad);
-      if (occupied[at])
-        slope[at] = Eigen::Vector2f(axisSlope(z, occupied, at, 1, c, grid.cols()),
-                                    axisSlope(z, occupied, at, cols, r, grid.rows()));
-    }
+  const std::size_t cols = static_cast<std::size_t>(grid.cols() + 2 * pad);
+  std::vector<Eigen::Vector2f> slope(cells.size());
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const std::size_t at = cells[k];
+    const int r = static_cast<int>(at / cols) - pad, c = static_cast<int>(at % cols) - pad;
+    slope[k] = Eigen::Vector2f(axisSlope(z, occupied, at, 1, c, grid.cols()),
+                               axisSlope(z, occupied, at, static_cast<std::ptrdiff_t>(cols), r,
+                                         grid.rows()));
+  }
   return slope;
 }
 
@@ -185,17 +190,22 @@ surfaceSlopes(const std::vector<float>& z, const std::vector<char>& occupied,
 std::vector<char>
 groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSettings& s)
 {
-  std::vector<char> ground(points.size(), 1);
-  if (points.empty())
-    return ground;
+  std::vector<char> ground(points.size(), 0);
   const LowestPointGrid grid(points, s.cell);
+  if (grid.rows() == 0)
+    return ground;  // no finite point
   const std::vector<int> halves = halfSizes(grid, s.max_window);
   const int pad = halves.back();
   const int rows = grid.rows() + 2 * pad, cols = grid.cols() + 2 * pad;
+  // Per finite point: its padded cell (a slot among the occupied ones) and its offset from the
+  // cell's lowest point, in cells, where the cell's opened surface is anchored.
   std::vector<std::size_t> cell_of(points.size());
-  std::vector<Eigen::Vector2f> offset(points.size());  // from the cell's lowest point, in cells
+  std::vector<Eigen::Vector2f> offset(points.size(), Eigen::Vector2f::Zero());
   std::vector<char> occupied(static_cast<std::size_t>(rows) * cols, 0);
   for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!points[i].allFinite())
+      continue;
+    ground[i] = 1;
     const int c = grid.cellOf(points[i]);
     cell_of[i] = static_cast<std::size_t>(c / grid.cols() + pad) * cols +
                  static_cast<std::size_t>(c % grid.cols() + pad);
@@ -203,6 +213,15 @@ groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSetti
     const Eigen::Vector3f& lowest = points[static_cast<std::size_t>(grid.lowestPoint()[c])];
     offset[i] = (points[i].head<2>() - lowest.head<2>()) / static_cast<float>(grid.cell());
   }
+  std::vector<std::size_t> cells;
+  for (std::size_t at = 0; at < occupied.size(); ++at)
+    if (occupied[at])
+      cells.push_back(at);
+  std::vector<std::uint32_t> slot(points.size(), 0);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (ground[i])
+      slot[i] = static_cast<std::uint32_t>(
+          std::lower_bound(cells.begin(), cells.end(), cell_of[i]) - cells.begin());
   std::vector<float> z = paddedSurface(grid, pad);
   int previous_window = 1;
   for (const int half : halves) {
@@ -219,9 +238,9 @@ groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSetti
         half == 1 ? s.initial_distance
                   : std::min(s.max_distance, s.initial_distance +
                                                  s.slope * (window - previous_window) * grid.cell());
-    const std::vector<Eigen::Vector2f> slope = surfaceSlopes(z, occupied, grid, pad);
+    const std::vector<Eigen::Vector2f> slope = surfaceSlopes(z, occupied, cells, grid, pad);
     for (std::size_t i = 0; i < points.size(); ++i)
-      if (ground[i] && points[i].z() - z[cell_of[i]] - slope[cell_of[i]].dot(offset[i]) > dh)
+      if (ground[i] && points[i].z() - z[cell_of[i]] - slope[slot[i]].dot(offset[i]) > dh)
         ground[i] = 0;
     previous_window = window;
   }
@@ -328,19 +347,9 @@ heightAboveTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector
         rhs += Eigen::Vector3d(m.n * m.mean.z(), m.xz + m.n * d.x() * m.mean.z(),
                                m.yz + m.n * d.y() * m.mean.z());
       }
-    const double n = normal(0, 0);
-    if (n < 6.0)
-      continue;
     // Ground points on a line or a strip narrower than about a third of a cell leave the slope
     // across it to chance: no plane (their spread's smaller axis below 0.1 cell).
-    const Eigen::Vector2d mean_offset(normal(0, 1) / n, normal(0, 2) / n);
-    Eigen::Matrix2d spread;
-    spread << normal(1, 1) / n - mean_offset.x() * mean_offset.x(),
-        normal(1, 2) / n - mean_offset.x() * mean_offset.y(), 0.0,
-        normal(2, 2) / n - mean_offset.y() * mean_offset.y();
-    spread(1, 0) = spread(0, 1);
-    if (Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread, Eigen::EigenvaluesOnly)
-            .eigenvalues()(0) < 0.01)
+    if (!detail::spreadsAcross(normal, 0.01))
       continue;
     normal.triangularView<Eigen::StrictlyLower>() = normal.transpose();
     height[i] = static_cast<float>(static_cast<double>(points[i].z()) - normal.ldlt().solve(rhs)(0));

@@ -3,7 +3,8 @@
 
 #include <pcl_ls3d/segmentation/object_classes.h>
 
-#include <pcl_ls3d/common/voxel_index.h>
+#include "terrain_cells.h"
+
 #include <pcl_ls3d/stats/descriptive.h>
 
 #include <Eigen/Eigenvalues>
@@ -11,12 +12,15 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 #include <unordered_set>
 
 namespace pcl_ls3d {
 namespace segmentation {
 namespace {
+
+using detail::planCellOf;
+using detail::TerrainCells;
+using detail::TerrainPlane;
 
 enum Family { kGround, kRough, kSurface, kLinear, kFamilies };
 
@@ -92,13 +96,6 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
   return shapes;
 }
 
-/// The hash key of the plan cell of edge \a cell holding \a p.
-std::uint64_t
-planCellOf(const Eigen::Vector3f& p, double cell)
-{
-  return planCellKey(planCellCoordinate(p.x(), cell), planCellCoordinate(p.y(), cell));
-}
-
 /// Plan cells of edge \a cell that the points of each linear-family object occupy: a wire's
 /// run along its length, a canopy or a row of roofs seen as a line covers its width too.
 void
@@ -117,140 +114,6 @@ countLinearCover(const std::vector<Eigen::Vector3f>& points, const std::vector<i
     shapes[o].cover = cells[o].size();
 }
 
-/// The terrain around an object as a plane: z = level + tilt · (xy − centre). Where no ground
-/// lies near, level is NaN and tilt 0.
-struct TerrainPlane
-{
-  double level = std::numeric_limits<double>::quiet_NaN();
-  Eigen::Vector2d tilt = Eigen::Vector2d::Zero();
-  Eigen::Vector2d centre = Eigen::Vector2d::Zero();
-
-  /// z with the terrain's slope taken out: its height above the terrain is detrended − level.
-  double detrended(const Eigen::Vector3f& p) const
-  {
-    return p.z() - tilt.dot(p.head<2>().cast<double>() - centre);
-  }
-};
-
-/// The lowest ground-filter point per plan cell and the object it belongs to (−1: none): the
-/// terrain under and around an object, and what the other ground objects show around a
-/// ground object.
-class TerrainCells
-{
-public:
-  TerrainCells(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
-               const std::vector<char>& ground, double cell)
-  : cell_(cell)
-  {
-    for (std::size_t p = 0; p < points.size(); ++p) {
-      if (!ground[p] || !points[p].allFinite())
-        continue;
-      const Lowest here{points[p], labels[p]};
-      const auto [it, fresh] = cells_.try_emplace(planCellOf(points[p], cell_), here);
-      if (!fresh && here.point.z() < it->second.point.z())
-        it->second = here;
-    }
-  }
-
-  /// The terrain plane around the object's plan box (cells within \a margin of it): its slope
-  /// from all of them, its level the median over the cells whose lowest point is not of object
-  /// \a except (−2: take all).
-  TerrainPlane planeAround(const ObjectShape& s, double margin, int except) const
-  {
-    const std::vector<Lowest> near = cellsNear(s, margin);
-    TerrainPlane plane;
-    plane.centre = 0.5 * (s.box_lo + s.box_hi);
-    plane.tilt = robustSlope(near, plane.centre);
-    std::vector<double> levels;
-    for (const Lowest& l : near)
-      if (l.object != except)
-        levels.push_back(plane.detrended(l.point));
-    plane.level = stats::median(std::move(levels));
-    return plane;
-  }
-
-private:
-  struct Lowest
-  {
-    Eigen::Vector3f point;
-    int object;
-  };
-
-  std::vector<Lowest> cellsNear(const ObjectShape& s, double margin) const
-  {
-    const std::int64_t x0 = planCellCoordinate(s.box_lo.x() - margin, cell_);
-    const std::int64_t x1 = planCellCoordinate(s.box_hi.x() + margin, cell_);
-    const std::int64_t y0 = planCellCoordinate(s.box_lo.y() - margin, cell_);
-    const std::int64_t y1 = planCellCoordinate(s.box_hi.y() + margin, cell_);
-    std::vector<Lowest> near;
-    // Scan the smaller of the box's cells and the occupied cells.
-    if (static_cast<double>(x1 - x0 + 1) * static_cast<double>(y1 - y0 + 1) >
-        static_cast<double>(cells_.size())) {
-      for (const auto& [key, lowest] : cells_) {
-        const std::int64_t x = static_cast<std::int32_t>(key >> 32);
-        const std::int64_t y = static_cast<std::int32_t>(key & 0xffffffffu);
-        if (x >= x0 && x <= x1 && y >= y0 && y <= y1)
-          near.push_back(lowest);
-      }
-    }
-    else {
-      for (std::int64_t x = x0; x <= x1; ++x)
-        for (std::int64_t y = y0; y <= y1; ++y)
-          if (const auto it = cells_.find(planCellKey(x, y)); it != cells_.end())
-            near.push_back(it->second);
-    }
-    return near;
-  }
-
-  /// Slope of the least-squares plane through the cells' lowest points, refitted twice
-  /// without the cells more than 3 robust sigmas (at least half a metre) off it: roofs the
-  /// filter kept and holes do not tilt it. Zero where the cells span less than two cells
-  /// across in some direction (a strip along a road tells nothing of the slope across it).
-  Eigen::Vector2d robustSlope(const std::vector<Lowest>& near, const Eigen::Vector2d& centre) const
-  {
-    std::vector<char> kept(near.size(), 1);
-    Eigen::Vector3d plane = Eigen::Vector3d::Zero();  // a + b·dx + c·dy
-    for (int pass = 0; pass < 3; ++pass) {
-      Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-      Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
-      for (std::size_t i = 0; i < near.size(); ++i)
-        if (kept[i]) {
-          const Eigen::Vector2d d = near[i].point.head<2>().cast<double>() - centre;
-          const Eigen::Vector3d row(1.0, d.x(), d.y());
-          normal += row * row.transpose();
-          rhs += row * near[i].point.z();
-        }
-      if (!spansTwoCells(normal))
-        return Eigen::Vector2d::Zero();
-      plane = normal.ldlt().solve(rhs);
-      std::vector<double> residuals(near.size());
-      for (std::size_t i = 0; i < near.size(); ++i) {
-        const Eigen::Vector2d d = near[i].point.head<2>().cast<double>() - centre;
-        residuals[i] = near[i].point.z() - plane.dot(Eigen::Vector3d(1.0, d.x(), d.y()));
-      }
-      const double limit = std::max(0.5, 3.0 * 1.4826 * stats::mad(residuals));
-      for (std::size_t i = 0; i < near.size(); ++i)
-        kept[i] = std::abs(residuals[i]) <= limit;
-    }
-    return plane.tail<2>();
-  }
-
-  /// The normal matrix's points spread at least two cells (standard deviation one cell) across.
-  bool spansTwoCells(const Eigen::Matrix3d& normal) const
-  {
-    const double n = normal(0, 0);
-    if (n < 6.0)
-      return false;
-    const Eigen::Vector2d mean(normal(0, 1) / n, normal(0, 2) / n);
-    const Eigen::Matrix2d spread = normal.bottomRightCorner<2, 2>() / n - mean * mean.transpose();
-    return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread, Eigen::EigenvaluesOnly)
-               .eigenvalues()(0) >= cell_ * cell_;
-  }
-
-  double cell_;
-  std::unordered_map<std::uint64_t, Lowest> cells_;
-};
-
 /// Per object, its points' z with the slope of its terrain plane taken out.
 std::vector<std::vector<double>>
 detrendedHeights(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
@@ -265,47 +128,56 @@ detrendedHeights(const std::vector<Eigen::Vector3f>& points, const std::vector<i
   return heights;
 }
 
+/// Robust ends and middle of an object's detrended z (5th, 50th, 95th percentiles) and the
+/// level of its terrain plane (NaN where no ground lies near).
+struct Heights
+{
+  double low, middle, top, terrain;
+
+  bool known() const { return std::isfinite(terrain); }
+};
+
 /// Poles and lattice towers are taller than wide and hold their points all the way up (a tall
 /// narrow building seen from above holds most of them in its roof). A lattice tower's surfaces
 /// are about as wide as long in plan, where a piece of wall is thin; a line (a mast with its
 /// cross arm) has no width to judge.
 bool
-standsUpright(const ObjectShape& s, double low, double middle, double top,
-              const ObjectClassSettings& c)
+standsUpright(const ObjectShape& s, const Heights& h, const ObjectClassSettings& c)
 {
-  const double vertical = top - low;
+  const double vertical = h.top - h.low;
   return vertical >= c.min_building_height && vertical >= c.pole_slenderness * s.length() &&
-         middle - low <= c.pole_mass_height * vertical &&
+         h.middle - h.low <= c.pole_mass_height * vertical &&
          (s.family() == kLinear || s.width() >= c.pole_plan_aspect * s.length());
 }
 
-/// A ground-like object standing clearly above the other ground around it is a roof that the
-/// ground filter kept (wider than its largest window, or with little terrain around).
+/// A ground-like object standing clearly above the other ground around it (\a h's terrain is
+/// theirs) is a roof that the ground filter kept (wider than its largest window, or with
+/// little terrain around).
 bool
-raisedAbove(const ObjectShape& s, double middle, double others, const ObjectClassSettings& c)
+raisedAbove(const ObjectShape& s, const Heights& h, const ObjectClassSettings& c)
 {
-  return middle - others >= c.min_building_height &&  // false for a NaN level
+  return h.middle - h.terrain >= c.min_building_height &&  // false for a NaN level
          s.length() * s.width() >= c.min_building_area;
 }
 
 ObjectClass
-surfaceClass(const ObjectShape& s, double low, double middle, double top, double level,
-             const ObjectClassSettings& c)
+surfaceClass(const ObjectShape& s, const Heights& h, const ObjectClassSettings& c)
 {
-  const bool known = std::isfinite(level);
-  if (known && top - level <= c.car_max_height && s.length() >= c.car_min_length &&
+  const bool known = h.known();
+  const double low = h.low - h.terrain, middle = h.middle - h.terrain, top = h.top - h.terrain;
+  if (known && top <= c.car_max_height && s.length() >= c.car_min_length &&
       s.length() <= c.car_max_length && s.width() >= c.car_min_width &&
       s.width() <= c.car_max_width)
     return ObjectClass::Car;
   // A building stands on the terrain: its low points are not far below the ground around it.
   // A surface reaching min_building_height below it is the terrain itself (a wooded ravine
   // grown into one segment, IGN's La Réunion sample).
-  const bool standing = !known || low - level >= -c.min_building_height;
+  const bool standing = !known || low >= -c.min_building_height;
   // Most of a building's points are its roof: its median stands at least half its minimum
   // height up (a shrub layer grown together with the slope under it reaches 2 m with its top
   // only: IGN's target_cloud_crop).
-  const bool roof_up = !known || middle - level >= 0.5 * c.min_building_height;
-  if ((!known || top - level >= c.min_building_height) && standing && roof_up &&
+  const bool roof_up = !known || middle >= 0.5 * c.min_building_height;
+  if ((!known || top >= c.min_building_height) && standing && roof_up &&
       s.length() * s.width() >= c.min_building_area)
     return ObjectClass::Building;
   return ObjectClass::Unclassified;
@@ -386,8 +258,8 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   const TerrainCells terrain(points, labels, ground, settings.terrain_cell);
   std::vector<TerrainPlane> planes(shapes.size());
   for (std::size_t o = 0; o < shapes.size(); ++o)
-    if (shapes[o].points > 0)
-      planes[o] = terrain.planeAround(shapes[o], settings.terrain_margin,
+    if (shapes[o].points > 0 && shapes[o].family() != kRough)  // rough: vegetation, whatever height
+      planes[o] = terrain.planeAround(shapes[o].box_lo, shapes[o].box_hi, settings.terrain_margin,
                                       shapes[o].family() == kGround ? static_cast<int>(o) : -2);
   const std::vector<std::vector<double>> detrended = detrendedHeights(points, labels, planes);
   std::vector<ObjectClass> classes(shapes.size(), ObjectClass::Unclassified);
@@ -401,19 +273,17 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
       continue;
     }
     // Heights along the terrain's slope; the ground family against the other ground only.
-    const TerrainPlane& plane = planes[o];
     const std::vector<double> z = stats::quantiles(detrended[o], {0.05, 0.5, 0.95});
-    const double low = z[0], middle = z[1], top = z[2], level = plane.level;
+    const Heights h{z[0], z[1], z[2], planes[o].level};
     if (family == kGround) {
-      classes[o] = raisedAbove(s, middle, level, settings) ? ObjectClass::Building
-                                                           : ObjectClass::Ground;
+      classes[o] = raisedAbove(s, h, settings) ? ObjectClass::Building : ObjectClass::Ground;
       continue;
     }
-    if (standsUpright(s, low, middle, top, settings))
+    if (standsUpright(s, h, settings))
       classes[o] = ObjectClass::Pole;
     else
-      classes[o] = family == kSurface ? surfaceClass(s, low, middle, top, level, settings)
-                                      : linearClass(s, low - level, settings);
+      classes[o] = family == kSurface ? surfaceClass(s, h, settings)
+                                      : linearClass(s, h.low - h.terrain, settings);
   }
   return classes;
 }

@@ -278,6 +278,15 @@ TEST(CloudIO, SegmentsFileLabelIsNoClass)
   ASSERT_TRUE(io::loadCloud(dir.file("plain.pcd"), cloud, info, error)) << error;
   EXPECT_FALSE(info.segments_file);
   EXPECT_EQ(cloud[0].classification, 255);  // clamped to the byte
+  // The reader and the quick header check agree, also on a marker line ending in CRLF.
+  ASSERT_TRUE(io::savePcdBinaryWithOrigin(dir.file("crlf.pcd"), blob, Eigen::Vector3d::Zero(),
+                                          std::string(io::kPcdSegmentsMarker) + "\r\n", error))
+      << error;
+  ASSERT_TRUE(io::loadCloud(dir.file("crlf.pcd"), cloud, info, error)) << error;
+  EXPECT_TRUE(info.segments_file);
+  EXPECT_TRUE(pcl_ls3d::evaluation::isSegmentsFile(dir.file("crlf.pcd")));
+  EXPECT_TRUE(pcl_ls3d::evaluation::isSegmentsFile(dir.file("s.pcd")));
+  EXPECT_FALSE(pcl_ls3d::evaluation::isSegmentsFile(dir.file("plain.pcd")));
 }
 
 TEST(CloudIO, OverwriteProtectionAndSameFile)

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 
 using namespace pcl_ls3d::segmentation;
@@ -129,6 +130,21 @@ TEST(GroundFilter, LowestPointGridAndEmptyInput)
   EXPECT_EQ(grid.lowestPoint()[static_cast<std::size_t>(grid.cellOf(pts[0]))], 1);
   EXPECT_TRUE(std::isnan(grid.lowest()[1]));  // nothing fell in the middle cell
   EXPECT_EQ(grid.lowestPoint()[1], -1);
+  // Non-finite points take no part: the same grid, and they are not ground.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<Eigen::Vector3f> with_nan = pts;
+  with_nan.emplace_back(nan, 0.f, 0.f);
+  with_nan.emplace_back(0.2f, 0.2f, nan);
+  const LowestPointGrid same(with_nan, 1.0);
+  EXPECT_EQ(same.cols(), 3);
+  EXPECT_EQ(same.rows(), 1);
+  EXPECT_EQ(same.lowestPoint()[static_cast<std::size_t>(same.cellOf(pts[0]))], 1);
+  const std::vector<char> ground = groundPoints(with_nan, {});
+  ASSERT_EQ(ground.size(), 5u);
+  EXPECT_EQ(ground[3], 0);
+  EXPECT_EQ(ground[4], 0);
+  EXPECT_EQ(ground[1], 1);
+  EXPECT_EQ(groundPoints({{nan, nan, nan}}, {}), std::vector<char>{0});
   EXPECT_TRUE(groundPoints({}, {}).empty());
 }
 

@@ -149,11 +149,11 @@ TEST(ObjectClasses, RoofThatPassedTheGroundFilterIsABuilding)
 
 // On a hillside of 35° (z = 0.7 x) heights are taken above the terrain's plane, not above the
 // median of the ground around: the upper half of the slope, grown into its own ground object,
-// is no roof standing over the lower half; a roof 6 m above the slope is a building, a car-sized
-// box 1.5 m above it a car, and an 8 m × 8 m layer of shrubs 1 m above it (grown as a surface)
-// nothing it could name, nor a surface holding both the slope and shrubs whose tops reach 2.5 m
-// (its median lies on the slope). (IGN's target_cloud_crop: a mountain slope at 2 550 m was a
-// building.)
+// is no roof standing over the lower half; a flat roof 6–13 m above the slope is a building, a
+// car-sized box 1.5 m above it a car, and an 8 m × 8 m layer of shrubs 1 m above it (grown as
+// a surface) nothing it could name, nor a surface holding both the slope and shrubs whose tops
+// reach 2.5 m (its median lies on the slope). (IGN's target_cloud_crop: a mountain slope at
+// 2 550 m was a building.)
 TEST(ObjectClasses, HeightsFollowASlope)
 {
   Scene s;

@@ -119,6 +119,7 @@ struct CloudInfo
   Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units
   Eigen::Vector3d max_file = Eigen::Vector3d::Zero();
   std::vector<std::string> fields;                   ///< point fields mapped into PointLiDAR
+                                                     ///< (a SEGMENTS.pcd's label is not)
   std::size_t xyz_unmapped_columns = 0;              ///< XYZ: columns on the first data line not mapped
   LasHeaderInfo las;                                 ///< valid when format == "las"
 };

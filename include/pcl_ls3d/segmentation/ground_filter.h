@@ -1,7 +1,8 @@
 #pragma once
 /// \file ground_filter.h
 /// \brief The progressive morphological ground filter (Zhang et al. 2003, the algorithm of
-///        pcl::ApproximateProgressiveMorphologicalFilter) on a horizontal grid of lowest points,
+///        pcl::ApproximateProgressiveMorphologicalFilter, with an opened surface that follows the
+///        slope within each cell) on a horizontal grid of lowest points,
 ///        with separable O(1)-per-cell min/max filters so that windows wider than a building
 ///        stay cheap at a million points. PCL-free; used by the object level of IMRG
 ///        (object_assembly.h).
@@ -13,7 +14,8 @@
 namespace pcl_ls3d {
 namespace segmentation {
 
-/// \brief Lowest z per cell of a horizontal grid over the points (NaN for empty cells).
+/// \brief Lowest z per cell of a horizontal grid over the finite points (NaN for empty cells;
+///        no cell at all when no point is finite).
 class LowestPointGrid
 {
 public:
@@ -52,11 +54,12 @@ struct GroundFilterSettings
 ///        separable, O(1) per cell with a monotone queue) and a point higher than the opened
 ///        surface by more than dh_k = min(max_distance, initial + slope · (w_k − w_{k−1}) · cell)
 ///        (dh_0 = initial) is not ground. Empty cells take the values their windows give them.
-///        The opened surface is not flat within a cell: it runs through the cell's lowest point
-///        with the slope the opened grid has there (per axis the smaller of the two one-sided
-///        differences, 0 where they disagree in sign: a step or a ridge adds no tilt), so that
-///        points on a slope steeper than initial / cell are not cut off at the top of each cell.
-/// \return per point: 1 ground, 0 not ground
+///        The opened surface is not flat within a cell: it passes through the xy of the cell's
+///        lowest point at the cell's opened height, with the slope the opened grid has there
+///        (per axis the one-sided difference smaller in magnitude, 0 where the two disagree in
+///        sign: a step or a ridge adds no tilt), so that points on a slope steeper than
+///        initial / cell are not cut off at the top of each cell.
+/// \return per point: 1 ground, 0 not ground (also for non-finite points)
 std::vector<char>
 groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSettings& settings);
 

@@ -6,11 +6,10 @@
 ///
 /// Per object, the points vote with the kind of their segment before any join (ground; rough;
 /// solid or wall; linear) and the largest vote decides the family:
-///  - ground: Ground, unless its median z stands min_building_height above the ground around
-///    it (the level from the cells near it whose lowest ground-filter point is not its own;
-///    the slope from all of them) and its plan
-///    box covers min_building_area: a roof wider than the ground filter's largest window,
-///    which the filter kept, is a Building;
+///  - ground: Ground, unless its median stands min_building_height above the ground around it
+///    (the level from the cells near it whose lowest ground-filter point is not its own, the
+///    slope from all of them) and its plan box covers min_building_area: a roof wider than the
+///    ground filter's largest window, which the filter kept, is a Building;
 ///  - rough: Vegetation (crowns, hedges, grass detached from the ground);
 ///  - surface (solid, wall) or linear, standing upright — vertical extent at least
 ///    min_building_height and pole_slenderness × its plan length, median z in the lower
@@ -30,15 +29,18 @@
 ///    least min_wire_length long and thin (its points occupy at most max_wire_cover × length /
 ///    wire_cell plan cells of edge wire_cell: a canopy edge or a row of roofs grown as a line
 ///    covers its width too); else Unclassified (a kerb, a fence).
-/// Plan length and width are the extents along the object's principal plan axes; the terrain
+/// Plan length and width are the extents along the object's principal plan axes. The terrain
 /// is looked for around its x–y box, in the lowest ground-filter point per terrain_cell cell
 /// within terrain_margin of that box: a plane whose slope is the least-squares one of those
-/// points (refitted without the cells more than 3 robust sigmas, at least 0.5 m, off it; flat
-/// where they span less than two cells across) and whose level is their median along that
-/// slope; heights are taken above it, so that on a hillside the upper half of the slope is no
-/// roof over the lower half. Where no ground point lies that close the height is unknown: a surface is then a Building if its plan box covers
+/// points (refitted twice without the cells more than 3 robust sigmas, at least 0.5 m, off it;
+/// flat where they spread less than one cell, as a standard deviation, across) and whose level
+/// is their median along that slope. Heights are taken above that plane, so that on a
+/// hillside the upper half of the slope is no roof over the lower half. Where no ground point
+/// lies that close the height is unknown: a surface is then a Building if its plan box covers
 /// min_building_area (a roof-only crop; a car there is called a building too), a line is no
-/// wire. Heights use robust ends: top = 95th and low = 5th percentile of the object's z.
+/// wire. Heights use robust ends and middle: low, median and top are the 5th, 50th and 95th
+/// percentiles of the object's z with the terrain's slope taken out. Rough objects take no
+/// terrain (vegetation whatever their height).
 /// Lengths are metres (cloud units): car and building sizes are physical, not relative to the
 /// spacing. Non-finite points are skipped.
 
