@@ -83,10 +83,10 @@ readVlrs(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
   return true;
 }
 
-}  // namespace
-
+/// What can be said before the header is trusted at all: not empty, a LAS signature, at least
+/// the 227 bytes every version's header has.
 bool
-readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
+checkSignature(const std::uint8_t* data, std::size_t size, std::string& error)
 {
   if (size == 0) {
     error = "empty file";
@@ -100,7 +100,13 @@ readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std:
     error = concat("truncated LAS header: file has ", size, " bytes, a header needs at least 227");
     return false;
   }
-  h = LasHeaderInfo();
+  return true;
+}
+
+/// Version 1.0-1.4 and a header size field at least what the version requires and within the file.
+bool
+readVersion(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
+{
   h.version_major = data[las::kVersionMajor];
   h.version_minor = data[las::kVersionMinor];
   if (h.version_major != 1 || h.version_minor > 4) {
@@ -120,6 +126,14 @@ readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std:
                    h.header_size);
     return false;
   }
+  return true;
+}
+
+/// Point format 0-10, not compressed, and a record length that holds the format (the rest of
+/// each record is extra bytes).
+bool
+readPointFormat(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
+{
   const std::uint8_t format_byte = data[las::kPointFormat];
   if (format_byte & 0xC0) {  // LASzip sets bit 7 (and bit 6 in some writers)
     error = kLazNotSupported;
@@ -138,6 +152,14 @@ readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std:
     return false;
   }
   h.extra_bytes_per_record = static_cast<std::uint16_t>(h.record_length - min_length);
+  return true;
+}
+
+/// The fields every version has, checked only where a coordinate depends on them: a scale of
+/// zero or a non-finite scale or offset would make every point meaningless.
+bool
+readLegacyFields(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
+{
   h.file_source_id = las::get<std::uint16_t>(data + las::kFileSourceId);
   h.global_encoding = las::get<std::uint16_t>(data + las::kGlobalEncoding);
   h.system_identifier = fixedString(data + las::kSystemId, 32);
@@ -158,20 +180,35 @@ readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std:
       return false;
     }
   }
+  return true;
+}
+
+/// The point count: the legacy 32-bit one, or from 1.4 the 64-bit one when set (then with 15
+/// returns); both set and different is an error.
+bool
+readPointCount(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
+{
   h.point_count = h.legacy_point_count;
-  if (h.version_minor >= 4) {
-    const std::uint64_t count64 = las::get<std::uint64_t>(data + las::kCount64);
-    if (count64 != 0 && h.legacy_point_count != 0 && count64 != h.legacy_point_count) {
-      error = concat("point count mismatch: legacy count ", h.legacy_point_count,
-                     " vs 64-bit count ", count64);
-      return false;
-    }
-    if (count64 != 0) {
-      h.point_count = count64;
-      for (int r = 0; r < 15; ++r)
-        h.points_by_return[r] = las::get<std::uint64_t>(data + las::kByReturn64 + 8 * r);
-    }
+  if (h.version_minor < 4)
+    return true;
+  const std::uint64_t count64 = las::get<std::uint64_t>(data + las::kCount64);
+  if (count64 != 0 && h.legacy_point_count != 0 && count64 != h.legacy_point_count) {
+    error = concat("point count mismatch: legacy count ", h.legacy_point_count,
+                   " vs 64-bit count ", count64);
+    return false;
   }
+  if (count64 != 0) {
+    h.point_count = count64;
+    for (int r = 0; r < 15; ++r)
+      h.points_by_return[r] = las::get<std::uint64_t>(data + las::kByReturn64 + 8 * r);
+  }
+  return true;
+}
+
+/// The point data starts after the header and within the file (the VLRs lie in between).
+bool
+checkPointOffset(const LasHeaderInfo& h, std::size_t size, std::string& error)
+{
   if (h.offset_to_points < h.header_size) {
     error = concat("offset to point data (", h.offset_to_points, ") lies inside the ",
                    h.header_size, "-byte header");
@@ -182,9 +219,13 @@ readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std:
                    ") is beyond the end of the file (", size, " bytes)");
     return false;
   }
-  if (!readVlrs(data, h, error))
-    return false;
-  // The point block must fit; later EVLRs / waveform data may follow it, so more bytes are fine.
+  return true;
+}
+
+/// The point block must fit; later EVLRs / waveform data may follow it, so more bytes are fine.
+bool
+checkPointBlock(const LasHeaderInfo& h, std::size_t size, std::string& error)
+{
   const std::uint64_t available = size - h.offset_to_points;
   if (h.point_count > available / h.record_length) {
     error = concat("point block truncated or point count wrong: header says ", h.point_count,
@@ -194,6 +235,22 @@ readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std:
     return false;
   }
   return true;
+}
+
+}  // namespace
+
+bool
+readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
+{
+  // `h` is left as it was for a file that is no LAS header at all; later stages fill it in order,
+  // so a failing check leaves what was read up to it.
+  if (!checkSignature(data, size, error))
+    return false;
+  h = LasHeaderInfo();
+  return readVersion(data, size, h, error) && readPointFormat(data, h, error) &&
+         readLegacyFields(data, h, error) && readPointCount(data, h, error) &&
+         checkPointOffset(h, size, error) && readVlrs(data, h, error) &&
+         checkPointBlock(h, size, error);
 }
 
 bool

@@ -113,6 +113,119 @@ clampTo(double v)
   return static_cast<T>(v >= hi ? hi : std::round(v));
 }
 
+/// LoadOptions::xyz_columns as a mapping: every name known (a typo would silently skip a
+/// column), x, y and z among them.
+bool
+mappingFromOption(const std::string& spec, std::vector<Column>& map, std::string& error)
+{
+  std::vector<std::string_view> tokens;
+  tokenize(spec, 0, tokens);
+  for (const auto& t : tokens)
+    if (columnOf(std::string(t)) == Column::Unknown) {
+      error = "unknown XYZ column name " + detail::quote(t);
+      return false;
+    }
+  if (!mappingFromNames(tokens, map)) {
+    error = "XYZ column list " + detail::quote(spec) + " must name x, y and z";
+    return false;
+  }
+  return true;
+}
+
+/// The tokens of one line after a leading '#' or '//'; false when there are none.
+bool
+lineTokens(const std::string& line, std::vector<std::string_view>& tokens, bool& comment)
+{
+  std::size_t start = line.find_first_not_of(" \t\r");
+  if (start == std::string::npos)
+    return false;
+  comment = line[start] == '#' || line.compare(start, 2, "//") == 0;
+  if (comment)
+    start += line[start] == '#' ? 1 : 2;
+  tokenize(line, start, tokens);
+  return !tokens.empty();
+}
+
+/// Before the data: a header names the columns (LoadOptions::xyz_columns, when given, wins and
+/// the header is skipped); any other uncommented text is an error.
+bool
+readHeaderLine(const std::string& line, std::size_t line_number,
+               const std::vector<std::string_view>& tokens, bool comment, bool columns_given,
+               std::vector<Column>& map, std::string& error)
+{
+  std::vector<Column> candidate;
+  if (mappingFromNames(tokens, candidate)) {
+    if (!columns_given)
+      map = candidate;
+  }
+  else if (!comment) {
+    error = notANumber(line, line_number, tokens[0]);
+    return false;
+  }
+  return true;
+}
+
+/// At the first data line: x y z by position when nothing named the columns. Returns how many
+/// columns a line needs (up to the last mapped one) and fills info.fields and
+/// info.xyz_unmapped_columns from the first line's column count.
+std::size_t
+fixColumns(std::vector<Column>& map, std::size_t columns, CloudInfo& info)
+{
+  if (map.empty())
+    map = {Column::X, Column::Y, Column::Z};
+  std::size_t mapped = 0, needed = 0;
+  for (std::size_t c = 0; c < map.size() && c < columns; ++c)
+    mapped += map[c] != Column::Skip;
+  info.xyz_unmapped_columns = columns - mapped;
+  for (std::size_t c = 0; c < map.size(); ++c)
+    if (map[c] != Column::Skip)
+      needed = c + 1;
+  for (std::size_t c = 0; c < needed; ++c)
+    if (map[c] != Column::Skip)
+      info.fields.push_back(kColumnNames[static_cast<int>(map[c])]);
+  return needed;
+}
+
+/// One data line into a point (attributes) and its file coordinates (appended to `xyz`).
+bool
+readPoint(const std::string& line, std::size_t line_number,
+          const std::vector<std::string_view>& tokens, const std::vector<Column>& map,
+          std::size_t needed, std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cloud,
+          std::string& error)
+{
+  if (tokens.size() < needed) {
+    error = "line " + std::to_string(line_number) + ": expected at least " +
+            std::to_string(needed) + " columns, found " + std::to_string(tokens.size());
+    return false;
+  }
+  PointLiDAR p;
+  double c3[3] = {0.0, 0.0, 0.0};
+  for (std::size_t c = 0; c < needed; ++c) {
+    if (map[c] == Column::Skip)
+      continue;
+    double v = 0.0;
+    if (!parseNumber(tokens[c], v)) {
+      error = notANumber(line, line_number, tokens[c]);
+      return false;
+    }
+    switch (map[c]) {
+    case Column::X: c3[0] = v; break;
+    case Column::Y: c3[1] = v; break;
+    case Column::Z: c3[2] = v; break;
+    case Column::Intensity: p.intensity = static_cast<float>(v); break;
+    case Column::Classification: p.classification = clampTo<std::uint8_t>(v); break;
+    case Column::PointSourceId: p.point_source_id = clampTo<std::uint16_t>(v); break;
+    case Column::GpsTime: p.gps_time = v; break;
+    case Column::ReturnNumber: p.return_number = clampTo<std::uint8_t>(v); break;
+    case Column::NumberOfReturns: p.number_of_returns = clampTo<std::uint8_t>(v); break;
+    default: break;
+    }
+  }
+  xyz.insert(xyz.end(), c3, c3 + 3);
+  cloud.push_back(p);
+  return true;
+}
+
 }  // namespace
 
 bool
@@ -123,94 +236,30 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
   info.format = "xyz";
   cloud.clear();
   std::vector<Column> map;
-  std::vector<std::string_view> tokens;
-  if (!options.xyz_columns.empty()) {
-    std::string spec = options.xyz_columns;
-    tokenize(spec, 0, tokens);
-    for (const auto& t : tokens)
-      if (columnOf(std::string(t)) == Column::Unknown) {
-        error = "unknown XYZ column name " + detail::quote(t);
-        return false;
-      }
-    if (!mappingFromNames(tokens, map)) {
-      error = "XYZ column list " + detail::quote(spec) + " must name x, y and z";
-      return false;
-    }
-  }
+  if (!options.xyz_columns.empty() && !mappingFromOption(options.xyz_columns, map, error))
+    return false;
   std::vector<double> xyz;
+  std::vector<std::string_view> tokens;
   std::string line;
-  std::size_t line_number = 0, needed = 0;
+  std::size_t line_number = 0, needed = 0;  // needed == 0: no data line yet
   while (std::getline(in, line)) {
     ++line_number;
-    std::size_t start = line.find_first_not_of(" \t\r");
-    if (start == std::string::npos)
+    bool comment = false;
+    if (!lineTokens(line, tokens, comment))
       continue;
-    const bool comment = line[start] == '#' || line.compare(start, 2, "//") == 0;
-    if (comment)
-      start += line[start] == '#' ? 1 : 2;
-    tokenize(line, start, tokens);
-    if (tokens.empty())
-      continue;
-    double v = 0.0;
-    if (needed == 0 && (comment || !parseNumber(tokens[0], v))) {
-      // Before the data: a header names the columns (LoadOptions::xyz_columns, when given, wins
-      // and the header is skipped); any other uncommented text is an error.
-      std::vector<Column> candidate;
-      if (mappingFromNames(tokens, candidate)) {
-        if (options.xyz_columns.empty())
-          map = candidate;
-      }
-      else if (!comment) {
-        error = notANumber(line, line_number, tokens[0]);
+    double first = 0.0;
+    if (needed == 0 && (comment || !parseNumber(tokens[0], first))) {
+      if (!readHeaderLine(line, line_number, tokens, comment, !options.xyz_columns.empty(), map,
+                          error))
         return false;
-      }
       continue;
     }
     if (comment)
       continue;
-    if (map.empty())
-      map = {Column::X, Column::Y, Column::Z};
-    if (needed == 0) {
-      std::size_t mapped = 0;
-      for (std::size_t c = 0; c < map.size() && c < tokens.size(); ++c)
-        mapped += map[c] != Column::Skip;
-      info.xyz_unmapped_columns = tokens.size() - mapped;
-      for (std::size_t c = 0; c < map.size(); ++c)
-        if (map[c] != Column::Skip)
-          needed = c + 1;
-      for (std::size_t c = 0; c < needed; ++c)
-        if (map[c] != Column::Skip)
-          info.fields.push_back(kColumnNames[static_cast<int>(map[c])]);
-    }
-    if (tokens.size() < needed) {
-      error = "line " + std::to_string(line_number) + ": expected at least " +
-              std::to_string(needed) + " columns, found " + std::to_string(tokens.size());
+    if (needed == 0)
+      needed = fixColumns(map, tokens.size(), info);
+    if (!readPoint(line, line_number, tokens, map, needed, xyz, cloud, error))
       return false;
-    }
-    PointLiDAR p;
-    double c3[3] = {0.0, 0.0, 0.0};
-    for (std::size_t c = 0; c < needed; ++c) {
-      if (map[c] == Column::Skip)
-        continue;
-      if (!parseNumber(tokens[c], v)) {
-        error = notANumber(line, line_number, tokens[c]);
-        return false;
-      }
-      switch (map[c]) {
-      case Column::X: c3[0] = v; break;
-      case Column::Y: c3[1] = v; break;
-      case Column::Z: c3[2] = v; break;
-      case Column::Intensity: p.intensity = static_cast<float>(v); break;
-      case Column::Classification: p.classification = clampTo<std::uint8_t>(v); break;
-      case Column::PointSourceId: p.point_source_id = clampTo<std::uint16_t>(v); break;
-      case Column::GpsTime: p.gps_time = v; break;
-      case Column::ReturnNumber: p.return_number = clampTo<std::uint8_t>(v); break;
-      case Column::NumberOfReturns: p.number_of_returns = clampTo<std::uint8_t>(v); break;
-      default: break;
-      }
-    }
-    xyz.insert(xyz.end(), c3, c3 + 3);
-    cloud.push_back(p);
   }
   if (in.bad()) {
     error = "read error";
