@@ -99,7 +99,7 @@ TEST(SurfaceSupport, LzdObservesSamplesOnTheTargetBorder)
   const auto target = halfPlane();
   const LzdRule lzd;
   const LndRule lnd;
-  for (const Eigen::Vector2d xy : {Eigen::Vector2d(0.0, -12.0), Eigen::Vector2d(0.0, 3.5), Eigen::Vector2d(-12.0, 12.0)}) {
+  for (const Eigen::Vector2d& xy : {Eigen::Vector2d(0.0, -12.0), Eigen::Vector2d(0.0, 3.5), Eigen::Vector2d(-12.0, 12.0)}) {
     const Eigen::Vector3d q(xy.x(), xy.y(), bowl(xy.x(), xy.y()) + 0.25);
     CorrespondenceCache cache;
     ConjugateObservations out;
@@ -107,10 +107,11 @@ TEST(SurfaceSupport, LzdObservesSamplesOnTheTargetBorder)
     EXPECT_NEAR(out.items[0].distance, 0.25, 1e-3) << xy.transpose();
     CorrespondenceCache lnd_cache;
     ConjugateObservations lnd_out;
-    if (xy.x() == 0.0 && std::abs(xy.y()) == 12.0)  // a corner: a quarter disc
+    if (xy.x() == 0.0 && std::abs(xy.y()) == 12.0) {  // a corner: a quarter disc
       EXPECT_FALSE(lnd.findConjugate(q, target, 5.0, lnd_cache, lnd_out) && lnd_out.count > 0);
+    }
   }
-  for (const Eigen::Vector2d xy : {Eigen::Vector2d(0.2, -12.2), Eigen::Vector2d(0.25, 3.5)}) {
+  for (const Eigen::Vector2d& xy : {Eigen::Vector2d(0.2, -12.2), Eigen::Vector2d(0.25, 3.5)}) {
     const Eigen::Vector3d q(xy.x(), xy.y(), bowl(xy.x(), xy.y()));
     CorrespondenceCache cache;
     ConjugateObservations out;

@@ -42,12 +42,15 @@ TEST(Synth, SceneClassesAndObjects)
     const int cls = (*scene.cloud)[i].classification;
     ASSERT_GE(id, 0) << "every generated point belongs to an object";
     const ObjectType t = scene.objects[id].type;
-    if (cls == 2)
+    if (cls == 2) {
       ASSERT_EQ(t, ObjectType::GROUND);
-    if (cls >= 3 && cls <= 5)
+    }
+    if (cls >= 3 && cls <= 5) {
       ASSERT_TRUE(t == ObjectType::TREE || t == ObjectType::SHRUB);
-    else
+    }
+    else {
       ASSERT_EQ(cls, scene.objects[id].classification) << toString(t);
+    }
   }
 }
 
