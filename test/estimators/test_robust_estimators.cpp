@@ -33,8 +33,9 @@ TEST(RobustEstimators, WeightProperties)
       EXPECT_GE(w[i], 0.0) << e->name();
       EXPECT_LE(w[i], 1.0) << e->name();
       EXPECT_DOUBLE_EQ(w[i], w[n - 1 - i]) << e->name() << " not symmetric at " << v[i];
-      if (i > 100)
+      if (i > 100) {
         EXPECT_LE(w[i], w[i - 1] + 1e-15) << e->name() << " increases at " << v[i];
+      }
     }
     EXPECT_DOUBLE_EQ(w[100], 1.0) << e->name();
   }

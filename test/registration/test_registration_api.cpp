@@ -371,8 +371,9 @@ TEST(Ls3dRegistration, CoarseToFineMatchesFullIteration)
     EXPECT_EQ(ls3d.getReport().termination, pcl_ls3d::TerminationType::CONVERGED);
     (coarse_obs ? coarse : full) = ls3d.getReport().parameters;
     sigmas = ls3d.getReport().sigmas;
-    if (coarse_obs)  // the first iterations used about 1000 of ~10^4 points
+    if (coarse_obs) {  // the first iterations used about 1000 of ~10^4 points
       EXPECT_LT(ls3d.getReport().log.front().observations_used, 2000u);
+    }
   }
   // Same fixed point up to a small fraction of σ_i: both end on all points, frozen, but the
   // frozen sets and the errors-in-variables factor (from the last σ0) follow the path
