@@ -120,7 +120,7 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
   }
   if (by == "class" && info.segments_file) {
     // Its classification field holds the object classes; without one, the labels are ids.
-    if (std::find(info.fields.begin(), info.fields.end(), "classification") == info.fields.end()) {
+    if (!info.hasField("classification")) {
       std::fprintf(stderr, "render_top_view: %s holds segment ids but no object classes (made with "
                            "-mode mrg or pcl_rg, or by an older pcl_ls3d_segment): use "
                            "-by rgb or -by label\n", path.c_str());

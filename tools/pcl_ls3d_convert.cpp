@@ -167,8 +167,7 @@ saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const Outpu
 void
 warnNoClasses(const std::string& input, const pcl_ls3d::io::CloudInfo& info)
 {
-  if (!info.segments_file ||
-      std::find(info.fields.begin(), info.fields.end(), "classification") != info.fields.end())
+  if (!info.segments_file || info.hasField("classification"))
     return;
   print_warn("%s holds segment ids, not object classes (-mode mrg or pcl_rg): the "
              "classification is left 0 (never classified)\n", input.c_str());

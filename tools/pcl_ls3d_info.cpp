@@ -116,9 +116,7 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   if (segments)
     j["segments"] = describeSegments(path);
   // A SEGMENTS.pcd's own classification field holds its objects' classes (IMRG).
-  const bool has_classes = std::find(info.fields.begin(), info.fields.end(), "classification") !=
-                           info.fields.end();
-  if (!segments || has_classes) {
+  if (!segments || info.hasField("classification")) {
     std::map<int, std::size_t> classes;
     for (const auto& p : cloud)
       ++classes[p.classification];

@@ -261,12 +261,12 @@ loadInput(const Options& o, Input& in, std::string& error)
 {
   TicToc tt;
   tt.tic();
-  if (o.evaluate && ev::isSegmentsFile(o.input))
+  if (!io::loadCloud(o.input, in.cloud, in.info, error))
+    return false;
+  if (o.evaluate && in.info.segments_file)  // the reader recognised it (io::kPcdSegmentsMarker)
     return (error = "-evaluate: '" + o.input + "' is a SEGMENTS file of pcl_ls3d_segment: its labels "
                     "are segment ids, not reference classes (evaluate the labelled input instead)"),
            false;
-  if (!io::loadCloud(o.input, in.cloud, in.info, error))
-    return false;
   const std::size_t n = in.cloud.size();
   if (n > static_cast<std::size_t>(std::numeric_limits<int>::max()))
     return (error = "cloud too large for pcl::PointIndices"), false;

@@ -28,6 +28,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -122,6 +123,12 @@ struct CloudInfo
                                                      ///< (a SEGMENTS.pcd's label is not)
   std::size_t xyz_unmapped_columns = 0;              ///< XYZ: columns on the first data line not mapped
   LasHeaderInfo las;                                 ///< valid when format == "las"
+
+  /// Was a field of this name read into PointLiDAR (fields)?
+  bool hasField(const std::string& name) const
+  {
+    return std::find(fields.begin(), fields.end(), name) != fields.end();
+  }
 };
 
 /// Loads PCD, PLY, LAS (1.0–1.4, formats 0–10, uncompressed) or ASCII XYZ (by extension and/or
