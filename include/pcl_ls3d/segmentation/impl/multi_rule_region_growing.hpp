@@ -4,6 +4,7 @@
 
 #include <pcl_ls3d/segmentation/adaptive_thresholds.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
+#include <pcl_ls3d/segmentation/roof_cover.h>
 #include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/search/flann_kd_tree.h>
 
@@ -345,6 +346,9 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
   }
   object_class_ = segmentation::classifyObjects(points_, segment_of_, assembly_report_.point_kind,
                                                 ground, classes_);
+  // Cells of one spacing hold a roof point or two; "under" is a spacing below the roof's lowest.
+  segmentation::claimPointsUnderRoofs(points_, assembly_report_.point_kind, object_class_,
+                                      spacing_, spacing_, segment_of_);
 }
 
 template <typename PointT, typename NormalT>
