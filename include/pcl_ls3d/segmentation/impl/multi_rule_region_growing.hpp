@@ -5,6 +5,7 @@
 #include <pcl_ls3d/segmentation/adaptive_thresholds.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 #include <pcl_ls3d/segmentation/roof_cover.h>
+#include <pcl_ls3d/segmentation/terrain_contact.h>
 #include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/search/flann_kd_tree.h>
 
@@ -349,6 +350,11 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
   // Cells of one spacing hold a roof point or two; "under" is a spacing below the roof's lowest.
   segmentation::claimPointsUnderRoofs(points_, assembly_report_.point_kind, object_class_,
                                       spacing_, spacing_, segment_of_);
+  // On the terrain: within 3 ground residuals (3 sigma of its noise) of the plane the assembly
+  // measures raised points against, in the same window.
+  segmentation::returnTerrainPoints(points_, ground, graph_, grow_.graph_k, object_class_,
+                                    3.0 * assembly_report_.ground_residual,
+                                    2.0 * a.max_link_length, segment_of_);
 }
 
 template <typename PointT, typename NormalT>
