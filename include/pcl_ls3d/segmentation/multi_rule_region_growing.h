@@ -8,8 +8,10 @@
 #include <pcl_ls3d/segmentation/ground_filter.h>
 #include <pcl_ls3d/segmentation/object_assembly.h>
 #include <pcl_ls3d/segmentation/object_classes.h>
+#include <pcl_ls3d/segmentation/roof_cover.h>
 #include <pcl_ls3d/segmentation/rule_growing.h>
 #include <pcl_ls3d/segmentation/segment_merging.h>
+#include <pcl_ls3d/segmentation/terrain_contact.h>
 
 #include <pcl/PointIndices.h>
 #include <pcl/pcl_base.h>
@@ -59,9 +61,13 @@ namespace pcl_ls3d {
 ///     vegetation, wire, pole, car or unclassified by the kinds of its segments, its height
 ///     above the terrain and its size (object_classes.h); a plane takes the class of the object
 ///     holding most of its points (getClusterClasses()).
+///  8. points by position (an addition, with the classes): vegetation points under a
+///     building's roof join it (roof_cover.h: facade scatter the growth put into the crowns in
+///     front), and vegetation points the ground filter keeps within 3 ground residuals of the
+///     terrain plane join the ground object beside them (terrain_contact.h).
 /// Two levels come out of one extract() (setOutputLevel(), getClusters()): Level::Planes, the
 /// segments of step 2–3 (the planes of the paper's Table 1: roof planes, facades, ground
-/// pieces), and Level::Objects, the result of steps 4–6 (default).
+/// pieces), and Level::Objects, the result of steps 4–8 (default).
 ///
 /// Plain MRG (the paper's comparison) = setMode(Mode::MRG): no seed condition, distance-only
 /// merging, no object assembly. Every adaptive threshold can be overridden by its setter (a negative value restores

@@ -4,8 +4,6 @@
 
 #include <pcl_ls3d/segmentation/adaptive_thresholds.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
-#include <pcl_ls3d/segmentation/roof_cover.h>
-#include <pcl_ls3d/segmentation/terrain_contact.h>
 #include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/search/flann_kd_tree.h>
 
