@@ -304,7 +304,7 @@ detachStage(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& 
   const std::vector<char> raised =
       raisedPoints(points, ground, kind, labels,
                    settings.raised_noise_multiple * rep.ground_residual,
-                   2.0 * settings.max_link_length);
+                   terrainWindowHalfWidth(settings));
   rep.detached_points = detachRaisedPoints(points, graph, graph_k, raised, kind,
                                            settings.max_link_length, labels, origin);
   if (rep.detached_points == 0)

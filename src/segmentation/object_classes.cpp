@@ -195,6 +195,14 @@ linearClass(const ObjectShape& s, double low, const ObjectClassSettings& c)
 
 }  // namespace
 
+ObjectClass
+classOf(int label, const std::vector<ObjectClass>& object_class)
+{
+  return label >= 0 && static_cast<std::size_t>(label) < object_class.size()
+             ? object_class[static_cast<std::size_t>(label)]
+             : ObjectClass::Unclassified;
+}
+
 const char*
 toString(ObjectClass c)
 {

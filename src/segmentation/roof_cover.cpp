@@ -6,7 +6,6 @@
 #include "terrain_cells.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdint>
 #include <unordered_map>
 
@@ -24,13 +23,6 @@ struct RoofCell
 
 using RoofCells = std::unordered_map<std::uint64_t, RoofCell>;
 
-bool
-isOfClass(int label, const std::vector<ObjectClass>& object_class, ObjectClass c)
-{
-  return label >= 0 && static_cast<std::size_t>(label) < object_class.size() &&
-         object_class[static_cast<std::size_t>(label)] == c;
-}
-
 /// Plan cells holding points of the buildings' solid segments (their roof planes).
 RoofCells
 roofCells(const std::vector<Eigen::Vector3f>& points, const std::vector<SegmentKind>& point_kind,
@@ -41,7 +33,7 @@ roofCells(const std::vector<Eigen::Vector3f>& points, const std::vector<SegmentK
   for (std::size_t p = 0; p < points.size(); ++p) {
     const Eigen::Vector3f& x = points[p];
     if (point_kind[p] != SegmentKind::Solid || !x.allFinite() ||
-        !isOfClass(labels[p], object_class, ObjectClass::Building))
+        classOf(labels[p], object_class) != ObjectClass::Building)
       continue;
     const auto [it, fresh] =
         cells.try_emplace(detail::planCellOf(x, cell), RoofCell{x.z(), x.z(), labels[p]});
@@ -71,7 +63,7 @@ claimPointsUnderRoofs(const std::vector<Eigen::Vector3f>& points,
   std::size_t moved = 0;
   for (std::size_t p = 0; p < points.size(); ++p) {
     const Eigen::Vector3f& x = points[p];
-    if (!x.allFinite() || !isOfClass(labels[p], object_class, ObjectClass::Vegetation))
+    if (!x.allFinite() || classOf(labels[p], object_class) != ObjectClass::Vegetation)
       continue;
     const auto it = roofs.find(detail::planCellOf(x, cell));
     if (it == roofs.end() || !(x.z() < it->second.lowest - clearance))

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 #include <vector>
@@ -125,13 +126,32 @@ TEST(TerrainContact, EnclosedGroundWithoutALinkToTheGroundStays)
         s.add(x, y, 0.f, kBush, true);  // terrain seen through it
     }
   std::vector<int> labels = s.labels;
+  const std::size_t moved = returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK,
+                                                classesOfTheScene(), kLimit, kHalfWidth, labels);
+  EXPECT_EQ(moved, 0u);
+  EXPECT_EQ(labels, s.labels);
+}
+
+TEST(TerrainContact, EnclosedGroundLinkedByTerrainReturns)
+{
+  // Terrain seen through a crown, joined to the lawn by a strip of terrain points along y < 1
+  // (the crown leaves it free): the chain brings all of it back, round by round.
+  Scene s;
+  std::vector<std::size_t> through_crown;
+  for (float x = 0.f; x < 8.f; x += 0.25f)
+    for (float y = 0.f; y < 4.f; y += 0.25f) {
+      if (x < 2.f)
+        s.add(x, y, 0.f, kLawn, true);
+      else if (y < 1.f || x >= 5.f)
+        through_crown.push_back(s.add(x, y, 0.f, kBush, true));
+      else
+        s.add(x, y, 2.f + 0.3f * std::sin(3.f * x), kBush, false);  // crown
+    }
+  std::vector<int> labels = s.labels;
   returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK, classesOfTheScene(), kLimit,
                       kHalfWidth, labels);
-  for (std::size_t p = 0; p < s.points.size(); ++p) {
-    if (s.points[p].x() >= 7.f) {
-      ASSERT_EQ(labels[p], kBush) << "at x = " << s.points[p].x();
-    }
-  }
+  for (const auto p : through_crown)
+    ASSERT_EQ(labels[p], kLawn) << "at " << s.points[p].transpose();
 }
 
 TEST(TerrainContact, BadArgumentsMoveNothing)
@@ -151,6 +171,12 @@ TEST(TerrainContact, BadArgumentsMoveNothing)
   EXPECT_EQ(returnTerrainPoints(s.points, short_ground, graph, kGraphK, classes, kLimit,
                                 kHalfWidth, labels), 0u);
   EXPECT_EQ(labels, s.labels);
+  // Points in no object, or in an object past the class list, are left alone.
+  labels[0] = -1;
+  labels[1] = kObjects + 3;
+  const std::vector<int> odd = labels;
   EXPECT_GT(returnTerrainPoints(s.points, s.ground, graph, kGraphK, classes, kLimit, kHalfWidth,
                                 labels), 0u);
+  EXPECT_EQ(labels[0], -1);
+  EXPECT_EQ(labels[1], kObjects + 3);
 }

@@ -59,12 +59,15 @@ namespace pcl_ls3d {
 ///     (object_assembly.h); fragments are absorbed once more.
 ///  7. object classes (an addition, with the assembly): each object is ground, building,
 ///     vegetation, wire, pole, car or unclassified by the kinds of its segments, its height
-///     above the terrain and its size (object_classes.h); a plane takes the class of the object
-///     holding most of its points (getClusterClasses()).
-///  8. points by position (an addition, with the classes): vegetation points under a
-///     building's roof join it (roof_cover.h: facade scatter the growth put into the crowns in
-///     front), and vegetation points the ground filter keeps within 3 ground residuals of the
-///     terrain plane join the ground object beside them (terrain_contact.h).
+///     above the terrain and its size (object_classes.h).
+///  8. points by position (an addition, with the classes; AssemblySettings
+///     terrain_return_multiple, claim_under_roofs): vegetation points the ground filter keeps
+///     no higher than 3 ground residuals above the terrain plane join the ground object beside
+///     them (terrain_contact.h), then vegetation points under a building's roof join it
+///     (roof_cover.h: facade scatter the growth put into the crowns in front). Classes are not
+///     recomputed; an object may lose points to them (a few-point remnant stays an object).
+///     A plane takes the class of the object holding most of its points
+///     (getClusterClasses()).
 /// Two levels come out of one extract() (setOutputLevel(), getClusters()): Level::Planes, the
 /// segments of step 2–3 (the planes of the paper's Table 1: roof planes, facades, ground
 /// pieces), and Level::Objects, the result of steps 4–8 (default).
@@ -263,6 +266,9 @@ protected:
   void growSegments();
   void mergeSegments();
   void assembleObjects();
+  /// Step 8: vegetation points on the terrain join the ground, under a roof the building.
+  void assignPointsByPosition(const std::vector<char>& ground,
+                              const segmentation::AssemblySettings& settings);
   /// Clusters (cloud indices) of per-position \a labels, min/max cluster size applied.
   void assembleRegions(const std::vector<int>& labels, std::vector<pcl::PointIndices>& clusters,
                        std::vector<int>& cluster_of) const;

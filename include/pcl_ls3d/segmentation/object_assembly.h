@@ -72,17 +72,33 @@ struct AssemblySettings
                                     ///< rejects leave it as their own segments
   /// ... and so do those it keeps that lie more than this many ground residuals (the
   /// terrain's noise, AssemblyReport::ground_residual, an RMS: about σ) above the terrain plane
-  /// of the ground points around them (heightAboveTerrain, half width 2 max_link_length):
+  /// of the ground points around them (heightAboveTerrain, terrainWindowHalfWidth()):
   /// grass 5–30 cm high, which the filter keeps up to its initial distance. 6 scored best of
   /// 4, 6, 8 on the tuning tiles (docs/BENCHMARKS.md). ≤ 0: the filter alone.
   double raised_noise_multiple = 6.0;
+  /// After the classes (MultiRuleRegionGrowing): vegetation points the filter keeps no higher
+  /// than this many ground residuals above that terrain plane are the ground under a crown's
+  /// rim and join the ground (terrain_contact.h). 3: the terrain's noise at 3 σ. ≤ 0: off.
+  double terrain_return_multiple = 3.0;
+  /// After the classes: vegetation points under a building's roof join it (roof_cover.h).
+  bool claim_under_roofs = true;
 };
+
+/// \brief Half width of the window of the terrain plane that heights are taken above
+///        (heightAboveTerrain): two link lengths, about four growth radii across.
+inline double
+terrainWindowHalfWidth(const AssemblySettings& settings)
+{
+  return 2.0 * settings.max_link_length;
+}
 
 /// \brief What assembleObjects() did.
 struct AssemblyReport
 {
   std::size_t segments_before = 0, objects = 0;
   std::size_t detached_points = 0;  ///< points that left ground segments (raised above terrain)
+  std::size_t points_under_roofs = 0;     ///< vegetation points that joined a roof above them
+  std::size_t points_back_to_ground = 0;  ///< vegetation points that joined the ground
   std::size_t kind_count[5] = {0, 0, 0, 0, 0};  ///< segments per SegmentKind
   double ground_residual = 0.0;  ///< median residual of the ground points (roughness unit)
   /// per point: kind of its segment before any join (pieces detached from the ground by their

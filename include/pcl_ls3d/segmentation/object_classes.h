@@ -91,6 +91,10 @@ objectClassFromLasCode(int code, ObjectClass& c);
 std::string
 describeLasCodes();
 
+/// \brief The class of object \a label: Unclassified for −1 or a label past \a object_class.
+ObjectClass
+classOf(int label, const std::vector<ObjectClass>& object_class);
+
 /// \brief Thresholds of classifyObjects(); lengths in metres (cloud units).
 struct ObjectClassSettings
 {

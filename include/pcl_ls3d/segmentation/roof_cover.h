@@ -12,7 +12,9 @@
 /// in such a cell lower than the cell's lowest roof point by more than \a clearance joins the
 /// building whose roof point is the highest in that cell. A crown over a roof (above it) and
 /// a crown beside it (outside its cells) stay vegetation; other classes are left alone (a car
-/// under a carport is no part of it).
+/// under a carport is no part of it). Crown points that the growth put into a roof plane give
+/// roof cells too, and what lies under them joins the building: the one error this rule can
+/// spread (docs/BENCHMARKS.md, "what is left").
 
 #include <pcl_ls3d/segmentation/object_classes.h>
 #include <pcl_ls3d/segmentation/segment_kinds.h>
@@ -32,7 +34,7 @@ namespace segmentation {
 /// \param[in] cell edge of the plan cells [m]
 /// \param[in] clearance how far below the cell's lowest roof point a point must lie [m]
 /// \param[in,out] labels object per point (−1 none)
-/// \return the number of points moved; 0 when the sizes differ
+/// \return the number of points moved; 0 when the sizes differ or cell is not positive
 std::size_t
 claimPointsUnderRoofs(const std::vector<Eigen::Vector3f>& points,
                       const std::vector<SegmentKind>& point_kind,

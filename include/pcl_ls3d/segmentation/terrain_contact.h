@@ -10,8 +10,10 @@
 /// filter-kept points of ground segments higher than a few ground residuals above the
 /// terrain plane around them leave the ground (grass); here, filter-kept points of vegetation
 /// objects no higher than \a limit above that plane (heightAboveTerrain, ground_filter.h) join
-/// the ground object with which they share the most k-NN links. A point with no link to a
-/// ground object stays (ground enclosed by a crown has no ground object to join).
+/// the ground object with which they share the most k-NN links (of any length: the point lies
+/// on the terrain already, the links only say which ground object). Rounds repeat until nothing moves, each deciding on the labels
+/// as the round found them, so the ground under a bush's rim returns from the lawn inwards; a
+/// point stays unless a chain of such points links it to a ground object.
 
 #include <pcl_ls3d/segmentation/object_classes.h>
 
@@ -31,7 +33,8 @@ namespace segmentation {
 /// \param[in] limit height above the terrain plane up to which a point lies on it [m]
 /// \param[in] half_width half width of the terrain window (heightAboveTerrain) [m]
 /// \param[in,out] labels object per point (−1 none)
-/// \return the number of points moved; 0 when the sizes differ
+/// \return the number of points moved; 0 when the sizes differ, graph_k ≤ 0 or limit is not
+///         positive
 std::size_t
 returnTerrainPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
                     const std::vector<int>& graph, int graph_k,

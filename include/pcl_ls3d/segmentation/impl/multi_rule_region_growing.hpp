@@ -345,14 +345,26 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
   }
   object_class_ = segmentation::classifyObjects(points_, segment_of_, assembly_report_.point_kind,
                                                 ground, classes_);
-  // Cells of one spacing hold a roof point or two; "under" is a spacing below the roof's lowest.
-  segmentation::claimPointsUnderRoofs(points_, assembly_report_.point_kind, object_class_,
-                                      spacing_, spacing_, segment_of_);
-  // On the terrain: within 3 ground residuals (3 sigma of its noise) of the plane the assembly
-  // measures raised points against, in the same window.
-  segmentation::returnTerrainPoints(points_, ground, graph_, grow_.graph_k, object_class_,
-                                    3.0 * assembly_report_.ground_residual,
-                                    2.0 * a.max_link_length, segment_of_);
+  assignPointsByPosition(ground, a);
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::assignPointsByPosition(
+    const std::vector<char>& ground, const segmentation::AssemblySettings& a)
+{
+  // The terrain first: the ground under an eave inside a crown object is ground, not wall.
+  // Within terrain_return_multiple ground residuals of the plane the assembly measures raised
+  // points against, in the same window.
+  if (a.terrain_return_multiple > 0.0)
+    assembly_report_.points_back_to_ground = segmentation::returnTerrainPoints(
+        points_, ground, graph_, grow_.graph_k, object_class_,
+        a.terrain_return_multiple * assembly_report_.ground_residual,
+        segmentation::terrainWindowHalfWidth(a), segment_of_);
+  // Cells of one spacing hold about three roof points; "under" is a spacing below the lowest.
+  if (a.claim_under_roofs)
+    assembly_report_.points_under_roofs = segmentation::claimPointsUnderRoofs(
+        points_, assembly_report_.point_kind, object_class_, spacing_, spacing_, segment_of_);
 }
 
 template <typename PointT, typename NormalT>
@@ -371,8 +383,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::clusterClasses(
     const auto best = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
       return a.second < b.second;
     });
-    if (best != votes.end() && static_cast<std::size_t>(best->first) < object_class_.size())
-      out[c] = object_class_[static_cast<std::size_t>(best->first)];
+    if (best != votes.end())
+      out[c] = segmentation::classOf(best->first, object_class_);
   }
   return out;
 }
@@ -391,7 +403,9 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleRegions(const std::vector<int>&
   clusters.clear();
   cluster_of.assign(labels.size(), -1);
   for (auto& c : all) {
-    if (c.indices.size() < min_cluster_size_ || c.indices.size() > max_cluster_size_)
+    // Empty: an object the point-level rules of the object level emptied.
+    if (c.indices.empty() || c.indices.size() < min_cluster_size_ ||
+        c.indices.size() > max_cluster_size_)
       continue;
     for (const auto i : c.indices)
       cluster_of[position_of_[i]] = static_cast<int>(clusters.size());
