@@ -261,11 +261,17 @@ public:
   std::size_t getNumberOfInitialSegments() const { return initial_segments_; }
 
 protected:
+  /// Empties the results, reports and stage times of the previous run.
+  void resetRunState();
   bool prepareForSegmentation();
   bool computeFeatures();
   void growSegments();
+  /// Plane level: fragments in plane_of_ join their most-linked plane, on-plane links only.
+  void absorbPlaneFragments();
   void mergeSegments();
   void assembleObjects();
+  /// Clusters and classes of both levels from plane_of_ and segment_of_.
+  void assembleLevelClusters();
   /// Step 8: vegetation points on the terrain join the ground, under a roof the building.
   void assignPointsByPosition(const std::vector<char>& ground,
                               const segmentation::AssemblySettings& settings);

@@ -54,23 +54,7 @@ void
 MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>& clusters)
 {
   clusters.clear();
-  plane_clusters_.clear();
-  object_clusters_.clear();
-  plane_cluster_of_.clear();
-  object_cluster_of_.clear();
-  object_class_.clear();
-  plane_classes_.clear();
-  object_classes_.clear();
-  features_.clear();
-  segment_of_.clear();
-  plane_of_.clear();
-  merge_report_ = segmentation::MergeReport{};
-  grow_.residual_threshold = std::numeric_limits<double>::quiet_NaN();
-  initial_segments_ = 0;
-
-  absorbed_fragments_ = 0;
-  assembly_report_ = segmentation::AssemblyReport{};
-  stage_times_ = StageTimes{};
+  resetRunState();
 
   pcl::StopWatch watch;
   double last = 0.0;
@@ -93,31 +77,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   lap(stage_times_.features);
   growSegments();
   plane_of_ = segment_of_;
-  // The plane level keeps the grown planes; points that the seed condition left in fragments
-  // (residual above v_t: they join a plane but do not grow it) join their most-linked plane,
-  // counting only links p -> q where p lies on q's tangent plane within what the planar rule
-  // allows over one growth step (growth radius x sin N_t) and, between two planar points, the
-  // normals agree within N_t; volumetric pairs always count. A fragment of a sparse wall does
-  // not join the roof it touches at the eave, nor a fragment of one roof plane the plane
-  // across the ridge.
-  if (min_fragment_size_ > 1) {
-    const double tol = grow_.growth_radius * std::sin(grow_.normal_angle);
-    const double cos_nt = std::cos(grow_.normal_angle);
-    const auto on_plane = [this, tol, cos_nt](int p, int q) {
-      const auto& fp = features_[static_cast<std::size_t>(p)];
-      const auto& fq = features_[static_cast<std::size_t>(q)];
-      if (fp.dimensionality == Dimensionality::Volumetric &&
-          fq.dimensionality == Dimensionality::Volumetric)
-        return true;
-      const Eigen::Vector3f d = points_[static_cast<std::size_t>(p)] - points_[static_cast<std::size_t>(q)];
-      if (std::abs(d.dot(fq.normal)) > tol)
-        return false;
-      return fp.dimensionality != Dimensionality::Planar ||
-             fq.dimensionality != Dimensionality::Planar ||
-             std::abs(fp.normal.dot(fq.normal)) >= cos_nt;
-    };
-    segmentation::absorbFragments(graph_, grow_.graph_k, plane_of_, min_fragment_size_, on_plane);
-  }
+  absorbPlaneFragments();
   lap(stage_times_.growing);
   mergeSegments();
   lap(stage_times_.merging);
@@ -128,12 +88,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   if (assemble_objects_)
     assembleObjects();
   lap(stage_times_.assembling);
-  assembleRegions(plane_of_, plane_clusters_, plane_cluster_of_);
-  assembleRegions(segment_of_, object_clusters_, object_cluster_of_);
-  if (!object_class_.empty()) {
-    plane_classes_ = clusterClasses(plane_clusters_);
-    object_classes_ = clusterClasses(object_clusters_);
-  }
+  assembleLevelClusters();
   clusters = getClusters(level_);
   stage_times_.total = watch.getTimeSeconds();
   PCL_DEBUG("[pcl_ls3d::%s::extract] %zu points: search %.2f s, features %.2f s, growing %.2f s, "
@@ -142,6 +97,72 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
             stage_times_.growing, stage_times_.merging, stage_times_.absorbing,
             initial_segments_, object_clusters_.size(), absorbed_fragments_);
   deinitCompute();
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::resetRunState()
+{
+  plane_clusters_.clear();
+  object_clusters_.clear();
+  plane_cluster_of_.clear();
+  object_cluster_of_.clear();
+  object_class_.clear();
+  plane_classes_.clear();
+  object_classes_.clear();
+  features_.clear();
+  segment_of_.clear();
+  plane_of_.clear();
+  merge_report_ = segmentation::MergeReport{};
+  grow_.residual_threshold = std::numeric_limits<double>::quiet_NaN();
+  initial_segments_ = 0;
+  absorbed_fragments_ = 0;
+  assembly_report_ = segmentation::AssemblyReport{};
+  stage_times_ = StageTimes{};
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::absorbPlaneFragments()
+{
+  // The plane level keeps the grown planes; points that the seed condition left in fragments
+  // (residual above v_t: they join a plane but do not grow it) join their most-linked plane,
+  // counting only links p -> q where p lies on q's tangent plane within what the planar rule
+  // allows over one growth step (growth radius x sin N_t) and, between two planar points, the
+  // normals agree within N_t; volumetric pairs always count. A fragment of a sparse wall does
+  // not join the roof it touches at the eave, nor a fragment of one roof plane the plane
+  // across the ridge.
+  if (min_fragment_size_ <= 1)
+    return;
+  const double tol = grow_.growth_radius * std::sin(grow_.normal_angle);
+  const double cos_nt = std::cos(grow_.normal_angle);
+  const auto on_plane = [this, tol, cos_nt](int p, int q) {
+    const auto& fp = features_[static_cast<std::size_t>(p)];
+    const auto& fq = features_[static_cast<std::size_t>(q)];
+    if (fp.dimensionality == Dimensionality::Volumetric &&
+        fq.dimensionality == Dimensionality::Volumetric)
+      return true;
+    const Eigen::Vector3f d =
+        points_[static_cast<std::size_t>(p)] - points_[static_cast<std::size_t>(q)];
+    if (std::abs(d.dot(fq.normal)) > tol)
+      return false;
+    return fp.dimensionality != Dimensionality::Planar ||
+           fq.dimensionality != Dimensionality::Planar ||
+           std::abs(fp.normal.dot(fq.normal)) >= cos_nt;
+  };
+  segmentation::absorbFragments(graph_, grow_.graph_k, plane_of_, min_fragment_size_, on_plane);
+}
+
+template <typename PointT, typename NormalT>
+void
+MultiRuleRegionGrowing<PointT, NormalT>::assembleLevelClusters()
+{
+  assembleRegions(plane_of_, plane_clusters_, plane_cluster_of_);
+  assembleRegions(segment_of_, object_clusters_, object_cluster_of_);
+  if (!object_class_.empty()) {
+    plane_classes_ = clusterClasses(plane_clusters_);
+    object_classes_ = clusterClasses(object_clusters_);
+  }
 }
 
 template <typename PointT, typename NormalT>
