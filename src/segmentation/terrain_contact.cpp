@@ -6,6 +6,7 @@
 
 #include <pcl_ls3d/segmentation/ground_filter.h>
 
+#include <numeric>
 #include <utility>
 
 namespace pcl_ls3d {
@@ -99,8 +100,7 @@ returnTerrainPoints(const std::vector<Eigen::Vector3f>& points, const std::vecto
       candidatesLinkingTo(on_terrain, n, graph, k);
   // Rounds from the lawn inwards; a round decides on the labels as it found them.
   std::vector<std::size_t> check(on_terrain.size());
-  for (std::size_t i = 0; i < check.size(); ++i)
-    check[i] = i;
+  std::iota(check.begin(), check.end(), std::size_t{0});
   std::vector<std::pair<std::size_t, int>> moves;
   std::vector<char> queued(on_terrain.size(), 0);
   std::size_t moved = 0;

@@ -11,9 +11,10 @@
 /// terrain plane around them leave the ground (grass); here, filter-kept points of vegetation
 /// objects no higher than \a limit above that plane (heightAboveTerrain, ground_filter.h) join
 /// the ground object with which they share the most k-NN links (of any length: the point lies
-/// on the terrain already, the links only say which ground object). Rounds repeat until nothing moves, each deciding on the labels
-/// as the round found them, so the ground under a bush's rim returns from the lawn inwards; a
-/// point stays unless a chain of such points links it to a ground object.
+/// on the terrain already, the links only say which ground object). Rounds repeat until
+/// nothing moves, each deciding on the labels as the round found them, so the ground under a
+/// bush's rim returns from the lawn inwards; a point stays unless a chain of such points links
+/// it to a ground object.
 
 #include <pcl_ls3d/segmentation/object_classes.h>
 
