@@ -126,11 +126,8 @@ anyHeaderLine(const std::string& path, const std::function<bool(const std::strin
 bool
 isSegmentsFile(const std::string& path)
 {
-  return anyHeaderLine(path, [](std::string line) {
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' '))
-      line.pop_back();  // as the PCD reader: CRLF files too
-    return line == io::kPcdSegmentsMarker;
-  });
+  return anyHeaderLine(path,
+                       [](const std::string& line) { return io::isPcdSegmentsMarkerLine(line); });
 }
 
 bool

@@ -239,7 +239,7 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
       return false;
     if (!tokens.empty() && tokens[0][0] == '#') {
       crsComment(line, h);
-      h.segments_marker = h.segments_marker || withoutLineEnd(line) == kPcdSegmentsMarker;
+      h.segments_marker = h.segments_marker || isPcdSegmentsMarkerLine(line);
     }
     if (tokens.empty() || tokens[0][0] == '#')
       continue;
@@ -271,6 +271,12 @@ pcdOriginLine(const Eigen::Vector3d& origin)
   std::snprintf(line, sizeof(line), "# pcl_ls3d origin %.17g %.17g %.17g", origin.x(), origin.y(),
                 origin.z());
   return line;
+}
+
+bool
+isPcdSegmentsMarkerLine(std::string_view line)
+{
+  return detail::withoutLineEnd(line) == kPcdSegmentsMarker;
 }
 
 PcdOriginLine

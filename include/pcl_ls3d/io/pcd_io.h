@@ -49,6 +49,11 @@ namespace io {
 constexpr const char* kPcdSegmentsMarker =
     "# pcl_ls3d segments: label = segment id + 1, not a class";
 
+/// \brief Is \a line (a PCD header line, with or without "\r" or trailing spaces) the
+///        kPcdSegmentsMarker line? The reader and evaluation::isSegmentsFile() both ask this.
+bool
+isPcdSegmentsMarkerLine(std::string_view line);
+
 /// Parses an in-memory PCD file into local coordinates (cloud_io.h describes the origin rule).
 /// Never reads outside [data, data + size); returns false with a one-line reason.
 bool
