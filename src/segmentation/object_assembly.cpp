@@ -382,6 +382,19 @@ relabelByGroup(Groups& groups, std::size_t segments, std::vector<int>& labels)
 
 }  // namespace
 
+std::function<bool(int, int)>
+absorptionContact(const std::vector<Eigen::Vector3f>& points,
+                  const std::vector<SegmentKind>& point_kind, double max_link_length)
+{
+  const double max_sq = max_link_length * max_link_length;
+  return [&points, &point_kind, max_sq](int p, int q) {
+    const auto a = static_cast<std::size_t>(p), b = static_cast<std::size_t>(q);
+    if ((points[a] - points[b]).squaredNorm() > max_sq)
+      return false;
+    return !(point_kind[a] == SegmentKind::Rough && point_kind[b] == SegmentKind::Ground);
+  };
+}
+
 AssemblyReport
 assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
                 int graph_k, const std::vector<float>& residuals, const std::vector<char>& ground,

@@ -3,6 +3,7 @@
 // wire of two spans meeting at a cross arm. Also the link counting between segments.
 #include "segmentation/scenes.h"
 
+#include <pcl_ls3d/segmentation/fragment_absorption.h>
 #include <pcl_ls3d/segmentation/ground_filter.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 #include <pcl_ls3d/segmentation/object_assembly.h>
@@ -778,4 +779,80 @@ TEST(ObjectAssembly, BalconyRowUnderTheEavesIsNotPartOfTheHedgeBelow)
   EXPECT_EQ(labelOf(BALCONY), labelOf(ROOF));
   EXPECT_NE(labelOf(HEDGE), labelOf(ROOF));
   EXPECT_NE(labelOf(HEDGE), labelOf(GROUND));
+}
+
+// The absorption after the assembly counts the assembly's contacts only (absorptionContact):
+// a bush of a few points on a lawn, whose k-NN rows hold a lawn point beside it and a point
+// of a crown 4 m away, stays its own object; a crown fragment touching its crown joins
+// it. The graph is written out: on sparse airborne data a far crown does appear among a
+// bush's nearest neighbours once its own points and the lawn's are used up.
+TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
+{
+  using pcl_ls3d::segmentation::SegmentKind;
+  const int k = 4;
+  std::vector<Eigen::Vector3f> points;
+  std::vector<SegmentKind> kind;
+  std::vector<int> labels, graph;
+  const auto add = [&](float x, float y, float z, SegmentKind sk, int label) {
+    points.emplace_back(x, y, z);
+    kind.push_back(sk);
+    labels.push_back(label);
+    graph.resize(graph.size() + k, -1);
+    return static_cast<int>(points.size()) - 1;
+  };
+  const auto link = [&](int p, std::initializer_list<int> row) {
+    int c = 0;
+    for (const int q : row)
+      graph[static_cast<std::size_t>(p * k + c++)] = q;
+  };
+  // Lawn (segment 0, 40 points) and crown (segment 1, 40 points): 0.3 m grids, each point
+  // linked to its neighbours along the row.
+  std::vector<int> lawn, crown;
+  for (int i = 0; i < 40; ++i)
+    lawn.push_back(add(0.3f * static_cast<float>(i % 20), 0.3f * static_cast<float>(i / 20),
+                       0.0f, SegmentKind::Ground, 0));
+  for (int i = 0; i < 40; ++i)
+    crown.push_back(add(9.0f + 0.3f * static_cast<float>(i % 20),
+                        0.3f * static_cast<float>(i / 20), 3.0f, SegmentKind::Rough, 1));
+  for (const auto* part : {&lawn, &crown})
+    for (std::size_t i = 0; i < part->size(); ++i)
+      link((*part)[i], {(*part)[i > 0 ? i - 1 : i + 1], (*part)[i + 1 < part->size() ? i + 1 : i - 1]});
+  // Bush (segment 2): 4 rough points 0.3 m over the lawn's end at x = 5.7; rows: two bush
+  // points, one lawn point 0.4 m away, one crown point 4 m away.
+  std::vector<int> bush;
+  for (int i = 0; i < 4; ++i)
+    bush.push_back(add(5.6f + 0.1f * static_cast<float>(i), 0.1f, 0.3f, SegmentKind::Rough, 2));
+  for (int i = 0; i < 4; ++i)
+    link(bush[static_cast<std::size_t>(i)],
+         {bush[static_cast<std::size_t>((i + 1) % 4)], bush[static_cast<std::size_t>((i + 2) % 4)],
+          lawn[19], crown[0]});
+  // Crown fragment (segment 3): 3 rough points 0.3 m under the crown's first points.
+  std::vector<int> leaves;
+  for (int i = 0; i < 3; ++i)
+    leaves.push_back(add(9.0f + 0.3f * static_cast<float>(i), 0.0f, 2.7f, SegmentKind::Rough, 3));
+  for (int i = 0; i < 3; ++i)
+    link(leaves[static_cast<std::size_t>(i)],
+         {leaves[static_cast<std::size_t>((i + 1) % 3)], crown[static_cast<std::size_t>(i)]});
+
+  const double max_link = 0.9;  // the growth radius of 0.45 m spacing
+  std::vector<int> assembled = labels;
+  pcl_ls3d::segmentation::absorbFragments(
+      graph, k, assembled, 10,
+      pcl_ls3d::segmentation::absorptionContact(points, kind, max_link));
+  EXPECT_NE(assembled[bush[0]], assembled[crown[0]]) << "the bush joined a crown 4 m away";
+  EXPECT_NE(assembled[bush[0]], assembled[lawn[0]]) << "the bush joined the ground";
+  for (const int p : bush)
+    EXPECT_EQ(assembled[p], assembled[bush[0]]);
+  for (const int p : leaves)
+    EXPECT_EQ(assembled[p], assembled[crown[0]]) << "a touching crown fragment stays apart";
+  EXPECT_EQ(assembled[lawn[0]], assembled[lawn[39]]);
+
+  // Without the length limit (the rule before: only "nothing joins the ground") the bush's one
+  // crown link decides and the bush becomes part of the tree.
+  std::vector<int> unlimited = labels;
+  pcl_ls3d::segmentation::absorbFragments(graph, k, unlimited, 10, [&kind](int p, int q) {
+    return !(kind[static_cast<std::size_t>(p)] == SegmentKind::Rough &&
+             kind[static_cast<std::size_t>(q)] == SegmentKind::Ground);
+  });
+  EXPECT_EQ(unlimited[bush[0]], unlimited[crown[0]]);
 }

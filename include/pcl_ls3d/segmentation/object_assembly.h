@@ -43,6 +43,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -91,6 +92,20 @@ terrainWindowHalfWidth(const AssemblySettings& settings)
 {
   return 2.0 * settings.max_link_length;
 }
+
+/// \brief The links through which a fragment left after the assembly may be absorbed
+///        (absorbFragments' linkable): the assembly's own contacts. A link p → q counts only
+///        when it is no longer than \a max_link_length (segments touch, as in assembleObjects)
+///        and does not lead from a rough point into the ground (nothing joins the ground). A
+///        bush of a few points on a lawn then stays its own object: its ground links do not
+///        count, and neither do the long k-NN links that reach the crown of a tree metres away.
+/// \param[in] points coordinates per point (positions as in the graph)
+/// \param[in] point_kind per point: kind of its segment before any join
+///            (AssemblyReport::point_kind); both vectors must outlive the returned rule
+/// \param[in] max_link_length longest contact [cloud units] (AssemblySettings::max_link_length)
+std::function<bool(int, int)>
+absorptionContact(const std::vector<Eigen::Vector3f>& points,
+                  const std::vector<SegmentKind>& point_kind, double max_link_length);
 
 /// \brief What assembleObjects() did.
 struct AssemblyReport

@@ -354,15 +354,12 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
   assembly_report_ = segmentation::assembleObjects(points_, graph_, grow_.graph_k, residuals,
                                                    ground, a, segment_of_);
   if (min_fragment_size_ > 1) {
-    // The assembly's rule holds here too: nothing joins the ground, so vegetation it left
-    // alone (a bush of a few points on a lawn) stays its own object.
-    const std::vector<segmentation::SegmentKind>& kind = assembly_report_.point_kind;
-    const auto not_into_ground = [&kind](int p, int q) {
-      return !(kind[static_cast<std::size_t>(p)] == segmentation::SegmentKind::Rough &&
-               kind[static_cast<std::size_t>(q)] == segmentation::SegmentKind::Ground);
-    };
-    absorbed_fragments_ += segmentation::absorbFragments(graph_, grow_.graph_k, segment_of_,
-                                                         min_fragment_size_, not_into_ground);
+    // The assembly's rules hold here too: only touching segments join, and nothing joins the
+    // ground, so vegetation it left alone (a bush of a few points on a lawn) stays its own
+    // object.
+    absorbed_fragments_ += segmentation::absorbFragments(
+        graph_, grow_.graph_k, segment_of_, min_fragment_size_,
+        segmentation::absorptionContact(points_, assembly_report_.point_kind, a.max_link_length));
   }
   object_class_ = segmentation::classifyObjects(points_, segment_of_, assembly_report_.point_kind,
                                                 ground, classes_);
