@@ -355,8 +355,8 @@ benchmarkObjectsOnTile(const fs::path& file, const std::string& name, int thread
     objectTargets(name, cmp);
 }
 
-/// Generated scene: objects from the generator's ids, per object type the share recognised
-/// with largest share >= 0.8; roof planes at the plane level (P/R/F1 per plane, gables split).
+/// Point level on the IGN ctview tile (majority mapping): IMRG F1 >= 0.90 per class and at
+/// least MRG's.
 void
 benchmarkIgn(const fs::path& data_dir, int threads)
 {
@@ -407,49 +407,33 @@ sceneSettings(std::uint32_t seed, double size)
   return s;
 }
 
-/// Generated scene: objects from the generator's ids, per object type the share recognised
-/// with largest share >= 0.8; roof planes at the plane level (P/R/F1 per plane, gables split).
-void
-benchmarkObjectsOnScene(std::uint32_t seed, double size, int threads)
+/// Reference objects of a generated scene from its object ids, and per reference object its
+/// generator type (referenceObjectsFromIds numbers objects in order of first appearance).
+bool
+sceneReference(const synth::LabelledScene& scene, const Labelled& data,
+               const std::vector<ev::ClassGroup>& groups, ev::ReferenceObjects& reference,
+               std::vector<synth::ObjectType>& type_of, std::string& error)
 {
-  const synth::LabelledScene scene = synth::makeScene(sceneSettings(seed, size));
-  if (!scene.cloud || scene.cloud->empty()) {
-    std::printf("\nscene %u: makeScene returned no points\n", seed);
-    ++failures;
-    return;
-  }
-  const Labelled data = fromLiDAR(*scene.cloud);
-  std::vector<ev::ClassGroup> groups;
-  std::string error;
-  ev::parseClassGroups("ground=2,building=6,vegetation=3-5,wire=14,tower=15,car=64", groups,
-                       error);
-  ev::ReferenceObjects reference;
   if (!ev::referenceObjectsFromIds(scene.object_id, data.labels, groups,
-                                   ev::defaultExcludedCodes(), reference, error)) {
-    std::printf("\nscene %u: reference objects failed: %s\n", seed, error.c_str());
-    ++failures;
-    return;
+                                   ev::defaultExcludedCodes(), reference, error))
+    return false;
+  type_of.clear();
+  std::map<int, std::size_t> seen;
+  for (std::size_t i = 0; i < scene.object_id.size(); ++i) {
+    const int id = scene.object_id[i];
+    if (id >= 0 && reference.object_of[i] >= 0 && seen.emplace(id, type_of.size()).second)
+      type_of.push_back(scene.objects[static_cast<std::size_t>(id)].type);
   }
-  // referenceObjectsFromIds numbers objects in order of first appearance: map back to types.
-  std::vector<synth::ObjectType> type_of;
-  {
-    std::map<int, std::size_t> seen;
-    for (std::size_t i = 0; i < scene.object_id.size(); ++i) {
-      const int id = scene.object_id[i];
-      if (id >= 0 && reference.object_of[i] >= 0 && seen.emplace(id, type_of.size()).second)
-        type_of.push_back(scene.objects[static_cast<std::size_t>(id)].type);
-    }
-  }
-  const auto cmp = compareObjects("generated scene seed " + std::to_string(seed) + " (objects)",
-                                  data, reference, threads);
-  const ev::ObjectEvaluation& imrg = cmp.evals[0];
-  if (!imrg.failure.empty()) {
-    verdict(false, "scene IMRG failed: " + imrg.failure);
-    return;
-  }
-  printObjectClasses("scene " + std::to_string(seed), cmp.runs[0], data, groups);
-  // Per object type: recognised with largest share >= 0.8 (objects of >= 50 points; smaller
-  // ones — a shrub of a few returns — are listed but not scored).
+  return true;
+}
+
+/// Per object type: recognised with largest share >= 0.8 (objects of >= 50 points; smaller
+/// ones — a shrub of a few returns — are listed but not scored); buildings, trees, cars and
+/// wire spans must all be whole.
+void
+objectTypeVerdicts(std::uint32_t seed, const ev::ObjectEvaluation& imrg,
+                   const std::vector<synth::ObjectType>& type_of)
+{
   std::printf("  IMRG per generated object type: whole (recognised, largest share >= 0.8) / "
               "objects of >= 50 points\n");
   for (auto t : {synth::ObjectType::GROUND, synth::ObjectType::BUILDING, synth::ObjectType::TREE,
@@ -482,10 +466,15 @@ benchmarkObjectsOnScene(std::uint32_t seed, double size, int threads)
       verdict(whole == n, buf);
     }
   }
+}
 
-  // Plane level: reference = roof planes; every other point belongs to its scene object as
-  // "other" (impure segments are not valid), so a plane segment that runs into a wall or the
-  // ground is not counted for the roof.
+/// Plane level: reference = roof planes; every other point belongs to its scene object as
+/// "other" (impure segments are not valid), so a plane segment that runs into a wall or the
+/// ground is not counted for the roof. Roof planes F1 >= 0.95 and every gable in its two planes.
+void
+planeLevelVerdicts(std::uint32_t seed, const synth::LabelledScene& scene,
+                   const ev::SegmentationRun& run)
+{
   const int n_planes = static_cast<int>(scene.planes.size());
   std::vector<int> ids(scene.plane_id.size()), labels(scene.plane_id.size());
   for (std::size_t i = 0; i < ids.size(); ++i) {
@@ -494,12 +483,12 @@ benchmarkObjectsOnScene(std::uint32_t seed, double size, int threads)
     labels[i] = roof ? 1 : 99;
   }
   ev::ReferenceObjects planes_ref;
+  std::string error;
   if (!ev::referenceObjectsFromIds(ids, labels, {{"roof plane", {1}}}, {0}, planes_ref, error)) {
     std::printf("  plane reference failed: %s\n", error.c_str());
     ++failures;
     return;
   }
-  const ev::SegmentationRun& run = cmp.runs[0];
   ev::ObjectEvaluation pe;
   pe.method = "imrg planes";
   pe.seconds = run.seconds_total;
@@ -542,6 +531,41 @@ benchmarkObjectsOnScene(std::uint32_t seed, double size, int threads)
   std::snprintf(buf, sizeof(buf), "scene %u every gable roof in its two planes: %zu / %zu", seed,
                 gables_split, gables);
   verdict(gables_split == gables, buf);
+}
+
+/// Generated scene: objects from the generator's ids, per object type the share recognised
+/// with largest share >= 0.8; roof planes at the plane level (P/R/F1 per plane, gables split).
+void
+benchmarkObjectsOnScene(std::uint32_t seed, double size, int threads)
+{
+  const synth::LabelledScene scene = synth::makeScene(sceneSettings(seed, size));
+  if (!scene.cloud || scene.cloud->empty()) {
+    std::printf("\nscene %u: makeScene returned no points\n", seed);
+    ++failures;
+    return;
+  }
+  const Labelled data = fromLiDAR(*scene.cloud);
+  std::vector<ev::ClassGroup> groups;
+  std::string error;
+  ev::parseClassGroups("ground=2,building=6,vegetation=3-5,wire=14,tower=15,car=64", groups,
+                       error);
+  ev::ReferenceObjects reference;
+  std::vector<synth::ObjectType> type_of;
+  if (!sceneReference(scene, data, groups, reference, type_of, error)) {
+    std::printf("\nscene %u: reference objects failed: %s\n", seed, error.c_str());
+    ++failures;
+    return;
+  }
+  const auto cmp = compareObjects("generated scene seed " + std::to_string(seed) + " (objects)",
+                                  data, reference, threads);
+  const ev::ObjectEvaluation& imrg = cmp.evals[0];
+  if (!imrg.failure.empty()) {
+    verdict(false, "scene IMRG failed: " + imrg.failure);
+    return;
+  }
+  printObjectClasses("scene " + std::to_string(seed), cmp.runs[0], data, groups);
+  objectTypeVerdicts(seed, imrg, type_of);
+  planeLevelVerdicts(seed, scene, cmp.runs[0]);
 }
 
 void
