@@ -386,6 +386,8 @@ std::function<bool(int, int)>
 absorptionContact(const std::vector<Eigen::Vector3f>& points,
                   const std::vector<SegmentKind>& point_kind, double max_link_length)
 {
+  if (points.size() != point_kind.size())
+    return [](int, int) { return false; };
   const double max_sq = max_link_length * max_link_length;
   return [&points, &point_kind, max_sq](int p, int q) {
     const auto a = static_cast<std::size_t>(p), b = static_cast<std::size_t>(q);

@@ -1,6 +1,7 @@
 // The object level of IMRG against constructed scenes with known parts: a gable-roofed house
 // with walls, two touching tree crowns and a crown leaning on the house, on flat ground; and a
-// wire of two spans meeting at a cross arm. Also the link counting between segments.
+// wire of two spans meeting at a cross arm. Also the link counting between segments and the
+// links the fragment absorption after the assembly may use.
 #include "segmentation/scenes.h"
 
 #include <pcl_ls3d/segmentation/fragment_absorption.h>
@@ -781,11 +782,11 @@ TEST(ObjectAssembly, BalconyRowUnderTheEavesIsNotPartOfTheHedgeBelow)
   EXPECT_NE(labelOf(HEDGE), labelOf(GROUND));
 }
 
-// The absorption after the assembly counts the assembly's contacts only (absorptionContact):
-// a bush of a few points on a lawn, whose k-NN rows hold a lawn point beside it and a point
-// of a crown 4 m away, stays its own object; a crown fragment touching its crown joins
-// it. The graph is written out: on sparse airborne data a far crown does appear among a
-// bush's nearest neighbours once its own points and the lawn's are used up.
+// The absorption after the assembly counts short links only, none from rough into ground
+// (absorptionContact): a bush of a few points on a lawn, whose k-NN rows hold a lawn point
+// beside it and a point of a crown over 4 m away, stays its own object; a crown fragment
+// touching its crown joins it. The graph is written out: on sparse airborne data a far crown
+// does appear among a bush's nearest neighbours once its own points and the lawn's are used up.
 TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
 {
   using pcl_ls3d::segmentation::SegmentKind;
@@ -798,16 +799,16 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
     kind.push_back(sk);
     labels.push_back(label);
     graph.resize(graph.size() + k, -1);
-    return static_cast<int>(points.size()) - 1;
+    return points.size() - 1;
   };
-  const auto link = [&](int p, std::initializer_list<int> row) {
-    int c = 0;
-    for (const int q : row)
-      graph[static_cast<std::size_t>(p * k + c++)] = q;
+  const auto link = [&](std::size_t p, std::initializer_list<std::size_t> row) {
+    std::size_t c = 0;
+    for (const std::size_t q : row)
+      graph[p * k + c++] = static_cast<int>(q);
   };
-  // Lawn (segment 0, 40 points) and crown (segment 1, 40 points): 0.3 m grids, each point
-  // linked to its neighbours along the row.
-  std::vector<int> lawn, crown;
+  // Lawn (segment 0, 40 points) and crown (segment 1, 40 points, 3 m up): 0.3 m grids of two
+  // rows, each point linked to the previous and the next point of its segment.
+  std::vector<std::size_t> lawn, crown;
   for (int i = 0; i < 40; ++i)
     lawn.push_back(add(0.3f * static_cast<float>(i % 20), 0.3f * static_cast<float>(i / 20),
                        0.0f, SegmentKind::Ground, 0));
@@ -815,44 +816,52 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
     crown.push_back(add(9.0f + 0.3f * static_cast<float>(i % 20),
                         0.3f * static_cast<float>(i / 20), 3.0f, SegmentKind::Rough, 1));
   for (const auto* part : {&lawn, &crown})
-    for (std::size_t i = 0; i < part->size(); ++i)
-      link((*part)[i], {(*part)[i > 0 ? i - 1 : i + 1], (*part)[i + 1 < part->size() ? i + 1 : i - 1]});
+    for (std::size_t i = 0; i < part->size(); ++i) {
+      const std::size_t next = i + 1 < part->size() ? i + 1 : i - 1;
+      link((*part)[i], {(*part)[i > 0 ? i - 1 : 1], (*part)[next]});
+    }
   // Bush (segment 2): 4 rough points 0.3 m over the lawn's end at x = 5.7; rows: two bush
-  // points, one lawn point 0.4 m away, one crown point 4 m away.
-  std::vector<int> bush;
+  // points, one lawn point 0.32-0.37 m away, one crown point 4.1-4.4 m away.
+  std::vector<std::size_t> bush;
   for (int i = 0; i < 4; ++i)
     bush.push_back(add(5.6f + 0.1f * static_cast<float>(i), 0.1f, 0.3f, SegmentKind::Rough, 2));
-  for (int i = 0; i < 4; ++i)
-    link(bush[static_cast<std::size_t>(i)],
-         {bush[static_cast<std::size_t>((i + 1) % 4)], bush[static_cast<std::size_t>((i + 2) % 4)],
-          lawn[19], crown[0]});
+  for (std::size_t i = 0; i < 4; ++i)
+    link(bush[i], {bush[(i + 1) % 4], bush[(i + 2) % 4], lawn[19], crown[0]});
   // Crown fragment (segment 3): 3 rough points 0.3 m under the crown's first points.
-  std::vector<int> leaves;
+  std::vector<std::size_t> leaves;
   for (int i = 0; i < 3; ++i)
     leaves.push_back(add(9.0f + 0.3f * static_cast<float>(i), 0.0f, 2.7f, SegmentKind::Rough, 3));
-  for (int i = 0; i < 3; ++i)
-    link(leaves[static_cast<std::size_t>(i)],
-         {leaves[static_cast<std::size_t>((i + 1) % 3)], crown[static_cast<std::size_t>(i)]});
+  for (std::size_t i = 0; i < 3; ++i)
+    link(leaves[i], {leaves[(i + 1) % 3], crown[i]});
 
-  const double max_link = 0.9;  // the growth radius of 0.45 m spacing
+  // 0.9 m: longer than every link inside a part and the leaves' (0.3 m), shorter than the
+  // bush's crown links.
+  const double max_link = 0.9;
   std::vector<int> assembled = labels;
-  pcl_ls3d::segmentation::absorbFragments(
-      graph, k, assembled, 10,
-      pcl_ls3d::segmentation::absorptionContact(points, kind, max_link));
+  EXPECT_EQ(pcl_ls3d::segmentation::absorbFragments(
+                graph, k, assembled, 10,
+                pcl_ls3d::segmentation::absorptionContact(points, kind, max_link)),
+            1u)
+      << "only the leaves join";
   EXPECT_NE(assembled[bush[0]], assembled[crown[0]]) << "the bush joined a crown 4 m away";
   EXPECT_NE(assembled[bush[0]], assembled[lawn[0]]) << "the bush joined the ground";
-  for (const int p : bush)
-    EXPECT_EQ(assembled[p], assembled[bush[0]]);
-  for (const int p : leaves)
-    EXPECT_EQ(assembled[p], assembled[crown[0]]) << "a touching crown fragment stays apart";
-  EXPECT_EQ(assembled[lawn[0]], assembled[lawn[39]]);
+  EXPECT_EQ(assembled[leaves[0]], assembled[crown[0]]) << "a touching crown fragment stays apart";
 
-  // Without the length limit (the rule before: only "nothing joins the ground") the bush's one
-  // crown link decides and the bush becomes part of the tree.
+  // Without the length limit (the rule before: only no rough point into the ground) the
+  // bush's crown links decide and the bush becomes part of the tree.
   std::vector<int> unlimited = labels;
-  pcl_ls3d::segmentation::absorbFragments(graph, k, unlimited, 10, [&kind](int p, int q) {
-    return !(kind[static_cast<std::size_t>(p)] == SegmentKind::Rough &&
-             kind[static_cast<std::size_t>(q)] == SegmentKind::Ground);
-  });
+  EXPECT_EQ(pcl_ls3d::segmentation::absorbFragments(graph, k, unlimited, 10, [&kind](int p, int q) {
+              return !(kind[static_cast<std::size_t>(p)] == SegmentKind::Rough &&
+                       kind[static_cast<std::size_t>(q)] == SegmentKind::Ground);
+            }),
+            2u);
   EXPECT_EQ(unlimited[bush[0]], unlimited[crown[0]]);
+
+  // Sizes that differ: no link counts, nothing is absorbed.
+  std::vector<int> mismatched = labels;
+  const std::vector<SegmentKind> short_kinds(3, SegmentKind::Rough);
+  EXPECT_EQ(pcl_ls3d::segmentation::absorbFragments(
+                graph, k, mismatched, 10,
+                pcl_ls3d::segmentation::absorptionContact(points, short_kinds, max_link)),
+            0u);
 }

@@ -94,14 +94,17 @@ terrainWindowHalfWidth(const AssemblySettings& settings)
 }
 
 /// \brief The links through which a fragment left after the assembly may be absorbed
-///        (absorbFragments' linkable): the assembly's own contacts. A link p → q counts only
-///        when it is no longer than \a max_link_length (segments touch, as in assembleObjects)
-///        and does not lead from a rough point into the ground (nothing joins the ground). A
-///        bush of a few points on a lawn then stays its own object: its ground links do not
-///        count, and neither do the long k-NN links that reach the crown of a tree metres away.
+///        (absorbFragments' linkable). A link p → q counts only when it is no longer than
+///        \a max_link_length (the growth radius: as far apart as points of two segments the
+///        assembly calls touching may be) and does not lead from a rough point into a
+///        ground-kind point. A bush of a few points on a lawn then stays its own object: its
+///        ground links do not count, and neither do the long k-NN links that reach the crown of
+///        a tree metres away. One such link is enough (the assembly asks for min_links): a
+///        fragment has few points.
 /// \param[in] points coordinates per point (positions as in the graph)
 /// \param[in] point_kind per point: kind of its segment before any join
-///            (AssemblyReport::point_kind); both vectors must outlive the returned rule
+///            (AssemblyReport::point_kind); both vectors must outlive the returned rule, which
+///            counts no link when their sizes differ
 /// \param[in] max_link_length longest contact [cloud units] (AssemblySettings::max_link_length)
 std::function<bool(int, int)>
 absorptionContact(const std::vector<Eigen::Vector3f>& points,

@@ -354,9 +354,9 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
   assembly_report_ = segmentation::assembleObjects(points_, graph_, grow_.graph_k, residuals,
                                                    ground, a, segment_of_);
   if (min_fragment_size_ > 1) {
-    // The assembly's rules hold here too: only touching segments join, and nothing joins the
-    // ground, so vegetation it left alone (a bush of a few points on a lawn) stays its own
-    // object.
+    // Only touching fragments join (links up to the growth radius), and rough ones never into
+    // the ground, so vegetation the assembly left alone (a bush of a few points on a lawn)
+    // stays its own object.
     absorbed_fragments_ += segmentation::absorbFragments(
         graph_, grow_.graph_k, segment_of_, min_fragment_size_,
         segmentation::absorptionContact(points_, assembly_report_.point_kind, a.max_link_length));
