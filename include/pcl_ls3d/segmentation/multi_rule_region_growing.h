@@ -56,7 +56,9 @@ namespace pcl_ls3d {
 ///     marks the ground, each segment gets a kind (ground, solid, wall, rough, linear) and
 ///     touching segments of kinds that belong together join into whole objects: a building
 ///     (roof planes, walls, edge lines, chimneys), a tree group, the ground, a wire span
-///     (object_assembly.h); fragments are absorbed once more.
+///     (object_assembly.h); fragments are absorbed once more, through touching links only
+///     (no longer than the growth radius, none from a rough fragment into the ground:
+///     absorptionContact), so a bush on a lawn stays its own object.
 ///  7. object classes (an addition, with the assembly): each object is ground, building,
 ///     vegetation, wire, pole, car or unclassified by the kinds of its segments, its height
 ///     above the terrain and its size (object_classes.h).
