@@ -794,7 +794,7 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
   std::vector<Eigen::Vector3f> points;
   std::vector<SegmentKind> kind;
   std::vector<int> labels, graph;
-  const auto add = [&](float x, float y, float z, SegmentKind sk, int label) {
+  const auto addPoint = [&](float x, float y, float z, SegmentKind sk, int label) {
     points.emplace_back(x, y, z);
     kind.push_back(sk);
     labels.push_back(label);
@@ -810,11 +810,11 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
   // rows, each point linked to the previous and the next point of its segment.
   std::vector<std::size_t> lawn, crown;
   for (int i = 0; i < 40; ++i)
-    lawn.push_back(add(0.3f * static_cast<float>(i % 20), 0.3f * static_cast<float>(i / 20),
-                       0.0f, SegmentKind::Ground, 0));
+    lawn.push_back(addPoint(0.3f * static_cast<float>(i % 20),
+                            0.3f * static_cast<float>(i / 20), 0.0f, SegmentKind::Ground, 0));
   for (int i = 0; i < 40; ++i)
-    crown.push_back(add(9.0f + 0.3f * static_cast<float>(i % 20),
-                        0.3f * static_cast<float>(i / 20), 3.0f, SegmentKind::Rough, 1));
+    crown.push_back(addPoint(9.0f + 0.3f * static_cast<float>(i % 20),
+                             0.3f * static_cast<float>(i / 20), 3.0f, SegmentKind::Rough, 1));
   for (const auto* part : {&lawn, &crown})
     for (std::size_t i = 0; i < part->size(); ++i) {
       const std::size_t next = i + 1 < part->size() ? i + 1 : i - 1;
@@ -824,13 +824,15 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
   // points, one lawn point 0.32-0.37 m away, one crown point 4.1-4.4 m away.
   std::vector<std::size_t> bush;
   for (int i = 0; i < 4; ++i)
-    bush.push_back(add(5.6f + 0.1f * static_cast<float>(i), 0.1f, 0.3f, SegmentKind::Rough, 2));
+    bush.push_back(
+        addPoint(5.6f + 0.1f * static_cast<float>(i), 0.1f, 0.3f, SegmentKind::Rough, 2));
   for (std::size_t i = 0; i < 4; ++i)
     link(bush[i], {bush[(i + 1) % 4], bush[(i + 2) % 4], lawn[19], crown[0]});
   // Crown fragment (segment 3): 3 rough points 0.3 m under the crown's first points.
   std::vector<std::size_t> leaves;
   for (int i = 0; i < 3; ++i)
-    leaves.push_back(add(9.0f + 0.3f * static_cast<float>(i), 0.0f, 2.7f, SegmentKind::Rough, 3));
+    leaves.push_back(
+        addPoint(9.0f + 0.3f * static_cast<float>(i), 0.0f, 2.7f, SegmentKind::Rough, 3));
   for (std::size_t i = 0; i < 3; ++i)
     link(leaves[i], {leaves[(i + 1) % 3], crown[i]});
 
