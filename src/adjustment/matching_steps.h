@@ -1,8 +1,8 @@
 #pragma once
 // Internal steps of SurfaceMatchingCore::run (not installed): the pair's frames and starting
 // values, the source-noise estimate, the design rows and normal equations of one iteration, and
-// the precision and reliability fields of the report. LinearizedMatching (sample_consensus/)
-// shares the overlap and degenerate-target checks, so both paths name a failure alike.
+// the precision and reliability fields of the report. The overlap and degenerate-target checks
+// live in rules/target_overlap.h, shared with LinearizedMatching (sample_consensus/).
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
 #include <pcl_ls3d/adjustment/gauss_markov.h>
@@ -11,6 +11,8 @@
 #include <pcl_ls3d/adjustment/pair_matcher.h>
 #include <pcl_ls3d/adjustment/parameter_block.h>
 #include <pcl_ls3d/rules/target_surface.h>
+
+#include "../rules/target_overlap.h"
 
 #include <Eigen/Geometry>
 
@@ -32,14 +34,6 @@ struct PairSetup
   double radius = 0.0;                  ///< largest |reduced source point|
 };
 
-/// Centroid of the source points whose image under the guess falls into the target's bounding
-/// box (grown by a margin): the reduction origin o_s, near the overlap; also the target's box and
-/// the indices of those source points. False: no overlap.
-bool
-overlapCentroid(const std::vector<Eigen::Vector3d>& source, const TargetSurface& target,
-                const Eigen::Matrix4d& guess, double max_distance, Eigen::Vector3d& centroid,
-                Eigen::AlignedBox3d& box, std::vector<int>& inside);
-
 /// Reduction to a local origin near the overlap (conditioning on georeferenced data), starting
 /// values from the guess (eq. 9; fixed parameters start exactly at L_e), and the reduced source
 /// points. False: no source point lies over the target.
@@ -47,22 +41,6 @@ bool
 setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& target,
           const Eigen::Matrix4d& guess, const AdjustmentSettings& settings, PairSetup& setup,
           std::vector<Eigen::Vector3d>& reduced);
-
-/// Why no rule found a conjugate point although source points lie over the target: "collinear"
-/// or "coincident" when the target's points nearest to every sampled source point (under the
-/// guess) are so, and no local surface can be fitted there; "" when they span a surface.
-std::string
-degenerateTarget(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& inside,
-                 const Eigen::Matrix4d& guess, const TargetSurface& target);
-
-/// The failure line for a degenerate target, in the caller's names for the two clouds ("target"
-/// and "source", "reference" and "epoch"): "no observation: the <target> has no surface the
-/// rule can fit where the <source> lies over it (degenerate: its points there are collinear)";
-/// "" when degenerateTarget() finds a surface.
-std::string
-degenerateTargetReason(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& inside,
-                       const Eigen::Matrix4d& guess, const TargetSurface& target,
-                       const std::string& target_name, const std::string& source_name);
 
 /// Column scaling of the rank test: a unit change of each scaled parameter displaces the edge
 /// of the data by about one unit.

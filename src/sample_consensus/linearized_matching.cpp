@@ -2,7 +2,7 @@
 
 #include <pcl_ls3d/adjustment/normal_equations.h>
 
-#include "../adjustment/matching_steps.h"  // the pair set-up's overlap and degeneracy checks
+#include "../rules/target_overlap.h"  // the pair set-up's overlap and degeneracy checks
 
 #include <Eigen/Geometry>
 
