@@ -253,6 +253,62 @@ readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std:
          checkPointBlock(h, size, error);
 }
 
+namespace {
+
+/// Pass 1 over the records: their integer bounds (\a box) and from them the file coordinates'
+/// bounds in \a info (a negative scale swaps the ends). False: scale and offset give
+/// non-finite coordinates.
+bool
+readFileBounds(const std::uint8_t* block, std::size_t n, const LasHeaderInfo& h,
+               las::IntegerBox& box, CloudInfo& info, std::string& error)
+{
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint8_t* r = block + i * h.record_length;
+    for (int k = 0; k < 3; ++k)
+      box.add(k, las::get<std::int32_t>(r + 4 * k));
+  }
+  if (n == 0)
+    return true;
+  for (int k = 0; k < 3; ++k) {
+    const double a = box.lo[k] * h.scale[k] + h.offset[k], b = box.hi[k] * h.scale[k] + h.offset[k];
+    info.min_file[k] = std::min(a, b);
+    info.max_file[k] = std::max(a, b);
+  }
+  if (!info.min_file.allFinite() || !info.max_file.allFinite()) {
+    error = "scale and offset give non-finite coordinates";
+    return false;
+  }
+  return true;
+}
+
+/// One point record in the local frame: x_local = X * s + \a shift (offset − origin), one double
+/// multiply-add per coordinate; the attribute bits where the point format puts them.
+void
+decodeRecord(const std::uint8_t* r, const LasHeaderInfo& h, const Eigen::Vector3d& shift,
+             std::size_t gps_offset, PointLiDAR& p)
+{
+  p.x = static_cast<float>(las::get<std::int32_t>(r) * h.scale[0] + shift[0]);
+  p.y = static_cast<float>(las::get<std::int32_t>(r + 4) * h.scale[1] + shift[1]);
+  p.z = static_cast<float>(las::get<std::int32_t>(r + 8) * h.scale[2] + shift[2]);
+  p.intensity = static_cast<float>(las::get<std::uint16_t>(r + 12));
+  const std::uint8_t returns = r[14];
+  if (h.point_format >= 6) {
+    p.return_number = returns & 0x0F;
+    p.number_of_returns = returns >> 4;
+    p.classification = r[16];
+    p.point_source_id = las::get<std::uint16_t>(r + 20);
+  }
+  else {
+    p.return_number = returns & 0x07;
+    p.number_of_returns = (returns >> 3) & 0x07;
+    p.classification = r[15] & 0x1F;
+    p.point_source_id = las::get<std::uint16_t>(r + 18);
+  }
+  p.gps_time = gps_offset ? las::get<double>(r + gps_offset) : 0.0;
+}
+
+}  // namespace
+
 bool
 readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
         CloudInfo& info, std::string& error, const LoadOptions& options)
@@ -264,7 +320,6 @@ readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
     return false;
   const LasHeaderInfo& h = info.las;
   const std::size_t n = static_cast<std::size_t>(h.point_count);
-  const std::size_t stride = h.record_length;
   const std::uint8_t* block = data + h.offset_to_points;
   info.points_in_file = n;
   info.fields = {"x", "y", "z", "intensity", "return_number", "number_of_returns",
@@ -273,62 +328,23 @@ readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
   if (gps_offset)
     info.fields.push_back("gps_time");
 
-  // Pass 1: integer bounds -> file bounds -> origin.
   las::IntegerBox box;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t* r = block + i * stride;
-    for (int k = 0; k < 3; ++k)
-      box.add(k, las::get<std::int32_t>(r + 4 * k));
-  }
-  const std::int32_t* lo = box.lo;
-  const std::int32_t* hi = box.hi;
-  if (n > 0) {
-    for (int k = 0; k < 3; ++k) {
-      const double a = lo[k] * h.scale[k] + h.offset[k], b = hi[k] * h.scale[k] + h.offset[k];
-      info.min_file[k] = std::min(a, b);  // a negative scale swaps them
-      info.max_file[k] = std::max(a, b);
-    }
-    if (!info.min_file.allFinite() || !info.max_file.allFinite()) {
-      error = "scale and offset give non-finite coordinates";
-      return false;
-    }
-  }
+  if (!readFileBounds(block, n, h, box, info, error))
+    return false;
   info.origin = options.use_origin ? options.origin : chooseOrigin(info.min_file, info.max_file);
-  // x_local = X * s + (offset - origin): one double multiply-add per coordinate. Its extremes
-  // (at the integer bounds) must fit in a float.
+  // The local coordinates' extremes (at the integer bounds) must fit in a float.
   const Eigen::Vector3d shift = h.offset - info.origin;
   Eigen::Vector3d local_lo, local_hi;
   for (int k = 0; k < 3; ++k) {
-    local_lo[k] = lo[k] * h.scale[k] + shift[k];
-    local_hi[k] = hi[k] * h.scale[k] + shift[k];
+    local_lo[k] = box.lo[k] * h.scale[k] + shift[k];
+    local_hi[k] = box.hi[k] * h.scale[k] + shift[k];
   }
   if (n > 0 && !detail::fitsInFloat(local_lo, local_hi, Eigen::Vector3d::Zero(), error))
     return false;
-  const bool new_layout = h.point_format >= 6;
 
   cloud.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t* r = block + i * stride;
-    PointLiDAR& p = cloud[i];
-    p.x = static_cast<float>(las::get<std::int32_t>(r) * h.scale[0] + shift[0]);
-    p.y = static_cast<float>(las::get<std::int32_t>(r + 4) * h.scale[1] + shift[1]);
-    p.z = static_cast<float>(las::get<std::int32_t>(r + 8) * h.scale[2] + shift[2]);
-    p.intensity = static_cast<float>(las::get<std::uint16_t>(r + 12));
-    const std::uint8_t returns = r[14];
-    if (new_layout) {
-      p.return_number = returns & 0x0F;
-      p.number_of_returns = returns >> 4;
-      p.classification = r[16];
-      p.point_source_id = las::get<std::uint16_t>(r + 20);
-    }
-    else {
-      p.return_number = returns & 0x07;
-      p.number_of_returns = (returns >> 3) & 0x07;
-      p.classification = r[15] & 0x1F;
-      p.point_source_id = las::get<std::uint16_t>(r + 18);
-    }
-    p.gps_time = gps_offset ? las::get<double>(r + gps_offset) : 0.0;
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    decodeRecord(block + i * h.record_length, h, shift, gps_offset, cloud[i]);
   cloud.width = static_cast<std::uint32_t>(n);
   cloud.height = 1;
   cloud.is_dense = true;
