@@ -1,5 +1,7 @@
 #include "matching_steps.h"
 
+#include "../rules/target_overlap.h"
+
 #include <pcl_ls3d/adjustment/surface_noise.h>
 
 #include <algorithm>

@@ -12,8 +12,6 @@
 #include <pcl_ls3d/adjustment/parameter_block.h>
 #include <pcl_ls3d/rules/target_surface.h>
 
-#include "../rules/target_overlap.h"
-
 #include <Eigen/Geometry>
 
 #include <string>

@@ -6,6 +6,7 @@
 #include <pcl_ls3d/adjustment/surface_noise.h>
 
 #include "matching_steps.h"
+#include "../rules/target_overlap.h"
 
 #include <algorithm>
 #include <cmath>

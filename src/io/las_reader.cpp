@@ -237,24 +237,6 @@ checkPointBlock(const LasHeaderInfo& h, std::size_t size, std::string& error)
   return true;
 }
 
-}  // namespace
-
-bool
-readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
-{
-  // `h` is left as it was for a file that is no LAS header at all; later stages fill it in order,
-  // so a failing check leaves what was read up to it.
-  if (!checkSignature(data, size, error))
-    return false;
-  h = LasHeaderInfo();
-  return readVersion(data, size, h, error) && readPointFormat(data, h, error) &&
-         readLegacyFields(data, h, error) && readPointCount(data, h, error) &&
-         checkPointOffset(h, size, error) && readVlrs(data, h, error) &&
-         checkPointBlock(h, size, error);
-}
-
-namespace {
-
 /// Pass 1 over the records: their integer bounds (\a box) and from them the file coordinates'
 /// bounds in \a info (a negative scale swaps the ends). False: scale and offset give
 /// non-finite coordinates.
@@ -308,6 +290,20 @@ decodeRecord(const std::uint8_t* r, const LasHeaderInfo& h, const Eigen::Vector3
 }
 
 }  // namespace
+
+bool
+readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
+{
+  // `h` is left as it was for a file that is no LAS header at all; later stages fill it in order,
+  // so a failing check leaves what was read up to it.
+  if (!checkSignature(data, size, error))
+    return false;
+  h = LasHeaderInfo();
+  return readVersion(data, size, h, error) && readPointFormat(data, h, error) &&
+         readLegacyFields(data, h, error) && readPointCount(data, h, error) &&
+         checkPointOffset(h, size, error) && readVlrs(data, h, error) &&
+         checkPointBlock(h, size, error);
+}
 
 bool
 readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,

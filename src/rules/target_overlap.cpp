@@ -5,7 +5,6 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
-#include <cmath>
 
 namespace pcl_ls3d {
 namespace detail {

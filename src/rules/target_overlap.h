@@ -1,7 +1,7 @@
 #pragma once
-// Checks of a pair before any conjugate point is sought (not installed): does the source, under
-// the guess, lie over the target, and can a local surface be fitted to the target there? Shared
-// by the LS3D pair engine (adjustment/) and LinearizedMatching (sample_consensus/), so both
+// Checks of a pair (not installed): does the source, under the guess, lie over the target (before
+// any conjugate point is sought), and, when no rule found one, is the target degenerate there?
+// Shared by the LS3D pair engine (adjustment/) and LinearizedMatching (sample_consensus/), so both
 // paths name a failure alike.
 #include <pcl_ls3d/rules/target_surface.h>
 
