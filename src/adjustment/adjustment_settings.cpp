@@ -1,5 +1,7 @@
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
 
+#include <pcl_ls3d/common/similarity_transform.h>
+
 #include <cmath>
 
 namespace pcl_ls3d {
@@ -111,6 +113,25 @@ AdjustmentSettings::isValid(std::string* why) const
   if (!(determinability_threshold > 0.0) || determinability_threshold >= 1.0)
     return fail("determinability_threshold must be in (0, 1)");
   return true;
+}
+
+ParameterBlock
+sourceBlockFromGuess(const Eigen::Matrix4d& guess, const Eigen::Vector3d& reduction_origin,
+                     const AdjustmentSettings& settings)
+{
+  ParameterBlock block;
+  block.input_origin = reduction_origin;
+  block.output_origin = (guess * reduction_origin.homogeneous()).head<3>();
+  block.values = SimilarityTransform::fromMatrix(
+                     globalToLocal(guess, block.input_origin, block.output_origin))
+                     .vector();
+  block.values.head<3>().setZero();  // o_t = guess(o_s) by construction
+  block.apriori_values = settings.apriori_from_guess ? block.values : settings.apriori_values;
+  block.apriori_weights = settings.apriori_weights;
+  for (int i = 0; i < 7; ++i)
+    if (settings.isFixed(i))
+      block.values[i] = block.apriori_values[i];
+  return block;
 }
 
 }  // namespace pcl_ls3d

@@ -20,18 +20,8 @@ setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& targe
   if (!overlapCentroid(source, target, guess, settings.max_correspondence_distance, o_s,
                        setup.target_box, setup.inside))
     return false;
-  const Eigen::Vector3d o_t = (guess * o_s.homogeneous()).head<3>();
-  ParameterBlock& block = setup.source;
-  block.input_origin = o_s;
-  block.output_origin = o_t;
-  block.values = SimilarityTransform::fromMatrix(globalToLocal(guess, o_s, o_t)).vector();
-  block.values.head<3>().setZero();  // o_t = guess(o_s) by construction
-  block.apriori_values = settings.apriori_from_guess ? block.values : settings.apriori_values;
-  block.apriori_weights = settings.apriori_weights;
-  for (int i = 0; i < 7; ++i)
-    if (settings.isFixed(i))
-      block.values[i] = block.apriori_values[i];
-  setup.target = ParameterBlock::fixedIdentity(o_t);
+  setup.source = sourceBlockFromGuess(guess, o_s, settings);
+  setup.target = ParameterBlock::fixedIdentity(setup.source.output_origin);
 
   reduced.resize(source.size());
   setup.radius = 0.0;

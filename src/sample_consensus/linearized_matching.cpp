@@ -32,18 +32,8 @@ LinearizedMatching::reset(const std::vector<Eigen::Vector3d>& points, const Targ
                                                      settings.max_correspondence_distance, o_s, box, inside))
     return fail(TerminationType::NO_OVERLAP,
                 "no epoch point falls over the reference's extent under the initial guess");
-  const Eigen::Vector3d o_t = (guess * o_s.homogeneous()).head<3>();
-  block_ = ParameterBlock();
-  block_.input_origin = o_s;
-  block_.output_origin = o_t;
-  block_.values = SimilarityTransform::fromMatrix(globalToLocal(guess, o_s, o_t)).vector();
-  block_.values.head<3>().setZero();
-  block_.apriori_values = settings.apriori_from_guess ? block_.values : settings.apriori_values;
-  block_.apriori_weights = settings.apriori_weights;
-  for (int i = 0; i < 7; ++i)
-    if (settings.isFixed(i))
-      block_.values[i] = block_.apriori_values[i];
-  target_block_ = ParameterBlock::fixedIdentity(o_t);
+  block_ = sourceBlockFromGuess(guess, o_s, settings);
+  target_block_ = ParameterBlock::fixedIdentity(block_.output_origin);
 
   reduced_.resize(points.size());
   double radius = 0.0;

@@ -179,4 +179,13 @@ struct AdjustmentSettings
   isValid(std::string* why = nullptr) const;
 };
 
+/// \brief The source body of a pair reduced about \a reduction_origin (o_s), with the output
+///        origin o_t = guess(o_s): starting values from the guess (eq. 9's L_e when
+///        apriori_from_guess; translations 0, since o_t is the image of o_s), the a-priori values
+///        and weights of \a settings, and every fixed parameter exactly at its a-priori value.
+///        The LS3D pair engine and LinearizedMatching (robust matching) start from it alike.
+ParameterBlock
+sourceBlockFromGuess(const Eigen::Matrix4d& guess, const Eigen::Vector3d& reduction_origin,
+                     const AdjustmentSettings& settings);
+
 }  // namespace pcl_ls3d
