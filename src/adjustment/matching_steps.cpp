@@ -33,15 +33,6 @@ setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& targe
   return true;
 }
 
-Vector7d
-rankTestScaling(double radius)
-{
-  const double inv_r = radius > 0.0 ? 1.0 / radius : 1.0;
-  Vector7d scaling;
-  scaling << 1, 1, 1, inv_r, inv_r, inv_r, inv_r;
-  return scaling;
-}
-
 double
 sourceNoise(const std::vector<Eigen::Vector3d>& reduced, const PairSetup& setup)
 {

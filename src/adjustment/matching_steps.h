@@ -40,11 +40,6 @@ setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& targe
           const Eigen::Matrix4d& guess, const AdjustmentSettings& settings, PairSetup& setup,
           std::vector<Eigen::Vector3d>& reduced);
 
-/// Column scaling of the rank test: a unit change of each scaled parameter displaces the edge
-/// of the data by about one unit.
-Vector7d
-rankTestScaling(double radius);
-
 /// σ_s of the source from its own roughness around the points over the target (~30 neighbours
 /// each), for the errors-in-variables correction; 0 when it cannot be estimated.
 double

@@ -76,4 +76,13 @@ SimilarityLinearization::designRow(const Eigen::Vector3d& u, const Eigen::Vector
   return a;
 }
 
+Vector7d
+rankTestScaling(double radius)
+{
+  const double inv_r = radius > 0.0 ? 1.0 / radius : 1.0;
+  Vector7d scaling;
+  scaling << 1, 1, 1, inv_r, inv_r, inv_r, inv_r;
+  return scaling;
+}
+
 }  // namespace pcl_ls3d

@@ -2,6 +2,7 @@
 #include <pcl_ls3d/adjustment/iteration_control.h>
 #include <pcl_ls3d/adjustment/noise_floor.h>
 #include <pcl_ls3d/adjustment/quality_gate.h>
+#include <pcl_ls3d/adjustment/similarity_jacobian.h>
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
 #include <pcl_ls3d/adjustment/surface_noise.h>
 

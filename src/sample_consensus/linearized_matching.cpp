@@ -1,6 +1,7 @@
 #include <pcl_ls3d/sample_consensus/linearized_matching.h>
 
 #include <pcl_ls3d/adjustment/normal_equations.h>
+#include <pcl_ls3d/adjustment/similarity_jacobian.h>
 
 #include "../rules/target_overlap.h"  // the pair set-up's overlap and degeneracy checks
 
@@ -46,8 +47,7 @@ LinearizedMatching::reset(const std::vector<Eigen::Vector3d>& points, const Targ
   problem_.apriori_values = block_.apriori_values;
   problem_.apriori_weights = block_.apriori_weights;
   problem_.determinability_threshold = settings.determinability_threshold;
-  const double inv_r = radius > 0.0 ? 1.0 / radius : 1.0;
-  problem_.scaling = (Eigen::VectorXd(7) << 1, 1, 1, inv_r, inv_r, inv_r, inv_r).finished();
+  problem_.scaling = rankTestScaling(radius);
   matcher_.reset(reduced_, reference, rule, settings.max_correspondence_distance);
   if (!relinearize(block_.values)) {
     // Points over the reference and still no conjugate point: a reference without a surface

@@ -37,4 +37,11 @@ private:
   Eigen::Matrix3d R_, mR_, mdR_phi_, mdR_omega_, mdR_kappa_;
 };
 
+/// \brief Column scaling of the rank test for the 7 parameters of a body whose reduced points
+///        reach \a radius from its origin: a unit change of each scaled parameter (translation,
+///        angle × radius, scale × radius) displaces the edge of the data by about one unit.
+///        1 for a radius ≤ 0.
+Vector7d
+rankTestScaling(double radius);
+
 }  // namespace pcl_ls3d
