@@ -54,6 +54,7 @@ struct Labelled
 {
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
   std::vector<int> labels;
+  std::vector<std::uint8_t> returns;  ///< number of returns per point (all 1: not recorded)
 };
 
 Labelled
@@ -62,11 +63,13 @@ fromLiDAR(const pcl::PointCloud<PointLiDAR>& in)
   Labelled out;
   out.cloud->resize(in.size());
   out.labels.resize(in.size());
+  out.returns.resize(in.size());
   for (std::size_t i = 0; i < in.size(); ++i) {
     (*out.cloud)[i].x = in[i].x;
     (*out.cloud)[i].y = in[i].y;
     (*out.cloud)[i].z = in[i].z;
     out.labels[i] = in[i].classification;
+    out.returns[i] = in[i].number_of_returns;
   }
   return out;
 }
@@ -151,7 +154,7 @@ evaluateAll(const std::string& title, const Labelled& data,
     std::string error;
     ev::SegmentationEvaluation e;
     e.method = ev::toString(m);
-    if (!ev::runSegmentation(data.cloud, s, run, error)) {
+    if (!ev::runSegmentation(data.cloud, s, run, error, data.returns)) {
       std::printf("  %s failed: %s\n", e.method.c_str(), error.c_str());
       evals.push_back(e);
       continue;
@@ -229,7 +232,7 @@ compareObjects(const std::string& title, const Labelled& data,
     ev::ObjectEvaluation e;
     e.method = ev::toString(m);
     const bool ok = (m != ev::SegmentationMethod::VoxelGrid || imrg_segments > 0)
-                        ? ev::runSegmentation(data.cloud, s, run, error)
+                        ? ev::runSegmentation(data.cloud, s, run, error, data.returns)
                         : (error = "no IMRG segment count", false);
     e.seconds = run.seconds_total;
     if (!ok) {

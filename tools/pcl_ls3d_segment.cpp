@@ -62,7 +62,8 @@ printHelp(const char* prog)
 {
   print_info("Multi-factor segmentation by improved multi-rule region growing (Wang et al. 2021).\n\n"
              "Syntax: %s INPUT [options]\n"
-             "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference)\n"
+             "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference;\n"
+             "                     a LAS file's numbers of returns tell parked cars from shrubs)\n"
              "  -o SEGMENTS.pcd    every input point in input order: x y z float, local frame\n"
              "                     (file coordinate = x + origin; origin in the header line\n"
              "                     '# pcl_ls3d origin X Y Z' and the JSON), label = segment + 1\n"
@@ -252,9 +253,18 @@ struct Input
   io::CloudInfo info;
   pcl::PointCloud<pcl::PointXYZ>::Ptr xyz{new pcl::PointCloud<pcl::PointXYZ>};
   std::vector<int> reference;  ///< LAS classification / PCD label per point
+  std::vector<std::uint8_t> returns;  ///< number of returns per point (all 1 where not recorded)
   std::string wkt;             ///< CRS of the coordinates; empty: none declared
   double seconds = 0.0;
 };
+
+/// Share of the points from pulses with several returns; 0 when the file records none (all 1).
+double
+multipleReturnShare(const std::vector<std::uint8_t>& returns)
+{
+  const auto multiple = std::count_if(returns.begin(), returns.end(), [](std::uint8_t r) { return r > 1; });
+  return returns.empty() ? 0.0 : static_cast<double>(multiple) / static_cast<double>(returns.size());
+}
 
 bool
 loadInput(const Options& o, Input& in, std::string& error)
@@ -285,9 +295,11 @@ loadInput(const Options& o, Input& in, std::string& error)
     return (error = "need at least 3 finite points, got " + std::to_string(n)), false;
   in.xyz->resize(n);
   in.reference.resize(n);
+  in.returns.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     (*in.xyz)[i] = pcl::PointXYZ(in.cloud[i].x, in.cloud[i].y, in.cloud[i].z);
     in.reference[i] = in.cloud[i].classification;
+    in.returns[i] = in.cloud[i].number_of_returns;
   }
   const ev::ClassLookup lookup(o.eval.groups, o.eval.excluded_codes);
   if (o.evaluate && std::none_of(in.reference.begin(), in.reference.end(),
@@ -296,6 +308,13 @@ loadInput(const Options& o, Input& in, std::string& error)
                     "' carries a label of the evaluated classes"),
            false;
   in.wkt = in.info.format == "las" ? maps::crsFromLasVlrs(in.info.las.vlrs) : in.info.file_crs_wkt;
+  const double multiple = multipleReturnShare(in.returns);
+  if (multiple > 0.0)
+    print_info("Returns recorded: %.1f %% of the points from pulses with several returns (IMRG's "
+               "classes use them to tell parked cars from shrubs)\n", 100.0 * multiple);
+  else
+    print_info("No returns recorded (one per pulse): IMRG names car-sized rough objects "
+               "vegetation\n");
   return true;
 }
 
@@ -437,7 +456,7 @@ runMethods(const Options& o, const Input& in, const ev::ReferenceObjects& object
     TicToc tt;
     tt.tic();
     const bool ok = (m != ev::SegmentationMethod::VoxelGrid || imrg_segments > 0)
-                        ? ev::runSegmentation(in.xyz, s, run, error)
+                        ? ev::runSegmentation(in.xyz, s, run, error, in.returns)
                         : (error = "no IMRG segment count to match", false);
     if (!ok && m == o.settings.method)
       return false;
@@ -572,6 +591,7 @@ main(int argc, char** argv)
   report["level"] = o.settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
   report["seconds_load"] = in.seconds;
   report["warnings"] = inputWarnings(in);
+  report["multiple_return_share"] = multipleReturnShare(in.returns);  // 0: returns not recorded
 
   ev::ReferenceObjects objects;
   if (o.evaluate) {

@@ -17,11 +17,13 @@ constexpr double kDegToRad = M_PI / 180.0;
 
 void
 runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
-             const SegmentationRunSettings& s, SegmentationRun& run)
+             const std::vector<std::uint8_t>& number_of_returns, const SegmentationRunSettings& s,
+             SegmentationRun& run)
 {
   using MRG = MultiRuleRegionGrowing<pcl::PointXYZ>;
   MRG seg;
   seg.setInputCloud(cloud);
+  seg.setNumberOfReturns(number_of_returns);
   seg.setMode(s.method == SegmentationMethod::IMRG ? MRG::Mode::IMRG : MRG::Mode::MRG);
   if (s.k_min > 0 && s.k_max > 0)
     seg.setNeighbourhoodRange(s.k_min, s.k_max, seg.getNeighbourhoodRange().k_step);
@@ -196,7 +198,8 @@ SegmentationRunSettings::isValid(std::string* why) const
 
 bool
 runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
-                const SegmentationRunSettings& settings, SegmentationRun& run, std::string& error)
+                const SegmentationRunSettings& settings, SegmentationRun& run, std::string& error,
+                const std::vector<std::uint8_t>& number_of_returns)
 {
   run = SegmentationRun{};
   run.method = settings.method;
@@ -206,12 +209,17 @@ runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
     error = "empty cloud";
     return false;
   }
+  if (!number_of_returns.empty() && number_of_returns.size() != cloud->size()) {
+    error = std::to_string(number_of_returns.size()) + " numbers of returns for " +
+            std::to_string(cloud->size()) + " points";
+    return false;
+  }
   if (settings.method == SegmentationMethod::PclRegionGrowing)
     runPclRegionGrowing(cloud, settings, run);
   else if (settings.method == SegmentationMethod::VoxelGrid)
     runVoxelGrid(cloud, settings, run);
   else
-    runMultiRule(cloud, settings, run);
+    runMultiRule(cloud, number_of_returns, settings, run);
   if (run.segments.empty()) {
     error = toString(settings.method) + " found no segment";
     return false;

@@ -160,14 +160,26 @@ raisedAbove(const ObjectShape& s, const Heights& h, const ObjectClassSettings& c
          s.length() * s.width() >= c.min_building_area;
 }
 
+bool
+carSizedInPlan(const ObjectShape& s, const ObjectClassSettings& c)
+{
+  return s.length() >= c.car_min_length && s.length() <= c.car_max_length &&
+         s.width() >= c.car_min_width && s.width() <= c.car_max_width;
+}
+
+/// Car-sized: its top at most car_max_height above known terrain, car-sized in plan.
+bool
+carSized(const ObjectShape& s, const Heights& h, const ObjectClassSettings& c)
+{
+  return h.known() && h.top - h.terrain <= c.car_max_height && carSizedInPlan(s, c);
+}
+
 ObjectClass
 surfaceClass(const ObjectShape& s, const Heights& h, const ObjectClassSettings& c)
 {
   const bool known = h.known();
   const double low = h.low - h.terrain, middle = h.middle - h.terrain, top = h.top - h.terrain;
-  if (known && top <= c.car_max_height && s.length() >= c.car_min_length &&
-      s.length() <= c.car_max_length && s.width() >= c.car_min_width &&
-      s.width() <= c.car_max_width)
+  if (carSized(s, h, c))
     return ObjectClass::Car;
   // A building stands on the terrain: its low points are not far below the ground around it.
   // A surface reaching min_building_height below it is the terrain itself (a wooded ravine
@@ -253,20 +265,52 @@ describeLasCodes()
   return text;
 }
 
+namespace {
+
+/// Per object: the share of its (finite) points whose pulse had several returns; empty when
+/// \a multiple_return is.
+std::vector<double>
+multipleReturnShares(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+                     const std::vector<char>& multiple_return, const std::vector<ObjectShape>& shapes)
+{
+  if (multiple_return.empty())
+    return {};
+  std::vector<double> share(shapes.size(), 0.0);
+  for (std::size_t p = 0; p < points.size(); ++p)
+    if (labels[p] >= 0 && points[p].allFinite() && multiple_return[p])
+      share[static_cast<std::size_t>(labels[p])] += 1.0;
+  for (std::size_t o = 0; o < shapes.size(); ++o)
+    share[o] = shapes[o].points > 0 ? share[o] / static_cast<double>(shapes[o].points) : 0.0;
+  return share;
+}
+
+/// Only a rough object that may be a car (returns known, car-sized in plan) needs its terrain:
+/// other rough objects are vegetation whatever their height.
+bool
+needsTerrain(const ObjectShape& s, bool returns_known, const ObjectClassSettings& c)
+{
+  return s.points > 0 && (s.family() != kRough || (returns_known && carSizedInPlan(s, c)));
+}
+
+}  // namespace
+
 std::vector<ObjectClass>
 classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
                 const std::vector<SegmentKind>& point_kind, const std::vector<char>& ground,
-                const ObjectClassSettings& settings)
+                const ObjectClassSettings& settings, const std::vector<char>& multiple_return)
 {
   if (labels.size() != points.size() || point_kind.size() != points.size() ||
-      ground.size() != points.size())
+      ground.size() != points.size() ||
+      (!multiple_return.empty() && multiple_return.size() != points.size()))
     return {};
   std::vector<ObjectShape> shapes = objectShapes(points, labels, point_kind);
   countLinearCover(points, labels, settings.wire_cell, shapes);
+  const std::vector<double> multiple_share =
+      multipleReturnShares(points, labels, multiple_return, shapes);
   const TerrainCells terrain(points, labels, ground, settings.terrain_cell);
   std::vector<TerrainPlane> planes(shapes.size());
   for (std::size_t o = 0; o < shapes.size(); ++o)
-    if (shapes[o].points > 0 && shapes[o].family() != kRough)  // rough: vegetation, whatever height
+    if (needsTerrain(shapes[o], !multiple_share.empty(), settings))
       planes[o] = terrain.planeAround(shapes[o].box_lo, shapes[o].box_hi, settings.terrain_margin,
                                       shapes[o].family() == kGround ? static_cast<int>(o) : -2);
   const std::vector<std::vector<double>> detrended = detrendedHeights(points, labels, planes);
@@ -276,13 +320,15 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     if (s.points == 0)
       continue;
     const int family = s.family();
-    if (family == kRough) {
-      classes[o] = ObjectClass::Vegetation;
-      continue;
-    }
     // Heights along the terrain's slope; the ground family against the other ground only.
     const std::vector<double> z = stats::quantiles(detrended[o], {0.05, 0.5, 0.95});
     const Heights h{z[0], z[1], z[2], planes[o].level};
+    if (family == kRough) {
+      const bool opaque = !multiple_share.empty() &&
+                          multiple_share[o] <= settings.car_max_multiple_return_share;
+      classes[o] = opaque && carSized(s, h, settings) ? ObjectClass::Car : ObjectClass::Vegetation;
+      continue;
+    }
     if (family == kGround) {
       classes[o] = raisedAbove(s, h, settings) ? ObjectClass::Building : ObjectClass::Ground;
       continue;

@@ -108,11 +108,15 @@ struct SegmentationRun
 };
 
 /// \brief Runs settings.method on `cloud` (finite points; local coordinates).
-/// \return false with a one-line reason (invalid settings, empty cloud, no segment found);
-///         \a run.seconds_total is set even then, so a failed baseline can still be reported
+/// \param[in] number_of_returns per point of `cloud`, its pulse's number of returns (LAS), for
+///            IMRG's object classes (MultiRuleRegionGrowing::setNumberOfReturns); empty: unknown
+/// \return false with a one-line reason (invalid settings, empty cloud, returns not one per
+///         point, no segment found); \a run.seconds_total is set even then, so a failed
+///         baseline can still be reported
 bool
 runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
-                const SegmentationRunSettings& settings, SegmentationRun& run, std::string& error);
+                const SegmentationRunSettings& settings, SegmentationRun& run, std::string& error,
+                const std::vector<std::uint8_t>& number_of_returns = {});
 
 }  // namespace evaluation
 }  // namespace pcl_ls3d

@@ -19,6 +19,7 @@
 #include <pcl/point_types.h>
 #include <pcl/search/search.h>
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <string>
@@ -237,6 +238,13 @@ public:
   /// \brief Optional normals used by the planar rule instead of the computed ones.
   void setInputNormals(const NormalPtr& normals) { normals_ = normals; }
   NormalPtr getInputNormals() const { return normals_; }
+  /// \brief Optional: the number of returns of each input point's pulse (LAS NumberOfReturns),
+  ///        one per point of the input cloud. Only the object classes use it: a car-sized rough
+  ///        object whose pulses mostly had one return is a car, not a shrub
+  ///        (ObjectClassSettings::car_max_multiple_return_share). Empty (the default), or all
+  ///        at most 1 (data that do not record returns): returns unknown.
+  void setNumberOfReturns(const std::vector<std::uint8_t>& returns) { returns_ = returns; }
+  const std::vector<std::uint8_t>& getNumberOfReturns() const { return returns_; }
 
   // ---- run and results -----------------------------------------------------------------------
   /// \brief Level returned by extract() and used by the per-point getters (default Objects).
@@ -274,6 +282,8 @@ protected:
   void assembleObjects();
   /// Clusters and classes of both levels from plane_of_ and segment_of_.
   void assembleLevelClusters();
+  /// Per position: 1 if the point's pulse had several returns; empty when returns are unknown.
+  std::vector<char> multipleReturnFlags() const;
   /// Step 8: vegetation points on the terrain join the ground, under a roof the building.
   void assignPointsByPosition(const std::vector<char>& ground,
                               const segmentation::AssemblySettings& settings);
@@ -296,6 +306,7 @@ protected:
   int threads_ = 0;
   KdTreePtr search_;
   NormalPtr normals_;
+  std::vector<std::uint8_t> returns_;  ///< per input point; empty: unknown
 
   // state of the last run; "position" = index into valid_indices_
   std::vector<int> valid_indices_;            ///< cloud indices processed (finite, in indices_)

@@ -10,7 +10,11 @@
 ///    (the level from the cells near it whose lowest ground-filter point is not its own, the
 ///    slope from all of them) and its plan box covers min_building_area: a roof wider than the
 ///    ground filter's largest window, which the filter kept, is a Building;
-///  - rough: Vegetation (crowns, hedges, grass detached from the ground);
+///  - rough: Vegetation (crowns, hedges, grass detached from the ground), except a car-sized
+///    one (as below) of which at most car_max_multiple_return_share of the points come from
+///    pulses with several returns, when the returns are known: a Car (a car body stops the
+///    pulse; a shrub of its size lets part of it through). Parked cars scan as rough as
+///    shrubs at 10–20 points/m²;
 ///  - surface (solid, wall) or linear, standing upright — vertical extent at least
 ///    min_building_height and pole_slenderness × its plan length, median z in the lower
 ///    pole_mass_height of that extent (points all the way up: a tall building seen from above
@@ -39,8 +43,9 @@
 /// lies that close the height is unknown: a surface is then a Building if its plan box covers
 /// min_building_area (a roof-only crop; a car there is called a building too), a line is no
 /// wire. Heights use robust ends and middle: low, median and top are the 5th, 50th and 95th
-/// percentiles of the object's z with the terrain's slope taken out. Rough objects take no
-/// terrain (vegetation whatever their height).
+/// percentiles of the object's z with the terrain's slope taken out. Rough objects take a
+/// terrain only when they may be a car (returns known, car-sized in plan); without one they are
+/// vegetation whatever their height.
 /// Lengths are metres (cloud units): car and building sizes are physical, not relative to the
 /// spacing. Non-finite points are skipped.
 
@@ -105,6 +110,10 @@ struct ObjectClassSettings
   double car_max_height = 3.0;        ///< a car's top above the terrain (vans included)
   double car_min_length = 2.5, car_max_length = 7.0;  ///< a car's plan length
   double car_min_width = 1.2, car_max_width = 3.0;    ///< ... and width (a low wall is thinner)
+  /// A rough car-sized object is a car when at most this share of its points had more than one
+  /// return (only with the returns known). 0.2: between the cars (0.00–0.08) and the car-sized
+  /// shrubs (0.25 and more) of the tuning tiles 77050_627755 and 77055_627755 (docs/BENCHMARKS.md).
+  double car_max_multiple_return_share = 0.2;
   double min_wire_height = 2.5;       ///< a wire's low points above the terrain
   double min_wire_length = 7.0;       ///< a wire's plan length (longer than a car)
   double wire_cell = 0.5;             ///< a wire covers at most max_wire_cover × its length
@@ -120,11 +129,14 @@ struct ObjectClassSettings
 /// \param[in] labels object per point (dense 0..n−1, −1 none)
 /// \param[in] point_kind per point: kind of its segment before the assembly joined any
 /// \param[in] ground per point: 1 if the ground filter keeps it
+/// \param[in] multiple_return per point: 1 if its pulse had more than one return (LAS
+///            NumberOfReturns > 1); empty when the data do not record returns
 /// \return per object (index = label): its class; empty when the sizes differ
 std::vector<ObjectClass>
 classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
                 const std::vector<SegmentKind>& point_kind, const std::vector<char>& ground,
-                const ObjectClassSettings& settings);
+                const ObjectClassSettings& settings,
+                const std::vector<char>& multiple_return = {});
 
 }  // namespace segmentation
 }  // namespace pcl_ls3d

@@ -200,6 +200,11 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
               static_cast<std::size_t>(normals_->size()), static_cast<std::size_t>(input_->size()));
     return false;
   }
+  if (!returns_.empty() && returns_.size() != input_->size()) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] %zu numbers of returns for %zu points.\n", name,
+              returns_.size(), static_cast<std::size_t>(input_->size()));
+    return false;
+  }
 
   valid_indices_.clear();
   position_of_.assign(input_->size(), -1);
@@ -362,8 +367,22 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
         segmentation::absorptionContact(points_, assembly_report_.point_kind, a.max_link_length));
   }
   object_class_ = segmentation::classifyObjects(points_, segment_of_, assembly_report_.point_kind,
-                                                ground, classes_);
+                                                ground, classes_, multipleReturnFlags());
   assignPointsByPosition(ground, a);
+}
+
+template <typename PointT, typename NormalT>
+std::vector<char>
+MultiRuleRegionGrowing<PointT, NormalT>::multipleReturnFlags() const
+{
+  // Data without returns store 1 (or 0) everywhere: no point of them is known to be single.
+  const auto multiple = [](std::uint8_t returns) { return returns > 1; };
+  if (returns_.size() != input_->size() || std::none_of(returns_.begin(), returns_.end(), multiple))
+    return {};
+  std::vector<char> flags(valid_indices_.size());
+  for (std::size_t p = 0; p < valid_indices_.size(); ++p)
+    flags[p] = multiple(returns_[static_cast<std::size_t>(valid_indices_[p])]);
+  return flags;
 }
 
 template <typename PointT, typename NormalT>
