@@ -18,6 +18,7 @@
 ///
 /// Usage: benchmark_segmentation [-data DIR] [-scenes n] [-scene_size m] [-max_points n]
 ///                               [-threads n] [-skip_speed] [-skip_objects] [-skip_points]
+///                               [-no_returns]  (IMRG without the LAS numbers of returns)
 
 #include <pcl_ls3d/evaluation/object_metrics.h>
 #include <pcl_ls3d/evaluation/reference_objects.h>
@@ -50,6 +51,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
+bool use_returns = true;  ///< -no_returns: IMRG without the numbers of returns
+
 struct Labelled
 {
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud{new pcl::PointCloud<pcl::PointXYZ>};
@@ -63,13 +66,14 @@ fromLiDAR(const pcl::PointCloud<PointLiDAR>& in)
   Labelled out;
   out.cloud->resize(in.size());
   out.labels.resize(in.size());
-  out.returns.resize(in.size());
+  out.returns.resize(use_returns ? in.size() : 0);
   for (std::size_t i = 0; i < in.size(); ++i) {
     (*out.cloud)[i].x = in[i].x;
     (*out.cloud)[i].y = in[i].y;
     (*out.cloud)[i].z = in[i].z;
     out.labels[i] = in[i].classification;
-    out.returns[i] = in[i].number_of_returns;
+    if (use_returns)
+      out.returns[i] = in[i].number_of_returns;
   }
   return out;
 }
@@ -287,6 +291,35 @@ printObjectClasses(const std::string& title, const ev::SegmentationRun& imrg, co
   std::printf("\n");
 }
 
+/// Parked cars (IGN's class 1, excluded from every score) against vegetation: IMRG objects of
+/// at least 20 points named car or vegetation, by the majority of their reference codes (1;
+/// 3-5; anything else).
+void
+printCarObjects(const std::string& title, const ev::SegmentationRun& imrg, const Labelled& data)
+{
+  if (imrg.classes.size() != imrg.segments.size())
+    return;
+  using segmentation::ObjectClass;
+  std::size_t c1_car = 0, c1_vegetation = 0, vegetation_car = 0;
+  for (std::size_t o = 0; o < imrg.segments.size(); ++o) {
+    const ObjectClass c = imrg.classes[o];
+    if (imrg.segments[o].indices.size() < 20 || (c != ObjectClass::Car && c != ObjectClass::Vegetation))
+      continue;
+    std::size_t c1 = 0, vegetation = 0, other = 0;
+    for (const auto i : imrg.segments[o].indices) {
+      const int code = data.labels[static_cast<std::size_t>(i)];
+      ++(code == 1 ? c1 : (code >= 3 && code <= 5) ? vegetation : other);
+    }
+    if (c1 > vegetation && c1 > other)
+      ++(c == ObjectClass::Car ? c1_car : c1_vegetation);
+    else if (vegetation >= other && c == ObjectClass::Car)
+      ++vegetation_car;
+  }
+  std::printf("  parked cars %s (IMRG objects >= 20 points, %s returns): class 1 -> car %zu, "
+              "class 1 -> vegetation %zu; vegetation -> car %zu\n",
+              title.c_str(), use_returns ? "with" : "without", c1_car, c1_vegetation, vegetation_car);
+}
+
 const ev::ObjectClassScores*
 classOf(const ev::ObjectEvaluation& e, const std::string& name)
 {
@@ -354,6 +387,7 @@ benchmarkObjectsOnTile(const fs::path& file, const std::string& name, int thread
   }
   const auto cmp = compareObjects(name, data, reference, threads);
   printObjectClasses(name, cmp.runs[0], data, ro.groups);
+  printCarObjects(name, cmp.runs[0], data);
   if (with_targets)
     objectTargets(name, cmp);
 }
@@ -679,7 +713,7 @@ main(int argc, char** argv)
 {
   if (pcl::console::find_switch(argc, argv, "-h")) {
     std::printf("Usage: %s [-data DIR] [-scenes n] [-scene_size m] [-max_points n] [-threads n] "
-                "[-skip_speed] [-skip_objects] [-skip_points]\n",
+                "[-skip_speed] [-skip_objects] [-skip_points] [-no_returns]\n",
                 argv[0]);
     return 0;
   }
@@ -693,6 +727,7 @@ main(int argc, char** argv)
   pcl::console::parse_argument(argc, argv, "-scene_size", scene_size);
   pcl::console::parse_argument(argc, argv, "-max_points", max_points);
   pcl::console::parse_argument(argc, argv, "-threads", threads);
+  use_returns = !pcl::console::find_switch(argc, argv, "-no_returns");
   pcl::console::setVerbosityLevel(pcl::console::L_ERROR);
 
   std::printf("benchmark_segmentation: data %s\nP/R/F1 in %%; segments mapped to their majority "

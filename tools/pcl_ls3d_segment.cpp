@@ -63,7 +63,7 @@ printHelp(const char* prog)
   print_info("Multi-factor segmentation by improved multi-rule region growing (Wang et al. 2021).\n\n"
              "Syntax: %s INPUT [options]\n"
              "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference;\n"
-             "                     a LAS file's numbers of returns tell parked cars from shrubs)\n"
+             "                     its numbers of returns, where recorded, tell parked cars from shrubs)\n"
              "  -o SEGMENTS.pcd    every input point in input order: x y z float, local frame\n"
              "                     (file coordinate = x + origin; origin in the header line\n"
              "                     '# pcl_ls3d origin X Y Z' and the JSON), label = segment + 1\n"
@@ -266,6 +266,21 @@ multipleReturnShare(const std::vector<std::uint8_t>& returns)
   return returns.empty() ? 0.0 : static_cast<double>(multiple) / static_cast<double>(returns.size());
 }
 
+/// One line on the returns, where IMRG's classes use them.
+void
+printReturns(const Options& o, const std::vector<std::uint8_t>& returns)
+{
+  if (o.settings.method != ev::SegmentationMethod::IMRG && !o.evaluate)
+    return;
+  if (segmentation::recordsReturns(returns))
+    print_info("Returns recorded: %.1f %% of the points from pulses with several returns (IMRG's "
+               "classes use them to tell parked cars from shrubs)\n",
+               100.0 * multipleReturnShare(returns));
+  else
+    print_info("No returns recorded (one per pulse): IMRG names car-sized rough objects "
+               "vegetation\n");
+}
+
 bool
 loadInput(const Options& o, Input& in, std::string& error)
 {
@@ -308,13 +323,7 @@ loadInput(const Options& o, Input& in, std::string& error)
                     "' carries a label of the evaluated classes"),
            false;
   in.wkt = in.info.format == "las" ? maps::crsFromLasVlrs(in.info.las.vlrs) : in.info.file_crs_wkt;
-  const double multiple = multipleReturnShare(in.returns);
-  if (multiple > 0.0)
-    print_info("Returns recorded: %.1f %% of the points from pulses with several returns (IMRG's "
-               "classes use them to tell parked cars from shrubs)\n", 100.0 * multiple);
-  else
-    print_info("No returns recorded (one per pulse): IMRG names car-sized rough objects "
-               "vegetation\n");
+  printReturns(o, in.returns);
   return true;
 }
 

@@ -267,32 +267,37 @@ describeLasCodes()
 
 namespace {
 
-/// Per object: the share of its (finite) points whose pulse had several returns; empty when
-/// \a multiple_return is.
-std::vector<double>
-multipleReturnShares(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
-                     const std::vector<char>& multiple_return, const std::vector<ObjectShape>& shapes)
+/// Per object: may it be a car although it is rough? Its returns are known, at most
+/// car_max_multiple_return_share of its (finite) points come from pulses with several returns
+/// and it is car-sized in plan (its height is judged once its terrain is known). All false when
+/// \a multiple_return is empty.
+std::vector<char>
+opaqueCarSized(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+               const std::vector<char>& multiple_return, const std::vector<ObjectShape>& shapes,
+               const ObjectClassSettings& c)
 {
+  std::vector<char> out(shapes.size(), 0);
   if (multiple_return.empty())
-    return {};
-  std::vector<double> share(shapes.size(), 0.0);
+    return out;
+  std::vector<std::size_t> multiple(shapes.size(), 0);
   for (std::size_t p = 0; p < points.size(); ++p)
     if (labels[p] >= 0 && points[p].allFinite() && multiple_return[p])
-      share[static_cast<std::size_t>(labels[p])] += 1.0;
+      ++multiple[static_cast<std::size_t>(labels[p])];
   for (std::size_t o = 0; o < shapes.size(); ++o)
-    share[o] = shapes[o].points > 0 ? share[o] / static_cast<double>(shapes[o].points) : 0.0;
-  return share;
-}
-
-/// Only a rough object that may be a car (returns known, car-sized in plan) needs its terrain:
-/// other rough objects are vegetation whatever their height.
-bool
-needsTerrain(const ObjectShape& s, bool returns_known, const ObjectClassSettings& c)
-{
-  return s.points > 0 && (s.family() != kRough || (returns_known && carSizedInPlan(s, c)));
+    out[o] = shapes[o].points > 0 && shapes[o].family() == kRough && carSizedInPlan(shapes[o], c) &&
+             static_cast<double>(multiple[o]) <=
+                 c.car_max_multiple_return_share * static_cast<double>(shapes[o].points);
+  return out;
 }
 
 }  // namespace
+
+bool
+recordsReturns(const std::vector<std::uint8_t>& number_of_returns)
+{
+  return std::any_of(number_of_returns.begin(), number_of_returns.end(),
+                     [](std::uint8_t r) { return r > 1; });
+}
 
 std::vector<ObjectClass>
 classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
@@ -305,12 +310,12 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     return {};
   std::vector<ObjectShape> shapes = objectShapes(points, labels, point_kind);
   countLinearCover(points, labels, settings.wire_cell, shapes);
-  const std::vector<double> multiple_share =
-      multipleReturnShares(points, labels, multiple_return, shapes);
+  const std::vector<char> may_be_car =
+      opaqueCarSized(points, labels, multiple_return, shapes, settings);
   const TerrainCells terrain(points, labels, ground, settings.terrain_cell);
   std::vector<TerrainPlane> planes(shapes.size());
-  for (std::size_t o = 0; o < shapes.size(); ++o)
-    if (needsTerrain(shapes[o], !multiple_share.empty(), settings))
+  for (std::size_t o = 0; o < shapes.size(); ++o)  // rough: vegetation unless it may be a car
+    if (shapes[o].points > 0 && (shapes[o].family() != kRough || may_be_car[o]))
       planes[o] = terrain.planeAround(shapes[o].box_lo, shapes[o].box_hi, settings.terrain_margin,
                                       shapes[o].family() == kGround ? static_cast<int>(o) : -2);
   const std::vector<std::vector<double>> detrended = detrendedHeights(points, labels, planes);
@@ -320,13 +325,15 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     if (s.points == 0)
       continue;
     const int family = s.family();
+    if (family == kRough && !may_be_car[o]) {
+      classes[o] = ObjectClass::Vegetation;
+      continue;
+    }
     // Heights along the terrain's slope; the ground family against the other ground only.
     const std::vector<double> z = stats::quantiles(detrended[o], {0.05, 0.5, 0.95});
     const Heights h{z[0], z[1], z[2], planes[o].level};
-    if (family == kRough) {
-      const bool opaque = !multiple_share.empty() &&
-                          multiple_share[o] <= settings.car_max_multiple_return_share;
-      classes[o] = opaque && carSized(s, h, settings) ? ObjectClass::Car : ObjectClass::Vegetation;
+    if (family == kRough) {  // opaque and car-sized in plan: a car if low enough
+      classes[o] = carSized(s, h, settings) ? ObjectClass::Car : ObjectClass::Vegetation;
       continue;
     }
     if (family == kGround) {

@@ -158,6 +158,12 @@ TEST_F(SegmentTool, WritesEveryPointInOrderWithConsistentLabels)
   for (std::size_t i = 0; i < seg.size(); ++i)
     mismatches += seg[i].label != expected[i];
   EXPECT_EQ(mismatches, 0u);
+  // Numbers of returns not one per point are refused with a reason, before any work.
+  pcl_ls3d::evaluation::SegmentationRun refused;
+  EXPECT_FALSE(pcl_ls3d::evaluation::runSegmentation(
+      xyz, {}, refused, error, std::vector<std::uint8_t>(xyz->size() + 1, 1)));
+  EXPECT_NE(error.find("numbers of returns for"), std::string::npos) << error;
+  EXPECT_TRUE(refused.segments.empty());
 
   // Existing output without -overwrite is refused (one error line), with it accepted.
   const ToolResult again = run(input_.string() + " -o " + out.string());

@@ -458,3 +458,75 @@ TEST(MultiRuleRegionGrowing, TiltedJitteredPlaneIsOneSegment)
     EXPECT_GE(static_cast<double>(clusters[0].indices.size()), 0.99 * 40000.0) << "seed " << seed;
   }
 }
+
+// setNumberOfReturns (the object classes' car rule): on flat terrain a car-sized blob of
+// single-return points and a shrub of the same size with every second point from a
+// multi-return pulse are both rough objects. With the returns the blob is a car, the shrub
+// vegetation; without them, or with every pulse of one return (data that do not record
+// returns), both are vegetation. The returns are per input point: 350 NaN points and 350 points
+// left out by setIndices, all multi-return, come first and the shrub lies just before the car
+// in input order, so reading the returns by position instead of by input index would swap the
+// two classes. Returns of another size make extract() fail.
+TEST(MultiRuleRegionGrowing, NumberOfReturnsNameAnOpaqueBlobACar)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  std::normal_distribution<float> noise(0.f, 0.01f);
+  Cloud::Ptr c(new Cloud);
+  std::vector<std::uint8_t> returns;
+  const auto add = [&](float x, float y, float z, std::uint8_t r) {
+    c->push_back(pcl::PointXYZ(x, y, z));
+    returns.push_back(r);
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int i = 0; i < 350; ++i)
+    add(nan, nan, nan, 2);
+  for (int i = 0; i < 350; ++i)
+    add(100.f + u(rng), 100.f + u(rng), 100.f + u(rng), 2);  // left out by the indices
+  const std::size_t first_kept = c->size();
+  for (float x = -15.f; x < 15.f; x += 0.25f)
+    for (float y = -15.f; y < 15.f; y += 0.25f)
+      if (!(x > 4.8f && x < 9.7f && y > 4.8f && y < 7.0f))  // no terrain point under the car
+        add(x + 0.05f * u(rng), y + 0.05f * u(rng), noise(rng), 1);
+  const std::size_t shrub = c->size();
+  for (int i = 0; i < 700; ++i)
+    add(-8.f + 4.5f * u(rng), -8.f + 1.8f * u(rng), 0.3f + 1.2f * u(rng), i % 2 ? 2 : 1);
+  const std::size_t car = c->size();
+  for (int i = 0; i < 700; ++i)
+    add(5.f + 4.5f * u(rng), 5.f + 1.8f * u(rng), 0.3f + 1.2f * u(rng) * u(rng), 1);
+
+  pcl::IndicesPtr kept(new pcl::Indices);
+  kept->push_back(0);  // a NaN point among the indices: skipped as non-finite
+  for (std::size_t i = first_kept; i < c->size(); ++i)
+    kept->push_back(static_cast<int>(i));
+  using pcl_ls3d::segmentation::ObjectClass;
+  const auto classes_of = [&](const std::vector<std::uint8_t>& r) {
+    Segmenter s;
+    s.setInputCloud(c);
+    s.setIndices(kept);
+    s.setNumberOfReturns(r);
+    std::vector<pcl::PointIndices> clusters;
+    s.extract(clusters);
+    const auto l = labelsOf(clusters, c->size());
+    const auto& cls = s.getClusterClasses(Segmenter::Level::Objects);
+    const auto at = [&](std::size_t p) {
+      return l[p] >= 0 ? cls[static_cast<std::size_t>(l[p])] : ObjectClass::Unclassified;
+    };
+    return std::make_pair(at(shrub + 5), at(car + 5));
+  };
+  const auto with = classes_of(returns);
+  EXPECT_EQ(with.first, ObjectClass::Vegetation);
+  EXPECT_EQ(with.second, ObjectClass::Car);
+  const auto without = classes_of({});
+  EXPECT_EQ(without.first, ObjectClass::Vegetation);
+  EXPECT_EQ(without.second, ObjectClass::Vegetation) << "the blob must be rough, not a surface";
+  const auto unrecorded = classes_of(std::vector<std::uint8_t>(c->size(), 1));
+  EXPECT_EQ(unrecorded.second, ObjectClass::Vegetation);
+
+  Segmenter s;
+  s.setInputCloud(c);
+  s.setNumberOfReturns(std::vector<std::uint8_t>(c->size() - 1, 2));
+  std::vector<pcl::PointIndices> clusters;
+  s.extract(clusters);
+  EXPECT_TRUE(clusters.empty());
+}

@@ -209,8 +209,9 @@ TEST(ObjectClasses, NoTerrainAndBadSizes)
 // A parked car scans as rough as a shrub (IGN LiDAR HD car parks): with the returns known, a
 // rough car-sized object whose pulses had one return each is a car; the same object with half
 // its points from multi-return pulses is a shrub, and so is it when the returns are unknown. A
-// crown 6 m across is vegetation even with single returns (not car-sized), and a car-sized
-// rough object 3.5 m up (a crown on a trunk) too. Flags not one per point give no classes.
+// crown 6 m across at the car's height is vegetation even with single returns (not car-sized in
+// plan), and a car-sized rough object 3.5 m up (a crown on a trunk) too. Flags not one per
+// point give no classes.
 TEST(ObjectClasses, OpaqueCarSizedRoughObjectIsACar)
 {
   Scene s;
@@ -224,7 +225,7 @@ TEST(ObjectClasses, OpaqueCarSizedRoughObjectIsACar)
   };
   rough_box(10.0f, 10.0f, 1.4f, 4.5f, 1.8f, 1);   // car
   rough_box(-25.0f, 10.0f, 1.4f, 4.5f, 1.8f, 2);  // shrub of the car's size
-  rough_box(20.0f, -20.0f, 6.0f, 6.0f, 6.0f, 3);  // crown
+  rough_box(20.0f, -20.0f, 1.4f, 6.0f, 6.0f, 3);  // crown
   rough_box(-25.0f, -20.0f, 3.5f, 4.5f, 1.8f, 4); // small crown on a trunk
   std::vector<char> multiple(s.points.size(), 0);
   for (std::size_t p = 0; p < s.points.size(); ++p)

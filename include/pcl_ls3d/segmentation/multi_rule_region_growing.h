@@ -23,6 +23,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -239,11 +240,13 @@ public:
   void setInputNormals(const NormalPtr& normals) { normals_ = normals; }
   NormalPtr getInputNormals() const { return normals_; }
   /// \brief Optional: the number of returns of each input point's pulse (LAS NumberOfReturns),
-  ///        one per point of the input cloud. Only the object classes use it: a car-sized rough
-  ///        object whose pulses mostly had one return is a car, not a shrub
-  ///        (ObjectClassSettings::car_max_multiple_return_share). Empty (the default), or all
-  ///        at most 1 (data that do not record returns): returns unknown.
-  void setNumberOfReturns(const std::vector<std::uint8_t>& returns) { returns_ = returns; }
+  ///        one per point of the input cloud (not per index). Only the object classes use it: a
+  ///        car-sized rough object with at most 20 % of its points from pulses with several
+  ///        returns is a car, not a shrub (ObjectClassSettings::car_max_multiple_return_share).
+  ///        Empty (the default), or all at most 1 over the whole input (data that do not record
+  ///        returns, segmentation::recordsReturns()): returns unknown. Another size: extract()
+  ///        fails.
+  void setNumberOfReturns(std::vector<std::uint8_t> returns) { returns_ = std::move(returns); }
   const std::vector<std::uint8_t>& getNumberOfReturns() const { return returns_; }
 
   // ---- run and results -----------------------------------------------------------------------

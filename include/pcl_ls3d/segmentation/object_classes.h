@@ -124,13 +124,19 @@ struct ObjectClassSettings
   double pole_mass_height = 0.7;      ///< ... and its median z at most this far up its extent
 };
 
+/// \brief True when \a number_of_returns (per point, as LAS NumberOfReturns) records returns:
+///        some pulse had more than one. Data without returns store 1 (or 0) everywhere.
+bool
+recordsReturns(const std::vector<std::uint8_t>& number_of_returns);
+
 /// \brief The class of every object.
 /// \param[in] points coordinates per point
 /// \param[in] labels object per point (dense 0..n−1, −1 none)
 /// \param[in] point_kind per point: kind of its segment before the assembly joined any
 /// \param[in] ground per point: 1 if the ground filter keeps it
 /// \param[in] multiple_return per point: 1 if its pulse had more than one return (LAS
-///            NumberOfReturns > 1); empty when the data do not record returns
+///            NumberOfReturns > 1); empty when the data do not record returns (pass empty,
+///            not all 0, for such data: all 0 says every pulse was stopped by the first surface)
 /// \return per object (index = label): its class; empty when the sizes differ
 std::vector<ObjectClass>
 classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,

@@ -376,12 +376,12 @@ std::vector<char>
 MultiRuleRegionGrowing<PointT, NormalT>::multipleReturnFlags() const
 {
   // Data without returns store 1 (or 0) everywhere: no point of them is known to be single.
-  const auto multiple = [](std::uint8_t returns) { return returns > 1; };
-  if (returns_.size() != input_->size() || std::none_of(returns_.begin(), returns_.end(), multiple))
+  // Judged on the whole input, not only on the indices segmented.
+  if (returns_.size() != input_->size() || !segmentation::recordsReturns(returns_))
     return {};
   std::vector<char> flags(valid_indices_.size());
   for (std::size_t p = 0; p < valid_indices_.size(); ++p)
-    flags[p] = multiple(returns_[static_cast<std::size_t>(valid_indices_[p])]);
+    flags[p] = returns_[static_cast<std::size_t>(valid_indices_[p])] > 1;
   return flags;
 }
 
