@@ -1,5 +1,5 @@
 /// \file terrain_contact.cpp
-/// \brief Vegetation points on the terrain join the ground object beside them
+/// \brief Vegetation and car points on the terrain join the ground object beside them
 ///        (terrain_contact.h).
 
 #include <pcl_ls3d/segmentation/terrain_contact.h>
@@ -13,7 +13,15 @@ namespace pcl_ls3d {
 namespace segmentation {
 namespace {
 
-/// Vegetation points the ground filter keeps, no higher than \a limit above the terrain plane
+/// Objects whose rough segments take the ground at their foot: crowns and hedges, and parked
+/// cars grown as rough objects (named car by their returns).
+bool
+holdsGroundAtItsFoot(ObjectClass c)
+{
+  return c == ObjectClass::Vegetation || c == ObjectClass::Car;
+}
+
+/// Vegetation and car points the ground filter keeps, no higher than \a limit above the terrain plane
 /// (NaN: the terrain is unknown there).
 std::vector<std::size_t>
 pointsOnTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
@@ -22,7 +30,7 @@ pointsOnTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector<ch
 {
   std::vector<char> wanted(points.size(), 0);
   for (std::size_t p = 0; p < points.size(); ++p)
-    wanted[p] = ground[p] && classOf(labels[p], object_class) == ObjectClass::Vegetation;
+    wanted[p] = ground[p] && holdsGroundAtItsFoot(classOf(labels[p], object_class));
   const std::vector<float> height = heightAboveTerrain(points, ground, wanted, half_width);
   std::vector<std::size_t> out;
   for (std::size_t p = 0; p < points.size(); ++p)
@@ -108,7 +116,7 @@ returnTerrainPoints(const std::vector<Eigen::Vector3f>& points, const std::vecto
     moves.clear();
     for (const std::size_t i : check) {
       const std::size_t p = on_terrain[i];
-      if (classOf(labels[p], object_class) != ObjectClass::Vegetation)
+      if (!holdsGroundAtItsFoot(classOf(labels[p], object_class)))
         continue;
       const int to = mostLinkedGround(p, graph, k, object_class, labels);
       if (to >= 0)
@@ -119,7 +127,7 @@ returnTerrainPoints(const std::vector<Eigen::Vector3f>& points, const std::vecto
       labels[on_terrain[i]] = to;
     for (const auto& [i, to] : moves)
       for (const std::size_t j : linked_from[i])
-        if (!queued[j] && classOf(labels[on_terrain[j]], object_class) == ObjectClass::Vegetation) {
+        if (!queued[j] && holdsGroundAtItsFoot(classOf(labels[on_terrain[j]], object_class))) {
           queued[j] = 1;
           check.push_back(j);
         }

@@ -111,6 +111,38 @@ TEST(TerrainContact, GroundAtABushsFootJoinsTheLawnAndItsLeavesStay)
     ASSERT_EQ(labels[p], kHouse) << "only vegetation objects give points back";
 }
 
+// A parked car that IMRG grew as a rough object (named car by its returns) holds the ground
+// beside it like a bush's rim: its points at the terrain's level join the lawn, its body 1 m up
+// (which the filter rejects) stays the car.
+TEST(TerrainContact, GroundBesideACarJoinsTheLawn)
+{
+  std::mt19937 rng(9);
+  std::normal_distribution<float> noise(0.f, 0.02f);
+  Scene s;
+  std::vector<std::size_t> rim, body;
+  for (float x = 0.f; x < 10.f; x += 0.25f)
+    for (float y = 0.f; y < 10.f; y += 0.25f) {
+      const bool on_car = x > 3.f && x < 7.5f && y > 4.f && y < 5.8f;
+      const bool beside = !on_car && x > 2.6f && x < 7.9f && y > 3.6f && y < 6.2f;
+      if (on_car)
+        body.push_back(s.add(x, y, 1.0f + noise(rng), kBush, false));
+      else if (beside)
+        rim.push_back(s.add(x, y, noise(rng), kBush, true));
+      else
+        s.add(x, y, noise(rng), kLawn, true);
+    }
+  std::vector<ObjectClass> classes = classesOfTheScene();
+  classes[kBush] = ObjectClass::Car;
+  std::vector<int> labels = s.labels;
+  returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK, classes, kLimit, kHalfWidth, labels);
+  std::size_t rim_on_lawn = 0;
+  for (const auto p : rim)
+    rim_on_lawn += labels[p] == kLawn;
+  EXPECT_GE(rim_on_lawn, rim.size() * 95 / 100) << "of " << rim.size();
+  for (const auto p : body)
+    ASSERT_EQ(labels[p], kBush);
+}
+
 TEST(TerrainContact, EnclosedGroundWithoutALinkToTheGroundStays)
 {
   // A wide crown object holding terrain points in its middle, 3 m from any ground object:

@@ -65,9 +65,9 @@ namespace pcl_ls3d {
 ///     vegetation, wire, pole, car or unclassified by the kinds of its segments, its height
 ///     above the terrain and its size (object_classes.h).
 ///  8. points by position (an addition, with the classes; AssemblySettings
-///     terrain_return_multiple, claim_under_roofs): vegetation points the ground filter keeps
-///     no higher than 3 ground residuals above the terrain plane join the ground object beside
-///     them (terrain_contact.h), then vegetation points under a building's roof join it
+///     terrain_return_multiple, claim_under_roofs): vegetation and car points the ground
+///     filter keeps no higher than 3 ground residuals above the terrain plane join the ground
+///     object beside them (terrain_contact.h), then vegetation points under a building's roof join it
 ///     (roof_cover.h: facade scatter the growth put into the crowns in front). Classes are not
 ///     recomputed; an object may lose points to them (a few-point remnant stays an object).
 ///     A plane takes the class of the object holding most of its points
@@ -287,7 +287,8 @@ protected:
   void assembleLevelClusters();
   /// Per position: 1 if the point's pulse had several returns; empty when returns are unknown.
   std::vector<char> multipleReturnFlags() const;
-  /// Step 8: vegetation points on the terrain join the ground, under a roof the building.
+  /// Step 8: vegetation (and car) points on the terrain join the ground, vegetation points under
+  /// a roof the building.
   void assignPointsByPosition(const std::vector<char>& ground,
                               const segmentation::AssemblySettings& settings);
   /// Clusters (cloud indices) of per-position \a labels, min/max cluster size applied.

@@ -77,9 +77,10 @@ struct AssemblySettings
   /// grass 5–30 cm high, which the filter keeps up to its initial distance. 6 scored best of
   /// 4, 6, 8 on the tuning tiles (docs/BENCHMARKS.md). ≤ 0: the filter alone.
   double raised_noise_multiple = 6.0;
-  /// After the classes (MultiRuleRegionGrowing): vegetation points the filter keeps no higher
-  /// than this many ground residuals above that terrain plane are the ground under a crown's
-  /// rim and join the ground (terrain_contact.h). 3: the terrain's noise at 3 σ. ≤ 0: off.
+  /// After the classes (MultiRuleRegionGrowing): vegetation and car points the filter keeps no
+  /// higher than this many ground residuals above that terrain plane are the ground under a
+  /// crown's rim or beside a car and join the ground (terrain_contact.h). 3: the terrain's
+  /// noise at 3 σ. ≤ 0: off.
   double terrain_return_multiple = 3.0;
   /// After the classes: vegetation points under a building's roof join it (roof_cover.h).
   bool claim_under_roofs = true;

@@ -1,8 +1,8 @@
 #pragma once
 /// \file terrain_contact.h
-/// \brief What lies on the terrain is ground: points of vegetation objects that the ground
-///        filter keeps and that lie within the terrain's own noise of it join the ground
-///        object beside them. PCL-free.
+/// \brief What lies on the terrain is ground: points of vegetation objects (and of cars, which
+///        IMRG grows as rough objects too) that the ground filter keeps and that lie within the
+///        terrain's own noise of it join the ground object beside them. PCL-free.
 ///
 /// The growth puts the ground at a crown's or a hedge's foot into the rough segment standing
 /// on it (rough with rough: the ground's points take the crown's noisy neighbourhoods). The
@@ -26,7 +26,7 @@
 namespace pcl_ls3d {
 namespace segmentation {
 
-/// \brief Moves the vegetation points lying on the terrain into the ground (rule above).
+/// \brief Moves the vegetation and car points lying on the terrain into the ground (rule above).
 /// \param[in] points coordinates per point (non-finite ones are left alone)
 /// \param[in] ground per point: 1 if the ground filter keeps it
 /// \param[in] graph k-NN graph, \a graph_k neighbour positions per point (−1: none)
