@@ -303,7 +303,8 @@ printCarObjects(const std::string& title, const ev::SegmentationRun& imrg, const
   std::size_t c1_car = 0, c1_vegetation = 0, vegetation_car = 0;
   for (std::size_t o = 0; o < imrg.segments.size(); ++o) {
     const ObjectClass c = imrg.classes[o];
-    if (imrg.segments[o].indices.size() < 20 || (c != ObjectClass::Car && c != ObjectClass::Vegetation))
+    if (imrg.segments[o].indices.size() < 20 ||
+        (c != ObjectClass::Car && c != ObjectClass::Vegetation))
       continue;
     std::size_t c1 = 0, vegetation = 0, other = 0;
     for (const auto i : imrg.segments[o].indices) {
@@ -317,7 +318,8 @@ printCarObjects(const std::string& title, const ev::SegmentationRun& imrg, const
   }
   std::printf("  parked cars %s (IMRG objects >= 20 points, %s returns): class 1 -> car %zu, "
               "class 1 -> vegetation %zu; vegetation -> car %zu\n",
-              title.c_str(), use_returns ? "with" : "without", c1_car, c1_vegetation, vegetation_car);
+              title.c_str(), use_returns ? "with" : "without", c1_car, c1_vegetation,
+              vegetation_car);
 }
 
 const ev::ObjectClassScores*

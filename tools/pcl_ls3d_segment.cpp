@@ -254,6 +254,7 @@ struct Input
   pcl::PointCloud<pcl::PointXYZ>::Ptr xyz{new pcl::PointCloud<pcl::PointXYZ>};
   std::vector<int> reference;  ///< LAS classification / PCD label per point
   std::vector<std::uint8_t> returns;  ///< number of returns per point (all 1 where not recorded)
+  double multiple_return_share = 0.0;  ///< of the points; 0: returns not recorded
   std::string wkt;             ///< CRS of the coordinates; empty: none declared
   double seconds = 0.0;
 };
@@ -262,20 +263,22 @@ struct Input
 double
 multipleReturnShare(const std::vector<std::uint8_t>& returns)
 {
-  const auto multiple = std::count_if(returns.begin(), returns.end(), [](std::uint8_t r) { return r > 1; });
+  const auto multiple =
+      std::count_if(returns.begin(), returns.end(), [](std::uint8_t r) { return r > 1; });
   return returns.empty() ? 0.0 : static_cast<double>(multiple) / static_cast<double>(returns.size());
 }
 
-/// One line on the returns, where IMRG's classes use them.
+/// One line on the returns, where IMRG's classes use them (a share above 0: recorded, as
+/// segmentation::recordsReturns says).
 void
-printReturns(const Options& o, const std::vector<std::uint8_t>& returns)
+printReturns(const Options& o, double multiple_return_share)
 {
   if (o.settings.method != ev::SegmentationMethod::IMRG && !o.evaluate)
     return;
-  if (segmentation::recordsReturns(returns))
+  if (multiple_return_share > 0.0)
     print_info("Returns recorded: %.1f %% of the points from pulses with several returns (IMRG's "
                "classes use them to tell parked cars from shrubs)\n",
-               100.0 * multipleReturnShare(returns));
+               100.0 * multiple_return_share);
   else
     print_info("No returns recorded (one per pulse): IMRG names car-sized rough objects "
                "vegetation\n");
@@ -323,7 +326,8 @@ loadInput(const Options& o, Input& in, std::string& error)
                     "' carries a label of the evaluated classes"),
            false;
   in.wkt = in.info.format == "las" ? maps::crsFromLasVlrs(in.info.las.vlrs) : in.info.file_crs_wkt;
-  printReturns(o, in.returns);
+  in.multiple_return_share = multipleReturnShare(in.returns);
+  printReturns(o, in.multiple_return_share);
   return true;
 }
 
@@ -600,7 +604,7 @@ main(int argc, char** argv)
   report["level"] = o.settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
   report["seconds_load"] = in.seconds;
   report["warnings"] = inputWarnings(in);
-  report["multiple_return_share"] = multipleReturnShare(in.returns);  // 0: returns not recorded
+  report["multiple_return_share"] = in.multiple_return_share;  // 0: returns not recorded
 
   ev::ReferenceObjects objects;
   if (o.evaluate) {

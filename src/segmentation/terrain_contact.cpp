@@ -21,8 +21,8 @@ holdsGroundAtItsFoot(ObjectClass c)
   return c == ObjectClass::Vegetation || c == ObjectClass::Car;
 }
 
-/// Vegetation and car points the ground filter keeps, no higher than \a limit above the terrain plane
-/// (NaN: the terrain is unknown there).
+/// Vegetation and car points the ground filter keeps, no higher than \a limit above the terrain
+/// plane (NaN: the terrain is unknown there).
 std::vector<std::size_t>
 pointsOnTerrain(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
                 const std::vector<ObjectClass>& object_class, double limit, double half_width,

@@ -67,9 +67,10 @@ namespace pcl_ls3d {
 ///  8. points by position (an addition, with the classes; AssemblySettings
 ///     terrain_return_multiple, claim_under_roofs): vegetation and car points the ground
 ///     filter keeps no higher than 3 ground residuals above the terrain plane join the ground
-///     object beside them (terrain_contact.h), then vegetation points under a building's roof join it
-///     (roof_cover.h: facade scatter the growth put into the crowns in front). Classes are not
-///     recomputed; an object may lose points to them (a few-point remnant stays an object).
+///     object beside them (terrain_contact.h), then vegetation points under a building's roof
+///     join it (roof_cover.h: facade scatter the growth put into the crowns in front).
+///     Classes are not recomputed; an object may lose points to them (a few-point remnant
+///     stays an object).
 ///     A plane takes the class of the object holding most of its points
 ///     (getClusterClasses()).
 /// Two levels come out of one extract() (setOutputLevel(), getClusters()): Level::Planes, the

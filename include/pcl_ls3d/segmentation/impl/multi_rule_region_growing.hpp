@@ -376,8 +376,9 @@ std::vector<char>
 MultiRuleRegionGrowing<PointT, NormalT>::multipleReturnFlags() const
 {
   // Data without returns store 1 (or 0) everywhere: no point of them is known to be single.
-  // Judged on the whole input, not only on the indices segmented.
-  if (returns_.size() != input_->size() || !segmentation::recordsReturns(returns_))
+  // Judged on the whole input, not only on the indices segmented (its size was checked when
+  // the run began; empty: unknown).
+  if (!segmentation::recordsReturns(returns_))
     return {};
   std::vector<char> flags(valid_indices_.size());
   for (std::size_t p = 0; p < valid_indices_.size(); ++p)
