@@ -167,11 +167,27 @@ carSizedInPlan(const ObjectShape& s, const ObjectClassSettings& c)
          s.width() >= c.car_min_width && s.width() <= c.car_max_width;
 }
 
-/// Car-sized: its top at most car_max_height above known terrain, car-sized in plan.
+/// As wide as a car and at least as long as one: a car, or a row of cars parked nose to tail
+/// that grew into one object (gaps under the growth radius).
+bool
+carRowInPlan(const ObjectShape& s, const ObjectClassSettings& c)
+{
+  return s.length() >= c.car_min_length && s.width() >= c.car_min_width &&
+         s.width() <= c.car_max_width;
+}
+
+/// Its top at most car_max_height above known terrain.
+bool
+lowAsACar(const Heights& h, const ObjectClassSettings& c)
+{
+  return h.known() && h.top - h.terrain <= c.car_max_height;
+}
+
+/// Car-sized: low as a car, car-sized in plan.
 bool
 carSized(const ObjectShape& s, const Heights& h, const ObjectClassSettings& c)
 {
-  return h.known() && h.top - h.terrain <= c.car_max_height && carSizedInPlan(s, c);
+  return lowAsACar(h, c) && carSizedInPlan(s, c);
 }
 
 ObjectClass
@@ -267,10 +283,10 @@ describeLasCodes()
 
 namespace {
 
-/// Per object: may it be a car although it is rough? Its returns are known, at most
-/// car_max_multiple_return_share of its (finite) points come from pulses with several returns
-/// and it is car-sized in plan (its height is judged once its terrain is known). All false when
-/// \a multiple_return is empty.
+/// Per object: may it be a car (or a row of cars) although it is rough? Its returns are known,
+/// at most car_max_multiple_return_share of its (finite) points come from pulses with several
+/// returns and it is a car or a row of cars in plan (its height is judged once its terrain is
+/// known). All false when \a multiple_return is empty.
 std::vector<char>
 opaqueCarSized(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
                const std::vector<char>& multiple_return, const std::vector<ObjectShape>& shapes,
@@ -284,7 +300,7 @@ opaqueCarSized(const std::vector<Eigen::Vector3f>& points, const std::vector<int
     if (labels[p] >= 0 && points[p].allFinite() && multiple_return[p])
       ++multiple[static_cast<std::size_t>(labels[p])];
   for (std::size_t o = 0; o < shapes.size(); ++o)
-    out[o] = shapes[o].points > 0 && shapes[o].family() == kRough && carSizedInPlan(shapes[o], c) &&
+    out[o] = shapes[o].points > 0 && shapes[o].family() == kRough && carRowInPlan(shapes[o], c) &&
              static_cast<double>(multiple[o]) <=
                  c.car_max_multiple_return_share * static_cast<double>(shapes[o].points);
   return out;
@@ -332,8 +348,8 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     // Heights along the terrain's slope; the ground family against the other ground only.
     const std::vector<double> z = stats::quantiles(detrended[o], {0.05, 0.5, 0.95});
     const Heights h{z[0], z[1], z[2], planes[o].level};
-    if (family == kRough) {  // opaque and car-sized in plan: a car if low enough
-      classes[o] = carSized(s, h, settings) ? ObjectClass::Car : ObjectClass::Vegetation;
+    if (family == kRough) {  // opaque, a car or a row of cars in plan: cars if low enough
+      classes[o] = lowAsACar(h, settings) ? ObjectClass::Car : ObjectClass::Vegetation;
       continue;
     }
     if (family == kGround) {

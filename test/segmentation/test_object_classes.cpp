@@ -245,6 +245,37 @@ TEST(ObjectClasses, OpaqueCarSizedRoughObjectIsACar)
   EXPECT_TRUE(classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple).empty());
 }
 
+// Cars parked nose to tail with gaps under the growth radius grow into one rough object longer
+// than any car (IGN 77050_627755: two cars, 7.9 m × 1.7 m, 7 % multi-return points). Opaque, as
+// wide as a car and as low: cars. The same strip with half its pulses passing through is a
+// hedge, a wider one no row of cars, a higher one no car.
+TEST(ObjectClasses, OpaqueRowOfCarsIsCars)
+{
+  Scene s;
+  addTerrain(s, {{9.5f, 22.3f, 9.5f, 12.3f}});
+  std::mt19937 rng(6);
+  std::uniform_real_distribution<float> jitter(-0.15f, 0.15f);
+  const auto rough_box = [&](float x0, float y0, float z0, float length, float width, int label) {
+    for (float x = x0; x <= x0 + length; x += 0.2f)
+      for (float y = y0; y <= y0 + width; y += 0.2f)
+        s.add(x + jitter(rng), y + jitter(rng), z0 + jitter(rng), label, SegmentKind::Rough);
+  };
+  rough_box(10.0f, 10.0f, 1.4f, 12.0f, 1.8f, 1);    // three cars in a row
+  rough_box(-30.0f, 10.0f, 1.4f, 12.0f, 1.8f, 2);   // hedge of the row's size
+  rough_box(-30.0f, -20.0f, 1.4f, 12.0f, 4.5f, 3);  // wider than a car
+  rough_box(10.0f, -20.0f, 3.5f, 12.0f, 1.8f, 4);   // higher than a car
+  std::vector<char> multiple(s.points.size(), 0);
+  for (std::size_t p = 0; p < s.points.size(); ++p)
+    multiple[p] = s.labels[p] == 2 && p % 2 == 0;
+
+  const std::vector<ObjectClass> with = classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
+  ASSERT_EQ(with.size(), 5u);
+  EXPECT_EQ(with[1], ObjectClass::Car);
+  EXPECT_EQ(with[2], ObjectClass::Vegetation);
+  EXPECT_EQ(with[3], ObjectClass::Vegetation);
+  EXPECT_EQ(with[4], ObjectClass::Vegetation);
+}
+
 // IMRG end to end on a generated 100 m scene with buildings, trees, shrubs, cars and a power
 // line: every point takes its object's class, scored against the generator's ASPRS labels
 // (vegetation 3-5, towers 15 as poles, cars 64). Measured on this seed: F1 ground 0.998,

@@ -10,11 +10,12 @@
 ///    (the level from the cells near it whose lowest ground-filter point is not its own, the
 ///    slope from all of them) and its plan box covers min_building_area: a roof wider than the
 ///    ground filter's largest window, which the filter kept, is a Building;
-///  - rough: Vegetation (crowns, hedges, grass detached from the ground), except a car-sized
-///    one (as below) of which at most car_max_multiple_return_share of the points come from
-///    pulses with several returns, when the returns are known: a Car (a car body stops the
-///    pulse; a shrub of its size lets part of it through). Parked cars scan as rough as
-///    shrubs at 10–20 points/m²;
+///  - rough: Vegetation (crowns, hedges, grass detached from the ground), except one as low
+///    as a car (as below) and as wide as one, at least as long as one (a car, or a row of cars
+///    parked nose to tail grown into one object), of which at most
+///    car_max_multiple_return_share of the points come from pulses with several returns, when
+///    the returns are known: a Car (a car body stops the pulse; a shrub of its size lets part
+///    of it through). Parked cars scan as rough as shrubs at 10–20 points/m²;
 ///  - surface (solid, wall) or linear, standing upright — vertical extent at least
 ///    min_building_height and pole_slenderness × its plan length, median z in the lower
 ///    pole_mass_height of that extent (points all the way up: a tall building seen from above
@@ -44,7 +45,7 @@
 /// min_building_area (a roof-only crop; a car there is called a building too), a line is no
 /// wire. Heights use robust ends and middle: low, median and top are the 5th, 50th and 95th
 /// percentiles of the object's z with the terrain's slope taken out. Rough objects take a
-/// terrain only when they may be a car (returns known, car-sized in plan); without one they are
+/// terrain only when they may be a car (returns known, a car or a row of cars in plan); without one they are
 /// vegetation whatever their height.
 /// Lengths are metres (cloud units): car and building sizes are physical, not relative to the
 /// spacing. Non-finite points are skipped.
