@@ -3,7 +3,8 @@
 #include <pcl_ls3d/adjustment/normal_equations.h>
 #include <pcl_ls3d/adjustment/similarity_jacobian.h>
 
-#include "../rules/target_overlap.h"  // the pair set-up's overlap and degeneracy checks
+#include "../adjustment/matching_steps.h"  // the engine's pair set-up
+#include "../rules/target_overlap.h"       // ... and its degeneracy check
 
 #include <Eigen/Geometry>
 
@@ -25,35 +26,24 @@ LinearizedMatching::reset(const std::vector<Eigen::Vector3d>& points, const Targ
       *failure = type;
     return false;
   };
-  // As the engine's pair set-up: o_s is the centroid of the points over the reference's box.
-  Eigen::Vector3d o_s;
-  Eigen::AlignedBox3d box;
-  std::vector<int> inside;
-  if (!guess.allFinite() || !detail::overlapCentroid(points, reference, guess,
-                                                     settings.max_correspondence_distance, o_s, box, inside))
+  // The engine's pair set-up: o_s is the centroid of the points over the reference's box.
+  detail::PairSetup setup;
+  if (!guess.allFinite() || !detail::setUpPair(points, reference, guess, settings, setup, reduced_))
     return fail(TerminationType::NO_OVERLAP,
                 "no epoch point falls over the reference's extent under the initial guess");
-  block_ = sourceBlockFromGuess(guess, o_s, settings);
-  target_block_ = ParameterBlock::fixedIdentity(block_.output_origin);
-
-  reduced_.resize(points.size());
-  double radius = 0.0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    reduced_[i] = points[i] - o_s;
-    if (reduced_[i].allFinite())
-      radius = std::max(radius, reduced_[i].norm());
-  }
+  block_ = setup.source;
+  target_block_ = setup.target;
   problem_ = GaussMarkovProblem(7);
   problem_.apriori_values = block_.apriori_values;
   problem_.apriori_weights = block_.apriori_weights;
   problem_.determinability_threshold = settings.determinability_threshold;
-  problem_.scaling = rankTestScaling(radius);
+  problem_.scaling = rankTestScaling(setup.radius);
   matcher_.reset(reduced_, reference, rule, settings.max_correspondence_distance);
   if (!relinearize(block_.values)) {
     // Points over the reference and still no conjugate point: a reference without a surface
     // there (collinear, coincident) is named as the engine names it, not taken for no overlap.
     const std::string degenerate =
-        detail::degenerateTargetReason(points, inside, guess, reference, "reference", "epoch");
+        detail::degenerateTargetReason(points, setup.inside, guess, reference, "reference", "epoch");
     if (!degenerate.empty())
       return fail(TerminationType::TOO_FEW_OBSERVATIONS, degenerate);
     return fail(TerminationType::NO_OVERLAP,
