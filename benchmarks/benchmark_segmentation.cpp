@@ -22,7 +22,6 @@
 
 #include <pcl_ls3d/evaluation/object_metrics.h>
 #include <pcl_ls3d/evaluation/reference_objects.h>
-#include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_metrics.h>
 #include <pcl_ls3d/evaluation/segmentation_report.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
@@ -269,16 +268,11 @@ printObjectClasses(const std::string& title, const ev::SegmentationRun& imrg, co
 {
   if (imrg.classes.size() != imrg.segments.size() || imrg.classes.empty())
     return;
-  const std::vector<int> predicted =
-      ev::classCodesFromSegments(imrg.segments, imrg.classes, data.labels.size());
   ev::SegmentationEvaluationSettings settings;
   settings.groups = groups;
   ev::SegmentationEvaluation e;
-  e.method = "imrg classes";
-  e.seconds = imrg.seconds_total;
-  e.segments = imrg.segments.size();
   std::string error;
-  if (!ev::evaluateClassification(predicted, data.labels, settings, e, error)) {
+  if (!ev::evaluateRunClasses(imrg, data.labels, settings, e, error)) {
     std::printf("  object classes: %s\n", error.c_str());
     return;
   }

@@ -15,7 +15,6 @@
 #include <pcl_ls3d/evaluation/object_metrics.h>
 #include <pcl_ls3d/evaluation/reference_objects.h>
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
-#include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_metrics.h>
 #include <pcl_ls3d/evaluation/segmentation_report.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
@@ -435,12 +434,7 @@ evaluateRun(const Options& o, const Input& in, const ev::ReferenceObjects& objec
   if (run.classes.empty())
     return true;
   ev::SegmentationEvaluation c;
-  c.method = e.method + " classes";
-  c.seconds = e.seconds;
-  c.segments = run.segments.size();
-  if (!ev::evaluateClassification(
-          ev::classCodesFromSegments(run.segments, run.classes, in.reference.size()),
-          in.reference, o.eval, c, error))
+  if (!ev::evaluateRunClasses(run, in.reference, o.eval, c, error))
     return false;
   report["class_evaluation"].push_back(tools::segment_report::evaluationToJson(c));
   r.class_evaluations.push_back(c);

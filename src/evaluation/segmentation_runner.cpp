@@ -1,4 +1,5 @@
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
+#include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/voxel_baseline.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 
@@ -225,6 +226,20 @@ runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
     return false;
   }
   return true;
+}
+
+bool
+evaluateRunClasses(const SegmentationRun& run, const std::vector<int>& reference_labels,
+                   const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
+                   std::string& error)
+{
+  result = SegmentationEvaluation();
+  result.method = std::string(toString(run.method)) + " classes";
+  result.seconds = run.seconds_total;
+  result.segments = run.segments.size();
+  return evaluateClassification(
+      classCodesFromSegments(run.segments, run.classes, reference_labels.size()),
+      reference_labels, settings, result, error);
 }
 
 }  // namespace evaluation

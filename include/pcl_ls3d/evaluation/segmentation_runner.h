@@ -5,6 +5,7 @@
 ///        or the voxel-grid baseline. Shared by pcl_ls3d_segment, the benchmark and the tests so
 ///        all three run the same thing.
 
+#include <pcl_ls3d/evaluation/segmentation_metrics.h>
 #include <pcl_ls3d/segmentation/object_classes.h>
 
 #include <pcl/PointIndices.h>
@@ -117,6 +118,15 @@ bool
 runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
                 const SegmentationRunSettings& settings, SegmentationRun& run, std::string& error,
                 const std::vector<std::uint8_t>& number_of_returns = {});
+
+/// \brief The run's object classes (IMRG's) scored point by point against \a reference_labels:
+///        evaluateClassification() of the LAS codes classCodesFromSegments() gives, as method
+///        "<method> classes" with the run's time and segment count.
+/// \return false with a one-line reason (the sizes differ)
+bool
+evaluateRunClasses(const SegmentationRun& run, const std::vector<int>& reference_labels,
+                   const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
+                   std::string& error);
 
 }  // namespace evaluation
 }  // namespace pcl_ls3d
