@@ -62,7 +62,9 @@ printHelp(const char* prog)
   print_info("Multi-factor segmentation by improved multi-rule region growing (Wang et al. 2021).\n\n"
              "Syntax: %s INPUT [options]\n"
              "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference;\n"
-             "                     its numbers of returns, where recorded, tell parked cars from shrubs)\n"
+             "                     its numbers of returns, where recorded, tell parked cars from shrubs;\n"
+             "                     a CRS in feet is segmented in metres: lengths, thresholds and\n"
+             "                     the options below are metres, SEGMENTS.pcd keeps the file's unit)\n"
              "  -o SEGMENTS.pcd    every input point in input order: x y z float, local frame\n"
              "                     (file coordinate = x + origin; origin in the header line\n"
              "                     '# pcl_ls3d origin X Y Z' and the JSON), label = segment + 1\n"
@@ -251,6 +253,10 @@ struct Input
   pcl::PointCloud<PointLiDAR> cloud;
   io::CloudInfo info;
   pcl::PointCloud<pcl::PointXYZ>::Ptr xyz{new pcl::PointCloud<pcl::PointXYZ>};
+  /// What the methods segment: xyz in metres (the classes' heights and sizes are physical);
+  /// xyz itself unless the CRS declares another unit.
+  pcl::PointCloud<pcl::PointXYZ>::Ptr metric;
+  double metres_per_unit = 1.0, metres_per_height_unit = 1.0;  ///< from the CRS; 1: metres
   std::vector<int> reference;  ///< LAS classification / PCD label per point
   std::vector<std::uint8_t> returns;  ///< number of returns per point (all 1 where not recorded)
   double multiple_return_share = 0.0;  ///< of the points; 0: returns not recorded
@@ -281,6 +287,28 @@ printReturns(const Options& o, double multiple_return_share)
   else
     print_info("No returns recorded (one per pulse): IMRG names car-sized rough objects "
                "vegetation\n");
+}
+
+/// The methods' cloud in metres: a projected CRS in feet (US State Plane, Oregon Lambert)
+/// would otherwise see its 2 m building height as 0.6 m and a car as 1.4 m long.
+void
+toMetres(Input& in)
+{
+  const double xy = maps::crsLinearUnit(in.wkt), z = maps::crsVerticalUnit(in.wkt);
+  in.metric = in.xyz;
+  if (!(xy > 0.0 && z > 0.0) || (xy == 1.0 && z == 1.0))
+    return;
+  in.metres_per_unit = xy;
+  in.metres_per_height_unit = z;
+  in.metric.reset(new pcl::PointCloud<pcl::PointXYZ>(*in.xyz));
+  for (auto& p : *in.metric) {
+    p.x = static_cast<float>(p.x * xy);
+    p.y = static_cast<float>(p.y * xy);
+    p.z = static_cast<float>(p.z * z);
+  }
+  print_info("Coordinates in %s (%.7g m, heights %.7g m per unit): segmented in metres; the "
+             "lengths below are metres, SEGMENTS.pcd keeps the file's unit\n",
+             maps::crsLinearUnitName(in.wkt).c_str(), xy, z);
 }
 
 bool
@@ -325,6 +353,7 @@ loadInput(const Options& o, Input& in, std::string& error)
                     "' carries a label of the evaluated classes"),
            false;
   in.wkt = in.info.format == "las" ? maps::crsFromLasVlrs(in.info.las.vlrs) : in.info.file_crs_wkt;
+  toMetres(in);
   in.multiple_return_share = multipleReturnShare(in.returns);
   printReturns(o, in.multiple_return_share);
   return true;
@@ -336,12 +365,11 @@ inputWarnings(const Input& in)
 {
   // Metres per unit: the CRS's, else the tool's assumption of metres; a CRS without a linear
   // unit (geographic degrees) gives no density to judge.
-  const double crs_unit = maps::crsLinearUnit(in.wkt);
-  const bool density_known = in.wkt.empty() || crs_unit > 0.0;
+  const bool density_known = in.wkt.empty() || maps::crsLinearUnit(in.wkt) > 0.0;
   json warnings = json::array();
   for (const std::string& w :
-       {tools::farOutlierWarning(*in.xyz),
-        density_known ? tools::sparseDataWarning(*in.xyz, crs_unit > 0.0 ? crs_unit : 1.0)
+       {tools::farOutlierWarning(*in.metric),
+        density_known ? tools::sparseDataWarning(*in.metric, 1.0)
                       : std::string()})
     if (!w.empty()) {
       print_warn("Warning: %s\n", w.c_str());
@@ -463,7 +491,7 @@ runMethods(const Options& o, const Input& in, const ev::ReferenceObjects& object
     TicToc tt;
     tt.tic();
     const bool ok = (m != ev::SegmentationMethod::VoxelGrid || imrg_segments > 0)
-                        ? ev::runSegmentation(in.xyz, s, run, error, in.returns)
+                        ? ev::runSegmentation(in.metric, s, run, error, in.returns)
                         : (error = "no IMRG segment count to match", false);
     if (!ok && m == o.settings.method)
       return false;
@@ -595,6 +623,8 @@ main(int argc, char** argv)
   report["points_in_file"] = in.info.points_in_file;
   report["points_dropped_nonfinite"] = in.info.points_dropped_nonfinite;
   report["origin"] = {in.info.origin.x(), in.info.origin.y(), in.info.origin.z()};
+  // Thresholds, spacings and radii in the report are metres; coordinates the file's unit.
+  report["metres_per_unit"] = {in.metres_per_unit, in.metres_per_unit, in.metres_per_height_unit};
   report["level"] = o.settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
   report["seconds_load"] = in.seconds;
   report["warnings"] = inputWarnings(in);
@@ -608,7 +638,7 @@ main(int argc, char** argv)
     ro.radius = o.object_radius;
     TicToc tt;
     tt.tic();
-    if (!ev::referenceObjectsFromLabels(*in.xyz, in.reference, ro, objects, error))
+    if (!ev::referenceObjectsFromLabels(*in.metric, in.reference, ro, objects, error))
       return fail("-evaluate: " + error);
     print_info("Reference objects: %zu (connected components per class group, radius %.2f m) "
                "in %.3f s\n", objects.objects(), objects.radius, tt.toc() / 1000.0);

@@ -230,6 +230,17 @@ crsLinearUnit(const std::string& wkt)
   return srs->GetLinearUnits(nullptr);
 }
 
+double
+crsVerticalUnit(const std::string& wkt)
+{
+  const auto srs = parse(wkt);
+  if (!srs || !srs->IsProjected())
+    return 0.0;
+  if (srs->IsCompound() && srs->GetAttrNode("VERT_CS") != nullptr)
+    return srs->GetTargetLinearUnits("VERT_CS", nullptr);
+  return srs->GetLinearUnits(nullptr);
+}
+
 std::string
 crsLinearUnitName(const std::string& wkt)
 {

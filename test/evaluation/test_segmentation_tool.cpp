@@ -9,6 +9,7 @@
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/png_io.h>
+#include <pcl_ls3d/synth/scene.h>
 
 #include <pcl/io/pcd_io.h>
 
@@ -840,4 +841,63 @@ TEST_F(SegmentTool, SegmentsFileKeepsTheInputCrs)
   EXPECT_EQ(info.las.global_encoding & 16, 16);
   EXPECT_TRUE(pcl_ls3d::maps::sameCrs(pcl_ls3d::maps::crsFromLasVlrs(info.las.vlrs), wkt));
   EXPECT_NEAR(info.min_file.x(), origin.x() - 20.0, 1.0);  // the input's coordinates
+}
+
+// A projected CRS in feet (US State Plane, Oregon Lambert: PDAL's Autzen) is segmented in
+// metres: the classes' heights and sizes are physical (a building 2 m up, a car 2.5-7 m long).
+// Before, a generated scene written in international feet lost its cars (14.8 "m" long) and
+// its ground (Autzen's trimmed strip: 1.9 % ground, 47 % "building"). SEGMENTS.pcd keeps the
+// file's unit; the JSON says how many metres a unit is.
+TEST_F(SegmentTool, FeetAreSegmentedInMetres)
+{
+  const std::string wkt = pcl_ls3d::maps::crsFromUserInput("EPSG:2994");  // Oregon GIC Lambert (ft)
+  ASSERT_NEAR(pcl_ls3d::maps::crsLinearUnit(wkt), 0.3048, 1e-9);
+  ASSERT_NEAR(pcl_ls3d::maps::crsVerticalUnit(wkt), 0.3048, 1e-9);
+  pcl_ls3d::synth::SceneSettings settings;
+  settings.seed = 4;
+  settings.size_x = settings.size_y = 100.0;
+  const auto scene = pcl_ls3d::synth::makeScene(settings);
+  ASSERT_TRUE(scene.cloud && scene.cloud->size() > 50000u);
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> feet = *scene.cloud;
+  for (auto& p : feet) {
+    p.x /= 0.3048f;
+    p.y /= 0.3048f;
+    p.z /= 0.3048f;
+  }
+  pcl_ls3d::io::SaveOptions options;
+  options.las_vlrs = {pcl_ls3d::maps::wktVlr(wkt)};
+  options.las_point_format = 6;  // class 64 (cars) and the returns
+  options.las_minor_version = 4;
+  const fs::path las = dir_ / "feet.las", seg = dir_ / "SEGMENTS.pcd", js = dir_ / "r.json";
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(las.string(), feet, Eigen::Vector3d(2000000.0, 800000.0, 0.0),
+                                      error, options))
+      << error;
+  const ToolResult r = run(las.string() + " -o " + seg.string() + " -json " + js.string());
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("segmented in metres"), std::string::npos) << r.out;
+  const auto report = nlohmann::json::parse(slurp(js));
+  EXPECT_NEAR(report["metres_per_unit"][0].get<double>(), 0.3048, 1e-9);
+
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> written;
+  pcl_ls3d::io::CloudInfo info;
+  ASSERT_TRUE(pcl_ls3d::io::loadCloud(seg.string(), written, info, error)) << error;
+  ASSERT_EQ(written.size(), feet.size());
+  std::map<int, std::map<int, std::size_t>> truth_to_class;  // generator code -> written code
+  for (std::size_t i = 0; i < written.size(); ++i) {
+    ASSERT_NEAR(written[i].x, feet[i].x, 0.02f) << i;  // the file's unit, not metres
+    const int truth = feet[i].classification >= 3 && feet[i].classification <= 5
+                          ? 5 : feet[i].classification;
+    ++truth_to_class[truth][written[i].classification];
+  }
+  const auto share = [&](int truth, int code) {
+    std::size_t all = 0;
+    for (const auto& [c, n] : truth_to_class[truth])
+      all += n;
+    return all ? static_cast<double>(truth_to_class[truth][code]) / static_cast<double>(all) : 0.0;
+  };
+  EXPECT_GE(share(2, 2), 0.95);
+  EXPECT_GE(share(6, 6), 0.95);
+  EXPECT_GE(share(5, 5), 0.9);
+  EXPECT_GE(share(64, 64), 0.9);  // cars
 }

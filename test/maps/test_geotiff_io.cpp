@@ -137,3 +137,17 @@ TEST(CoordinateReference, RealIgnFilesDeclareLambert93)
     EXPECT_DOUBLE_EQ(crsLinearUnit(wkt), 1.0);
   }
 }
+
+// Heights take the vertical CRS's unit where there is one (PDAL's autzen-bmx: metres in plan,
+// US survey feet in height), else the plan's (Autzen's trimmed strip: feet throughout).
+TEST(CoordinateReference, VerticalUnit)
+{
+  EXPECT_DOUBLE_EQ(crsVerticalUnit(crsFromUserInput("EPSG:2154")), 1.0);
+  EXPECT_NEAR(crsVerticalUnit(crsFromUserInput("EPSG:2994")), 0.3048, 1e-12);
+  const std::string compound = crsFromUserInput("EPSG:26910+6360");  // UTM 10N + NAVD88 (ftUS)
+  ASSERT_FALSE(compound.empty());
+  EXPECT_DOUBLE_EQ(crsLinearUnit(compound), 1.0);
+  EXPECT_NEAR(crsVerticalUnit(compound), 1200.0 / 3937.0, 1e-9);
+  EXPECT_EQ(crsVerticalUnit(crsFromUserInput("EPSG:4326")), 0.0);  // geographic: unknown
+  EXPECT_EQ(crsVerticalUnit(""), 0.0);
+}
