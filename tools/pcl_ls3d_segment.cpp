@@ -64,7 +64,8 @@ printHelp(const char* prog)
              "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference;\n"
              "                     its numbers of returns, where recorded, tell parked cars from shrubs;\n"
              "                     a CRS in feet is segmented in metres: lengths, thresholds and\n"
-             "                     the options below are metres, SEGMENTS.pcd keeps the file's unit)\n"
+             "                     the options below are metres, SEGMENTS.pcd keeps the file's unit;\n"
+             "                     one in degrees is refused)\n"
              "  -o SEGMENTS.pcd    every input point in input order: x y z float, local frame\n"
              "                     (file coordinate = x + origin; origin in the header line\n"
              "                     '# pcl_ls3d origin X Y Z' and the JSON), label = segment + 1\n"
@@ -353,6 +354,11 @@ loadInput(const Options& o, Input& in, std::string& error)
                     "' carries a label of the evaluated classes"),
            false;
   in.wkt = in.info.format == "las" ? maps::crsFromLasVlrs(in.info.las.vlrs) : in.info.file_crs_wkt;
+  if (maps::crsIsGeographic(in.wkt))
+    return (error = "'" + o.input + "' is in degrees (" + maps::crsName(in.wkt) +
+                    "): the segmentation's heights and sizes are lengths; reproject it to a "
+                    "projected CRS first"),
+           false;
   toMetres(in);
   in.multiple_return_share = multipleReturnShare(in.returns);
   printReturns(o, in.multiple_return_share);
@@ -363,8 +369,8 @@ loadInput(const Options& o, Input& in, std::string& error)
 json
 inputWarnings(const Input& in)
 {
-  // Metres per unit: the CRS's, else the tool's assumption of metres; a CRS without a linear
-  // unit (geographic degrees) gives no density to judge.
+  // The tool's assumption of metres without a CRS; a CRS without a linear unit (an
+  // engineering one) gives no density to judge.
   const bool density_known = in.wkt.empty() || maps::crsLinearUnit(in.wkt) > 0.0;
   json warnings = json::array();
   for (const std::string& w :

@@ -230,6 +230,13 @@ crsLinearUnit(const std::string& wkt)
   return srs->GetLinearUnits(nullptr);
 }
 
+bool
+crsIsGeographic(const std::string& wkt)
+{
+  const auto srs = parse(wkt);
+  return srs && srs->IsGeographic();
+}
+
 double
 crsVerticalUnit(const std::string& wkt)
 {

@@ -901,3 +901,26 @@ TEST_F(SegmentTool, FeetAreSegmentedInMetres)
   EXPECT_GE(share(5, 5), 0.9);
   EXPECT_GE(share(64, 64), 0.9);  // cars
 }
+
+// Latitude and longitude are no lengths: one error line before any work, nothing written.
+TEST_F(SegmentTool, DegreesAreRefused)
+{
+  const std::string wkt = pcl_ls3d::maps::crsFromUserInput("EPSG:4326");
+  ASSERT_TRUE(pcl_ls3d::maps::crsIsGeographic(wkt));
+  EXPECT_FALSE(pcl_ls3d::maps::crsIsGeographic(pcl_ls3d::maps::crsFromUserInput("EPSG:2994")));
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> lidar;
+  for (const auto& p : scene_)
+    lidar.push_back(pcl_ls3d::PointLiDAR(p.x * 1e-5f, p.y * 1e-5f, p.z));
+  pcl_ls3d::io::SaveOptions options;
+  options.las_vlrs = {pcl_ls3d::maps::wktVlr(wkt)};
+  const fs::path las = dir_ / "degrees.las", seg = dir_ / "SEGMENTS.pcd";
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(las.string(), lidar, Eigen::Vector3d(2.0, 48.0, 0.0), error,
+                                      options))
+      << error;
+  const ToolResult r = run(las.string() + " -o " + seg.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(countNonEmptyLines(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("degrees"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(seg));
+}

@@ -37,6 +37,10 @@ crsName(const std::string& wkt);
 double
 crsLinearUnit(const std::string& wkt);
 
+/// True when \a wkt is a geographic CRS (coordinates in degrees of latitude and longitude).
+bool
+crsIsGeographic(const std::string& wkt);
+
 /// Metres per unit of height: the unit of the CRS's vertical part where it has one (a compound
 /// CRS: "NAD83 / Oregon LCC (m) + NAVD88 height (ftUS)" gives 0.3048006), else the horizontal
 /// unit (a LAS file declaring a projected CRS alone stores z in its unit); 0 when unknown.
