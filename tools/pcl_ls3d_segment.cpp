@@ -256,8 +256,10 @@ struct Input
   pcl::PointCloud<pcl::PointXYZ>::Ptr xyz{new pcl::PointCloud<pcl::PointXYZ>};
   /// What the methods segment: xyz in metres (the classes' heights and sizes are physical);
   /// xyz itself unless the CRS declares another unit.
-  pcl::PointCloud<pcl::PointXYZ>::Ptr metric;
-  double metres_per_unit = 1.0, metres_per_height_unit = 1.0;  ///< from the CRS; 1: metres
+  pcl::PointCloud<pcl::PointXYZ>::Ptr metric = xyz;
+  /// Metres per unit in plan and in height, as the CRS declares them; 0: not declared (metres
+  /// assumed).
+  double metres_per_unit = 0.0, metres_per_height_unit = 0.0;
   std::vector<int> reference;  ///< LAS classification / PCD label per point
   std::vector<std::uint8_t> returns;  ///< number of returns per point (all 1 where not recorded)
   double multiple_return_share = 0.0;  ///< of the points; 0: returns not recorded
@@ -290,17 +292,27 @@ printReturns(const Options& o, double multiple_return_share)
                "vegetation\n");
 }
 
+/// The units the CRS declares: a compound CRS whose height unit GDAL does not show is taken
+/// to use its plan unit, and said so.
+void
+readUnits(Input& in)
+{
+  in.metres_per_unit = maps::crsLinearUnit(in.wkt);
+  in.metres_per_height_unit = maps::crsVerticalUnit(in.wkt);
+  if (in.metres_per_unit > 0.0 && !(in.metres_per_height_unit > 0.0)) {
+    print_warn("Warning: the CRS's height unit is not readable; heights taken in its plan unit\n");
+    in.metres_per_height_unit = in.metres_per_unit;
+  }
+}
+
 /// The methods' cloud in metres: a projected CRS in feet (US State Plane, Oregon Lambert)
 /// would otherwise see its 2 m building height as 0.6 m and a car as 1.4 m long.
 void
 toMetres(Input& in)
 {
-  const double xy = maps::crsLinearUnit(in.wkt), z = maps::crsVerticalUnit(in.wkt);
-  in.metric = in.xyz;
-  if (!(xy > 0.0 && z > 0.0) || (xy == 1.0 && z == 1.0))
+  const double xy = in.metres_per_unit, z = in.metres_per_height_unit;
+  if (!(xy > 0.0) || (xy == 1.0 && z == 1.0))
     return;
-  in.metres_per_unit = xy;
-  in.metres_per_height_unit = z;
   in.metric.reset(new pcl::PointCloud<pcl::PointXYZ>(*in.xyz));
   for (auto& p : *in.metric) {
     p.x = static_cast<float>(p.x * xy);
@@ -354,11 +366,13 @@ loadInput(const Options& o, Input& in, std::string& error)
                     "' carries a label of the evaluated classes"),
            false;
   in.wkt = in.info.format == "las" ? maps::crsFromLasVlrs(in.info.las.vlrs) : in.info.file_crs_wkt;
-  if (maps::crsIsGeographic(in.wkt))
-    return (error = "'" + o.input + "' is in degrees (" + maps::crsName(in.wkt) +
-                    "): the segmentation's heights and sizes are lengths; reproject it to a "
-                    "projected CRS first"),
+  if (maps::crsIsGeographic(in.wkt) || maps::crsIsGeocentric(in.wkt))
+    return (error = "'" + o.input + "' is in " +
+                    (maps::crsIsGeographic(in.wkt) ? "degrees" : "earth-centred coordinates") +
+                    " (" + maps::crsName(in.wkt) + "): the segmentation's heights and sizes are "
+                    "lengths; reproject it to a projected CRS first"),
            false;
+  readUnits(in);
   toMetres(in);
   in.multiple_return_share = multipleReturnShare(in.returns);
   printReturns(o, in.multiple_return_share);
@@ -369,13 +383,12 @@ loadInput(const Options& o, Input& in, std::string& error)
 json
 inputWarnings(const Input& in)
 {
-  // The tool's assumption of metres without a CRS; a CRS without a linear unit (an
-  // engineering one) gives no density to judge.
-  const bool density_known = in.wkt.empty() || maps::crsLinearUnit(in.wkt) > 0.0;
+  // Metres are assumed without a CRS; a CRS whose unit is unreadable gives no density to judge.
+  const bool density_known = in.wkt.empty() || in.metres_per_unit > 0.0;
   json warnings = json::array();
   for (const std::string& w :
        {tools::farOutlierWarning(*in.metric),
-        density_known ? tools::sparseDataWarning(*in.metric, 1.0)
+        density_known ? tools::sparseDataWarning(*in.metric)
                       : std::string()})
     if (!w.empty()) {
       print_warn("Warning: %s\n", w.c_str());
@@ -629,8 +642,12 @@ main(int argc, char** argv)
   report["points_in_file"] = in.info.points_in_file;
   report["points_dropped_nonfinite"] = in.info.points_dropped_nonfinite;
   report["origin"] = {in.info.origin.x(), in.info.origin.y(), in.info.origin.z()};
-  // Thresholds, spacings and radii in the report are metres; coordinates the file's unit.
-  report["metres_per_unit"] = {in.metres_per_unit, in.metres_per_unit, in.metres_per_height_unit};
+  // Thresholds, spacings and radii in the report are metres; coordinates the file's unit
+  // (null: no unit declared, metres assumed).
+  report["metres_per_unit"] =
+      in.metres_per_unit > 0.0
+          ? json{{"horizontal", in.metres_per_unit}, {"vertical", in.metres_per_height_unit}}
+          : json(nullptr);
   report["level"] = o.settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
   report["seconds_load"] = in.seconds;
   report["warnings"] = inputWarnings(in);

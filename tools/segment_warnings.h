@@ -55,16 +55,16 @@ farOutlierWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud)
 /// them: objects join. Measured on IGN tiles thinned at
 /// random (docs/BENCHMARKS.md, "Sparse data"): said before the run, not discovered in the maps.
 inline std::string
-sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud, double metres_per_unit)
+sparseDataWarning(const pcl::PointCloud<pcl::PointXYZ>& cloud)
 {
-  // Density over the 5 m cells that hold points: gaps (water, a cropped corner) do not count.
+  // Density over the 5 m cells that hold points (metres): gaps (water, a cropped corner) do not
+  // count.
   std::vector<Eigen::Vector3d> points;
   points.reserve(cloud.size());
   for (const auto& p : cloud)
     points.emplace_back(p.x, p.y, p.z);
-  const double cell = 5.0 / metres_per_unit;
-  const auto occupied = static_cast<double>(occupiedCells(points, 0, 1, cell));
-  const double cell_m = cell * metres_per_unit;
+  const double cell_m = 5.0;
+  const auto occupied = static_cast<double>(occupiedCells(points, 0, 1, cell_m));
   const double density = static_cast<double>(cloud.size()) / (occupied * cell_m * cell_m);
   if (!(occupied > 0.0) || density >= 2.0)
     return "";

@@ -28,7 +28,7 @@ setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& targe
   for (std::size_t i = 0; i < source.size(); ++i) {
     reduced[i] = source[i] - o_s;
     if (!reduced[i].allFinite())
-      continue;  // an epoch of the robust matching may hold NaN points
+      continue;  // SampleConsensusModelSurfaceMatching's epochs may hold NaN points
     setup.radius = std::max(setup.radius, reduced[i].norm());
     setup.source_box.extend(reduced[i]);
   }

@@ -1,8 +1,9 @@
 #pragma once
 // Internal steps of SurfaceMatchingCore::run (not installed): the pair's frames and starting
-// values, the source-noise estimate, the design rows and normal equations of one iteration, and
-// the precision and reliability fields of the report. The overlap and degenerate-target checks
-// live in rules/target_overlap.h, shared with LinearizedMatching (sample_consensus/).
+// values (setUpPair, shared with LinearizedMatching in sample_consensus/), the source-noise
+// estimate, the design rows and normal equations of one iteration, and the precision and
+// reliability fields of the report. The overlap and degenerate-target checks live in
+// rules/target_overlap.h.
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
 #include <pcl_ls3d/adjustment/gauss_markov.h>
@@ -27,9 +28,9 @@ struct PairSetup
   ParameterBlock source;
   ParameterBlock target;
   Eigen::AlignedBox3d target_box;       ///< of the target points (cloud coordinates)
-  Eigen::AlignedBox3d source_box;       ///< of the reduced source points
+  Eigen::AlignedBox3d source_box;       ///< of the finite reduced source points
   std::vector<int> inside;              ///< source points over the target's box (σ_s seeds)
-  double radius = 0.0;                  ///< largest |reduced source point|
+  double radius = 0.0;                  ///< largest |finite reduced source point|
 };
 
 /// Reduction to a local origin near the overlap (conditioning on georeferenced data), starting

@@ -233,8 +233,13 @@ evaluateRunClasses(const SegmentationRun& run, const std::vector<int>& reference
                    const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
                    std::string& error)
 {
+  if (run.classes.size() != run.segments.size()) {
+    error = std::to_string(run.classes.size()) + " classes for " +
+            std::to_string(run.segments.size()) + " segments";
+    return false;
+  }
   result = SegmentationEvaluation();
-  result.method = std::string(toString(run.method)) + " classes";
+  result.method = toString(run.method) + " classes";
   result.seconds = run.seconds_total;
   result.segments = run.segments.size();
   return evaluateClassification(

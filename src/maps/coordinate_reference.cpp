@@ -225,9 +225,9 @@ double
 crsLinearUnit(const std::string& wkt)
 {
   const auto srs = parse(wkt);
-  if (!srs || !srs->IsProjected())
+  if (!srs || !(srs->IsProjected() || srs->IsLocal()))
     return 0.0;
-  return srs->GetLinearUnits(nullptr);
+  return srs->GetLinearUnits(nullptr);  // of the horizontal part of a compound CRS
 }
 
 bool
@@ -237,15 +237,24 @@ crsIsGeographic(const std::string& wkt)
   return srs && srs->IsGeographic();
 }
 
+bool
+crsIsGeocentric(const std::string& wkt)
+{
+  const auto srs = parse(wkt);
+  return srs && srs->IsGeocentric();
+}
+
 double
 crsVerticalUnit(const std::string& wkt)
 {
   const auto srs = parse(wkt);
-  if (!srs || !srs->IsProjected())
+  if (!srs || !(srs->IsProjected() || srs->IsLocal()))
     return 0.0;
-  if (srs->IsCompound() && srs->GetAttrNode("VERT_CS") != nullptr)
-    return srs->GetTargetLinearUnits("VERT_CS", nullptr);
-  return srs->GetLinearUnits(nullptr);
+  if (!srs->IsCompound())
+    return srs->GetLinearUnits(nullptr);
+  // The vertical part's own unit; not guessed when GDAL's tree does not show it.
+  return srs->GetAttrNode("VERT_CS") != nullptr ? srs->GetTargetLinearUnits("VERT_CS", nullptr)
+                                                : 0.0;
 }
 
 std::string

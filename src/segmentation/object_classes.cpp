@@ -167,13 +167,13 @@ carSizedInPlan(const ObjectShape& s, const ObjectClassSettings& c)
          s.width() >= c.car_min_width && s.width() <= c.car_max_width;
 }
 
-/// As wide as a car and at least as long as one: a car, or a row of cars parked nose to tail
-/// that grew into one object (gaps under the growth radius).
+/// As wide as a car, at least as long as one and at most car_row_max_length: a car, or a row
+/// of cars parked nose to tail that grew into one object (gaps under the growth radius).
 bool
 carRowInPlan(const ObjectShape& s, const ObjectClassSettings& c)
 {
-  return s.length() >= c.car_min_length && s.width() >= c.car_min_width &&
-         s.width() <= c.car_max_width;
+  return s.length() >= c.car_min_length && s.length() <= c.car_row_max_length &&
+         s.width() >= c.car_min_width && s.width() <= c.car_max_width;
 }
 
 /// Its top at most car_max_height above known terrain.
@@ -288,7 +288,7 @@ namespace {
 /// returns and it is a car or a row of cars in plan (its height is judged once its terrain is
 /// known). All false when \a multiple_return is empty.
 std::vector<char>
-opaqueCarSized(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+opaqueCarOrRow(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
                const std::vector<char>& multiple_return, const std::vector<ObjectShape>& shapes,
                const ObjectClassSettings& c)
 {
@@ -327,7 +327,7 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
   std::vector<ObjectShape> shapes = objectShapes(points, labels, point_kind);
   countLinearCover(points, labels, settings.wire_cell, shapes);
   const std::vector<char> may_be_car =
-      opaqueCarSized(points, labels, multiple_return, shapes, settings);
+      opaqueCarOrRow(points, labels, multiple_return, shapes, settings);
   const TerrainCells terrain(points, labels, ground, settings.terrain_cell);
   std::vector<TerrainPlane> planes(shapes.size());
   for (std::size_t o = 0; o < shapes.size(); ++o)  // rough: vegetation unless it may be a car

@@ -877,7 +877,8 @@ TEST_F(SegmentTool, FeetAreSegmentedInMetres)
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("segmented in metres"), std::string::npos) << r.out;
   const auto report = nlohmann::json::parse(slurp(js));
-  EXPECT_NEAR(report["metres_per_unit"][0].get<double>(), 0.3048, 1e-9);
+  EXPECT_NEAR(report["metres_per_unit"]["horizontal"].get<double>(), 0.3048, 1e-9);
+  EXPECT_NEAR(report["metres_per_unit"]["vertical"].get<double>(), 0.3048, 1e-9);
 
   pcl::PointCloud<pcl_ls3d::PointLiDAR> written;
   pcl_ls3d::io::CloudInfo info;

@@ -150,4 +150,9 @@ TEST(CoordinateReference, VerticalUnit)
   EXPECT_NEAR(crsVerticalUnit(compound), 1200.0 / 3937.0, 1e-9);
   EXPECT_EQ(crsVerticalUnit(crsFromUserInput("EPSG:4326")), 0.0);  // geographic: unknown
   EXPECT_EQ(crsVerticalUnit(""), 0.0);
+  // Angles and earth-centred coordinates are no plan and height (pcl_ls3d_segment refuses them).
+  EXPECT_TRUE(crsIsGeographic(crsFromUserInput("EPSG:4326+5773")));  // WGS 84 + EGM96 height
+  EXPECT_FALSE(crsIsGeographic(compound));
+  EXPECT_TRUE(crsIsGeocentric(crsFromUserInput("EPSG:4978")));
+  EXPECT_FALSE(crsIsGeocentric(crsFromUserInput("EPSG:2154")));
 }

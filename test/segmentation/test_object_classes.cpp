@@ -70,6 +70,17 @@ addTerrain(Scene& s, const std::vector<std::array<float, 4>>& holes = {})
     }
 }
 
+/// A flat layer of rough points, 0.2 m apart, jittered 0.15 m: a car's roof, a shrub's top.
+void
+addRoughBox(Scene& s, std::mt19937& rng, const Eigen::Vector3f& corner, float length, float width,
+            int label)
+{
+  std::uniform_real_distribution<float> jitter(-0.15f, 0.15f);
+  for (float x = corner.x(); x <= corner.x() + length; x += 0.2f)
+    for (float y = corner.y(); y <= corner.y() + width; y += 0.2f)
+      s.add(x + jitter(rng), y + jitter(rng), corner.z() + jitter(rng), label, SegmentKind::Rough);
+}
+
 }  // namespace
 
 // Each object is what its geometry says: a roof 6 m up is a building, a 4.5 m × 1.8 m box 1.5 m
@@ -217,21 +228,16 @@ TEST(ObjectClasses, OpaqueCarSizedRoughObjectIsACar)
   Scene s;
   addTerrain(s, {{9.5f, 15.0f, 9.5f, 12.3f}});
   std::mt19937 rng(5);
-  std::uniform_real_distribution<float> jitter(-0.15f, 0.15f);
-  const auto rough_box = [&](float x0, float y0, float z0, float length, float width, int label) {
-    for (float x = x0; x <= x0 + length; x += 0.2f)
-      for (float y = y0; y <= y0 + width; y += 0.2f)
-        s.add(x + jitter(rng), y + jitter(rng), z0 + jitter(rng), label, SegmentKind::Rough);
-  };
-  rough_box(10.0f, 10.0f, 1.4f, 4.5f, 1.8f, 1);   // car
-  rough_box(-25.0f, 10.0f, 1.4f, 4.5f, 1.8f, 2);  // shrub of the car's size
-  rough_box(20.0f, -20.0f, 1.4f, 6.0f, 6.0f, 3);  // crown
-  rough_box(-25.0f, -20.0f, 3.5f, 4.5f, 1.8f, 4); // small crown on a trunk
+  addRoughBox(s, rng, {10.0f, 10.0f, 1.4f}, 4.5f, 1.8f, 1);   // car
+  addRoughBox(s, rng, {-25.0f, 10.0f, 1.4f}, 4.5f, 1.8f, 2);  // shrub of the car's size
+  addRoughBox(s, rng, {20.0f, -20.0f, 1.4f}, 6.0f, 6.0f, 3);  // crown
+  addRoughBox(s, rng, {-25.0f, -20.0f, 3.5f}, 4.5f, 1.8f, 4); // small crown on a trunk
   std::vector<char> multiple(s.points.size(), 0);
   for (std::size_t p = 0; p < s.points.size(); ++p)
     multiple[p] = s.labels[p] == 2 && p % 2 == 0;
 
-  const std::vector<ObjectClass> with = classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
+  const std::vector<ObjectClass> with =
+      classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
   ASSERT_EQ(with.size(), 5u);
   EXPECT_EQ(with[0], ObjectClass::Ground);
   EXPECT_EQ(with[1], ObjectClass::Car);
@@ -254,26 +260,23 @@ TEST(ObjectClasses, OpaqueRowOfCarsIsCars)
   Scene s;
   addTerrain(s, {{9.5f, 22.3f, 9.5f, 12.3f}});
   std::mt19937 rng(6);
-  std::uniform_real_distribution<float> jitter(-0.15f, 0.15f);
-  const auto rough_box = [&](float x0, float y0, float z0, float length, float width, int label) {
-    for (float x = x0; x <= x0 + length; x += 0.2f)
-      for (float y = y0; y <= y0 + width; y += 0.2f)
-        s.add(x + jitter(rng), y + jitter(rng), z0 + jitter(rng), label, SegmentKind::Rough);
-  };
-  rough_box(10.0f, 10.0f, 1.4f, 12.0f, 1.8f, 1);    // three cars in a row
-  rough_box(-30.0f, 10.0f, 1.4f, 12.0f, 1.8f, 2);   // hedge of the row's size
-  rough_box(-30.0f, -20.0f, 1.4f, 12.0f, 4.5f, 3);  // wider than a car
-  rough_box(10.0f, -20.0f, 3.5f, 12.0f, 1.8f, 4);   // higher than a car
+  addRoughBox(s, rng, {10.0f, 10.0f, 1.4f}, 12.0f, 1.8f, 1);    // three cars in a row
+  addRoughBox(s, rng, {-30.0f, 10.0f, 1.4f}, 12.0f, 1.8f, 2);   // hedge of the row's size
+  addRoughBox(s, rng, {-30.0f, -20.0f, 1.4f}, 12.0f, 4.5f, 3);  // wider than a car
+  addRoughBox(s, rng, {10.0f, -20.0f, 3.5f}, 12.0f, 1.8f, 4);   // higher than a car
+  addRoughBox(s, rng, {-38.0f, 30.0f, 1.4f}, 40.0f, 1.8f, 5);   // a dense hedge, 40 m long
   std::vector<char> multiple(s.points.size(), 0);
   for (std::size_t p = 0; p < s.points.size(); ++p)
     multiple[p] = s.labels[p] == 2 && p % 2 == 0;
 
-  const std::vector<ObjectClass> with = classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
-  ASSERT_EQ(with.size(), 5u);
+  const std::vector<ObjectClass> with =
+      classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
+  ASSERT_EQ(with.size(), 6u);
   EXPECT_EQ(with[1], ObjectClass::Car);
   EXPECT_EQ(with[2], ObjectClass::Vegetation);
   EXPECT_EQ(with[3], ObjectClass::Vegetation);
   EXPECT_EQ(with[4], ObjectClass::Vegetation);
+  EXPECT_EQ(with[5], ObjectClass::Vegetation);
 }
 
 // IMRG end to end on a generated 100 m scene with buildings, trees, shrubs, cars and a power

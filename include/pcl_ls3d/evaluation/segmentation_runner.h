@@ -122,7 +122,8 @@ runSegmentation(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
 /// \brief The run's object classes (IMRG's) scored point by point against \a reference_labels:
 ///        evaluateClassification() of the LAS codes classCodesFromSegments() gives, as method
 ///        "<method> classes" with the run's time and segment count.
-/// \return false with a one-line reason (the sizes differ)
+/// \return false with a one-line reason (not one class per segment, or the segments index
+///         past the reference)
 bool
 evaluateRunClasses(const SegmentationRun& run, const std::vector<int>& reference_labels,
                    const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,

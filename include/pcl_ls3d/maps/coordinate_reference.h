@@ -32,8 +32,8 @@ crsFromUserInput(const std::string& text, std::string* why = nullptr);
 std::string
 crsName(const std::string& wkt);
 
-/// Metres per horizontal unit of a projected CRS (1 for metres, 0.3048 for international feet);
-/// 0 when unknown (empty WKT, geographic CRS).
+/// Metres per horizontal unit of a projected or engineering (local) CRS (1 for metres, 0.3048
+/// for international feet); 0 when unknown (empty WKT, geographic or geocentric CRS).
 double
 crsLinearUnit(const std::string& wkt);
 
@@ -41,9 +41,14 @@ crsLinearUnit(const std::string& wkt);
 bool
 crsIsGeographic(const std::string& wkt);
 
+/// True when \a wkt is a geocentric CRS (earth-centred x, y, z: z is no height).
+bool
+crsIsGeocentric(const std::string& wkt);
+
 /// Metres per unit of height: the unit of the CRS's vertical part where it has one (a compound
 /// CRS: "NAD83 / Oregon LCC (m) + NAVD88 height (ftUS)" gives 0.3048006), else the horizontal
-/// unit (a LAS file declaring a projected CRS alone stores z in its unit); 0 when unknown.
+/// unit (a LAS file declaring a projected CRS alone stores z in its unit); 0 when unknown
+/// (as crsLinearUnit(), and a compound CRS whose vertical unit GDAL does not show).
 double
 crsVerticalUnit(const std::string& wkt);
 

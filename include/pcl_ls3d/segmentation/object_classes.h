@@ -11,8 +11,8 @@
 ///    slope from all of them) and its plan box covers min_building_area: a roof wider than the
 ///    ground filter's largest window, which the filter kept, is a Building;
 ///  - rough: Vegetation (crowns, hedges, grass detached from the ground), except one as low
-///    as a car (as below) and as wide as one, at least as long as one (a car, or a row of cars
-///    parked nose to tail grown into one object), of which at most
+///    as a car (as below) and as wide as one, car_min_length..car_row_max_length long (a car,
+///    or a row of cars parked nose to tail grown into one object), of which at most
 ///    car_max_multiple_return_share of the points come from pulses with several returns, when
 ///    the returns are known: a Car (a car body stops the pulse; a shrub of its size lets part
 ///    of it through). Parked cars scan as rough as shrubs at 10–20 points/m²;
@@ -45,8 +45,8 @@
 /// min_building_area (a roof-only crop; a car there is called a building too), a line is no
 /// wire. Heights use robust ends and middle: low, median and top are the 5th, 50th and 95th
 /// percentiles of the object's z with the terrain's slope taken out. Rough objects take a
-/// terrain only when they may be a car (returns known, a car or a row of cars in plan); without one they are
-/// vegetation whatever their height.
+/// terrain only when they may be a car (returns known, a car or a row of cars in plan);
+/// without one they are vegetation whatever their height.
 /// Lengths are metres (cloud units): car and building sizes are physical, not relative to the
 /// spacing. Non-finite points are skipped.
 
@@ -111,9 +111,13 @@ struct ObjectClassSettings
   double car_max_height = 3.0;        ///< a car's top above the terrain (vans included)
   double car_min_length = 2.5, car_max_length = 7.0;  ///< a car's plan length
   double car_min_width = 1.2, car_max_width = 3.0;    ///< ... and width (a low wall is thinner)
-  /// A rough car-sized object is a car when at most this share of its points had more than one
-  /// return (only with the returns known). 0.2: between the cars (0.00–0.08) and the car-sized
-  /// shrubs (0.25 and more) of the tuning tiles 77050_627755 and 77055_627755 (docs/BENCHMARKS.md).
+  /// A rough object as wide as a car may be a row of cars parked nose to tail up to this long
+  /// (four or five cars; a longer opaque strip is a dense hedge).
+  double car_row_max_length = 25.0;
+  /// A rough car-sized object (or row) is a car when at most this share of its points had more
+  /// than one return (only with the returns known). 0.2: between the cars (0.00–0.08) and the
+  /// car-sized shrubs (0.25 and more) of the tuning tiles 77050_627755 and 77055_627755
+  /// (docs/BENCHMARKS.md).
   double car_max_multiple_return_share = 0.2;
   double min_wire_height = 2.5;       ///< a wire's low points above the terrain
   double min_wire_length = 7.0;       ///< a wire's plan length (longer than a car)
