@@ -273,6 +273,9 @@ loadClouds(const Options& o, Clouds& c, std::string& why)
   with_origin.origin = c.target_info.origin;
   if (!pcl_ls3d::io::loadCloud(o.source_path, source_lidar, c.source_info, why, with_origin))
     return false;
+  if (!(why = pcl_ls3d::tools::inputsNotInLengths(
+          {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}})).empty())
+    return false;
   c.source = toXYZ(source_lidar);
   c.target = toXYZ(target_lidar);
   print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "

@@ -365,13 +365,9 @@ loadInput(const Options& o, Input& in, std::string& error)
     return (error = "-evaluate: no point of '" + o.input +
                     "' carries a label of the evaluated classes"),
            false;
-  in.wkt = in.info.format == "las" ? maps::crsFromLasVlrs(in.info.las.vlrs) : in.info.file_crs_wkt;
-  if (maps::crsIsGeographic(in.wkt) || maps::crsIsGeocentric(in.wkt))
-    return (error = "'" + o.input + "' is in " +
-                    (maps::crsIsGeographic(in.wkt) ? "degrees" : "earth-centred coordinates") +
-                    " (" + maps::crsName(in.wkt) + "): the segmentation's heights and sizes are "
-                    "lengths; reproject it to a projected CRS first"),
-           false;
+  in.wkt = maps::crsOfFile(in.info);
+  if (!(error = maps::notInLengths(o.input, in.wkt)).empty())
+    return false;
   readUnits(in);
   toMetres(in);
   in.multiple_return_share = multipleReturnShare(in.returns);

@@ -11,8 +11,11 @@
 /// - checkOutputFile() / checkOutputFolder(): an output that cannot be written is refused before
 ///   any input is read, not after a long run (tried with a probe file, not read from permission
 ///   bits, which root and /proc make meaningless).
+/// - inputsNotInLengths(): inputs in degrees (or earth-centred) are refused after loading, before
+///   any work: distances and heights in degrees give a wrong answer that still converges.
 
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -259,6 +262,19 @@ checkOutputFolder(const std::string& dir, std::string& why)
     why = "cannot create or write the folder " + dir + ": no file can be created in " + p.string() + " (" +
           probe_why.substr(probe_why.rfind(": ") + 2) + ")";
   return why.empty();
+}
+
+/// \brief One error line for the first input whose CRS is not in lengths (a geographic CRS in
+///        degrees, a geocentric one); empty when every input is (or declares no CRS).
+inline std::string
+inputsNotInLengths(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs)
+{
+  for (const auto& [path, info] : inputs) {
+    const std::string why = maps::notInLengths(path, maps::crsOfFile(*info));
+    if (!why.empty())
+      return why;
+  }
+  return "";
 }
 
 }  // namespace tools

@@ -244,6 +244,23 @@ crsIsGeocentric(const std::string& wkt)
   return srs && srs->IsGeocentric();
 }
 
+std::string
+crsOfFile(const io::CloudInfo& info)
+{
+  return info.format == "las" ? crsFromLasVlrs(info.las.vlrs) : info.file_crs_wkt;
+}
+
+std::string
+notInLengths(const std::string& path, const std::string& wkt)
+{
+  const bool degrees = crsIsGeographic(wkt);
+  if (!degrees && !crsIsGeocentric(wkt))
+    return "";
+  return "'" + path + "' is in " + (degrees ? "degrees" : "earth-centred coordinates") + " (" +
+         crsName(wkt) + "): distances and heights need lengths; reproject it to a projected "
+         "CRS first";
+}
+
 double
 crsVerticalUnit(const std::string& wkt)
 {

@@ -53,6 +53,8 @@ openInput(const std::string& path, OpenInput& in, InputFile& info, std::string& 
     info.format = "las";
     info.points = in.las.size();
     info.crs_wkt = maps::crsFromLasVlrs(in.las.header().vlrs);
+    if (!(error = maps::notInLengths(path, info.crs_wkt)).empty())
+      return false;  // in degrees a wrong answer would still converge
     for (std::size_t i = 0; i < in.las.size(); ++i)
       ++info.point_sources[in.las.pointSourceId(i)];
     return true;
@@ -63,6 +65,8 @@ openInput(const std::string& path, OpenInput& in, InputFile& info, std::string& 
       error = path + ": " + error;
     return false;
   }
+  if (!(error = maps::notInLengths(path, maps::crsOfFile(ci))).empty())
+    return false;
   info.format = ci.format;
   info.points = in.cloud.size();
   in.origin = ci.origin;

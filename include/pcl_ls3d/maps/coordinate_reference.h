@@ -37,6 +37,17 @@ crsName(const std::string& wkt);
 double
 crsLinearUnit(const std::string& wkt);
 
+/// The CRS a loaded file declares: a LAS file's GeoTIFF keys or WKT VLR, else the CRS a
+/// SEGMENTS.pcd (or another file of the project) records; empty when none.
+std::string
+crsOfFile(const io::CloudInfo& info);
+
+/// One error line when \a path's coordinates are no lengths: "'PATH' is in degrees (WGS 84):
+/// distances and heights need lengths; reproject it to a projected CRS first" (likewise for a
+/// geocentric CRS); empty for a projected, engineering or no CRS.
+std::string
+notInLengths(const std::string& path, const std::string& wkt);
+
 /// True when \a wkt is a geographic CRS (coordinates in degrees of latitude and longitude).
 bool
 crsIsGeographic(const std::string& wkt);
