@@ -266,7 +266,7 @@ void
 printObjectClasses(const std::string& title, const ev::SegmentationRun& imrg, const Labelled& data,
                    const std::vector<ev::ClassGroup>& groups)
 {
-  if (imrg.classes.size() != imrg.segments.size() || imrg.classes.empty())
+  if (imrg.classes.empty())  // MRG, or a failed run: no classes to score
     return;
   ev::SegmentationEvaluationSettings settings;
   settings.groups = groups;

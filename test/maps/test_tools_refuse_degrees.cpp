@@ -1,48 +1,28 @@
 // Every tool that measures distances refuses inputs in degrees (or earth-centred) in one line,
 // before any work. Before, pcl_ls3d_register matched a generated pair written in EPSG:4326
 // (x, y in degrees, z in metres) to a 74 m "shift" and reported it CONVERGED and trustworthy.
+#include "io/io_test_utils.h"
+#include "io/tool_run.h"
+
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/point_types.h>
 
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
 namespace fs = std::filesystem;
+using pcl_ls3d_test::runTool;
+using pcl_ls3d_test::TempDir;
 
 namespace {
 
-struct ToolRun
-{
-  int code = -1;
-  std::string err;
-};
-
-ToolRun
-runTool(const std::string& tool, const std::string& args, const fs::path& dir)
-{
-  const fs::path err = dir / "err.txt";
-  const std::string cmd = (fs::path(PCL_LS3D_TOOL_DIR) / tool).string() + " " + args +
-                          " > /dev/null 2> " + err.string();
-  const int status = std::system(cmd.c_str());
-  std::ifstream f(err);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, ss.str()};
-}
-
 /// A wavy 30 x 30 patch of 1 m spacing, x and y divided by \a per_unit (degrees: 1e5 m).
 void
-writePatch(const fs::path& path, const std::string& crs, double per_unit, float dz)
+writePatch(const std::string& path, const std::string& crs, double per_unit, float dz)
 {
   pcl::PointCloud<pcl_ls3d::PointLiDAR> c;
   for (int i = 0; i < 30; ++i)
@@ -54,7 +34,7 @@ writePatch(const fs::path& path, const std::string& crs, double per_unit, float 
   o.las_vlrs = {pcl_ls3d::maps::wktVlr(pcl_ls3d::maps::crsFromUserInput(crs))};
   o.las_scale = {0.001 / per_unit, 0.001 / per_unit, 0.001};
   std::string error;
-  ASSERT_TRUE(pcl_ls3d::io::saveCloud(path.string(), c, Eigen::Vector3d(2.0, 48.0, 0.0), error, o))
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(path, c, Eigen::Vector3d(2.0, 48.0, 0.0), error, o))
       << error;
 }
 
@@ -62,39 +42,36 @@ writePatch(const fs::path& path, const std::string& crs, double per_unit, float 
 
 TEST(ToolsRefuseDegrees, OneLineBeforeAnyWork)
 {
-  const fs::path dir = fs::temp_directory_path() / ("ls3d_degrees_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path a = dir / "a.las", b = dir / "b.las", out = dir / "out";
+  const TempDir dir("ls3d_degrees");
+  const std::string a = dir.file("a.las"), b = dir.file("b.las");
   writePatch(a, "EPSG:4326", 1e5, 0.0f);
   writePatch(b, "EPSG:4326", 1e5, 0.2f);
-  const std::string pair = a.string() + " " + b.string();
+  const std::string pair = a + " " + b;
   const std::string calls[][2] = {
-      {"pcl_ls3d_register", pair + " -o " + (dir / "aligned.las").string()},
+      {"pcl_ls3d_register", pair + " -o " + dir.file("aligned.las")},
       {"pcl_ls3d_compare", pair},
-      {"pcl_ls3d_deformation", pair + " -o " + (dir / "residuals.pcd").string()},
-      {"pcl_ls3d_strip_adjust", pair + " -o " + out.string()},
-      {"pcl_ls3d_segment", a.string() + " -o " + (dir / "seg.pcd").string()},
+      {"pcl_ls3d_deformation", pair + " -o " + dir.file("residuals.pcd")},
+      {"pcl_ls3d_strip_adjust", pair + " -o " + dir.file("out")},
+      {"pcl_ls3d_segment", a + " -o " + dir.file("seg.pcd")},
   };
   for (const auto& call : calls) {
     SCOPED_TRACE(call[0]);
-    const ToolRun r = runTool(call[0], call[1], dir);
+    const pcl_ls3d_test::ToolRun r = runTool(call[0], call[1], dir.path.string());
     EXPECT_EQ(r.code, 1);
     EXPECT_NE(r.err.find("is in degrees (WGS 84)"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;  // one line
   }
-  EXPECT_FALSE(fs::exists(dir / "aligned.las"));
-  EXPECT_FALSE(fs::exists(dir / "seg.pcd"));
-  EXPECT_FALSE(fs::exists(dir / "residuals.pcd"));
+  EXPECT_FALSE(fs::exists(dir.file("aligned.las")));
+  EXPECT_FALSE(fs::exists(dir.file("seg.pcd")));
+  EXPECT_FALSE(fs::exists(dir.file("residuals.pcd")));
   // Earth-centred coordinates too; a projected CRS is read on.
-  const fs::path ecef = dir / "ecef.las", c = dir / "c.las", d = dir / "d.las";
+  const std::string ecef = dir.file("ecef.las"), c = dir.file("c.las"), d = dir.file("d.las");
   writePatch(ecef, "EPSG:4978", 1.0, 0.2f);
-  EXPECT_NE(runTool("pcl_ls3d_register", a.string() + " " + ecef.string(), dir)
-                .err.find("'" + ecef.string() + "' is in earth-centred"),
+  EXPECT_NE(runTool("pcl_ls3d_register", a + " " + ecef, dir.path.string())
+                .err.find("'" + ecef + "' is in earth-centred"),
             std::string::npos);
   writePatch(c, "EPSG:2154", 1.0, 0.0f);
   writePatch(d, "EPSG:2154", 1.0, 0.2f);
-  EXPECT_EQ(runTool("pcl_ls3d_register", c.string() + " " + d.string(), dir).err.find("degrees"),
+  EXPECT_EQ(runTool("pcl_ls3d_register", c + " " + d, dir.path.string()).err.find("degrees"),
             std::string::npos);
-  fs::remove_all(dir);
 }
