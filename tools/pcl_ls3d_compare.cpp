@@ -53,8 +53,9 @@ printHelp(const char* name)
       "  from the identity with every method and prints one comparison table. Columns: conv =\n"
       "  stopped by its own criterion before the iteration limit with a finite result; trust =\n"
       "  LS3D's quality gate (- for PCL's methods: their hasConverged() is no such check).\n"
-      "  Exits 1 when no method converged. Lengths are in the data's unit: the CRS's of a LAS\n"
-      "  input (m, ft), else \"units\"; a run without an estimate shows \"-\" (JSON null).\n"
+      "  Exits 1 when no method converged. Lengths are in the data's unit: that of the CRS an\n"
+      "  input declares (LAS, or a PCD header: m, ft), else \"units\"; a run without an\n"
+      "  estimate shows \"-\" (JSON null).\n"
       "  -truth FILE   : truth JSON with \"transformation\": 4x4 row-major source->target in file\n"
       "                  coordinates (as written by pcl_ls3d_synth); adds displacement errors\n"
       "                  (mean/max over the source points, max over its bbox corners) and the\n"
@@ -89,17 +90,17 @@ positiveOption(int argc, char** argv, const std::string& name, double& value, bo
   return false;
 }
 
-/// The data's length unit for labels: the CRS's of a LAS input (target first), else "units".
+/// The data's length unit for labels: that of the CRS an input declares (target first), else
+/// "units".
 std::string
 lengthUnit(const pcl_ls3d::io::CloudInfo& target, const pcl_ls3d::io::CloudInfo& source)
 {
-  for (const pcl_ls3d::io::CloudInfo* info : {&target, &source})
-    if (info->format == "las") {
-      const std::string wkt = pcl_ls3d::maps::crsFromLasVlrs(info->las.vlrs);
-      const std::string name = pcl_ls3d::maps::crsLinearUnitName(wkt);
-      if (!name.empty())
-        return name;
-    }
+  for (const pcl_ls3d::io::CloudInfo* info : {&target, &source}) {
+    const std::string name =
+        pcl_ls3d::maps::crsLinearUnitName(pcl_ls3d::maps::crsOfFile(*info));
+    if (!name.empty())
+      return name;
+  }
   return "units";
 }
 

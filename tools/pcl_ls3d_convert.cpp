@@ -55,8 +55,10 @@ printHelp(const char* name)
              "on writing; the origin used is printed. A PCD recording its origin in a\n"
              "'# pcl_ls3d origin' header line (pcl_ls3d_segment's SEGMENTS.pcd) is read with it.\n"
              "LAS and XYZ outputs hold file coordinates; PCD and PLY hold them as FLOAT64 when the\n"
-             "origin is not zero (as from a georeferenced LAS), else FLOAT32. A PCD that records\n"
-             "its CRS ('# pcl_ls3d crs' header line) gives a LAS output that CRS (LAS 1.4, WKT).\n");
+             "origin is not zero (as from a georeferenced LAS), else FLOAT32. The input's CRS goes\n"
+             "with the points: a PCD output records it ('# pcl_ls3d crs' header line, read by every\n"
+             "pcl_ls3d tool), and a PCD that records one gives a LAS output that CRS (LAS 1.4,\n"
+             "WKT); PLY and XYZ outputs have no place for it.\n");
 }
 
 /// Rejects options this tool does not know (pcl::console silently ignores them).
@@ -143,12 +145,9 @@ saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const Outpu
         s.las_minor_version = 4;
         break;
       }
-    // A PCD that records its CRS (SEGMENTS.pcd) gives the LAS its CRS: LAS 1.4, WKT VLR.
-    if (!info.file_crs_wkt.empty()) {
-      s.las_vlrs = {pcl_ls3d::maps::wktVlr(info.file_crs_wkt)};
-      s.las_minor_version = 4;
-    }
   }
+  // The CRS goes with the points: a LAS's into a PCD header, a PCD's into a LAS (LAS 1.4, WKT).
+  pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsOfFile(info), s);
   if (o.las_format >= 0) {
     s.las_point_format = static_cast<std::uint8_t>(o.las_format);
     if (o.las_format >= 6)

@@ -83,20 +83,21 @@ printHelp(const char* prog)
       "  -matching_points N   match on at most N evenly spread epoch points (default 50000; 0:\n"
       "                       all); residuals are computed for every point\n"
       "  -o RESIDUALS.pcd     one record per epoch point, epoch order: x y z (local coordinates,\n"
-      "                       origin in the header and the JSON) residual sigma significant\n"
-      "                       region; .xyz/.txt:\n"
-      "                       the same as text with full file coordinates\n"
+      "                       origin and CRS in the header, origin in the JSON) residual sigma\n"
+      "                       significant region; .xyz/.txt: the same as text with full file\n"
+      "                       coordinates\n"
       "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
       "                       coordinates), converged, parameters and sigmas (reduced frame about\n"
       "                       local_origin_source / local_origin_target), estimator, scale,\n"
       "                       subsets, percent_deformed, regions\n"
       "  -map PREFIX          PREFIX.png (residual map, diverging colour bar, significant regions\n"
       "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals, NaN\n"
-      "                       where no point has one, with the CRS of -crs or the reference's LAS)\n"
+      "                       where no point has one, with the CRS of -crs or the reference's)\n"
       "  -map_cell C          map cell edge (default 1.5 point spacings; irregular airborne data:\n"
       "                       about 2.5 spacings, so that most cells hold points)\n"
       "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
-      "                       PROJ string or WKT; default: the reference's LAS CRS, if any)\n"
+      "                       PROJ string or WKT; default: the CRS the reference declares in its\n"
+      "                       LAS VLRs or its PCD header, if any)\n"
       "  -overwrite           allow replacing existing output files\n"
       "  -h                   this help\n"
       "Exit status: 0 done; 1 bad input or the matching failed (nothing written); 3 the matching\n"
@@ -186,7 +187,7 @@ regionJson(const def::DeformationRegion& r, const Eigen::Vector3d& origin)
 
 bool
 writeResiduals(const std::string& path, const Cloud& epoch, const def::DeformationResult& r,
-               const Eigen::Vector3d& origin, std::string& error)
+               const Eigen::Vector3d& origin, const std::string& crs_wkt, std::string& error)
 {
   const std::string ext = pcl_ls3d::io::fileExtension(path);
   if (ext == "xyz" || ext == "txt") {
@@ -217,10 +218,12 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
     q.significant = r.field.significant[i];
     q.region = r.regions.region[i];
   }
-  // The origin in the header too (not only in -json), so the file keeps its frame on its own.
+  // The origin and the CRS in the header too (not only in -json), so the file keeps its frame on
+  // its own.
   pcl::PCLPointCloud2 blob;
   pcl::toPCLPointCloud2(out, blob);
-  return pcl_ls3d::io::savePcdBinaryWithOrigin(path, blob, origin, "", error);
+  const std::string crs_line = crs_wkt.empty() ? "" : pcl_ls3d::io::pcdCrsLine(crs_wkt) + "\n";
+  return pcl_ls3d::io::savePcdBinaryWithOrigin(path, blob, origin, crs_line, error);
 }
 
 
@@ -585,15 +588,14 @@ main(int argc, char** argv)
   const CentroidShift centroid = centroidShift(e, mr.adjustment.transformation);
   printResult(e, result, centroid, run_ms);
 
+  // -crs, else the CRS the reference declares: the map's and the residual file's.
+  const std::string crs_wkt = o.crs_wkt.empty() ? pcl_ls3d::maps::crsOfFile(e.rinfo) : o.crs_wkt;
   if (!o.out_path.empty()) {
-    if (!writeResiduals(o.out_path, *e.epoch, result, e.rinfo.origin, error))
+    if (!writeResiduals(o.out_path, *e.epoch, result, e.rinfo.origin, crs_wkt, error))
       return fail(error), 1;
     print_info("Wrote %s\n", o.out_path.c_str());
   }
   if (!o.map_prefix.empty()) {
-    std::string crs_wkt = o.crs_wkt;
-    if (crs_wkt.empty() && e.rinfo.format == "las")
-      crs_wkt = pcl_ls3d::maps::crsFromLasVlrs(e.rinfo.las.vlrs);
     if (!writeMap(o.map_prefix, e.points, result, e.rinfo.origin, crs_wkt, o.reference_path,
                   o.epoch_path, o.settings.residuals.k, o.lod95, o.map_cell, o.overwrite, error))
       return fail(error), 1;

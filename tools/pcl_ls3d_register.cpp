@@ -441,6 +441,7 @@ writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentRepor
   tt.tic();
   pcl_ls3d::io::SaveOptions so;
   so.overwrite = o.overwrite;
+  pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsOfFile(pair.tinfo), so);  // in the target's frame
   const bool las_to_las = pair.sinfo.format == "las" && pcl_ls3d::io::fileExtension(o.out_path) == "las";
   if (!o.classes.empty() && !las_to_las)
     pcl::transformPointCloud(*pair.whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));

@@ -72,11 +72,11 @@ writeText(const std::string& path, const std::string& header,
 
 bool
 writePcdAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-              const Eigen::Vector3d& origin)
+              const Eigen::Vector3d& origin, const std::string& comments)
 {
   const std::string xyz = origin.isZero(0.0) ? "4" : "8", n = std::to_string(cloud.size());
   const std::string header =
-      "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\n"
+      "# .PCD v0.7 - Point Cloud Data file format\n" + comments + "VERSION 0.7\n"
       "FIELDS x y z intensity gps_time point_source_id classification return_number "
       "number_of_returns\nSIZE " + xyz + " " + xyz + " " + xyz + " 4 8 2 1 1 1\n"
       "TYPE F F F F F U U U U\nCOUNT 1 1 1 1 1 1 1 1 1\nWIDTH " + n + "\nHEIGHT 1\n"

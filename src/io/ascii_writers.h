@@ -27,10 +27,11 @@ void
 appendNumber(std::string& out, float v);
 
 /// ASCII PCD / PLY with every PointLiDAR field: x y z are x_local + origin in double (FLOAT64 /
-/// "double") when origin != 0, else the local floats. False when the file cannot be written.
+/// "double") when origin != 0, else the local floats. PCD: \a comments (whole "# ..." lines)
+/// after the first header line. False when the file cannot be written.
 bool
 writePcdAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-              const Eigen::Vector3d& origin);
+              const Eigen::Vector3d& origin, const std::string& comments = "");
 
 bool
 writePlyAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,

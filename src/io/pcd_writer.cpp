@@ -1,5 +1,5 @@
 /// \file pcd_writer.cpp
-/// \brief Binary PCD with the recorded-origin header line (pcd_io.h).
+/// \brief Binary PCD with header comment lines: the recorded origin, the CRS (pcd_io.h).
 
 #include <pcl_ls3d/io/pcd_io.h>
 
@@ -58,6 +58,13 @@ savePcdBinaryWithOrigin(const std::string& path, const pcl::PCLPointCloud2& clou
                         const Eigen::Vector3d& origin, const std::string& comments,
                         std::string& error)
 {
+  return savePcdBinaryWithComments(path, cloud, pcdOriginLine(origin) + "\n" + comments, error);
+}
+
+bool
+savePcdBinaryWithComments(const std::string& path, const pcl::PCLPointCloud2& cloud,
+                          const std::string& comments, std::string& error)
+{
   if (cloud.data.size() < static_cast<std::size_t>(cloud.width) * cloud.height * cloud.point_step) {
     error = "cannot write '" + path + "': the cloud holds fewer bytes than its points need";
     return false;
@@ -67,7 +74,7 @@ savePcdBinaryWithOrigin(const std::string& path, const pcl::PCLPointCloud2& clou
   std::string header = pcl::PCDWriter().generateHeaderBinary(packed, Eigen::Vector4f::Zero(),
                                                               Eigen::Quaternionf::Identity());
   const std::size_t first = header.find('\n');
-  header.insert(first == std::string::npos ? 0 : first + 1, pcdOriginLine(origin) + "\n" + comments);
+  header.insert(first == std::string::npos ? 0 : first + 1, comments);
   header += "DATA binary\n";  // generateHeaderBinary() stops before it, as writeBinary() adds it
   std::ofstream f(path, std::ios::binary | std::ios::trunc);
   f << header;

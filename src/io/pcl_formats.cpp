@@ -6,6 +6,8 @@
 
 #include "ascii_writers.h"
 
+#include <pcl_ls3d/io/pcd_io.h>
+
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -107,11 +109,12 @@ writePclFile(const std::string& path, const std::string& format,
   try {
     // ASCII: pcl_ls3d's own writers (ascii_writers.h) print every number exactly; PCL 1.13's
     // print a fixed number of digits (PLY doubles: 6).
+    const std::string comments = options.crs_wkt.empty() ? "" : pcdCrsLine(options.crs_wkt) + "\n";
     if (!options.binary)
-      status = (format == "pcd" ? writePcdAscii(path, cloud, origin)
+      status = (format == "pcd" ? writePcdAscii(path, cloud, origin, comments)
                                 : writePlyAscii(path, cloud, origin)) ? 0 : -1;
     else if (format == "pcd")
-      status = pcl::PCDWriter().writeBinary(path, c);
+      return savePcdBinaryWithComments(path, c, comments, error);
     else  // no camera element: other PLY readers do not expect one
       status = pcl::PLYWriter().writeBinary(path, c, Eigen::Vector4f::Zero(),
                                             Eigen::Quaternionf::Identity(), false);

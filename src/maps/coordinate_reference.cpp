@@ -304,5 +304,17 @@ wktVlr(const std::string& wkt)
   return v;
 }
 
+void
+recordCrs(const std::string& wkt, io::SaveOptions& options)
+{
+  if (wkt.empty())
+    return;
+  options.crs_wkt = wkt;
+  if (crsFromLasVlrs(options.las_vlrs).empty()) {
+    options.las_vlrs.push_back(wktVlr(wkt));
+    options.las_minor_version = 4;
+  }
+}
+
 }  // namespace maps
 }  // namespace pcl_ls3d

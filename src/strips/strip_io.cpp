@@ -65,7 +65,8 @@ openInput(const std::string& path, OpenInput& in, InputFile& info, std::string& 
       error = path + ": " + error;
     return false;
   }
-  if (!(error = maps::notInLengths(path, maps::crsOfFile(ci))).empty())
+  info.crs_wkt = maps::crsOfFile(ci);
+  if (!(error = maps::notInLengths(path, info.crs_wkt)).empty())
     return false;
   info.format = ci.format;
   info.points = in.cloud.size();

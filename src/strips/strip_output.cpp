@@ -3,6 +3,7 @@
 #include <pcl_ls3d/io/las_records.h>
 #include <pcl_ls3d/io/las_rewrite.h>
 #include <pcl_ls3d/io/strip_tools.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/strips/strip_io.h>
 
 #include <filesystem>
@@ -111,6 +112,7 @@ writeCorrected(const LoadedStrips& block, const OutputUnit& unit,
     out.push_back(q);
   }
   io::SaveOptions options;
+  maps::recordCrs(maps::crsOfFile(info), options);
   return io::saveCloud(unit.path, out, info.origin, error, options);
 }
 

@@ -291,8 +291,8 @@ TEST_F(CompareTool, FailedRunShowsNoFigures)
       EXPECT_TRUE(v.is_null());
 }
 
-// Lengths are labelled in the data's unit: the CRS's of a LAS input (international feet
-// here), "units" without a CRS; never a fixed [m] / [mm].
+// Lengths are labelled in the data's unit: the CRS's of a LAS input or one a PCD header records
+// (international feet here), "units" without a CRS; never a fixed [m] / [mm].
 TEST_F(CompareTool, UnitsFollowTheCrs)
 {
   if (!fs::exists(kTool))
@@ -319,6 +319,23 @@ TEST_F(CompareTool, UnitsFollowTheCrs)
   EXPECT_NE(text.find("max_corr=2 ft"), std::string::npos) << text;
   EXPECT_EQ(text.find("[m]"), std::string::npos) << text;
   EXPECT_EQ(text.find("[mm]"), std::string::npos) << text;
+
+  // The same clouds as PCDs that record the CRS in their header (as pcl_ls3d_convert writes them).
+  io::SaveOptions pcd_feet;
+  pcd_feet.crs_wkt = wkt;
+  for (const char* name : {"source", "target"}) {
+    pcl::PointCloud<PointLiDAR> cloud;
+    io::CloudInfo info;
+    std::string error;
+    ASSERT_TRUE(io::loadCloud((dir_ / (std::string(name) + ".las")).string(), cloud, info, error));
+    ASSERT_TRUE(io::saveCloud((dir_ / (std::string(name) + "_ft.pcd")).string(), cloud,
+                              info.origin, error, pcd_feet))
+        << error;
+  }
+  run((dir_ / "source_ft.pcd").string() + " " + (dir_ / "target_ft.pcd").string() +
+          " -methods icp -iter 2",
+      dir_ / "ft_pcd.log", text);
+  EXPECT_NE(text.find("RMS[ft]"), std::string::npos) << text;
 
   run(inputs() + " -methods icp -iter 2", dir_ / "units.log", text);
   EXPECT_NE(text.find("RMS[units]"), std::string::npos) << text;

@@ -4,6 +4,7 @@
 
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 
 #include <pcl/io/pcd_io.h>
 #include <pcl/point_types.h>
@@ -437,4 +438,38 @@ TEST_F(ConvertTool, SegmentsFileGivesObjectClassesNeverSegmentIds)
       EXPECT_EQ(codes, std::set<int>{0});
     }
   }
+}
+
+// The CRS goes with the points: a LAS's into the header of a PCD (binary, ASCII, one per strip),
+// which every pcl_ls3d reader gives back and plain PCL still loads, and from that PCD into a LAS.
+// Before, a LAS converted to PCD lost its CRS, and with it the tools' unit and degree checks.
+TEST_F(ConvertTool, CrsGoesWithThePoints)
+{
+  const std::string wkt = maps::crsFromUserInput("EPSG:32632");  // WGS 84 / UTM 32N
+  io::SaveOptions with_crs;
+  with_crs.las_vlrs = {maps::wktVlr(wkt)};
+  std::string error, out;
+  ASSERT_TRUE(io::saveCloud(dir_.file("utm.las"), cloud_, origin_, error, with_crs)) << error;
+  ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("b.pcd"), out, dir_), 0) << out;
+  ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("a.pcd") + " -ascii", out, dir_), 0) << out;
+  ASSERT_EQ(run(dir_.file("utm.las") + " -split_strips " + dir_.file("strips") + " -format pcd",
+                out, dir_), 0) << out;
+  ASSERT_EQ(run(dir_.file("b.pcd") + " " + dir_.file("back.las"), out, dir_), 0) << out;
+  for (const std::string name : {"b.pcd", "a.pcd", "strips/utm_psid11.pcd", "back.las"}) {
+    SCOPED_TRACE(name);
+    pcl::PointCloud<PointLiDAR> c;
+    io::CloudInfo info;
+    ASSERT_TRUE(io::loadCloud(dir_.file(name), c, info, error)) << error;
+    EXPECT_EQ(c.size(), name.find("strips") == 0 ? cloud_.size() / 3 : cloud_.size());
+    EXPECT_TRUE(maps::sameCrs(maps::crsOfFile(info), wkt)) << maps::crsOfFile(info);
+  }
+  pcl::PCLPointCloud2 plain;
+  ASSERT_EQ(pcl::io::loadPCDFile(dir_.file("b.pcd"), plain), 0);
+  EXPECT_EQ(plain.width * plain.height, cloud_.size());
+  // Without a CRS in the input, none is invented.
+  ASSERT_EQ(run(dir_.file("in.las") + " " + dir_.file("none.pcd"), out, dir_), 0) << out;
+  pcl::PointCloud<PointLiDAR> c;
+  io::CloudInfo info;
+  ASSERT_TRUE(io::loadCloud(dir_.file("none.pcd"), c, info, error)) << error;
+  EXPECT_TRUE(info.file_crs_wkt.empty()) << info.file_crs_wkt;
 }

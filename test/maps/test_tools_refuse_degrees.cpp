@@ -1,6 +1,8 @@
 // Every tool that measures distances refuses inputs in degrees (or earth-centred) in one line,
-// before any work. Before, pcl_ls3d_register matched a generated pair written in EPSG:4326
-// (x, y in degrees, z in metres) to a 74 m "shift" and reported it CONVERGED and trustworthy.
+// before any work, whether a LAS or a PCD header declares the CRS. Before, pcl_ls3d_register
+// matched a generated pair written in EPSG:4326 (x, y in degrees, z in metres) to a 74 m
+// "shift" and reported it CONVERGED and trustworthy. And the PCDs the tools write record the
+// inputs' CRS.
 #include "io/io_test_utils.h"
 #include "io/tool_run.h"
 
@@ -64,6 +66,13 @@ TEST(ToolsRefuseDegrees, OneLineBeforeAnyWork)
   EXPECT_FALSE(fs::exists(dir.file("aligned.las")));
   EXPECT_FALSE(fs::exists(dir.file("seg.pcd")));
   EXPECT_FALSE(fs::exists(dir.file("residuals.pcd")));
+  // Converted to PCD, the files keep their CRS in the header and are refused the same way.
+  ASSERT_EQ(runTool("pcl_ls3d_convert", a + " " + dir.file("a.pcd"), dir.path.string()).code, 0);
+  ASSERT_EQ(runTool("pcl_ls3d_convert", b + " " + dir.file("b.pcd"), dir.path.string()).code, 0);
+  const pcl_ls3d_test::ToolRun pcd = runTool(
+      "pcl_ls3d_register", dir.file("a.pcd") + " " + dir.file("b.pcd"), dir.path.string());
+  EXPECT_EQ(pcd.code, 1);
+  EXPECT_NE(pcd.err.find("is in degrees (WGS 84)"), std::string::npos) << pcd.err;
   // Earth-centred coordinates too; a projected CRS is read on.
   const std::string ecef = dir.file("ecef.las"), c = dir.file("c.las"), d = dir.file("d.las");
   writePatch(ecef, "EPSG:4978", 1.0, 0.2f);
@@ -74,4 +83,28 @@ TEST(ToolsRefuseDegrees, OneLineBeforeAnyWork)
   writePatch(d, "EPSG:2154", 1.0, 0.2f);
   EXPECT_EQ(runTool("pcl_ls3d_register", c + " " + d, dir.path.string()).err.find("degrees"),
             std::string::npos);
+}
+
+// Clouds the tools write as PCD from projected inputs record the CRS in their header, so that
+// the next tool (or pcl_ls3d_convert back to LAS) knows it.
+TEST(ToolsKeepTheCrs, PcdOutputsRecordTheInputsCrs)
+{
+  const TempDir dir("ls3d_keep_crs");
+  const std::string c = dir.file("c.las"), d = dir.file("d.las");
+  writePatch(c, "EPSG:2154", 1.0, 0.0f);
+  writePatch(d, "EPSG:2154", 1.0, 0.2f);
+  ASSERT_EQ(runTool("pcl_ls3d_register", d + " " + c + " -o " + dir.file("aligned.pcd"),
+                    dir.path.string()).code, 0);
+  const pcl_ls3d_test::ToolRun def = runTool(
+      "pcl_ls3d_deformation", c + " " + d + " -o " + dir.file("residuals.pcd"), dir.path.string());
+  ASSERT_TRUE(def.code == 0 || def.code == 3) << def.err;
+  const std::string lambert = pcl_ls3d::maps::crsFromUserInput("EPSG:2154");
+  for (const char* name : {"aligned.pcd", "residuals.pcd"}) {
+    SCOPED_TRACE(name);
+    pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud;
+    pcl_ls3d::io::CloudInfo info;
+    std::string error;
+    ASSERT_TRUE(pcl_ls3d::io::loadCloud(dir.file(name), cloud, info, error)) << error;
+    EXPECT_TRUE(pcl_ls3d::maps::sameCrs(info.file_crs_wkt, lambert)) << info.file_crs_wkt;
+  }
 }

@@ -98,6 +98,10 @@ struct SaveOptions
   /// ASCII XYZ: x, y, z with this many fixed decimals; -1 (default) = full precision, the
   /// shortest text that reads back as exactly the double x_local + origin.
   int xyz_decimals = -1;
+  /// OGC WKT of the cloud's CRS. PCD: recorded as a "# pcl_ls3d crs" header line (pcd_io.h),
+  /// which loadCloud() gives back as CloudInfo::file_crs_wkt. LAS: not used (the CRS travels in
+  /// las_vlrs; maps::recordCrs() sets both). PLY, XYZ: no place for it.
+  std::string crs_wkt;
 };
 
 /// \brief What a reader found.

@@ -70,6 +70,14 @@ pcdOriginLine(const Eigen::Vector3d& origin);
 std::string
 pcdCrsLine(const std::string& wkt);
 
+/// \brief Writes \a cloud as a binary PCD (fields packed, no padding) with \a comments (whole
+///        "# ..." lines, each ending in a newline; may be empty) after PCL's first header line,
+///        e.g. pcdCrsLine(). The stored values are what \a cloud holds.
+/// \return false with a one-line reason (the file cannot be written, too few data bytes)
+bool
+savePcdBinaryWithComments(const std::string& path, const pcl::PCLPointCloud2& cloud,
+                          const std::string& comments, std::string& error);
+
 /// \brief Writes \a cloud as a binary PCD (fields packed, no padding) whose header records
 ///        \a origin (pcdOriginLine(), after PCL's first header line) and then \a comments (whole
 ///        "# ..." lines, each ending in a newline; may be empty). The stored floats are local

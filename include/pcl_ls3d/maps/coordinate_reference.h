@@ -24,6 +24,12 @@ crsFromLasVlrs(const std::vector<io::LasVlr>& vlrs, std::string* why = nullptr);
 io::LasVlr
 wktVlr(const std::string& wkt);
 
+/// Makes a written cloud declare \a wkt (nothing for an empty WKT): a PCD records it in its
+/// header (SaveOptions::crs_wkt), a LAS gets its WKT VLR (LAS 1.4) unless its VLRs declare a CRS
+/// already (copied from a LAS input).
+void
+recordCrs(const std::string& wkt, io::SaveOptions& options);
+
 /// WKT of a CRS given by a user: "EPSG:2154", a PROJ string or WKT; empty with `why` if invalid.
 std::string
 crsFromUserInput(const std::string& text, std::string* why = nullptr);
