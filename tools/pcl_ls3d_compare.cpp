@@ -277,6 +277,8 @@ loadClouds(const Options& o, Clouds& c, std::string& why)
   if (!(why = pcl_ls3d::tools::inputsNotInLengths(
           {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}})).empty())
     return false;
+  pcl_ls3d::tools::warnCrsMismatch(
+      {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}});
   c.source = toXYZ(source_lidar);
   c.target = toXYZ(target_lidar);
   print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "

@@ -385,6 +385,7 @@ loadEpochs(const Options& o, Epochs& e, std::string& error)
   if (!(error = pcl_ls3d::tools::inputsNotInLengths(
           {{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}})).empty())
     return false;
+  pcl_ls3d::tools::warnCrsMismatch({{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}});
   e.load_ms = tt.toc();
   print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
              o.reference_path.c_str(), e.reference->size(), o.epoch_path.c_str(), e.epoch->size(),

@@ -368,6 +368,7 @@ loadPair(const Options& o, Pair& pair, std::string& error)
             {{o.target_path, &pair.tinfo}, {o.source_path, &pair.sinfo}}))
            .empty())
     return false;
+  pcl_ls3d::tools::warnCrsMismatch({{o.target_path, &pair.tinfo}, {o.source_path, &pair.sinfo}});
   pair.whole_source = pair.source;
   const std::size_t target_points = pair.target->size();
   if (!keepClasses(pair.target, o.classes, o.target_path, error) ||

@@ -13,9 +13,12 @@
 ///   bits, which root and /proc make meaningless).
 /// - inputsNotInLengths(): inputs in degrees (or earth-centred) are refused after loading, before
 ///   any work: distances and heights in degrees give a wrong answer that still converges.
+/// - warnCrsMismatch(): inputs declaring different CRSs are said so in a warning (the run goes on).
 
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
+
+#include <pcl/console/print.h>
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -275,6 +278,24 @@ inputsNotInLengths(const std::vector<std::pair<std::string, const io::CloudInfo*
       return why;
   }
   return "";
+}
+
+/// \brief One warning line for each input whose horizontal CRS differs from the first declared
+///        one (maps::crsMismatch); printed, the run goes on.
+inline void
+warnCrsMismatch(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs)
+{
+  std::string first_path, first_wkt;
+  for (const auto& [path, info] : inputs) {
+    const std::string wkt = maps::crsOfFile(*info);
+    if (first_wkt.empty()) {
+      first_path = path;
+      first_wkt = wkt;
+    }
+    else if (const std::string note = maps::crsMismatch(first_path, first_wkt, path, wkt);
+             !note.empty())
+      pcl::console::print_warn("Warning: %s\n", note.c_str());
+  }
 }
 
 }  // namespace tools

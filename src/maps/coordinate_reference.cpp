@@ -292,6 +292,29 @@ sameCrs(const std::string& a, const std::string& b)
   return sa && sb && sa->IsSame(sb.get());
 }
 
+bool
+sameHorizontalCrs(const std::string& a, const std::string& b)
+{
+  const auto sa = parse(a), sb = parse(b);
+  if (!sa || !sb)
+    return false;
+  detail::QuietGdal quiet;
+  sa->StripVertical();  // no-op on a CRS without a vertical part
+  sb->StripVertical();
+  return sa->IsSame(sb.get());
+}
+
+std::string
+crsMismatch(const std::string& path_a, const std::string& wkt_a, const std::string& path_b,
+            const std::string& wkt_b)
+{
+  if (wkt_a.empty() || wkt_b.empty() || sameHorizontalCrs(wkt_a, wkt_b))
+    return "";
+  return "'" + path_b + "' declares " + crsName(wkt_b) + ", '" + path_a + "' " + crsName(wkt_a) +
+         ": their coordinates are used as they are; reproject one into the other's CRS unless "
+         "both describe the same frame";
+}
+
 io::LasVlr
 wktVlr(const std::string& wkt)
 {

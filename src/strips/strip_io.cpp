@@ -156,6 +156,10 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
       return false;
     if (out.crs_wkt.empty())
       out.crs_wkt = info.crs_wkt;
+    else if (std::string note = maps::crsMismatch(out.inputs.front().path, out.crs_wkt,
+                                                  info.path, info.crs_wkt);
+             !note.empty())
+      out.notes.push_back(std::move(note));
     out.inputs.push_back(std::move(info));
   }
   // The strips: one per input, or one per non-zero point-source id over all inputs.

@@ -2,7 +2,7 @@
 // before any work, whether a LAS or a PCD header declares the CRS. Before, pcl_ls3d_register
 // matched a generated pair written in EPSG:4326 (x, y in degrees, z in metres) to a 74 m
 // "shift" and reported it CONVERGED and trustworthy. And the PCDs the tools write record the
-// inputs' CRS.
+// inputs' CRS, and inputs declaring different CRSs are warned of.
 #include "io/io_test_utils.h"
 #include "io/tool_run.h"
 
@@ -106,5 +106,35 @@ TEST(ToolsKeepTheCrs, PcdOutputsRecordTheInputsCrs)
     std::string error;
     ASSERT_TRUE(pcl_ls3d::io::loadCloud(dir.file(name), cloud, info, error)) << error;
     EXPECT_TRUE(pcl_ls3d::maps::sameCrs(info.file_crs_wkt, lambert)) << info.file_crs_wkt;
+  }
+}
+
+// Inputs declaring different horizontal CRSs are matched as they are, with a warning that says
+// so; the same projection with and without a vertical part is no difference.
+TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
+{
+  const TempDir dir("ls3d_crs_mismatch");
+  const std::string lambert = dir.file("lambert.las"), with_height = dir.file("height.las"),
+                    utm = dir.file("utm.las");
+  writePatch(lambert, "EPSG:2154", 1.0, 0.0f);
+  writePatch(with_height, "EPSG:2154+5720", 1.0, 0.2f);  // + NGF-IGN69 height
+  writePatch(utm, "EPSG:32631", 1.0, 0.2f);
+  const pcl_ls3d_test::ToolRun same =
+      runTool("pcl_ls3d_register", with_height + " " + lambert, dir.path.string());
+  EXPECT_EQ(same.code, 0) << same.err;
+  EXPECT_EQ(same.err.find("declares"), std::string::npos) << same.err;
+  const std::string calls[][2] = {
+      {"pcl_ls3d_register", utm + " " + lambert},
+      {"pcl_ls3d_compare", utm + " " + lambert + " -methods ls3d-lnd"},
+      {"pcl_ls3d_strip_adjust", lambert + " " + utm + " -o " + dir.file("out")},
+  };
+  for (const auto& call : calls) {
+    SCOPED_TRACE(call[0]);
+    const pcl_ls3d_test::ToolRun r = runTool(call[0], call[1], dir.path.string());
+    EXPECT_NE(r.code, 1) << r.err;
+    EXPECT_NE((r.out + r.err).find("'" + utm + "' declares WGS 84 / UTM zone 31N, '" + lambert +
+                                   "' RGF93 v1 / Lambert-93"),
+              std::string::npos)
+        << r.out << r.err;
   }
 }

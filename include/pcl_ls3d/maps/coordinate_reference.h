@@ -78,5 +78,18 @@ crsLinearUnitName(const std::string& wkt);
 bool
 sameCrs(const std::string& a, const std::string& b);
 
+/// True when the horizontal parts of both WKT are the same CRS (a compound CRS's vertical part
+/// set aside: "Lambert-93 + NGF-IGN69 height" and "Lambert-93" agree in plan).
+bool
+sameHorizontalCrs(const std::string& a, const std::string& b);
+
+/// One note when two files declare different horizontal CRSs: "'B' declares WGS 84 / UTM 31N,
+/// 'A' RGF93 v1 / Lambert-93: their coordinates are used as they are; reproject one into the
+/// other's CRS unless both describe the same frame"; empty when either declares none or both
+/// agree. A note, not a refusal: two definitions of one frame can differ in GDAL's eyes.
+std::string
+crsMismatch(const std::string& path_a, const std::string& wkt_a, const std::string& path_b,
+            const std::string& wkt_b);
+
 }  // namespace maps
 }  // namespace pcl_ls3d

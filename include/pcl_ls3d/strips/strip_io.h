@@ -33,7 +33,7 @@ struct InputFile
 {
   std::string path;
   std::string format;                ///< "las", "pcd", "ply", "xyz"
-  std::string crs_wkt;               ///< from the LAS VLRs (empty when none)
+  std::string crs_wkt;               ///< declared (LAS VLRs, PCD header; empty when none)
   std::size_t points = 0;
   std::map<int, std::size_t> point_sources;  ///< point-source id → points (LAS)
 };
