@@ -66,12 +66,15 @@ printHelp(const char* name)
       "                  pcl_ls3d_deformation robust-m,robust-md,robust-lms,robust-mm (also:\n"
       "                  robust; LZD rule, 6 parameters, their own defaults: -max_corr and\n"
       "                  -iter do not apply; the sigma0 column is their robust scale)\n"
-      "  -max_corr D   : max correspondence distance for every method (default 2)\n"
+      "  -max_corr D   : max correspondence distance for every method (default 2 m). Default\n"
+      "                  lengths are metres, converted when an input's CRS declares another\n"
+      "                  unit (feet); without a CRS they are taken as they are (2 units).\n"
+      "                  Lengths given here are in the data's unit.\n"
       "  -iter N       : max iterations: LS3D (default 30) and PCL (default 50) both set to N\n"
-      "  -ndt_res R    : NDT voxel edge (default 2)\n"
+      "  -ndt_res R    : NDT voxel edge (default 2 m)\n"
       "  -thinning S   : LS3D source thinning voxel (default 0 = all points)\n"
       "  -gicp_grad G  : GICP inner BFGS gradient tolerance (see pcl_methods.h)\n"
-      "  -rms_dist D   : NN distance cut-off of the RMS column (default 1)\n"
+      "  -rms_dist D   : NN distance cut-off of the RMS column (default 1 m)\n"
       "  -overwrite    : replace an existing -json file (never an input)\n"
       "  -h            : this help\n");
 }
@@ -102,6 +105,16 @@ lengthUnit(const pcl_ls3d::io::CloudInfo& target, const pcl_ls3d::io::CloudInfo&
       return name;
   }
   return "units";
+}
+
+/// Metres per unit of the CRS an input declares (target first), 0 when none says.
+double
+metresPerUnit(const pcl_ls3d::io::CloudInfo& target, const pcl_ls3d::io::CloudInfo& source)
+{
+  for (const pcl_ls3d::io::CloudInfo* info : {&target, &source})
+    if (const double m = pcl_ls3d::maps::crsLinearUnit(pcl_ls3d::maps::crsOfFile(*info)); m > 0.0)
+      return m;
+  return 0.0;
 }
 
 /// Expands the -methods list; false on an unknown name.
@@ -210,6 +223,7 @@ struct Options
   PclMethodSettings ps;
   Ls3dMethodSettings ls;
   double rms_dist = 1.0;  ///< RMS over nearest-neighbour distances within this
+  std::set<std::string> given_lengths;  ///< length options on the command line (data's unit)
   bool has_truth = false;
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();  ///< input coordinates
 };
@@ -243,6 +257,9 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
     return false;
   o.ps.max_correspondence_distance = o.ls.max_correspondence_distance = max_corr;
   o.ps.ndt_resolution = ndt_res;
+  for (const char* name : {"-max_corr", "-ndt_res", "-rms_dist"})
+    if (find_argument(argc, argv, name) >= 0)
+      o.given_lengths.insert(name);
   o.ls.source_thinning = thinning;
   if (iterations > 0)
     o.ps.max_iterations = o.ls.max_iterations = iterations;
@@ -339,6 +356,28 @@ writeJson(const Options& o, const Clouds& c, const std::vector<RegistrationRun>&
   return true;
 }
 
+/// The default lengths are metres: on data whose CRS declares another unit (feet) they are
+/// converted, so that a comparison means the same in either unit. Lengths given on the command
+/// line are the data's unit already.
+void
+defaultsInDataUnit(double metres_per_unit, const std::string& unit, Options& o)
+{
+  if (!(metres_per_unit > 0.0) || metres_per_unit == 1.0)
+    return;
+  const auto given = [&o](const char* name) { return o.given_lengths.count(name) > 0; };
+  PclMethodSettings converted = o.ps.inUnit(metres_per_unit);
+  if (given("-max_corr"))
+    converted.max_correspondence_distance = o.ps.max_correspondence_distance;
+  else
+    o.ls.max_correspondence_distance = converted.max_correspondence_distance;
+  if (given("-ndt_res"))
+    converted.ndt_resolution = o.ps.ndt_resolution;
+  if (!given("-rms_dist"))
+    o.rms_dist /= metres_per_unit;
+  o.ps = converted;
+  print_info("Default lengths are metres, converted to %s (%g m)\n", unit.c_str(), metres_per_unit);
+}
+
 }  // namespace
 
 int
@@ -355,6 +394,7 @@ main(int argc, char** argv)
   if (!parseOptions(argc, argv, o, why) || !loadClouds(o, c, why))
     return fail(why);
   const std::string unit = lengthUnit(c.target_info, c.source_info);
+  defaultsInDataUnit(metresPerUnit(c.target_info, c.source_info), unit, o);
   print_info("PCL settings : %s\nLS3D settings: %s\n", o.ps.describe(unit).c_str(),
              o.ls.describe(unit).c_str());
   std::vector<RegistrationRun> runs;

@@ -193,6 +193,18 @@ PclMethodSettings::describe(const std::string& unit) const
   return buf;
 }
 
+PclMethodSettings
+PclMethodSettings::inUnit(double metres_per_unit) const
+{
+  PclMethodSettings s = *this;
+  s.max_correspondence_distance /= metres_per_unit;
+  s.transformation_epsilon /= metres_per_unit * metres_per_unit;
+  s.gicp_translation_epsilon /= metres_per_unit;
+  s.ndt_resolution /= metres_per_unit;
+  s.ndt_step_size /= metres_per_unit;
+  return s;
+}
+
 RegistrationRun
 runPclMethod(PclMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
              const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,

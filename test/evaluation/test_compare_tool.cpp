@@ -292,7 +292,8 @@ TEST_F(CompareTool, FailedRunShowsNoFigures)
 }
 
 // Lengths are labelled in the data's unit: the CRS's of a LAS input or one a PCD header records
-// (international feet here), "units" without a CRS; never a fixed [m] / [mm].
+// (international feet here), "units" without a CRS; never a fixed [m] / [mm]. The default
+// lengths are metres, converted to that unit; lengths given are the data's.
 TEST_F(CompareTool, UnitsFollowTheCrs)
 {
   if (!fs::exists(kTool))
@@ -316,9 +317,19 @@ TEST_F(CompareTool, UnitsFollowTheCrs)
       dir_ / "ft.log", text);
   EXPECT_NE(text.find("RMS[ft]"), std::string::npos) << text;
   EXPECT_NE(text.find("mean[ft]"), std::string::npos) << text;
-  EXPECT_NE(text.find("max_corr=2 ft"), std::string::npos) << text;
+  // The default lengths are metres, converted: 2 m = 6.56168 ft, 1 m = 3.28084 ft.
+  EXPECT_NE(text.find("max_corr=6.56168 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("NDT res=6.56168 ft step=1.64042 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("within 3.28084 ft"), std::string::npos) << text;
   EXPECT_EQ(text.find("[m]"), std::string::npos) << text;
   EXPECT_EQ(text.find("[mm]"), std::string::npos) << text;
+  // Lengths given are the data's unit.
+  run((dir_ / "source.las").string() + " " + (dir_ / "target.las").string() +
+          " -methods icp -iter 2 -max_corr 2 -rms_dist 1",
+      dir_ / "ft_given.log", text);
+  EXPECT_NE(text.find("max_corr=2 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("NDT res=6.56168 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("within 1 ft"), std::string::npos) << text;
 
   // The same clouds as PCDs that record the CRS in their header (as pcl_ls3d_convert writes them).
   io::SaveOptions pcd_feet;
@@ -340,6 +351,7 @@ TEST_F(CompareTool, UnitsFollowTheCrs)
   run(inputs() + " -methods icp -iter 2", dir_ / "units.log", text);
   EXPECT_NE(text.find("RMS[units]"), std::string::npos) << text;
   EXPECT_EQ(text.find("[m]"), std::string::npos) << text;
+  EXPECT_NE(text.find("max_corr=2 units"), std::string::npos) << text;  // without a CRS: as is
 }
 
 // A bad length says what is allowed, not the machine's double limits.

@@ -68,6 +68,12 @@ struct PclMethodSettings
   /// One line listing every value, for tables and docs; lengths labelled `unit` (the data's).
   std::string
   describe(const std::string& unit = "m") const;
+
+  /// The same settings for data in another length unit: every length (correspondence distance,
+  /// translation steps, NDT resolution and step) divided by \a metres_per_unit, the squared step
+  /// by its square (data in feet: inUnit(0.3048)).
+  PclMethodSettings
+  inUnit(double metres_per_unit) const;
 };
 
 /// \brief Runs one PCL method from the identity guess. Never throws; on failure run.ran is false
