@@ -94,7 +94,7 @@ struct Meaning
   bool class_palette = false;       ///< colours are classColour(label): legend of the classes
   std::string labels = "classes";   ///< a label is one of the "segments", "labels" or "classes"
   std::string unit = "m";           ///< of x and y; empty: geographic (no scale bar)
-  std::string crs;                  ///< name of the LAS file's CRS, empty when it declares none
+  std::string crs;                  ///< name of the file's CRS, empty when it declares none
   bool object_classes = false;      ///< classes are pcl_ls3d_segment's object classes
 };
 
@@ -110,10 +110,9 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
     std::fprintf(stderr, "render_top_view: %s\n", error.c_str());
     return false;
   }
-  // Metres unless the file's CRS says otherwise (US survey feet in some states); a
-  // SEGMENTS.pcd records its input's CRS in its header.
-  const std::string wkt = info.format == "las" ? pcl_ls3d::maps::crsFromLasVlrs(info.las.vlrs)
-                                               : info.file_crs_wkt;
+  // Metres unless the file's CRS says otherwise (US survey feet in some states); a PCD the
+  // tools wrote records its input's CRS in its header.
+  const std::string wkt = pcl_ls3d::maps::crsOfFile(info);
   if (!wkt.empty()) {
     meaning.crs = pcl_ls3d::maps::crsName(wkt);
     meaning.unit = pcl_ls3d::maps::crsLinearUnitName(wkt);
@@ -204,7 +203,7 @@ constexpr const char* kUsage =
     "Usage: %s INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class] [-crop x0,x1,y0,y1]\n"
     "       [-view top|north|east|south|west] [-plain] [-overwrite]\n"
     "  A PNG of the highest point per pixel (side views: the nearest), segment borders darkened,\n"
-    "  in a margin with a scale bar in the cloud's unit (metres unless a LAS CRS says otherwise),\n"
+    "  in a margin with a scale bar in the cloud's unit (metres unless its CRS says otherwise),\n"
     "  a north arrow (top view) or the side view's direction, a legend of the classes shown\n"
     "  (class colours) and a caption: segments (or classes), points, view and pixel size.\n"
     "  INPUT   SEGMENTS.pcd of pcl_ls3d_segment, or any cloud pcl_ls3d reads (PCD, PLY, LAS, XYZ)\n"

@@ -257,7 +257,7 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
     return false;
   o.ps.max_correspondence_distance = o.ls.max_correspondence_distance = max_corr;
   o.ps.ndt_resolution = ndt_res;
-  for (const char* name : {"-max_corr", "-ndt_res", "-rms_dist"})
+  for (const char* name : {"-max_corr", "-ndt_res", "-rms_dist", "-thinning"})
     if (find_argument(argc, argv, name) >= 0)
       o.given_lengths.insert(name);
   o.ls.source_thinning = thinning;
@@ -365,16 +365,19 @@ defaultsInDataUnit(double metres_per_unit, const std::string& unit, Options& o)
   if (!(metres_per_unit > 0.0) || metres_per_unit == 1.0)
     return;
   const auto given = [&o](const char* name) { return o.given_lengths.count(name) > 0; };
-  PclMethodSettings converted = o.ps.inUnit(metres_per_unit);
+  PclMethodSettings pcl_settings = o.ps.inUnit(metres_per_unit);
+  Ls3dMethodSettings ls3d_settings = o.ls.inUnit(metres_per_unit);
   if (given("-max_corr"))
-    converted.max_correspondence_distance = o.ps.max_correspondence_distance;
-  else
-    o.ls.max_correspondence_distance = converted.max_correspondence_distance;
+    pcl_settings.max_correspondence_distance = ls3d_settings.max_correspondence_distance =
+        o.ps.max_correspondence_distance;
   if (given("-ndt_res"))
-    converted.ndt_resolution = o.ps.ndt_resolution;
+    pcl_settings.ndt_resolution = o.ps.ndt_resolution;
+  if (given("-thinning"))
+    ls3d_settings.source_thinning = o.ls.source_thinning;
   if (!given("-rms_dist"))
     o.rms_dist /= metres_per_unit;
-  o.ps = converted;
+  o.ps = pcl_settings;
+  o.ls = ls3d_settings;
   print_info("Default lengths are metres, converted to %s (%g m)\n", unit.c_str(), metres_per_unit);
 }
 

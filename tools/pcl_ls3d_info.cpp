@@ -81,7 +81,7 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   // applied the origin its header records; say so, as the file itself is not in that frame.
   if (info.has_file_origin)
     j["origin_applied"] = vec(info.file_origin);
-  if (!info.file_crs_wkt.empty())  // a SEGMENTS.pcd of a georeferenced input
+  if (!info.file_crs_wkt.empty())  // a PCD the tools wrote from a georeferenced input
     j["crs_recorded"] = pcl_ls3d::maps::crsName(info.file_crs_wkt);
   j["min"] = vec(info.min_file);
   j["max"] = vec(info.max_file);

@@ -42,7 +42,9 @@ printHelp(const char* prog)
              "                       flight lines biases the shift); -o still moves every point\n"
              "  -o ALIGNED           write the transformed source (input coordinates); a LAS source\n"
              "                       written as .las keeps its version, point format, VLRs (CRS)\n"
-             "                       and every attribute: only X, Y, Z and the bounds change\n"
+             "                       and every attribute: only X, Y, Z and the bounds change;\n"
+             "                       other outputs declare the target's CRS (else the source's):\n"
+             "                       a PCD in its header, a LAS as a WKT VLR\n"
              "  -rule lnd|lzd|icp    conjugate-point rule (default lnd)\n"
              "  -params 7|6|3|1      similarity, rigid (m fixed), translation, height only (default 6)\n"
              "  -fix tx,ty,...       also fix these parameters (tx ty tz phi omega kappa m)\n"
@@ -442,7 +444,10 @@ writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentRepor
   tt.tic();
   pcl_ls3d::io::SaveOptions so;
   so.overwrite = o.overwrite;
-  pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsOfFile(pair.tinfo), so);  // in the target's frame
+  // The aligned source lies in the target's frame: the target's CRS, else the source's.
+  const std::string target_crs = pcl_ls3d::maps::crsOfFile(pair.tinfo);
+  pcl_ls3d::maps::recordCrs(target_crs.empty() ? pcl_ls3d::maps::crsOfFile(pair.sinfo) : target_crs,
+                            so);
   const bool las_to_las = pair.sinfo.format == "las" && pcl_ls3d::io::fileExtension(o.out_path) == "las";
   if (!o.classes.empty() && !las_to_las)
     pcl::transformPointCloud(*pair.whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));

@@ -36,13 +36,24 @@ Ls3dMethodSettings::describe(const std::string& unit) const
     std::snprintf(iter, sizeof(iter), "default");
   char buf[400];
   std::snprintf(buf, sizeof(buf),
-                "max_corr=%s, max_iter=%s, thinning=%g %s, angle_eps=1e-6 rad, trans_eps=1e-5 %s, "
+                "max_corr=%s, max_iter=%s, thinning=%g %s, angle_eps=1e-6 rad, trans_eps=%g %s, "
                 "%s, Zuo 0/1 weight at 6 sigma0, quality gate on",
-                corr, iter, source_thinning, u, u,
+                corr, iter, source_thinning, u, translation_epsilon, u,
                 model == ParameterModel::SIMILARITY_7 ? "7 parameters (similarity)"
                 : model == ParameterModel::RIGID_6    ? "6 parameters (rigid)"
                                                       : "reduced parameter model");
   return buf;
+}
+
+Ls3dMethodSettings
+Ls3dMethodSettings::inUnit(double metres_per_unit) const
+{
+  Ls3dMethodSettings s = *this;
+  if (s.max_correspondence_distance > 0.0)
+    s.max_correspondence_distance /= metres_per_unit;
+  s.source_thinning /= metres_per_unit;
+  s.translation_epsilon /= metres_per_unit;
+  return s;
 }
 
 RegistrationRun
@@ -67,6 +78,7 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     if (settings.max_iterations > 0)
       ls3d.setMaximumIterations(settings.max_iterations);
     ls3d.setSourceThinning(settings.source_thinning);
+    ls3d.setTransformationEpsilon(settings.translation_epsilon * settings.translation_epsilon);
     ls3d.setInputSource(source);
     ls3d.setInputTarget(target);
     pcl::PointCloud<pcl::PointXYZ> output;

@@ -113,8 +113,10 @@ writePclFile(const std::string& path, const std::string& format,
     if (!options.binary)
       status = (format == "pcd" ? writePcdAscii(path, cloud, origin, comments)
                                 : writePlyAscii(path, cloud, origin)) ? 0 : -1;
-    else if (format == "pcd")
-      return savePcdBinaryWithComments(path, c, comments, error);
+    else if (format == "pcd") {
+      std::string why;  // names the path, which saveCloud() adds itself
+      status = savePcdBinaryWithComments(path, c, comments, why) ? 0 : -1;
+    }
     else  // no camera element: other PLY readers do not expect one
       status = pcl::PLYWriter().writeBinary(path, c, Eigen::Vector4f::Zero(),
                                             Eigen::Quaternionf::Identity(), false);
@@ -124,7 +126,7 @@ writePclFile(const std::string& path, const std::string& format,
     return false;
   }
   if (status < 0) {
-    error = "PCL could not write the " + format + " file";
+    error = "could not write the " + format + " file";
     return false;
   }
   return true;

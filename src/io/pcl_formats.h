@@ -1,7 +1,8 @@
 #pragma once
 /// \file pcl_formats.h
-/// \brief Private: PCD and PLY written through PCL's writers via pcl::PCLPointCloud2, so that
-///        FLOAT64 x/y/z (georeferenced clouds) keep double precision. Reading: pcd_io.h, ply_io.h.
+/// \brief Private: PCD and PLY written via pcl::PCLPointCloud2 (PLY through PCL's writer, PCD
+///        with PCL's header plus the CRS line, pcd_io.h), so that FLOAT64 x/y/z (georeferenced
+///        clouds) keep double precision. Reading: pcd_io.h, ply_io.h.
 
 #include <pcl_ls3d/io/cloud_io.h>
 

@@ -295,6 +295,8 @@ sameCrs(const std::string& a, const std::string& b)
 bool
 sameHorizontalCrs(const std::string& a, const std::string& b)
 {
+  if (a == b)
+    return true;
   const auto sa = parse(a), sb = parse(b);
   if (!sa || !sb)
     return false;
@@ -308,7 +310,9 @@ std::string
 crsMismatch(const std::string& path_a, const std::string& wkt_a, const std::string& path_b,
             const std::string& wkt_b)
 {
-  if (wkt_a.empty() || wkt_b.empty() || sameHorizontalCrs(wkt_a, wkt_b))
+  // What GDAL cannot read is no evidence of a difference.
+  if (wkt_a.empty() || wkt_b.empty() || !parse(wkt_a) || !parse(wkt_b) ||
+      sameHorizontalCrs(wkt_a, wkt_b))
     return "";
   return "'" + path_b + "' declares " + crsName(wkt_b) + ", '" + path_a + "' " + crsName(wkt_a) +
          ": their coordinates are used as they are; reproject one into the other's CRS unless "

@@ -150,14 +150,16 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
 {
   out = LoadedStrips();
   std::vector<OpenInput> open(paths.size());
+  std::string crs_path;  // the input that declared out.crs_wkt
   for (std::size_t f = 0; f < paths.size(); ++f) {
     InputFile info;
     if (!openInput(paths[f], open[f], info, error))
       return false;
-    if (out.crs_wkt.empty())
+    if (out.crs_wkt.empty()) {
       out.crs_wkt = info.crs_wkt;
-    else if (std::string note = maps::crsMismatch(out.inputs.front().path, out.crs_wkt,
-                                                  info.path, info.crs_wkt);
+      crs_path = info.path;
+    }
+    else if (std::string note = maps::crsMismatch(crs_path, out.crs_wkt, info.path, info.crs_wkt);
              !note.empty())
       out.notes.push_back(std::move(note));
     out.inputs.push_back(std::move(info));

@@ -318,17 +318,20 @@ TEST_F(CompareTool, UnitsFollowTheCrs)
   EXPECT_NE(text.find("RMS[ft]"), std::string::npos) << text;
   EXPECT_NE(text.find("mean[ft]"), std::string::npos) << text;
   // The default lengths are metres, converted: 2 m = 6.56168 ft, 1 m = 3.28084 ft.
-  EXPECT_NE(text.find("max_corr=6.56168 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("PCL settings : max_corr=6.56168 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("LS3D settings: max_corr=6.56168 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("trans_eps=3.28084e-05 ft"), std::string::npos) << text;
   EXPECT_NE(text.find("NDT res=6.56168 ft step=1.64042 ft"), std::string::npos) << text;
   EXPECT_NE(text.find("within 3.28084 ft"), std::string::npos) << text;
   EXPECT_EQ(text.find("[m]"), std::string::npos) << text;
   EXPECT_EQ(text.find("[mm]"), std::string::npos) << text;
   // Lengths given are the data's unit.
   run((dir_ / "source.las").string() + " " + (dir_ / "target.las").string() +
-          " -methods icp -iter 2 -max_corr 2 -rms_dist 1",
+          " -methods icp -iter 2 -max_corr 2 -ndt_res 2 -rms_dist 1",
       dir_ / "ft_given.log", text);
-  EXPECT_NE(text.find("max_corr=2 ft"), std::string::npos) << text;
-  EXPECT_NE(text.find("NDT res=6.56168 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("PCL settings : max_corr=2 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("LS3D settings: max_corr=2 ft"), std::string::npos) << text;
+  EXPECT_NE(text.find("NDT res=2 ft step=1.64042 ft"), std::string::npos) << text;
   EXPECT_NE(text.find("within 1 ft"), std::string::npos) << text;
 
   // The same clouds as PCDs that record the CRS in their header (as pcl_ls3d_convert writes them).

@@ -447,7 +447,7 @@ TEST_F(ConvertTool, CrsGoesWithThePoints)
 {
   const std::string wkt = maps::crsFromUserInput("EPSG:32632");  // WGS 84 / UTM 32N
   io::SaveOptions with_crs;
-  with_crs.las_vlrs = {maps::wktVlr(wkt)};
+  maps::recordCrs(wkt, with_crs);  // a WKT VLR in a LAS 1.4
   std::string error, out;
   ASSERT_TRUE(io::saveCloud(dir_.file("utm.las"), cloud_, origin_, error, with_crs)) << error;
   ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("b.pcd"), out, dir_), 0) << out;
@@ -455,6 +455,17 @@ TEST_F(ConvertTool, CrsGoesWithThePoints)
   ASSERT_EQ(run(dir_.file("utm.las") + " -split_strips " + dir_.file("strips") + " -format pcd",
                 out, dir_), 0) << out;
   ASSERT_EQ(run(dir_.file("b.pcd") + " " + dir_.file("back.las"), out, dir_), 0) << out;
+  ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("copy.las"), out, dir_), 0) << out;
+  for (const std::string name : {"back.las", "copy.las"}) {  // one CRS record, in a LAS 1.4
+    SCOPED_TRACE(name);
+    pcl::PointCloud<PointLiDAR> c;
+    io::CloudInfo info;
+    ASSERT_TRUE(io::loadCloud(dir_.file(name), c, info, error)) << error;
+    EXPECT_EQ(info.las.version_minor, 4);
+    EXPECT_EQ(std::count_if(info.las.vlrs.begin(), info.las.vlrs.end(),
+                            [](const io::LasVlr& v) { return v.record_id == 2112; }),
+              1);
+  }
   for (const std::string name : {"b.pcd", "a.pcd", "strips/utm_psid11.pcd", "back.las"}) {
     SCOPED_TRACE(name);
     pcl::PointCloud<PointLiDAR> c;

@@ -33,7 +33,7 @@ writePatch(const std::string& path, const std::string& crs, double per_unit, flo
                                        static_cast<float>(j / per_unit),
                                        std::sin(0.3f * i) + std::cos(0.2f * j) + dz));
   pcl_ls3d::io::SaveOptions o;
-  o.las_vlrs = {pcl_ls3d::maps::wktVlr(pcl_ls3d::maps::crsFromUserInput(crs))};
+  pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsFromUserInput(crs), o);  // "": none
   o.las_scale = {0.001 / per_unit, 0.001 / per_unit, 0.001};
   std::string error;
   ASSERT_TRUE(pcl_ls3d::io::saveCloud(path, c, Eigen::Vector3d(2.0, 48.0, 0.0), error, o))
@@ -98,8 +98,16 @@ TEST(ToolsKeepTheCrs, PcdOutputsRecordTheInputsCrs)
   const pcl_ls3d_test::ToolRun def = runTool(
       "pcl_ls3d_deformation", c + " " + d + " -o " + dir.file("residuals.pcd"), dir.path.string());
   ASSERT_TRUE(def.code == 0 || def.code == 3) << def.err;
+  // The strip adjustment's corrected strips, from PCD strips that record the CRS.
+  for (const std::string& s : {c, d})
+    ASSERT_EQ(runTool("pcl_ls3d_convert", s + " " + s.substr(0, s.size() - 3) + "pcd",
+                      dir.path.string()).code, 0);
+  const pcl_ls3d_test::ToolRun strips = runTool(
+      "pcl_ls3d_strip_adjust", dir.file("c.pcd") + " " + dir.file("d.pcd") + " -o " + dir.file("out"),
+      dir.path.string());
+  ASSERT_EQ(strips.code, 0) << strips.err;
   const std::string lambert = pcl_ls3d::maps::crsFromUserInput("EPSG:2154");
-  for (const char* name : {"aligned.pcd", "residuals.pcd"}) {
+  for (const char* name : {"aligned.pcd", "residuals.pcd", "out/c.pcd", "out/d.pcd"}) {
     SCOPED_TRACE(name);
     pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud;
     pcl_ls3d::io::CloudInfo info;
@@ -115,7 +123,8 @@ TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
 {
   const TempDir dir("ls3d_crs_mismatch");
   const std::string lambert = dir.file("lambert.las"), with_height = dir.file("height.las"),
-                    utm = dir.file("utm.las");
+                    utm = dir.file("utm.las"), none = dir.file("none.las");
+  writePatch(none, "", 1.0, 0.1f);
   writePatch(lambert, "EPSG:2154", 1.0, 0.0f);
   writePatch(with_height, "EPSG:2154+5720", 1.0, 0.2f);  // + NGF-IGN69 height
   writePatch(utm, "EPSG:32631", 1.0, 0.2f);
@@ -123,10 +132,15 @@ TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
       runTool("pcl_ls3d_register", with_height + " " + lambert, dir.path.string());
   EXPECT_EQ(same.code, 0) << same.err;
   EXPECT_EQ(same.err.find("declares"), std::string::npos) << same.err;
+  // The CRS read from a PCD header too; the strips' note names the first input that declares
+  // one, not the first input.
+  ASSERT_EQ(runTool("pcl_ls3d_convert", utm + " " + dir.file("utm.pcd"), dir.path.string()).code,
+            0);
   const std::string calls[][2] = {
       {"pcl_ls3d_register", utm + " " + lambert},
       {"pcl_ls3d_compare", utm + " " + lambert + " -methods ls3d-lnd"},
-      {"pcl_ls3d_strip_adjust", lambert + " " + utm + " -o " + dir.file("out")},
+      {"pcl_ls3d_deformation", lambert + " " + utm},
+      {"pcl_ls3d_strip_adjust", none + " " + lambert + " " + utm + " -o " + dir.file("out")},
   };
   for (const auto& call : calls) {
     SCOPED_TRACE(call[0]);
@@ -137,4 +151,7 @@ TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
               std::string::npos)
         << r.out << r.err;
   }
+  const pcl_ls3d_test::ToolRun pcd =
+      runTool("pcl_ls3d_register", dir.file("utm.pcd") + " " + lambert, dir.path.string());
+  EXPECT_NE(pcd.err.find("utm.pcd' declares WGS 84 / UTM zone 31N"), std::string::npos) << pcd.err;
 }

@@ -20,7 +20,7 @@ std::string
 ls3dMethodName(ConjugateRuleType rule);
 
 /// \brief Settings handed to LS3D; everything else keeps the class defaults (Zuo's 0/1 weight at
-///        6σ0, angle ε 1e-6 rad, translation ε 1e-5, quality gate on).
+///        6σ0, angle ε 1e-6 rad, quality gate on).
 struct Ls3dMethodSettings
 {
   /// [m] same as the PCL methods; <= 0 = the class default (unlimited with the automatic,
@@ -28,12 +28,19 @@ struct Ls3dMethodSettings
   double max_correspondence_distance = 2.0;
   int max_iterations = 30;                   ///< LS3D default; <= 0 = the class default
   double source_thinning = 0.0;              ///< [m] voxel edge, 0 = every source point
+  double translation_epsilon = 1e-5;         ///< [m] stop when the translation step is below
+                                             ///< (the class default)
   /// RIGID_6 is the class default (like the ICP it replaces); SIMILARITY_7 frees the scale.
   ParameterModel model = ParameterModel::RIGID_6;
 
   /// One line listing every value, for tables and docs; lengths labelled `unit` (the data's).
   std::string
   describe(const std::string& unit = "m") const;
+
+  /// The same settings for data in another length unit: the correspondence distance, thinning
+  /// and translation step divided by \a metres_per_unit (as PclMethodSettings::inUnit()).
+  Ls3dMethodSettings
+  inUnit(double metres_per_unit) const;
 };
 
 /// \brief Aligns source to target from the identity; never throws. The transform is taken from

@@ -1,8 +1,8 @@
 #pragma once
 /// \file pcd_io.h
 /// \brief PCD reader (v0.5–0.7; DATA ascii, binary, binary_compressed) on a memory buffer, so the
-///        same code serves files, tests and the fuzzer. Writing goes through PCL's PCDWriter
-///        (saveCloud in cloud_io.h).
+///        same code serves files, tests and the fuzzer. Writing: PCL's PCDWriter makes the
+///        header, savePcdBinaryWithComments() adds the comment lines (saveCloud in cloud_io.h).
 ///
 /// The header is checked before anything is allocated: FIELDS, SIZE, TYPE (F 4/8, U and I
 /// 1/2/4/8) and COUNT (optional, >= 1) must agree; WIDTH x HEIGHT must equal POINTS; counts are

@@ -85,8 +85,8 @@ sameHorizontalCrs(const std::string& a, const std::string& b);
 
 /// One note when two files declare different horizontal CRSs: "'B' declares WGS 84 / UTM 31N,
 /// 'A' RGF93 v1 / Lambert-93: their coordinates are used as they are; reproject one into the
-/// other's CRS unless both describe the same frame"; empty when either declares none or both
-/// agree. A note, not a refusal: two definitions of one frame can differ in GDAL's eyes.
+/// other's CRS unless both describe the same frame"; empty when either declares none (or one
+/// GDAL cannot read) or both agree. A note, not a refusal: two definitions of one frame can differ in GDAL's eyes.
 std::string
 crsMismatch(const std::string& path_a, const std::string& wkt_a, const std::string& path_b,
             const std::string& wkt_b);
