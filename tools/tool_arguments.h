@@ -281,13 +281,16 @@ inputsNotInLengths(const std::vector<std::pair<std::string, const io::CloudInfo*
 }
 
 /// \brief One warning line for each input whose horizontal CRS differs from the first declared
-///        one (maps::crsMismatch); printed, the run goes on.
+///        one (maps::crsMismatch), and for each whose heights are in another unit than its plan
+///        coordinates (maps::mixedUnits); printed, the run goes on.
 inline void
 warnCrsMismatch(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs)
 {
   std::string first_path, first_wkt;
   for (const auto& [path, info] : inputs) {
     const std::string wkt = maps::crsOfFile(*info);
+    if (const std::string mixed = maps::mixedUnits(path, wkt); !mixed.empty())
+      pcl::console::print_warn("Warning: %s\n", mixed.c_str());
     if (first_wkt.empty()) {
       first_path = path;
       first_wkt = wkt;

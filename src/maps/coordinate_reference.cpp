@@ -274,15 +274,36 @@ crsVerticalUnit(const std::string& wkt)
                                                 : 0.0;
 }
 
+namespace {
+
+/// "m", "ft" (international or US survey foot) or "units"; empty for no unit.
 std::string
-crsLinearUnitName(const std::string& wkt)
+unitName(double metres)
 {
-  const double metres = crsLinearUnit(wkt);
   if (!(metres > 0.0))
     return "";
   if (std::abs(metres - 1.0) <= 1e-9)
     return "m";
   return std::abs(metres - 0.3048) < 1e-6 ? "ft" : "units";  // 1e-6 takes the US foot too
+}
+
+}  // namespace
+
+std::string
+crsLinearUnitName(const std::string& wkt)
+{
+  return unitName(crsLinearUnit(wkt));
+}
+
+std::string
+mixedUnits(const std::string& path, const std::string& wkt)
+{
+  const double plan = crsLinearUnit(wkt), height = crsVerticalUnit(wkt);
+  if (!(plan > 0.0) || !(height > 0.0) || std::abs(plan / height - 1.0) < 1e-6)
+    return "";
+  return "'" + path + "' declares heights in " + unitName(height) + " and plan coordinates in " +
+         unitName(plan) + " (" + crsName(wkt) + "): distances, rotations and residuals mix the "
+         "two units; convert the heights to the plan unit first";
 }
 
 bool

@@ -155,6 +155,8 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
     InputFile info;
     if (!openInput(paths[f], open[f], info, error))
       return false;
+    if (std::string mixed = maps::mixedUnits(info.path, info.crs_wkt); !mixed.empty())
+      out.notes.push_back(std::move(mixed));
     if (out.crs_wkt.empty()) {
       out.crs_wkt = info.crs_wkt;
       crs_path = info.path;

@@ -155,3 +155,31 @@ TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
       runTool("pcl_ls3d_register", dir.file("utm.pcd") + " " + lambert, dir.path.string());
   EXPECT_NE(pcd.err.find("utm.pcd' declares WGS 84 / UTM zone 31N"), std::string::npos) << pcd.err;
 }
+
+// A compound CRS whose heights are in another unit than its plan coordinates (NAD83 / Oregon
+// LCC in metres + NAVD88 height in US feet, as PDAL's autzen-bmx files) is said so: distances,
+// rotations and residuals would mix the units. One unit throughout: nothing said.
+TEST(ToolsWarnOfMixedUnits, HeightsInFeetOverMetres)
+{
+  const std::string mixed_crs = pcl_ls3d::maps::crsFromUserInput("EPSG:32631+6360");
+  ASSERT_FALSE(mixed_crs.empty());
+  ASSERT_NEAR(pcl_ls3d::maps::crsVerticalUnit(mixed_crs), 0.3048006, 1e-6);
+  EXPECT_TRUE(pcl_ls3d::maps::mixedUnits("x", pcl_ls3d::maps::crsFromUserInput("EPSG:2154+5720"))
+                  .empty());
+  const TempDir dir("ls3d_mixed_units");
+  const std::string a = dir.file("a.las"), b = dir.file("b.las");
+  writePatch(a, "EPSG:32631+6360", 1.0, 0.0f);
+  writePatch(b, "EPSG:32631+6360", 1.0, 0.2f);
+  const std::string said = "'" + a + "' declares heights in ft and plan coordinates in m";
+  const std::string calls[][2] = {
+      {"pcl_ls3d_register", b + " " + a},
+      {"pcl_ls3d_deformation", a + " " + b},
+      {"pcl_ls3d_strip_adjust", a + " " + b + " -o " + dir.file("out")},
+  };
+  for (const auto& call : calls) {
+    SCOPED_TRACE(call[0]);
+    const pcl_ls3d_test::ToolRun r = runTool(call[0], call[1], dir.path.string());
+    EXPECT_NE(r.code, 1) << r.err;
+    EXPECT_NE((r.out + r.err).find(said), std::string::npos) << r.out << r.err;
+  }
+}

@@ -74,6 +74,13 @@ crsVerticalUnit(const std::string& wkt);
 std::string
 crsLinearUnitName(const std::string& wkt);
 
+/// One note when \a wkt's heights and plan coordinates have different units (a compound CRS such
+/// as "NAD83 / Oregon LCC (m) + NAVD88 height (ftUS)"): "'PATH' declares heights in ft and plan
+/// coordinates in m (...): distances, rotations and residuals mix the two units; convert the
+/// heights to the plan unit first"; empty otherwise (or when a unit is unknown).
+std::string
+mixedUnits(const std::string& path, const std::string& wkt);
+
 /// True when both WKT describe the same CRS (OGRSpatialReference::IsSame).
 bool
 sameCrs(const std::string& a, const std::string& b);
