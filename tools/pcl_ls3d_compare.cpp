@@ -93,28 +93,16 @@ positiveOption(int argc, char** argv, const std::string& name, double& value, bo
   return false;
 }
 
-/// The data's length unit for labels: that of the CRS an input declares (target first), else
-/// "units".
+/// The CRS of the data's lengths: the first that an input declares with a length unit (target
+/// first); empty when none does.
 std::string
-lengthUnit(const pcl_ls3d::io::CloudInfo& target, const pcl_ls3d::io::CloudInfo& source)
-{
-  for (const pcl_ls3d::io::CloudInfo* info : {&target, &source}) {
-    const std::string name =
-        pcl_ls3d::maps::crsLinearUnitName(pcl_ls3d::maps::crsOfFile(*info));
-    if (!name.empty())
-      return name;
-  }
-  return "units";
-}
-
-/// Metres per unit of the CRS an input declares (target first), 0 when none says.
-double
-metresPerUnit(const pcl_ls3d::io::CloudInfo& target, const pcl_ls3d::io::CloudInfo& source)
+lengthCrs(const pcl_ls3d::io::CloudInfo& target, const pcl_ls3d::io::CloudInfo& source)
 {
   for (const pcl_ls3d::io::CloudInfo* info : {&target, &source})
-    if (const double m = pcl_ls3d::maps::crsLinearUnit(pcl_ls3d::maps::crsOfFile(*info)); m > 0.0)
-      return m;
-  return 0.0;
+    if (std::string wkt = pcl_ls3d::maps::crsOfFile(*info);
+        pcl_ls3d::maps::crsLinearUnit(wkt) > 0.0)
+      return wkt;
+  return "";
 }
 
 /// Expands the -methods list; false on an unknown name.
@@ -291,11 +279,9 @@ loadClouds(const Options& o, Clouds& c, std::string& why)
   with_origin.origin = c.target_info.origin;
   if (!pcl_ls3d::io::loadCloud(o.source_path, source_lidar, c.source_info, why, with_origin))
     return false;
-  if (!(why = pcl_ls3d::tools::inputsNotInLengths(
-          {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}})).empty())
+  if (!pcl_ls3d::tools::checkInputCrs(
+          {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}}, why))
     return false;
-  pcl_ls3d::tools::warnCrsMismatch(
-      {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}});
   c.source = toXYZ(source_lidar);
   c.target = toXYZ(target_lidar);
   print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "
@@ -396,8 +382,10 @@ main(int argc, char** argv)
   std::string why;
   if (!parseOptions(argc, argv, o, why) || !loadClouds(o, c, why))
     return fail(why);
-  const std::string unit = lengthUnit(c.target_info, c.source_info);
-  defaultsInDataUnit(metresPerUnit(c.target_info, c.source_info), unit, o);
+  // Lengths are in the unit of the CRS an input declares, else "units" (and taken as they are).
+  const std::string crs = lengthCrs(c.target_info, c.source_info);
+  const std::string unit = crs.empty() ? "units" : pcl_ls3d::maps::crsLinearUnitName(crs);
+  defaultsInDataUnit(pcl_ls3d::maps::crsLinearUnit(crs), unit, o);
   print_info("PCL settings : %s\nLS3D settings: %s\n", o.ps.describe(unit).c_str(),
              o.ls.describe(unit).c_str());
   std::vector<RegistrationRun> runs;

@@ -382,10 +382,9 @@ loadEpochs(const Options& o, Epochs& e, std::string& error)
   eopt.origin = e.rinfo.origin;
   if (!pcl_ls3d::io::loadCloud(o.epoch_path, *e.epoch, e.einfo, error, eopt))
     return false;
-  if (!(error = pcl_ls3d::tools::inputsNotInLengths(
-          {{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}})).empty())
+  if (!pcl_ls3d::tools::checkInputCrs({{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}},
+                                       error))
     return false;
-  pcl_ls3d::tools::warnCrsMismatch({{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}});
   e.load_ms = tt.toc();
   print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
              o.reference_path.c_str(), e.reference->size(), o.epoch_path.c_str(), e.epoch->size(),

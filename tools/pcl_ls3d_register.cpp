@@ -366,11 +366,9 @@ loadPair(const Options& o, Pair& pair, std::string& error)
   sopt.origin = pair.tinfo.origin;
   if (!pcl_ls3d::io::loadCloud(o.source_path, *pair.source, pair.sinfo, error, sopt))
     return false;
-  if (!(error = pcl_ls3d::tools::inputsNotInLengths(
-            {{o.target_path, &pair.tinfo}, {o.source_path, &pair.sinfo}}))
-           .empty())
+  if (!pcl_ls3d::tools::checkInputCrs({{o.target_path, &pair.tinfo}, {o.source_path, &pair.sinfo}},
+                                       error))
     return false;
-  pcl_ls3d::tools::warnCrsMismatch({{o.target_path, &pair.tinfo}, {o.source_path, &pair.sinfo}});
   pair.whole_source = pair.source;
   const std::size_t target_points = pair.target->size();
   if (!keepClasses(pair.target, o.classes, o.target_path, error) ||

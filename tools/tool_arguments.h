@@ -11,9 +11,9 @@
 /// - checkOutputFile() / checkOutputFolder(): an output that cannot be written is refused before
 ///   any input is read, not after a long run (tried with a probe file, not read from permission
 ///   bits, which root and /proc make meaningless).
-/// - inputsNotInLengths(): inputs in degrees (or earth-centred) are refused after loading, before
-///   any work: distances and heights in degrees give a wrong answer that still converges.
-/// - warnCrsMismatch(): inputs declaring different CRSs are said so in a warning (the run goes on).
+/// - checkInputCrs(): inputs in degrees (or earth-centred) are refused after loading, before any
+///   work: distances and heights in degrees give a wrong answer that still converges; inputs
+///   declaring different CRSs, or mixing units, are said so in a warning (the run goes on).
 
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
@@ -267,38 +267,22 @@ checkOutputFolder(const std::string& dir, std::string& why)
   return why.empty();
 }
 
-/// \brief One error line for the first input whose CRS is not in lengths (a geographic CRS in
-///        degrees, a geocentric one); empty when every input is (or declares no CRS).
-inline std::string
-inputsNotInLengths(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs)
+/// \brief The loaded inputs' CRSs: false with one error line for the first input whose CRS is
+///        not in lengths (a geographic CRS in degrees, a geocentric one); else true, after one
+///        warning line per maps::crsNotes() note (different CRSs, heights in another unit).
+inline bool
+checkInputCrs(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs,
+              std::string& why)
 {
+  std::vector<std::pair<std::string, std::string>> files;
   for (const auto& [path, info] : inputs) {
-    const std::string why = maps::notInLengths(path, maps::crsOfFile(*info));
-    if (!why.empty())
-      return why;
+    files.emplace_back(path, maps::crsOfFile(*info));
+    if (!(why = maps::notInLengths(path, files.back().second)).empty())
+      return false;
   }
-  return "";
-}
-
-/// \brief One warning line for each input whose horizontal CRS differs from the first declared
-///        one (maps::crsMismatch), and for each whose heights are in another unit than its plan
-///        coordinates (maps::mixedUnits); printed, the run goes on.
-inline void
-warnCrsMismatch(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs)
-{
-  std::string first_path, first_wkt;
-  for (const auto& [path, info] : inputs) {
-    const std::string wkt = maps::crsOfFile(*info);
-    if (const std::string mixed = maps::mixedUnits(path, wkt); !mixed.empty())
-      pcl::console::print_warn("Warning: %s\n", mixed.c_str());
-    if (first_wkt.empty()) {
-      first_path = path;
-      first_wkt = wkt;
-    }
-    else if (const std::string note = maps::crsMismatch(first_path, first_wkt, path, wkt);
-             !note.empty())
-      pcl::console::print_warn("Warning: %s\n", note.c_str());
-  }
+  for (const std::string& note : maps::crsNotes(files))
+    pcl::console::print_warn("Warning: %s\n", note.c_str());
+  return true;
 }
 
 }  // namespace tools

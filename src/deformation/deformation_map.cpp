@@ -100,7 +100,7 @@ mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps
   style.subtitle.push_back(format("%.1f %% of the area in %zu deformed regions (outlined), %zu noise clusters",
                                   r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size()));
   // Heights in another unit than x, y (a compound CRS): the residuals are in neither.
-  if (!maps::mixedUnits("", s.crs_wkt).empty())
+  if (maps::crsMixesUnits(s.crs_wkt))
     style.subtitle.push_back("WARNING: heights and plan coordinates in different units; the "
                              "residuals mix them");
   style.unit = unit;

@@ -295,15 +295,11 @@ crsLinearUnitName(const std::string& wkt)
   return unitName(crsLinearUnit(wkt));
 }
 
-std::string
-mixedUnits(const std::string& path, const std::string& wkt)
+bool
+crsMixesUnits(const std::string& wkt)
 {
   const double plan = crsLinearUnit(wkt), height = crsVerticalUnit(wkt);
-  if (!(plan > 0.0) || !(height > 0.0) || std::abs(plan / height - 1.0) < 1e-6)
-    return "";
-  return "'" + path + "' declares heights in " + unitName(height) + " and plan coordinates in " +
-         unitName(plan) + " (" + crsName(wkt) + "): distances, rotations and residuals mix the "
-         "two units; convert the heights to the plan unit first";
+  return plan > 0.0 && height > 0.0 && std::abs(plan / height - 1.0) >= 1e-6;
 }
 
 bool
@@ -327,17 +323,28 @@ sameHorizontalCrs(const std::string& a, const std::string& b)
   return sa->IsSame(sb.get());
 }
 
-std::string
-crsMismatch(const std::string& path_a, const std::string& wkt_a, const std::string& path_b,
-            const std::string& wkt_b)
+std::vector<std::string>
+crsNotes(const std::vector<std::pair<std::string, std::string>>& files)
 {
-  // What GDAL cannot read is no evidence of a difference.
-  if (wkt_a.empty() || wkt_b.empty() || !parse(wkt_a) || !parse(wkt_b) ||
-      sameHorizontalCrs(wkt_a, wkt_b))
-    return "";
-  return "'" + path_b + "' declares " + crsName(wkt_b) + ", '" + path_a + "' " + crsName(wkt_a) +
-         ": their coordinates are used as they are; reproject one into the other's CRS unless "
-         "both describe the same frame";
+  std::vector<std::string> notes;
+  const std::pair<std::string, std::string>* first = nullptr;  // the first declared CRS
+  for (const auto& file : files) {
+    const auto& [path, wkt] = file;
+    if (!parse(wkt))  // none, or unreadable: no evidence of anything
+      continue;
+    if (crsMixesUnits(wkt))
+      notes.push_back("'" + path + "' declares heights in " + unitName(crsVerticalUnit(wkt)) +
+                      " and plan coordinates in " + unitName(crsLinearUnit(wkt)) + " (" +
+                      crsName(wkt) + "): distances, rotations and residuals mix the two units; "
+                      "convert the heights to the plan unit first");
+    if (!first)
+      first = &file;
+    else if (!sameHorizontalCrs(first->second, wkt))
+      notes.push_back("'" + path + "' declares " + crsName(wkt) + ", '" + first->first + "' " +
+                      crsName(first->second) + ": their coordinates are used as they are; "
+                      "reproject one into the other's CRS unless both describe the same frame");
+  }
+  return notes;
 }
 
 io::LasVlr

@@ -150,22 +150,18 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
 {
   out = LoadedStrips();
   std::vector<OpenInput> open(paths.size());
-  std::string crs_path;  // the input that declared out.crs_wkt
+  std::vector<std::pair<std::string, std::string>> crs_of_file;
   for (std::size_t f = 0; f < paths.size(); ++f) {
     InputFile info;
     if (!openInput(paths[f], open[f], info, error))
       return false;
-    if (std::string mixed = maps::mixedUnits(info.path, info.crs_wkt); !mixed.empty())
-      out.notes.push_back(std::move(mixed));
-    if (out.crs_wkt.empty()) {
+    if (out.crs_wkt.empty())
       out.crs_wkt = info.crs_wkt;
-      crs_path = info.path;
-    }
-    else if (std::string note = maps::crsMismatch(crs_path, out.crs_wkt, info.path, info.crs_wkt);
-             !note.empty())
-      out.notes.push_back(std::move(note));
+    crs_of_file.emplace_back(info.path, info.crs_wkt);
     out.inputs.push_back(std::move(info));
   }
+  for (std::string& note : maps::crsNotes(crs_of_file))
+    out.notes.push_back(std::move(note));
   // The strips: one per input, or one per non-zero point-source id over all inputs.
   if (options.split_by_point_source) {
     std::map<int, std::vector<int>> ids;

@@ -164,8 +164,8 @@ TEST(ToolsWarnOfMixedUnits, HeightsInFeetOverMetres)
   const std::string mixed_crs = pcl_ls3d::maps::crsFromUserInput("EPSG:32631+6360");
   ASSERT_FALSE(mixed_crs.empty());
   ASSERT_NEAR(pcl_ls3d::maps::crsVerticalUnit(mixed_crs), 0.3048006, 1e-6);
-  EXPECT_TRUE(pcl_ls3d::maps::mixedUnits("x", pcl_ls3d::maps::crsFromUserInput("EPSG:2154+5720"))
-                  .empty());
+  EXPECT_TRUE(pcl_ls3d::maps::crsMixesUnits(mixed_crs));
+  EXPECT_FALSE(pcl_ls3d::maps::crsMixesUnits(pcl_ls3d::maps::crsFromUserInput("EPSG:2154+5720")));
   const TempDir dir("ls3d_mixed_units");
   const std::string a = dir.file("a.las"), b = dir.file("b.las");
   writePatch(a, "EPSG:32631+6360", 1.0, 0.0f);

@@ -8,6 +8,7 @@
 #include <pcl_ls3d/io/cloud_io.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -74,12 +75,10 @@ crsVerticalUnit(const std::string& wkt);
 std::string
 crsLinearUnitName(const std::string& wkt);
 
-/// One note when \a wkt's heights and plan coordinates have different units (a compound CRS such
-/// as "NAD83 / Oregon LCC (m) + NAVD88 height (ftUS)"): "'PATH' declares heights in ft and plan
-/// coordinates in m (...): distances, rotations and residuals mix the two units; convert the
-/// heights to the plan unit first"; empty otherwise (or when a unit is unknown).
-std::string
-mixedUnits(const std::string& path, const std::string& wkt);
+/// True when \a wkt's heights and plan coordinates have different known units (a compound CRS
+/// such as "NAD83 / Oregon LCC (m) + NAVD88 height (ftUS)").
+bool
+crsMixesUnits(const std::string& wkt);
 
 /// True when both WKT describe the same CRS (OGRSpatialReference::IsSame).
 bool
@@ -90,13 +89,16 @@ sameCrs(const std::string& a, const std::string& b);
 bool
 sameHorizontalCrs(const std::string& a, const std::string& b);
 
-/// One note when two files declare different horizontal CRSs: "'B' declares WGS 84 / UTM 31N,
-/// 'A' RGF93 v1 / Lambert-93: their coordinates are used as they are; reproject one into the
-/// other's CRS unless both describe the same frame"; empty when either declares none (or one
-/// GDAL cannot read) or both agree. A note, not a refusal: two definitions of one frame can differ in GDAL's eyes.
-std::string
-crsMismatch(const std::string& path_a, const std::string& wkt_a, const std::string& path_b,
-            const std::string& wkt_b);
+/// Notes on the CRSs of files used together, (path, WKT) in order: for each file whose heights
+/// are in another unit than its plan coordinates (crsMixesUnits()), "'PATH' declares heights in
+/// ft and plan coordinates in m (...): distances, rotations and residuals mix the two units;
+/// convert the heights to the plan unit first"; for each file whose horizontal CRS differs from
+/// the first declared one, "'B' declares WGS 84 / UTM 31N, 'A' RGF93 v1 / Lambert-93: their
+/// coordinates are used as they are; reproject one into the other's CRS unless both describe
+/// the same frame". Notes, not refusals: two definitions of one frame can differ in GDAL's eyes.
+/// Files that declare no CRS, or one GDAL cannot read, give none.
+std::vector<std::string>
+crsNotes(const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace maps
 }  // namespace pcl_ls3d
