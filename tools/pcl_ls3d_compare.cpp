@@ -264,6 +264,10 @@ struct Clouds
 {
   pcl::PointCloud<pcl::PointXYZ>::Ptr source, target;
   pcl_ls3d::io::CloudInfo source_info, target_info;
+  /// Heights in another unit than the plan are matched in the plan unit (working coordinates,
+  /// around working_origin); the files' origin is target_info.origin.
+  pcl_ls3d::HeightUnits heights;
+  Eigen::Vector3d working_origin = Eigen::Vector3d::Zero();
 };
 
 bool
@@ -280,10 +284,14 @@ loadClouds(const Options& o, Clouds& c, std::string& why)
   if (!pcl_ls3d::io::loadCloud(o.source_path, source_lidar, c.source_info, why, with_origin))
     return false;
   if (!pcl_ls3d::tools::checkInputCrs(
-          {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}}, why))
+          {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}}, why, &c.heights))
     return false;
   c.source = toXYZ(source_lidar);
   c.target = toXYZ(target_lidar);
+  const double origin_z = c.target_info.origin.z();
+  pcl_ls3d::heightsToWorking(*c.target, c.heights.target, c.heights.target, origin_z);
+  pcl_ls3d::heightsToWorking(*c.source, c.heights.source, c.heights.target, origin_z);
+  c.working_origin = c.heights.targetToWorking(c.target_info.origin);
   print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "
              "(%.3f, %.3f, %.3f), in %.0f ms\n",
              o.source_path.c_str(), c.source->size(), o.target_path.c_str(), c.target->size(),
@@ -295,9 +303,10 @@ loadClouds(const Options& o, Clouds& c, std::string& why)
 std::size_t
 runAll(const Options& o, const Clouds& c, std::vector<RegistrationRun>& runs)
 {
-  const Eigen::Vector3d& origin = c.target_info.origin;
-  const Eigen::Matrix4d truth_local = o.has_truth ? pcl_ls3d::globalToLocal(o.truth, origin, origin)
-                                                  : Eigen::Matrix4d::Identity();
+  const Eigen::Vector3d& origin = c.working_origin;
+  const Eigen::Matrix4d truth_local =
+      o.has_truth ? pcl_ls3d::globalToLocal(c.heights.toWorking(o.truth), origin, origin)
+                  : Eigen::Matrix4d::Identity();
   RunEvaluation evaluation(c.source, c.target, o.rms_dist);
   std::size_t usable = 0;
   for (const auto& m : o.methods) {
@@ -326,7 +335,8 @@ writeJson(const Options& o, const Clouds& c, const std::vector<RegistrationRun>&
   ComparisonContext context;
   context.source = o.source_path;
   context.target = o.target_path;
-  context.origin = c.target_info.origin;
+  context.origin = c.working_origin;
+  context.heights = c.heights;
   context.source_points = c.source->size();
   context.target_points = c.target->size();
   context.has_truth = o.has_truth;

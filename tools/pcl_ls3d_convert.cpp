@@ -56,9 +56,10 @@ printHelp(const char* name)
              "'# pcl_ls3d origin' header line (pcl_ls3d_segment's SEGMENTS.pcd) is read with it.\n"
              "LAS and XYZ outputs hold file coordinates; PCD and PLY hold them as FLOAT64 when the\n"
              "origin is not zero (as from a georeferenced LAS), else FLOAT32. The input's CRS goes\n"
-             "with the points: a PCD output records it ('# pcl_ls3d crs' header line, read by every\n"
-             "pcl_ls3d tool), and a PCD that records one gives a LAS output that CRS (LAS 1.4,\n"
-             "WKT); PLY and XYZ outputs have no place for it.\n");
+             "with the points: a PCD or PLY output records it ('# pcl_ls3d crs' / 'comment\n"
+             "pcl_ls3d crs' header line, read by every pcl_ls3d tool), and a PCD or PLY that\n"
+             "records one gives a LAS output that CRS (LAS 1.4, WKT); XYZ outputs have no place\n"
+             "for it.\n");
 }
 
 /// Rejects options this tool does not know (pcl::console silently ignores them).

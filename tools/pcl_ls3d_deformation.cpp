@@ -140,10 +140,12 @@ fail(const std::string& message)
 /// The parameters, their frame (its origins in input coordinates) and their sigmas; an exact fit
 /// (sigma0 = 0) has none, worded as pcl_ls3d_register's report.
 void
-printParameters(const pcl_ls3d::AdjustmentReport& a, const Eigen::Vector3d& o_s, const Eigen::Vector3d& o_t)
+printParameters(const pcl_ls3d::AdjustmentReport& a, const Eigen::Vector3d& o_s, const Eigen::Vector3d& o_t,
+                bool heights_converted)
 {
-  print_info("Parameters in the reduced frame x_ref - o_t = t + m R (x_epoch - o_s), input coordinates,\n"
+  print_info("Parameters in the reduced frame x_ref - o_t = t + m R (x_epoch - o_s), %s,\n"
              "  o_s (%.4f, %.4f, %.4f), o_t (%.4f, %.4f, %.4f): t is the shift beyond o_t - o_s\n ",
+             heights_converted ? "input coordinates with heights in the plan unit" : "input coordinates",
              o_s.x(), o_s.y(), o_s.z(), o_t.x(), o_t.y(), o_t.z());
   const auto& names = pcl_ls3d::similarityParameterNames();
   bool exact_fit = false;  // the only case with NaN sigmas (fixed ones are 0)
@@ -169,9 +171,13 @@ matrixJson(const Eigen::Matrix4d& T)
 }
 
 nlohmann::json
-regionJson(const def::DeformationRegion& r, const Eigen::Vector3d& origin)
+regionJson(const def::DeformationRegion& r, const Eigen::Vector3d& origin,
+           const pcl_ls3d::HeightUnits& heights)
 {
-  const Eigen::Vector3d c = r.centroid + origin, lo = r.box_min + origin, hi = r.box_max + origin;
+  // The epoch's points, in its file's coordinates.
+  const Eigen::Vector3d c = heights.sourceToFile(r.centroid + origin),
+                        lo = heights.sourceToFile(r.box_min + origin),
+                        hi = heights.sourceToFile(r.box_max + origin);
   return {{"id", r.id},
           {"sign", r.sign},
           {"points", r.points},
@@ -231,7 +237,8 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
 bool
 writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, const def::DeformationResult& r,
          const Eigen::Vector3d& origin, const std::string& crs_wkt, const std::string& reference_path,
-         const std::string& epoch_path, double k, bool lod95, double cell, bool overwrite, std::string& error)
+         const std::string& epoch_path, double k, bool lod95, double cell, double heights_converted_by,
+         bool overwrite, std::string& error)
 {
   def::DeformationMapSettings ms;
   ms.title = "Deformation: " + std::filesystem::path(epoch_path).filename().string() + " against " +
@@ -241,6 +248,7 @@ writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, 
   ms.k = k;
   ms.lod95 = lod95;
   ms.cell = cell;
+  ms.heights_converted_by = heights_converted_by;
   return def::writeDeformationMap(prefix, def::makeDeformationMap(points, r, ms), crs_wkt, overwrite, error);
 }
 
@@ -367,6 +375,10 @@ struct Epochs
   Cloud::Ptr reference{new Cloud}, epoch{new Cloud};
   pcl_ls3d::io::CloudInfo rinfo, einfo;
   std::vector<Eigen::Vector3d> points;  ///< the epoch's points, local, in double
+  /// Heights in another unit than the plan are matched in the plan unit (working coordinates,
+  /// around working_origin; the clouds and points above); the files' origin is rinfo.origin.
+  pcl_ls3d::HeightUnits heights;
+  Eigen::Vector3d working_origin = Eigen::Vector3d::Zero();
   double load_ms = 0.0;
 };
 
@@ -383,8 +395,12 @@ loadEpochs(const Options& o, Epochs& e, std::string& error)
   if (!pcl_ls3d::io::loadCloud(o.epoch_path, *e.epoch, e.einfo, error, eopt))
     return false;
   if (!pcl_ls3d::tools::checkInputCrs({{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}},
-                                       error))
+                                       error, &e.heights))
     return false;
+  const double origin_z = e.rinfo.origin.z();
+  pcl_ls3d::heightsToWorking(*e.reference, e.heights.target, e.heights.target, origin_z);
+  pcl_ls3d::heightsToWorking(*e.epoch, e.heights.source, e.heights.target, origin_z);
+  e.working_origin = e.heights.targetToWorking(e.rinfo.origin);
   e.load_ms = tt.toc();
   print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
              o.reference_path.c_str(), e.reference->size(), o.epoch_path.c_str(), e.epoch->size(),
@@ -446,7 +462,7 @@ centroidShift(const Epochs& e, const Eigen::Matrix4d& local_transformation)
   centroid /= static_cast<double>(std::max<std::size_t>(finite, 1));
   CentroidShift c;
   c.shift = (local_transformation * centroid.homogeneous()).head<3>() - centroid;
-  c.centroid = centroid + e.rinfo.origin;
+  c.centroid = e.heights.sourceToFile(centroid + e.working_origin);
   return c;
 }
 
@@ -457,15 +473,17 @@ printResult(const Epochs& e, const def::DeformationResult& result, const Centroi
 {
   const pcl_ls3d::RobustMatchingReport& mr = result.matching;
   const pcl_ls3d::AdjustmentReport& a = mr.adjustment;
-  const Eigen::Vector3d& origin = e.rinfo.origin;
+  const Eigen::Vector3d& origin = e.working_origin;
   print_info("%s\n", mr.brief().c_str());
   if (!mr.message.empty())
     print_info("  %s\n", mr.message.c_str());
-  pcl_ls3d::tools::printTransformation("Transformation (EPOCH -> REFERENCE, input coordinates):",
-                                       pcl_ls3d::localToGlobal(a.transformation, origin, origin));
+  pcl_ls3d::tools::printTransformation(
+      "Transformation (EPOCH -> REFERENCE, input coordinates):",
+      e.heights.toFiles(pcl_ls3d::localToGlobal(a.transformation, origin, origin)));
   print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)\n", c.centroid.x(),
              c.centroid.y(), c.centroid.z(), c.shift.x(), c.shift.y(), c.shift.z());
-  printParameters(a, a.local_origin_source + origin, a.local_origin_target + origin);
+  printParameters(a, a.local_origin_source + origin, a.local_origin_target + origin,
+                  e.heights.converts());
   if (!result.start_choice.candidates.empty()) {
     print_info("Fits compared by the scatter of their stable part:");
     for (const auto& candidate : result.start_choice.candidates)
@@ -497,10 +515,12 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
 {
   const pcl_ls3d::RobustMatchingReport& mr = result.matching;
   const pcl_ls3d::AdjustmentReport& a = mr.adjustment;
-  const Eigen::Vector3d& origin = e.rinfo.origin;
+  const Eigen::Vector3d& origin = e.working_origin;
   const Eigen::Vector3d o_s = a.local_origin_source + origin, o_t = a.local_origin_target + origin;
   nlohmann::json j;
-  j["transformation"] = matrixJson(pcl_ls3d::localToGlobal(a.transformation, origin, origin));
+  j["transformation"] =
+      matrixJson(e.heights.toFiles(pcl_ls3d::localToGlobal(a.transformation, origin, origin)));
+  j["heights"] = pcl_ls3d::tools::heightUnitsJson(e.heights);
   j["converged"] = mr.termination == pcl_ls3d::TerminationType::CONVERGED;
   j["termination"] = pcl_ls3d::terminationTypeToString(mr.termination);
   j["message"] = mr.message;
@@ -556,12 +576,12 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
   j["spacing"] = reg.spacing;
   nlohmann::json regions = nlohmann::json::array(), noise = nlohmann::json::array();
   for (const auto& r : reg.regions)
-    regions.push_back(regionJson(r, origin));
+    regions.push_back(regionJson(r, origin, e.heights));
   for (const auto& r : reg.noise)
-    noise.push_back(regionJson(r, origin));
+    noise.push_back(regionJson(r, origin, e.heights));
   j["regions"] = regions;
   j["noise"] = noise;
-  j["local_origin"] = {origin.x(), origin.y(), origin.z()};
+  j["local_origin"] = {e.rinfo.origin.x(), e.rinfo.origin.y(), e.rinfo.origin.z()};
   j["timings_ms"] = {{"load", e.load_ms}, {"deformation", run_ms}};
   return j;
 }
@@ -591,13 +611,17 @@ main(int argc, char** argv)
   // -crs, else the CRS the reference declares: the map's and the residual file's.
   const std::string crs_wkt = o.crs_wkt.empty() ? pcl_ls3d::maps::crsOfFile(e.rinfo) : o.crs_wkt;
   if (!o.out_path.empty()) {
-    if (!writeResiduals(o.out_path, *e.epoch, result, e.rinfo.origin, crs_wkt, error))
+    Cloud epoch_in_file_units = *e.epoch;
+    pcl_ls3d::heightsToFile(epoch_in_file_units, e.heights.source, e.heights.target,
+                            e.rinfo.origin.z());
+    if (!writeResiduals(o.out_path, epoch_in_file_units, result, e.rinfo.origin, crs_wkt, error))
       return fail(error), 1;
     print_info("Wrote %s\n", o.out_path.c_str());
   }
   if (!o.map_prefix.empty()) {
     if (!writeMap(o.map_prefix, e.points, result, e.rinfo.origin, crs_wkt, o.reference_path,
-                  o.epoch_path, o.settings.residuals.k, o.lod95, o.map_cell, o.overwrite, error))
+                  o.epoch_path, o.settings.residuals.k, o.lod95, o.map_cell, e.heights.target,
+                  o.overwrite, error))
       return fail(error), 1;
     print_info("Wrote %s and %s%s\n", o.png_path.c_str(), o.tif_path.c_str(),
                crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");

@@ -351,6 +351,10 @@ struct Pair
 {
   Cloud::Ptr target{new Cloud}, source{new Cloud}, whole_source;
   pcl_ls3d::io::CloudInfo tinfo, sinfo;
+  /// Heights in another unit than the plan are matched in the plan unit (working coordinates,
+  /// around working_origin); the files' origin is tinfo.origin.
+  pcl_ls3d::HeightUnits heights;
+  Eigen::Vector3d working_origin = Eigen::Vector3d::Zero();
   double load_ms = 0.0;
 };
 
@@ -367,8 +371,12 @@ loadPair(const Options& o, Pair& pair, std::string& error)
   if (!pcl_ls3d::io::loadCloud(o.source_path, *pair.source, pair.sinfo, error, sopt))
     return false;
   if (!pcl_ls3d::tools::checkInputCrs({{o.target_path, &pair.tinfo}, {o.source_path, &pair.sinfo}},
-                                       error))
+                                       error, &pair.heights))
     return false;
+  const double origin_z = pair.tinfo.origin.z();
+  pcl_ls3d::heightsToWorking(*pair.target, pair.heights.target, pair.heights.target, origin_z);
+  pcl_ls3d::heightsToWorking(*pair.source, pair.heights.source, pair.heights.target, origin_z);
+  pair.working_origin = pair.heights.targetToWorking(pair.tinfo.origin);
   pair.whole_source = pair.source;
   const std::size_t target_points = pair.target->size();
   if (!keepClasses(pair.target, o.classes, o.target_path, error) ||
@@ -416,16 +424,19 @@ failWithoutEstimate(const Options& o, const pcl_ls3d::AdjustmentReport& r)
               ": " + r.message), 1;
 }
 
-/// -truth: the error of the transformation over every point -o moves, printed and in the JSON.
+/// -truth: the error of the transformation over every point -o moves, printed and in the JSON
+/// (working coordinates: lengths in the plan unit).
 void
-reportTruthError(const Pair& pair, const Eigen::Matrix4d& T_input, const Eigen::Matrix4d& truth,
+reportTruthError(const Pair& pair, const Eigen::Matrix4d& T_working, const Eigen::Matrix4d& truth,
                  nlohmann::json& j)
 {
   const Cloud& whole = *pair.whole_source;
   Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(whole.size()));
   for (std::size_t i = 0; i < whole.size(); ++i)
-    pts.col(static_cast<Eigen::Index>(i)) = whole[i].getVector3fMap().cast<double>() + pair.tinfo.origin;
-  const auto e = pcl_ls3d::evaluation::computeTransformError(T_input, truth, pts);
+    pts.col(static_cast<Eigen::Index>(i)) =
+        whole[i].getVector3fMap().cast<double>() + pair.working_origin;
+  const auto e = pcl_ls3d::evaluation::computeTransformError(
+      T_working, pair.heights.toWorking(truth), pts);
   // Significant digits: a fixed 4 decimals would show a 0.05 mm error on metre data as 0.
   print_info("Error vs truth: mean displacement %.3g, max %.3g, max over bbox %.3g\n", e.mean, e.max,
              e.max_bbox);
@@ -449,6 +460,8 @@ writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentRepor
   const bool las_to_las = pair.sinfo.format == "las" && pcl_ls3d::io::fileExtension(o.out_path) == "las";
   if (!o.classes.empty() && !las_to_las)
     pcl::transformPointCloud(*pair.whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));
+  if (!las_to_las)  // the target's height unit again
+    pcl_ls3d::heightsToFile(aligned, pair.heights.target, pair.heights.target, pair.tinfo.origin.z());
   if (las_to_las ? !writeMovedLas(o.source_path, T_input, o.out_path, o.overwrite, error)
                  : !pcl_ls3d::io::saveCloud(o.out_path, aligned, pair.tinfo.origin, error, so))
     return false;
@@ -485,15 +498,19 @@ main(int argc, char** argv)
   const bool trusted = r.isSolutionUsable();
 
   // Report: the local transform re-expressed in input coordinates (both clouds share the origin).
-  const Eigen::Vector3d& origin = pair.tinfo.origin;
-  const Eigen::Matrix4d T_input = pcl_ls3d::localToGlobal(r.transformation, origin, origin);
+  const Eigen::Vector3d& origin = pair.working_origin;
+  const Eigen::Matrix4d T_working = pcl_ls3d::localToGlobal(r.transformation, origin, origin);
+  const Eigen::Matrix4d T_input = pair.heights.toFiles(T_working);
   print_info("%s", r.fullReport().c_str());
   pcl_ls3d::tools::printTransformation("Transformation (SOURCE -> TARGET, input coordinates):", T_input);
   print_info("Timings: load %.0f ms, adjustment %.0f ms\n", pair.load_ms, t_align);
   nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), origin);
+  j["heights"] = pcl_ls3d::tools::heightUnitsJson(pair.heights);
+  const Eigen::Vector3d& file_origin = pair.tinfo.origin;  // of the -o cloud's coordinates
+  j["cloud_origin"] = {file_origin.x(), file_origin.y(), file_origin.z()};
   j["timings_ms"] = {{"load", pair.load_ms}, {"adjust", t_align}};
   if (!o.truth_path.empty())
-    reportTruthError(pair, T_input, o.truth, j);
+    reportTruthError(pair, T_working, o.truth, j);
 
   if (!o.out_path.empty() && trusted && !writeAligned(o, pair, r, T_input, aligned, error))
     return fail(error), 1;

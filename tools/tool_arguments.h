@@ -13,8 +13,10 @@
 ///   bits, which root and /proc make meaningless).
 /// - checkInputCrs(): inputs in degrees (or earth-centred) are refused after loading, before any
 ///   work: distances and heights in degrees give a wrong answer that still converges; inputs
-///   declaring different CRSs, or mixing units, are said so in a warning (the run goes on).
+///   declaring different CRSs, or mixing units, are said so in a warning (the run goes on); the
+///   pair tools take mixed-unit heights into the plan unit instead (HeightUnits).
 
+#include <pcl_ls3d/common/height_units.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 
@@ -270,9 +272,12 @@ checkOutputFolder(const std::string& dir, std::string& why)
 /// \brief The loaded inputs' CRSs: false with one error line for the first input whose CRS is
 ///        not in lengths (a geographic CRS in degrees, a geocentric one); else true, after one
 ///        warning line per maps::crsNotes() note (different CRSs, heights in another unit).
+///        With \a heights (a pair tool: target first, source second), the tool works on heights
+///        in the plan unit instead: `heights` gets each file's factor, one line says so, and
+///        mixed units are no warning.
 inline bool
 checkInputCrs(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs,
-              std::string& why)
+              std::string& why, HeightUnits* heights = nullptr)
 {
   std::vector<std::pair<std::string, std::string>> files;
   for (const auto& [path, info] : inputs) {
@@ -280,8 +285,22 @@ checkInputCrs(const std::vector<std::pair<std::string, const io::CloudInfo*>>& i
     if (!(why = maps::notInLengths(path, files.back().second)).empty())
       return false;
   }
-  for (const std::string& note : maps::crsNotes(files))
+  for (const std::string& note : maps::crsNotes(files, heights != nullptr))
     pcl::console::print_warn("Warning: %s\n", note.c_str());
+  if (heights && files.size() == 2) {
+    heights->target = maps::planUnitsPerHeightUnit(files[0].second);
+    heights->source = maps::planUnitsPerHeightUnit(files[1].second);
+    for (std::size_t i = 0; i < 2; ++i)
+      if (const double f = i == 0 ? heights->target : heights->source; f != 1.0)
+        pcl::console::print_info(
+            "'%s' declares heights in %s and plan coordinates in %s (%s): heights are "
+            "converted to %s (x %.7g) for the matching; transformations and written clouds are "
+            "in the file's units\n",
+            files[i].first.c_str(), maps::crsVerticalUnitName(files[i].second).c_str(),
+            maps::crsLinearUnitName(files[i].second).c_str(),
+            maps::crsName(files[i].second).c_str(),
+            maps::crsLinearUnitName(files[i].second).c_str(), f);
+  }
   return true;
 }
 

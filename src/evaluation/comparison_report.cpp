@@ -125,12 +125,15 @@ comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext
                   {"ls3d_settings", c.ls3d_settings},
                   {"unit", c.unit},
                   {"units", c.unit + ", s, rad; transformation maps source to target"}};
+  if (c.heights.converts())
+    j["context"]["plan_units_per_height_unit"] = {{"target", c.heights.target},
+                                                  {"source", c.heights.source}};
   json methods = json::array();
   for (const auto& r : runs) {
     Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
     shift.topRightCorner<3, 1>() = c.origin;
-    // File coordinates: x_file = x_local + origin for both clouds.
-    const Eigen::Matrix4d global = shift * r.transformation * shift.inverse();
+    // File coordinates: x_working = x_local + origin for both clouds, heights then in the files' units.
+    const Eigen::Matrix4d global = c.heights.toFiles(shift * r.transformation * shift.inverse());
     json m = {{"name", r.name},
               {"ran", r.ran},
               {"message", r.message},

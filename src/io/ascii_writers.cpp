@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
+#include <fstream>
 
 namespace pcl_ls3d {
 namespace io {
@@ -86,16 +87,52 @@ writePcdAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
 
 bool
 writePlyAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-              const Eigen::Vector3d& origin)
+              const Eigen::Vector3d& origin, const std::string& comments)
 {
   const std::string t = origin.isZero(0.0) ? "float" : "double";
   const std::string header =
-      "ply\nformat ascii 1.0\ncomment pcl_ls3d\nelement vertex " + std::to_string(cloud.size()) +
+      "ply\nformat ascii 1.0\n" + comments + "comment pcl_ls3d\nelement vertex " + std::to_string(cloud.size()) +
       "\nproperty " + t + " x\nproperty " + t + " y\nproperty " + t + " z\n"
       "property float intensity\nproperty double gps_time\nproperty ushort point_source_id\n"
       "property uchar classification\nproperty uchar return_number\n"
       "property uchar number_of_returns\nend_header\n";
   return writeText(path, header, cloud, origin);
+}
+
+}  // namespace detail
+}  // namespace io
+}  // namespace pcl_ls3d
+
+namespace pcl_ls3d {
+namespace io {
+namespace detail {
+
+bool
+insertPlyComments(const std::string& path, const std::string& comments)
+{
+  if (comments.empty())
+    return true;
+  const std::string temporary = path + ".pcl_ls3d_tmp";
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    std::string line;
+    bool inserted = false;
+    while (!inserted && std::getline(in, line)) {  // "ply", then "format ..."
+      out << line << '\n';
+      if (line.compare(0, 7, "format ") == 0) {
+        out << comments;
+        inserted = true;
+      }
+    }
+    if (inserted)
+      out << in.rdbuf();  // the rest of the header and the data, as PCL wrote them
+    if (!inserted || !out.flush()) {
+      std::remove(temporary.c_str());
+      return false;
+    }
+  }
+  return std::rename(temporary.c_str(), path.c_str()) == 0;
 }
 
 }  // namespace detail

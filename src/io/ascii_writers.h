@@ -33,9 +33,15 @@ bool
 writePcdAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
               const Eigen::Vector3d& origin, const std::string& comments = "");
 
+/// PLY: \a comments (whole "comment ..." lines) after the format line.
 bool
 writePlyAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-              const Eigen::Vector3d& origin);
+              const Eigen::Vector3d& origin, const std::string& comments = "");
+
+/// Inserts \a comments (whole "comment ..." lines) after the format line of the PLY file at
+/// \a path (PCL's PLYWriter takes none): the file is copied through a temporary file beside it.
+bool
+insertPlyComments(const std::string& path, const std::string& comments);
 
 }  // namespace detail
 }  // namespace io

@@ -3,6 +3,7 @@
 ///        HEIGHT = POINTS (see pcd_io.h).
 
 #include "pcd_header.h"
+#include "header_comments.h"
 
 #include <pcl_ls3d/io/pcd_io.h>
 
@@ -201,26 +202,6 @@ originComment(const std::vector<std::string_view>& tokens, PcdHeader& h, std::st
   return true;
 }
 
-/// The line without trailing carriage returns and spaces.
-std::string_view
-withoutLineEnd(std::string_view line)
-{
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' '))
-    line.remove_suffix(1);
-  return line;
-}
-
-/// A "# pcl_ls3d crs WKT" comment line: the first one gives the file's CRS (pcd_io.h).
-void
-crsComment(std::string_view line, PcdHeader& h)
-{
-  constexpr std::string_view kPrefix = "# pcl_ls3d crs ";
-  if (!h.crs_wkt.empty() || line.substr(0, kPrefix.size()) != kPrefix)
-    return;
-  line.remove_prefix(kPrefix.size());
-  h.crs_wkt = std::string(withoutLineEnd(line));
-}
-
 }  // namespace
 
 bool
@@ -238,7 +219,7 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
     if (!tokens.empty() && tokens[0][0] == '#' && !originComment(tokens, h, error))
       return false;
     if (!tokens.empty() && tokens[0][0] == '#') {
-      crsComment(line, h);
+      firstCommentValue(line, "# pcl_ls3d crs ", h.crs_wkt);  // pcdCrsLine()
       h.segments_marker = h.segments_marker || isPcdSegmentsMarkerLine(line);
     }
     if (tokens.empty() || tokens[0][0] == '#')
@@ -259,9 +240,7 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
 std::string
 pcdCrsLine(const std::string& wkt)
 {
-  std::string line = "# pcl_ls3d crs " + wkt;
-  std::replace_if(line.begin(), line.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  return line;
+  return detail::oneLineComment("# pcl_ls3d crs ", wkt);
 }
 
 std::string

@@ -7,6 +7,7 @@
 #include "ascii_writers.h"
 
 #include <pcl_ls3d/io/pcd_io.h>
+#include <pcl_ls3d/io/ply_io.h>
 
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/io/pcd_io.h>
@@ -109,17 +110,22 @@ writePclFile(const std::string& path, const std::string& format,
   try {
     // ASCII: pcl_ls3d's own writers (ascii_writers.h) print every number exactly; PCL 1.13's
     // print a fixed number of digits (PLY doubles: 6).
-    const std::string comments = options.crs_wkt.empty() ? "" : pcdCrsLine(options.crs_wkt) + "\n";
+    const bool crs = !options.crs_wkt.empty();
+    const std::string comments =
+        !crs ? "" : (format == "pcd" ? pcdCrsLine(options.crs_wkt) : plyCrsLine(options.crs_wkt)) + "\n";
     if (!options.binary)
       status = (format == "pcd" ? writePcdAscii(path, cloud, origin, comments)
-                                : writePlyAscii(path, cloud, origin)) ? 0 : -1;
+                                : writePlyAscii(path, cloud, origin, comments)) ? 0 : -1;
     else if (format == "pcd") {
       std::string why;  // names the path, which saveCloud() adds itself
       status = savePcdBinaryWithComments(path, c, comments, why) ? 0 : -1;
     }
-    else  // no camera element: other PLY readers do not expect one
+    else {  // no camera element: other PLY readers do not expect one
       status = pcl::PLYWriter().writeBinary(path, c, Eigen::Vector4f::Zero(),
                                             Eigen::Quaternionf::Identity(), false);
+      if (status >= 0 && !insertPlyComments(path, comments))
+        status = -1;
+    }
   }
   catch (const std::exception& e) {
     error = std::string("PCL ") + format + " writer failed: " + e.what();

@@ -3,6 +3,7 @@
 ///        end_header; strict counts and type names (see ply_io.h).
 
 #include "ply_header.h"
+#include "header_comments.h"
 
 #include <algorithm>
 #include <cstring>
@@ -134,9 +135,11 @@ parsePlyHeader(const std::uint8_t* data, std::size_t size, PlyHeader& h, std::st
   while (pos < size) {
     const void* nl = std::memchr(text + pos, '\n', size - pos);
     const std::size_t end = nl ? static_cast<std::size_t>(static_cast<const char*>(nl) - text) : size;
-    splitTokens(std::string_view(text + pos, end - pos), tokens);
+    const std::string_view line(text + pos, end - pos);
+    splitTokens(line, tokens);
     pos = nl ? end + 1 : size;
     ++h.header_lines;
+    firstCommentValue(line, "comment pcl_ls3d crs ", h.crs_wkt);  // plyCrsLine()
     if (h.header_lines == 1) {
       if (tokens.size() != 1 || tokens[0] != "ply")
         return plyFail(error, "file does not start with a \"ply\" line");

@@ -44,6 +44,7 @@ struct PlyHeader
   std::vector<PlyElement> elements;
   std::size_t data_offset = 0;   ///< first byte after the end_header line
   std::size_t header_lines = 0;  ///< lines up to and including end_header
+  std::string crs_wkt;           ///< of the first "comment pcl_ls3d crs WKT" line (empty: none)
 };
 
 /// Parses and checks the header; false with a one-line reason ("PLY ...").

@@ -5,6 +5,7 @@
 
 #include <pcl_ls3d/io/ply_io.h>
 
+#include "header_comments.h"
 #include "local_origin.h"
 #include "ply_header.h"
 
@@ -185,6 +186,12 @@ readElement(const PlyElement& e, const PlyHeader& h, const std::vector<Attribute
 
 }  // namespace
 
+std::string
+plyCrsLine(const std::string& wkt)
+{
+  return detail::oneLineComment("comment pcl_ls3d crs ", wkt);
+}
+
 bool
 readPly(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
         CloudInfo& info, std::string& error, const LoadOptions& options)
@@ -195,6 +202,7 @@ readPly(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
   PlyHeader h;
   if (!detail::parsePlyHeader(data, size, h, error))
     return false;
+  info.file_crs_wkt = h.crs_wkt;
   std::size_t vertex = 0;
   while (vertex < h.elements.size() && h.elements[vertex].name != "vertex")
     ++vertex;

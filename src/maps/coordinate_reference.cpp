@@ -295,11 +295,23 @@ crsLinearUnitName(const std::string& wkt)
   return unitName(crsLinearUnit(wkt));
 }
 
+std::string
+crsVerticalUnitName(const std::string& wkt)
+{
+  return unitName(crsVerticalUnit(wkt));
+}
+
 bool
 crsMixesUnits(const std::string& wkt)
 {
   const double plan = crsLinearUnit(wkt), height = crsVerticalUnit(wkt);
   return plan > 0.0 && height > 0.0 && std::abs(plan / height - 1.0) >= 1e-6;
+}
+
+double
+planUnitsPerHeightUnit(const std::string& wkt)
+{
+  return crsMixesUnits(wkt) ? crsVerticalUnit(wkt) / crsLinearUnit(wkt) : 1.0;
 }
 
 bool
@@ -324,7 +336,7 @@ sameHorizontalCrs(const std::string& a, const std::string& b)
 }
 
 std::vector<std::string>
-crsNotes(const std::vector<std::pair<std::string, std::string>>& files)
+crsNotes(const std::vector<std::pair<std::string, std::string>>& files, bool heights_converted)
 {
   std::vector<std::string> notes;
   const std::pair<std::string, std::string>* first = nullptr;  // the first declared CRS
@@ -332,8 +344,8 @@ crsNotes(const std::vector<std::pair<std::string, std::string>>& files)
     const auto& [path, wkt] = file;
     if (!parse(wkt))  // none, or unreadable: no evidence of anything
       continue;
-    if (crsMixesUnits(wkt))
-      notes.push_back("'" + path + "' declares heights in " + unitName(crsVerticalUnit(wkt)) +
+    if (!heights_converted && crsMixesUnits(wkt))
+      notes.push_back("'" + path + "' declares heights in " + crsVerticalUnitName(wkt) +
                       " and plan coordinates in " + unitName(crsLinearUnit(wkt)) + " (" +
                       crsName(wkt) + "): distances, rotations and residuals mix the two units; "
                       "convert the heights to the plan unit first");

@@ -53,8 +53,13 @@ reportSummary(const StripAdjustmentReport& r, const std::string& u)
   for (const std::string& n : r.notes)
     add(out, "  note: %s\n", n.c_str());
   add(out, "  sigmas: %s\n\n", r.precision_model.c_str());
-  add(out, "strip          points   tx [%s]            ty [%s]            tz [%s]            phi [mrad]          omega [mrad]        kappa [mrad]        m-1 [ppm]\n",
-      u.c_str(), u.c_str(), u.c_str());
+  // Each parameter's column is 20 characters wide, whatever the length unit's name.
+  out += "strip          points   ";
+  for (const std::string& column : {"tx [" + u + "]", "ty [" + u + "]", "tz [" + u + "]",
+                                    std::string("phi [mrad]"), std::string("omega [mrad]"),
+                                    std::string("kappa [mrad]")})
+    add(out, "%-20s", column.c_str());
+  out += "m-1 [ppm]\n";
   for (const StripResult& s : r.strips) {
     add(out, "%-12s %8zu", s.name.c_str(), s.points);
     for (int q = 0; q < 7; ++q) {

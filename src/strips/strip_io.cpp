@@ -27,7 +27,17 @@ struct OpenInput
   pcl::PointCloud<PointLiDAR> cloud;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // cloud: file = local + origin
   bool is_las = false;
+  // Plan units per height unit (HeightUnits): the block is adjusted with heights in the plan unit.
+  double height_factor = 1.0;
 };
+
+std::string
+sevenDigits(double v)
+{
+  char text[32];
+  std::snprintf(text, sizeof text, "%.7g", v);
+  return text;
+}
 
 bool
 isLas(const std::string& path)
@@ -55,6 +65,7 @@ openInput(const std::string& path, OpenInput& in, InputFile& info, std::string& 
     info.crs_wkt = maps::crsFromLasVlrs(in.las.header().vlrs);
     if (!(error = maps::notInLengths(path, info.crs_wkt)).empty())
       return false;  // in degrees a wrong answer would still converge
+    in.height_factor = maps::planUnitsPerHeightUnit(info.crs_wkt);
     for (std::size_t i = 0; i < in.las.size(); ++i)
       ++info.point_sources[in.las.pointSourceId(i)];
     return true;
@@ -68,6 +79,7 @@ openInput(const std::string& path, OpenInput& in, InputFile& info, std::string& 
   info.crs_wkt = maps::crsOfFile(ci);
   if (!(error = maps::notInLengths(path, info.crs_wkt)).empty())
     return false;
+  in.height_factor = maps::planUnitsPerHeightUnit(info.crs_wkt);
   info.format = ci.format;
   info.points = in.cloud.size();
   in.origin = ci.origin;
@@ -97,6 +109,7 @@ forEachPoint(const std::vector<OpenInput>& open, const StripSource& source,
         if (source.point_source_id >= 0 && in.las.pointSourceId(i) != source.point_source_id)
           continue;
         v.x = in.las.coordinates(i);
+        v.x.z() *= in.height_factor;
         v.classification = in.las.classification(i);
         const io::LasPointFlags flags = in.las.flags(i);
         v.withheld = flags.withheld;
@@ -109,6 +122,7 @@ forEachPoint(const std::vector<OpenInput>& open, const StripSource& source,
       if (source.point_source_id >= 0 && p.point_source_id != source.point_source_id)
         continue;
       v.x = in.origin + p.getVector3fMap().cast<double>();
+      v.x.z() *= in.height_factor;
       v.classification = p.classification;
       v.withheld = v.synthetic = false;
       fn(v);
@@ -160,8 +174,15 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
     crs_of_file.emplace_back(info.path, info.crs_wkt);
     out.inputs.push_back(std::move(info));
   }
-  for (std::string& note : maps::crsNotes(crs_of_file))
+  for (std::string& note : maps::crsNotes(crs_of_file, true))
     out.notes.push_back(std::move(note));
+  for (const auto& [path, wkt] : crs_of_file)
+    if (const double f = maps::planUnitsPerHeightUnit(wkt); f != 1.0)
+      out.notes.push_back("'" + path + "' declares heights in " + maps::crsVerticalUnitName(wkt) +
+                          " and plan coordinates in " + maps::crsLinearUnitName(wkt) + " (" +
+                          maps::crsName(wkt) + "): heights are converted to " +
+                          maps::crsLinearUnitName(wkt) + " (x " + sevenDigits(f) +
+                          ") for the adjustment; corrected strips are in the file's units");
   // The strips: one per input, or one per non-zero point-source id over all inputs.
   if (options.split_by_point_source) {
     std::map<int, std::vector<int>> ids;

@@ -1,5 +1,6 @@
 // Corrected strips out (strip_io.h): LAS by a record-level rewrite, other formats through the
 // project's writers; and strips from a cloud in memory.
+#include <pcl_ls3d/common/height_units.h>
 #include <pcl_ls3d/io/las_records.h>
 #include <pcl_ls3d/io/las_rewrite.h>
 #include <pcl_ls3d/io/strip_tools.h>
@@ -70,11 +71,16 @@ writeCorrected(const LoadedStrips& block, const OutputUnit& unit,
     return false;
   const InputFile& input = block.inputs[static_cast<std::size_t>(unit.file)];
   const StripLookup lookup(block, unit.file);
+  // The block was adjusted with heights in the plan unit; the file keeps its own.
+  const double f = maps::planUnitsPerHeightUnit(input.crs_wkt);
+  std::vector<Eigen::Matrix4d> in_file_units = corrections;
+  for (Eigen::Matrix4d& T : in_file_units)
+    T = HeightUnits{f, f}.toFiles(T);
   auto correction = [&](int psid) -> const Eigen::Matrix4d* {
     const int k = lookup(psid);
-    if (k < 0 || static_cast<std::size_t>(k) >= corrections.size() || corrections[static_cast<std::size_t>(k)].isIdentity(0.0))
+    if (k < 0 || static_cast<std::size_t>(k) >= in_file_units.size() || corrections[static_cast<std::size_t>(k)].isIdentity(0.0))
       return nullptr;
-    return &corrections[static_cast<std::size_t>(k)];
+    return &in_file_units[static_cast<std::size_t>(k)];
   };
   if (input.format == "las") {
     io::LasRecordFile las;

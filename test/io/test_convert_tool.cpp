@@ -7,6 +7,7 @@
 #include <pcl_ls3d/maps/coordinate_reference.h>
 
 #include <pcl/io/pcd_io.h>
+#include <pcl/io/ply_io.h>
 #include <pcl/point_types.h>
 
 #include "io/io_test_utils.h"
@@ -456,6 +457,9 @@ TEST_F(ConvertTool, CrsGoesWithThePoints)
                 out, dir_), 0) << out;
   ASSERT_EQ(run(dir_.file("b.pcd") + " " + dir_.file("back.las"), out, dir_), 0) << out;
   ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("copy.las"), out, dir_), 0) << out;
+  ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("b.ply"), out, dir_), 0) << out;
+  ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("a.ply") + " -ascii", out, dir_), 0) << out;
+  ASSERT_EQ(run(dir_.file("b.ply") + " " + dir_.file("back_ply.las"), out, dir_), 0) << out;
   for (const std::string name : {"back.las", "copy.las"}) {  // one CRS record, in a LAS 1.4
     SCOPED_TRACE(name);
     pcl::PointCloud<PointLiDAR> c;
@@ -466,17 +470,27 @@ TEST_F(ConvertTool, CrsGoesWithThePoints)
                             [](const io::LasVlr& v) { return v.record_id == 2112; }),
               1);
   }
-  for (const std::string name : {"b.pcd", "a.pcd", "strips/utm_psid11.pcd", "back.las"}) {
+  for (const std::string name : {"b.pcd", "a.pcd", "strips/utm_psid11.pcd", "back.las", "b.ply",
+                                  "a.ply", "back_ply.las"}) {
     SCOPED_TRACE(name);
     pcl::PointCloud<PointLiDAR> c;
     io::CloudInfo info;
     ASSERT_TRUE(io::loadCloud(dir_.file(name), c, info, error)) << error;
-    EXPECT_EQ(c.size(), name.find("strips") == 0 ? cloud_.size() / 3 : cloud_.size());
+    ASSERT_EQ(c.size(), name.find("strips") == 0 ? cloud_.size() / 3 : cloud_.size());
     EXPECT_TRUE(maps::sameCrs(maps::crsOfFile(info), wkt)) << maps::crsOfFile(info);
+    if (name.find("strips") != 0) {  // the points themselves, to the LAS millimetre
+      EXPECT_LT(((c[7].getVector3fMap().cast<double>() + info.origin) -
+                 (cloud_[7].getVector3fMap().cast<double>() + origin_))
+                    .norm(),
+                2e-3);
+    }
   }
-  pcl::PCLPointCloud2 plain;
+  // PCL's own readers take the files with their CRS line as they are.
+  pcl::PCLPointCloud2 plain, plain_ply;
   ASSERT_EQ(pcl::io::loadPCDFile(dir_.file("b.pcd"), plain), 0);
   EXPECT_EQ(plain.width * plain.height, cloud_.size());
+  ASSERT_EQ(pcl::io::loadPLYFile(dir_.file("b.ply"), plain_ply), 0);
+  EXPECT_EQ(plain_ply.width * plain_ply.height, cloud_.size());
   // Without a CRS in the input, none is invented.
   ASSERT_EQ(run(dir_.file("in.las") + " " + dir_.file("none.pcd"), out, dir_), 0) << out;
   pcl::PointCloud<PointLiDAR> c;

@@ -9,11 +9,15 @@
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/point_types.h>
+#include <pcl_ls3d/synth/registration_pair.h>
+
+#include <nlohmann/json.hpp>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace fs = std::filesystem;
@@ -157,29 +161,239 @@ TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
 }
 
 // A compound CRS whose heights are in another unit than its plan coordinates (NAD83 / Oregon
-// LCC in metres + NAVD88 height in US feet, as PDAL's autzen-bmx files) is said so: distances,
-// rotations and residuals would mix the units. One unit throughout: nothing said.
+// LCC in metres + NAVD88 height in US feet, as PDAL's autzen-bmx files) is said so: the tools
+// convert the heights to the plan unit, in one line each (the strip adjustment: a note). One
+// unit throughout: nothing said.
 TEST(ToolsWarnOfMixedUnits, HeightsInFeetOverMetres)
 {
   const std::string mixed_crs = pcl_ls3d::maps::crsFromUserInput("EPSG:32631+6360");
   ASSERT_FALSE(mixed_crs.empty());
   ASSERT_NEAR(pcl_ls3d::maps::crsVerticalUnit(mixed_crs), 0.3048006, 1e-6);
   EXPECT_TRUE(pcl_ls3d::maps::crsMixesUnits(mixed_crs));
-  EXPECT_FALSE(pcl_ls3d::maps::crsMixesUnits(pcl_ls3d::maps::crsFromUserInput("EPSG:2154+5720")));
+  EXPECT_NEAR(pcl_ls3d::maps::planUnitsPerHeightUnit(mixed_crs), 0.3048006, 1e-6);
+  const std::string metres = pcl_ls3d::maps::crsFromUserInput("EPSG:2154+5720");
+  EXPECT_FALSE(pcl_ls3d::maps::crsMixesUnits(metres));
+  EXPECT_EQ(pcl_ls3d::maps::planUnitsPerHeightUnit(metres), 1.0);
   const TempDir dir("ls3d_mixed_units");
   const std::string a = dir.file("a.las"), b = dir.file("b.las");
   writePatch(a, "EPSG:32631+6360", 1.0, 0.0f);
   writePatch(b, "EPSG:32631+6360", 1.0, 0.2f);
   const std::string said = "'" + a + "' declares heights in ft and plan coordinates in m";
-  const std::string calls[][2] = {
-      {"pcl_ls3d_register", b + " " + a},
-      {"pcl_ls3d_deformation", a + " " + b},
-      {"pcl_ls3d_strip_adjust", a + " " + b + " -o " + dir.file("out")},
+  const std::string calls[][3] = {
+      {"pcl_ls3d_register", b + " " + a, "heights are converted to m (x 0.3048006)"},
+      {"pcl_ls3d_compare", b + " " + a + " -methods ls3d-lnd", "heights are converted to m"},
+      {"pcl_ls3d_deformation", a + " " + b, "heights are converted to m"},
+      {"pcl_ls3d_strip_adjust", a + " " + b + " -o " + dir.file("out"), "heights are converted to m"},
   };
   for (const auto& call : calls) {
     SCOPED_TRACE(call[0]);
     const pcl_ls3d_test::ToolRun r = runTool(call[0], call[1], dir.path.string());
     EXPECT_NE(r.code, 1) << r.err;
-    EXPECT_NE((r.out + r.err).find(said), std::string::npos) << r.out << r.err;
+    const std::string text = r.out + r.err;
+    EXPECT_NE(text.find(said + " (WGS 84 / UTM zone 31N + NAVD88 height (ftUS)): " + call[2]),
+              std::string::npos)
+        << text;
+    EXPECT_EQ(text.find("mix the two units"), std::string::npos) << text;
+  }
+}
+
+namespace {
+
+/// Metres per US survey foot.
+constexpr double kUsFoot = 1200.0 / 3937.0;
+
+/// diag(1, 1, factor, 1): heights times factor.
+Eigen::Matrix4d
+heightScale(double factor)
+{
+  Eigen::Matrix4d S = Eigen::Matrix4d::Identity();
+  S(2, 2) = factor;
+  return S;
+}
+
+/// A cloud written as LAS declaring UTM 31N (m) + NAVD88 height (ftUS), heights in feet.
+void
+writeInFeet(const std::string& path, pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud,
+            const Eigen::Vector3d& origin)
+{
+  ASSERT_FALSE(cloud.empty());
+  for (auto& p : cloud)
+    p.z = static_cast<float>(p.z / kUsFoot);
+  pcl_ls3d::io::SaveOptions o;
+  pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsFromUserInput("EPSG:32631+6360"), o);
+  o.las_scale = {0.001, 0.001, 0.001};
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(path, cloud, heightScale(1.0 / kUsFoot).block<3, 3>(0, 0) * origin,
+                                      error, o))
+      << error;
+}
+
+/// The 4x4 "transformation" of a tool's JSON report (in the files' coordinates).
+Eigen::Matrix4d
+jsonTransformation(const nlohmann::json& rows)
+{
+  Eigen::Matrix4d T;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      T(r, c) = rows.at(static_cast<std::size_t>(r)).at(static_cast<std::size_t>(c)).get<double>();
+  return T;
+}
+
+nlohmann::json
+readJson(const std::string& path)
+{
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+/// Mean distance in metres between where T and the truth put the source's points (files'
+/// coordinates, heights in US feet).
+double
+meanErrorInMetres(const Eigen::Matrix4d& T, const Eigen::Matrix4d& truth,
+                  const pcl::PointCloud<pcl_ls3d::PointLiDAR>& source, const Eigen::Vector3d& origin)
+{
+  const Eigen::Matrix4d to_metres = heightScale(kUsFoot);
+  double sum = 0.0;
+  for (const auto& p : source) {
+    const Eigen::Vector4d x = heightScale(1.0 / kUsFoot) *
+                              (p.getVector3fMap().cast<double>() + origin).homogeneous();
+    sum += (to_metres * (T * x - truth * x)).norm();
+  }
+  return sum / static_cast<double>(source.size());
+}
+
+}  // namespace
+
+// The same compound CRS on a generated pair tilted by 1.1 degrees: register, compare and
+// deformation match with heights in metres and give the transformation back in the files'
+// coordinates (heights in feet). The pair in metres is matched to 0.03 m (register's position
+// sigma 0.02 m); before, the feet pair came out 0.5 m off, CONVERGED and trustworthy.
+TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
+{
+  pcl_ls3d::synth::RegistrationPairSettings settings;
+  settings.size_x = settings.size_y = 120.0;
+  settings.truth.t = Eigen::Vector3d(0.5, -0.3, 0.2);
+  settings.truth.phi = 0.02;
+  settings.truth.omega = -0.015;
+  settings.truth.kappa = 0.03;
+  settings.origin = Eigen::Vector3d(500000.0, 5000000.0, 100.0);
+  const pcl_ls3d::synth::RegistrationPair pair = pcl_ls3d::synth::makeRegistrationPair(settings);
+  const TempDir dir("ls3d_plan_unit");
+  const std::string source = dir.file("source.las"), target = dir.file("target.las");
+  writeInFeet(source, *pair.source, pair.origin);
+  writeInFeet(target, *pair.target, pair.origin);
+  // The truth in the files' coordinates: feet to metres, the true move, metres to feet.
+  const Eigen::Matrix4d truth =
+      heightScale(1.0 / kUsFoot) * pair.globalTruthMatrix() * heightScale(kUsFoot);
+  nlohmann::json truth_json;
+  for (int r = 0; r < 4; ++r)
+    truth_json["transformation"].push_back({truth(r, 0), truth(r, 1), truth(r, 2), truth(r, 3)});
+  std::ofstream(dir.file("truth.json")) << truth_json.dump();
+
+  const pcl_ls3d_test::ToolRun reg =
+      runTool("pcl_ls3d_register", source + " " + target + " -json " + dir.file("reg.json") +
+                                       " -o " + dir.file("aligned.pcd"),
+              dir.path.string());
+  ASSERT_EQ(reg.code, 0) << reg.err;
+  EXPECT_EQ((reg.out + reg.err).find("mix the two units"), std::string::npos);
+  const nlohmann::json reg_json = readJson(dir.file("reg.json"));
+  EXPECT_LT(meanErrorInMetres(jsonTransformation(reg_json.at("transformation")), truth,
+                              *pair.source, pair.origin),
+            0.06);
+  EXPECT_NEAR(reg_json.at("heights").at("plan_units_per_height_unit").at("target").get<double>(),
+              kUsFoot, 1e-9);
+  // The aligned source is written in the files' units: heights in feet where the truth puts them.
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> aligned;
+  pcl_ls3d::io::CloudInfo info;
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::io::loadCloud(dir.file("aligned.pcd"), aligned, info, error)) << error;
+  ASSERT_EQ(aligned.size(), pair.source->size());
+  double height_error_ft = 0.0;
+  for (std::size_t i = 0; i < aligned.size(); ++i) {
+    const Eigen::Vector4d x = heightScale(1.0 / kUsFoot) *
+                              ((*pair.source)[i].getVector3fMap().cast<double>() + pair.origin).homogeneous();
+    height_error_ft += std::abs(aligned[i].z + info.origin.z() - (truth * x).z());
+  }
+  EXPECT_LT(height_error_ft / static_cast<double>(aligned.size()), 0.05);
+
+  const pcl_ls3d_test::ToolRun cmp = runTool(
+      "pcl_ls3d_compare", source + " " + target + " -methods ls3d-lnd -truth " +
+                              dir.file("truth.json") + " -json " + dir.file("cmp.json"),
+      dir.path.string());
+  ASSERT_EQ(cmp.code, 0) << cmp.err;
+  const nlohmann::json row = readJson(dir.file("cmp.json")).at("methods").at(0);
+  // compare's own error (metres: working coordinates) and the one of its transformation in the
+  // files' coordinates agree.
+  const double compare_error = row.at("error").at("mean").get<double>();
+  EXPECT_LT(compare_error, 0.06);
+  EXPECT_NEAR(meanErrorInMetres(jsonTransformation(row.at("transformation")), truth, *pair.source,
+                                pair.origin),
+              compare_error, 1e-4);
+
+  const pcl_ls3d_test::ToolRun def = runTool(
+      "pcl_ls3d_deformation", target + " " + source + " -json " + dir.file("def.json"),
+      dir.path.string());
+  ASSERT_EQ(def.code, 0) << def.err;
+  EXPECT_LT(meanErrorInMetres(jsonTransformation(readJson(dir.file("def.json")).at("transformation")),
+                              truth, *pair.source, pair.origin),
+            0.06);
+}
+
+namespace {
+
+/// The largest plan and height (metres) distances between the same points of a cloud in metres
+/// and one with heights in US feet.
+std::pair<double, double>
+largestDifference(const std::string& metres, const std::string& feet)
+{
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> m, ft;
+  pcl_ls3d::io::CloudInfo im, ift;
+  std::string error;
+  EXPECT_TRUE(pcl_ls3d::io::loadCloud(metres, m, im, error)) << error;
+  EXPECT_TRUE(pcl_ls3d::io::loadCloud(feet, ft, ift, error)) << error;
+  EXPECT_EQ(m.size(), ft.size());
+  double plan = 0.0, height = 0.0;
+  for (std::size_t i = 0; i < std::min(m.size(), ft.size()); ++i) {
+    const Eigen::Vector3d a = m[i].getVector3fMap().cast<double>() + im.origin,
+                          b = ft[i].getVector3fMap().cast<double>() + ift.origin;
+    plan = std::max(plan, (a - b).head<2>().norm());
+    height = std::max(height, std::abs(a.z() - b.z() * kUsFoot));
+  }
+  return {plan, height};
+}
+
+}  // namespace
+
+// The strip adjustment of generated strips with heights in feet corrects them as the same
+// strips in metres, to the LAS files' millimetre (the corrections move the strips by up to
+// 0.5 m); the corrected strips keep their heights in feet.
+TEST(ToolsWorkInThePlanUnit, StripsInFeetOverMetres)
+{
+  const TempDir dir("ls3d_strips_plan_unit");
+  ASSERT_EQ(runTool("pcl_ls3d_synth", "strips -o " + dir.file("m") +
+                                          " -split -format las -strips 3 -length 200 -swath 100",
+                    dir.path.string()).code,
+            0);
+  std::string metres, feet;
+  for (const char* name : {"strip_1.las", "strip_2.las", "strip_3.las"}) {
+    pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud;
+    pcl_ls3d::io::CloudInfo info;
+    std::string error;
+    ASSERT_TRUE(pcl_ls3d::io::loadCloud(dir.file(std::string("m/") + name), cloud, info, error));
+    writeInFeet(dir.file(std::string("ft_") + name), cloud, info.origin);
+    metres += " " + dir.file(std::string("m/") + name);
+    feet += " " + dir.file(std::string("ft_") + name);
+  }
+  ASSERT_EQ(runTool("pcl_ls3d_strip_adjust", metres + " -o " + dir.file("out_m"), dir.path.string()).code, 0);
+  ASSERT_EQ(runTool("pcl_ls3d_strip_adjust", feet + " -o " + dir.file("out_ft"), dir.path.string()).code, 0);
+  for (const char* name : {"strip_1.las", "strip_3.las"}) {
+    SCOPED_TRACE(name);
+    const auto [plan_moved, height_moved] =
+        largestDifference(dir.file(std::string("m/") + name), dir.file(std::string("out_ft/ft_") + name));
+    EXPECT_GT(std::max(plan_moved, height_moved), 0.1);  // corrected: not the input
+    const auto [plan, height] = largestDifference(dir.file(std::string("out_m/") + name),
+                                                  dir.file(std::string("out_ft/ft_") + name));
+    EXPECT_LT(plan, 0.005);
+    EXPECT_LT(height, 0.003);
   }
 }

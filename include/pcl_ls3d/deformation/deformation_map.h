@@ -34,6 +34,9 @@ struct DeformationMapSettings
   double k = 3.0;        ///< significance factor used (the colour range covers 2 k σ̂)
   bool lod95 = false;    ///< significance by the 95 % level of detection instead of k σ
   double cell = 0.0;     ///< cell edge; 0: 1.5 × the regions' point spacing
+  /// Plan units per height unit the residuals were computed with (HeightUnits); 1: heights as
+  /// the files store them.
+  double heights_converted_by = 1.0;
 };
 
 /// \brief The rasters and the rendered image.

@@ -3,6 +3,7 @@
 /// \brief The one table and the JSON document that pcl_ls3d_compare and benchmark_registration
 ///        print for a set of RegistrationRun rows (same columns, same units everywhere).
 
+#include <pcl_ls3d/common/height_units.h>
 #include <pcl_ls3d/evaluation/registration_run.h>
 
 #include <Eigen/Core>
@@ -18,7 +19,8 @@ namespace evaluation {
 struct ComparisonContext
 {
   std::string source, target;                         ///< file names or a generator description
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   ///< common local origin (file = local + origin)
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   ///< common local origin (working = local + origin)
+  HeightUnits heights;                                ///< working coordinates: heights × factor
   std::size_t source_points = 0, target_points = 0;
   bool has_truth = false;
   double rms_max_distance = 0.0;                      ///< [unit] neighbour cut-off of the RMS column
@@ -38,8 +40,9 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth,
                       const std::string& unit = "m");
 
 /// \brief JSON document {"context": {...}, "methods": [...]} in context.unit, s and rad; each
-///        method has its transformation in local and in file coordinates (4×4 row-major). A
-///        figure a run does not have is null (a run without an estimate: every figure).
+///        method has its transformation in local working coordinates and in the files'
+///        coordinates (4×4 row-major; HeightUnits::toFiles()). A figure a run does not have is
+///        null (a run without an estimate: every figure).
 std::string
 comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext& context);
 

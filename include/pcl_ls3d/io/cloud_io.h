@@ -99,8 +99,9 @@ struct SaveOptions
   /// shortest text that reads back as exactly the double x_local + origin.
   int xyz_decimals = -1;
   /// OGC WKT of the cloud's CRS. PCD: recorded as a "# pcl_ls3d crs" header line (pcd_io.h),
-  /// which loadCloud() gives back as CloudInfo::file_crs_wkt. LAS: not used (the CRS travels in
-  /// las_vlrs; maps::recordCrs() sets both). PLY, XYZ: no place for it.
+  /// PLY as a "comment pcl_ls3d crs" line (ply_io.h), which loadCloud() gives back as
+  /// CloudInfo::file_crs_wkt. LAS: not used (the CRS travels in las_vlrs; maps::recordCrs()
+  /// sets both). XYZ: no place for it.
   std::string crs_wkt;
 };
 
@@ -113,8 +114,8 @@ struct CloudInfo
   /// floats, x_file = stored value + file_origin); zero for any other file.
   Eigen::Vector3d file_origin = Eigen::Vector3d::Zero();
   bool has_file_origin = false;  ///< the header records an origin (it may be zero)
-  /// PCD: the OGC WKT its header records ("# pcl_ls3d crs", pcd_io.h); empty for other files
-  /// (a LAS file's CRS is in las.vlrs).
+  /// PCD, PLY: the OGC WKT its header records ("# pcl_ls3d crs", pcd_io.h; "comment pcl_ls3d
+  /// crs", ply_io.h); empty for other files (a LAS file's CRS is in las.vlrs).
   std::string file_crs_wkt;
   /// PCD: its header marks it as pcl_ls3d_segment's SEGMENTS.pcd (kPcdSegmentsMarker, pcd_io.h):
   /// its label field holds segment ids and is not read as the classification.

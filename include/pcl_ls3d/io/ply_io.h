@@ -1,7 +1,8 @@
 #pragma once
 /// \file ply_io.h
 /// \brief PLY reader (ascii, binary_little_endian, binary_big_endian) on a memory buffer. Writing
-///        goes through PCL's PLYWriter (binary) or pcl_ls3d's ASCII writer (saveCloud).
+///        goes through PCL's PLYWriter (binary) or pcl_ls3d's ASCII writer (saveCloud); a CRS is
+///        recorded in a "comment pcl_ls3d crs WKT" header line.
 ///
 /// Only the vertex element is read: elements before it (rare) are skipped, elements after it
 /// (faces, a Stanford scanner's range_grid, a camera) are not read at all, so a range grid of
@@ -21,6 +22,12 @@
 
 namespace pcl_ls3d {
 namespace io {
+
+/// \brief The header line that records a CRS, without a newline: "comment pcl_ls3d crs WKT",
+///        line breaks of the WKT made spaces (the PLY counterpart of pcdCrsLine(); readPly()
+///        gives it back as CloudInfo::file_crs_wkt, other readers skip it as a comment).
+std::string
+plyCrsLine(const std::string& wkt);
 
 /// Parses an in-memory PLY file into local coordinates (cloud_io.h describes the origin rule).
 /// Never reads outside [data, data + size); returns false with a one-line reason.

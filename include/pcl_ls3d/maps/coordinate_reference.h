@@ -75,10 +75,20 @@ crsVerticalUnit(const std::string& wkt);
 std::string
 crsLinearUnitName(const std::string& wkt);
 
+/// The label of \a wkt's height unit (crsVerticalUnit()), as crsLinearUnitName().
+std::string
+crsVerticalUnitName(const std::string& wkt);
+
 /// True when \a wkt's heights and plan coordinates have different known units (a compound CRS
 /// such as "NAD83 / Oregon LCC (m) + NAVD88 height (ftUS)").
 bool
 crsMixesUnits(const std::string& wkt);
+
+/// Plan units per height unit: the factor that brings \a wkt's heights into its plan unit
+/// (0.3048006 for heights in US survey feet under a plan in metres); 1 when both units agree or
+/// either is unknown.
+double
+planUnitsPerHeightUnit(const std::string& wkt);
 
 /// True when both WKT describe the same CRS (OGRSpatialReference::IsSame).
 bool
@@ -96,9 +106,12 @@ sameHorizontalCrs(const std::string& a, const std::string& b);
 /// the first declared one, "'B' declares WGS 84 / UTM 31N, 'A' RGF93 v1 / Lambert-93: their
 /// coordinates are used as they are; reproject one into the other's CRS unless both describe
 /// the same frame". Notes, not refusals: two definitions of one frame can differ in GDAL's eyes.
-/// Files that declare no CRS, or one GDAL cannot read, give none.
+/// Files that declare no CRS, or one GDAL cannot read, give none. \a heights_converted: the
+/// caller works on heights in the plan unit (planUnitsPerHeightUnit()), so mixed units are no
+/// note.
 std::vector<std::string>
-crsNotes(const std::vector<std::pair<std::string, std::string>>& files);
+crsNotes(const std::vector<std::pair<std::string, std::string>>& files,
+         bool heights_converted = false);
 
 }  // namespace maps
 }  // namespace pcl_ls3d
