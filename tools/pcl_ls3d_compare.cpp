@@ -337,6 +337,7 @@ writeJson(const Options& o, const Clouds& c, const std::vector<RegistrationRun>&
   context.target = o.target_path;
   context.origin = c.working_origin;
   context.heights = c.heights;
+  context.file_origin = c.target_info.origin;
   context.source_points = c.source->size();
   context.target_points = c.target->size();
   context.has_truth = o.has_truth;

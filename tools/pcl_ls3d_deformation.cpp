@@ -233,11 +233,30 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
 }
 
 
+/// The map's line on heights converted to the plan unit; empty when none were.
+std::string
+heightsNote(const pcl_ls3d::HeightUnits& h, const std::string& crs_wkt)
+{
+  if (!h.converts())
+    return "";
+  std::string unit = pcl_ls3d::maps::crsLinearUnitName(crs_wkt);
+  unit = unit.empty() ? "the plan unit" : unit;
+  char line[160];
+  if (h.target == h.source)
+    std::snprintf(line, sizeof line, "heights converted to %s (x %.7g) before matching", unit.c_str(),
+                  h.target);
+  else
+    std::snprintf(line, sizeof line,
+                  "heights converted to %s (reference x %.7g, epoch x %.7g) before matching",
+                  unit.c_str(), h.target, h.source);
+  return line;
+}
+
 /// PREFIX.png and PREFIX.tif of the residuals (deformation/deformation_map.h).
 bool
 writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, const def::DeformationResult& r,
          const Eigen::Vector3d& origin, const std::string& crs_wkt, const std::string& reference_path,
-         const std::string& epoch_path, double k, bool lod95, double cell, double heights_converted_by,
+         const std::string& epoch_path, double k, bool lod95, double cell, const std::string& heights_note,
          bool overwrite, std::string& error)
 {
   def::DeformationMapSettings ms;
@@ -248,7 +267,7 @@ writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, 
   ms.k = k;
   ms.lod95 = lod95;
   ms.cell = cell;
-  ms.heights_converted_by = heights_converted_by;
+  ms.heights_note = heights_note;
   return def::writeDeformationMap(prefix, def::makeDeformationMap(points, r, ms), crs_wkt, overwrite, error);
 }
 
@@ -395,7 +414,7 @@ loadEpochs(const Options& o, Epochs& e, std::string& error)
   if (!pcl_ls3d::io::loadCloud(o.epoch_path, *e.epoch, e.einfo, error, eopt))
     return false;
   if (!pcl_ls3d::tools::checkInputCrs({{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}},
-                                       error, &e.heights))
+                                       error, &e.heights, o.crs_wkt))
     return false;
   const double origin_z = e.rinfo.origin.z();
   pcl_ls3d::heightsToWorking(*e.reference, e.heights.target, e.heights.target, origin_z);
@@ -611,17 +630,17 @@ main(int argc, char** argv)
   // -crs, else the CRS the reference declares: the map's and the residual file's.
   const std::string crs_wkt = o.crs_wkt.empty() ? pcl_ls3d::maps::crsOfFile(e.rinfo) : o.crs_wkt;
   if (!o.out_path.empty()) {
-    Cloud epoch_in_file_units = *e.epoch;
-    pcl_ls3d::heightsToFile(epoch_in_file_units, e.heights.source, e.heights.target,
+    Cloud epoch_in_file_units = *e.epoch;  // in the reference's height unit, as its CRS
+    pcl_ls3d::heightsToFile(epoch_in_file_units, e.heights.target, e.heights.target,
                             e.rinfo.origin.z());
     if (!writeResiduals(o.out_path, epoch_in_file_units, result, e.rinfo.origin, crs_wkt, error))
       return fail(error), 1;
     print_info("Wrote %s\n", o.out_path.c_str());
   }
   if (!o.map_prefix.empty()) {
-    if (!writeMap(o.map_prefix, e.points, result, e.rinfo.origin, crs_wkt, o.reference_path,
-                  o.epoch_path, o.settings.residuals.k, o.lod95, o.map_cell, e.heights.target,
-                  o.overwrite, error))
+    if (!writeMap(o.map_prefix, e.points, result, e.working_origin, crs_wkt, o.reference_path,
+                  o.epoch_path, o.settings.residuals.k, o.lod95, o.map_cell,
+                  heightsNote(e.heights, crs_wkt), o.overwrite, error))
       return fail(error), 1;
     print_info("Wrote %s and %s%s\n", o.png_path.c_str(), o.tif_path.c_str(),
                crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");

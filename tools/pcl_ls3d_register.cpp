@@ -444,10 +444,11 @@ reportTruthError(const Pair& pair, const Eigen::Matrix4d& T_working, const Eigen
                       {"max_displacement_bbox", e.max_bbox}};
 }
 
-/// -o: the source moved (a LAS source to LAS record by record, with its header and VLRs).
+/// -o: the source moved (a LAS source to LAS record by record, with its header and VLRs, so its
+/// CRS and height unit; any other output in the target's frame, CRS and height unit).
 bool
 writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentReport& r,
-             const Eigen::Matrix4d& T_input, Cloud& aligned, std::string& error)
+             const Eigen::Matrix4d& T_working, Cloud& aligned, std::string& error)
 {
   TicToc tt;
   tt.tic();
@@ -462,7 +463,9 @@ writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentRepor
     pcl::transformPointCloud(*pair.whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));
   if (!las_to_las)  // the target's height unit again
     pcl_ls3d::heightsToFile(aligned, pair.heights.target, pair.heights.target, pair.tinfo.origin.z());
-  if (las_to_las ? !writeMovedLas(o.source_path, T_input, o.out_path, o.overwrite, error)
+  const pcl_ls3d::HeightUnits in_source_units{pair.heights.source, pair.heights.source};
+  if (las_to_las ? !writeMovedLas(o.source_path, in_source_units.toFiles(T_working), o.out_path,
+                                  o.overwrite, error)
                  : !pcl_ls3d::io::saveCloud(o.out_path, aligned, pair.tinfo.origin, error, so))
     return false;
   print_info("Wrote %s in %.0f ms\n", o.out_path.c_str(), tt.toc());
@@ -512,7 +515,7 @@ main(int argc, char** argv)
   if (!o.truth_path.empty())
     reportTruthError(pair, T_working, o.truth, j);
 
-  if (!o.out_path.empty() && trusted && !writeAligned(o, pair, r, T_input, aligned, error))
+  if (!o.out_path.empty() && trusted && !writeAligned(o, pair, r, T_working, aligned, error))
     return fail(error), 1;
   if (!o.json_path.empty() && !pcl_ls3d::tools::writeJsonFile(o.json_path, j))
     return fail("cannot write " + o.json_path), 1;

@@ -269,15 +269,45 @@ checkOutputFolder(const std::string& dir, std::string& why)
   return why.empty();
 }
 
+/// \brief Fills \a heights for a pair (target first): each file's plan units per height unit
+///        (maps::planUnitsPerHeightUnit()), one line per file converted. A file that declares no
+///        CRS (a PCD or XYZ exported from the other, an old PLY) is taken in the units of
+///        \a fallback_wkt when given, else of its partner, and said so.
+inline void
+pairHeightUnits(const std::vector<std::pair<std::string, std::string>>& files,
+                const std::string& fallback_wkt, HeightUnits& heights)
+{
+  std::string wkt[2] = {files[0].second, files[1].second};
+  for (int i = 0; i < 2; ++i)
+    if (!(maps::crsLinearUnit(wkt[i]) > 0.0)) {
+      wkt[i] = fallback_wkt.empty() ? files[1 - i].second : fallback_wkt;
+      if (maps::crsMixesUnits(wkt[i]))
+        pcl::console::print_info("'%s' declares no CRS: its heights are taken in %s, as %s\n",
+                                 files[i].first.c_str(), maps::crsVerticalUnitName(wkt[i]).c_str(),
+                                 fallback_wkt.empty() ? ("'" + files[1 - i].first + "' declares").c_str()
+                                                      : "-crs says");
+    }
+  heights.target = maps::planUnitsPerHeightUnit(wkt[0]);
+  heights.source = maps::planUnitsPerHeightUnit(wkt[1]);
+  for (int i = 0; i < 2; ++i)
+    if (const double f = i == 0 ? heights.target : heights.source; f != 1.0)
+      pcl::console::print_info(
+          "'%s' declares heights in %s and plan coordinates in %s (%s): heights are converted to "
+          "%s (x %.7g) for the matching; transformations and written clouds are in the file's "
+          "units\n",
+          files[static_cast<std::size_t>(i)].first.c_str(), maps::crsVerticalUnitName(wkt[i]).c_str(),
+          maps::crsLinearUnitName(wkt[i]).c_str(), maps::crsName(wkt[i]).c_str(),
+          maps::crsLinearUnitName(wkt[i]).c_str(), f);
+}
+
 /// \brief The loaded inputs' CRSs: false with one error line for the first input whose CRS is
 ///        not in lengths (a geographic CRS in degrees, a geocentric one); else true, after one
 ///        warning line per maps::crsNotes() note (different CRSs, heights in another unit).
 ///        With \a heights (a pair tool: target first, source second), the tool works on heights
-///        in the plan unit instead: `heights` gets each file's factor, one line says so, and
-///        mixed units are no warning.
+///        in the plan unit instead: pairHeightUnits() fills them, and mixed units are no warning.
 inline bool
 checkInputCrs(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs,
-              std::string& why, HeightUnits* heights = nullptr)
+              std::string& why, HeightUnits* heights = nullptr, const std::string& fallback_wkt = "")
 {
   std::vector<std::pair<std::string, std::string>> files;
   for (const auto& [path, info] : inputs) {
@@ -287,20 +317,8 @@ checkInputCrs(const std::vector<std::pair<std::string, const io::CloudInfo*>>& i
   }
   for (const std::string& note : maps::crsNotes(files, heights != nullptr))
     pcl::console::print_warn("Warning: %s\n", note.c_str());
-  if (heights && files.size() == 2) {
-    heights->target = maps::planUnitsPerHeightUnit(files[0].second);
-    heights->source = maps::planUnitsPerHeightUnit(files[1].second);
-    for (std::size_t i = 0; i < 2; ++i)
-      if (const double f = i == 0 ? heights->target : heights->source; f != 1.0)
-        pcl::console::print_info(
-            "'%s' declares heights in %s and plan coordinates in %s (%s): heights are "
-            "converted to %s (x %.7g) for the matching; transformations and written clouds are "
-            "in the file's units\n",
-            files[i].first.c_str(), maps::crsVerticalUnitName(files[i].second).c_str(),
-            maps::crsLinearUnitName(files[i].second).c_str(),
-            maps::crsName(files[i].second).c_str(),
-            maps::crsLinearUnitName(files[i].second).c_str(), f);
-  }
+  if (heights && files.size() == 2)
+    pairHeightUnits(files, fallback_wkt, *heights);
   return true;
 }
 

@@ -101,10 +101,8 @@ mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps
                                   r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size()));
   // Heights in another unit than x, y (a compound CRS): the residuals are in neither, unless
   // the heights were converted to the plan unit.
-  if (s.heights_converted_by != 1.0)
-    style.subtitle.push_back(format("heights converted from %s to %s (x %.7g) before matching",
-                                    maps::crsVerticalUnitName(s.crs_wkt).c_str(), unit.c_str(),
-                                    s.heights_converted_by));
+  if (!s.heights_note.empty())
+    style.subtitle.push_back(s.heights_note);
   else if (maps::crsMixesUnits(s.crs_wkt))
     style.subtitle.push_back("WARNING: heights and plan coordinates in different units; the "
                              "residuals mix them");

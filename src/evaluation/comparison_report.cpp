@@ -125,9 +125,11 @@ comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext
                   {"ls3d_settings", c.ls3d_settings},
                   {"unit", c.unit},
                   {"units", c.unit + ", s, rad; transformation maps source to target"}};
-  if (c.heights.converts())
+  if (c.heights.converts()) {
     j["context"]["plan_units_per_height_unit"] = {{"target", c.heights.target},
                                                   {"source", c.heights.source}};
+    j["context"]["file_origin"] = {c.file_origin.x(), c.file_origin.y(), c.file_origin.z()};
+  }
   json methods = json::array();
   for (const auto& r : runs) {
     Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();

@@ -7,6 +7,9 @@
 #include <charconv>
 #include <cstdio>
 #include <fstream>
+#include <string>
+
+#include <unistd.h>
 
 namespace pcl_ls3d {
 namespace io {
@@ -112,27 +115,28 @@ insertPlyComments(const std::string& path, const std::string& comments)
 {
   if (comments.empty())
     return true;
-  const std::string temporary = path + ".pcl_ls3d_tmp";
+  // Beside the output (same file system, so the rename is atomic), unique to this process.
+  const std::string temporary = path + ".pcl_ls3d_tmp" + std::to_string(::getpid());
+  bool ok = false;
   {
     std::ifstream in(path, std::ios::binary);
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     std::string line;
-    bool inserted = false;
-    while (!inserted && std::getline(in, line)) {  // "ply", then "format ..."
+    while (!ok && std::getline(in, line)) {  // "ply", then "format ..."
       out << line << '\n';
       if (line.compare(0, 7, "format ") == 0) {
-        out << comments;
-        inserted = true;
+        out << comments << in.rdbuf();  // the rest of the header and the data, as PCL wrote them
+        ok = true;
       }
     }
-    if (inserted)
-      out << in.rdbuf();  // the rest of the header and the data, as PCL wrote them
-    if (!inserted || !out.flush()) {
-      std::remove(temporary.c_str());
-      return false;
-    }
+    ok = ok && out.flush();
   }
-  return std::rename(temporary.c_str(), path.c_str()) == 0;
+  ok = ok && std::rename(temporary.c_str(), path.c_str()) == 0;
+  if (!ok) {  // no output without its CRS line, no temporary left behind
+    std::remove(temporary.c_str());
+    std::remove(path.c_str());
+  }
+  return ok;
 }
 
 }  // namespace detail

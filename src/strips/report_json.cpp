@@ -97,7 +97,7 @@ overlap(const OverlapResult& o, const StripAdjustmentReport& r)
 }  // namespace
 
 std::string
-reportJson(const StripAdjustmentReport& r, int indent)
+reportJson(const StripAdjustmentReport& r, int indent, double plan_units_per_height_unit)
 {
   json j;
   j["termination"] = terminationTypeToString(r.termination);
@@ -114,6 +114,12 @@ reportJson(const StripAdjustmentReport& r, int indent)
   j["precision_model"] = r.precision_model;
   j["parameter_order"] = {"tx", "ty", "tz", "phi", "omega", "kappa", "m"};
   j["parameter_frame"] = "x' = origin + t + m R(phi, omega, kappa) (x - origin), per strip origin, file coordinates";
+  if (plan_units_per_height_unit != 1.0) {
+    j["parameter_frame"] = "x' = origin + t + m R(phi, omega, kappa) (x - origin), per strip origin, file "
+                           "coordinates with heights times plan_units_per_height_unit (the corrected "
+                           "files keep their own units)";
+    j["plan_units_per_height_unit"] = plan_units_per_height_unit;
+  }
   j["block_origin"] = vec(r.block_origin);
   j["footprint_cell"] = r.footprint_cell;
   j["notes"] = r.notes;

@@ -12,7 +12,7 @@ namespace strips {
 namespace {
 
 using json = nlohmann::json;
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 2: heights in the plan unit (HeightUnits)
 
 json
 vec(const Eigen::VectorXd& v)

@@ -27,7 +27,8 @@ struct OpenInput
   pcl::PointCloud<PointLiDAR> cloud;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  // cloud: file = local + origin
   bool is_las = false;
-  // Plan units per height unit (HeightUnits): the block is adjusted with heights in the plan unit.
+  // Plan units per height unit (heightFactor()): the block is adjusted with heights in the plan
+  // unit.
   double height_factor = 1.0;
 };
 
@@ -65,7 +66,6 @@ openInput(const std::string& path, OpenInput& in, InputFile& info, std::string& 
     info.crs_wkt = maps::crsFromLasVlrs(in.las.header().vlrs);
     if (!(error = maps::notInLengths(path, info.crs_wkt)).empty())
       return false;  // in degrees a wrong answer would still converge
-    in.height_factor = maps::planUnitsPerHeightUnit(info.crs_wkt);
     for (std::size_t i = 0; i < in.las.size(); ++i)
       ++info.point_sources[in.las.pointSourceId(i)];
     return true;
@@ -79,7 +79,6 @@ openInput(const std::string& path, OpenInput& in, InputFile& info, std::string& 
   info.crs_wkt = maps::crsOfFile(ci);
   if (!(error = maps::notInLengths(path, info.crs_wkt)).empty())
     return false;
-  in.height_factor = maps::planUnitsPerHeightUnit(info.crs_wkt);
   info.format = ci.format;
   info.points = in.cloud.size();
   in.origin = ci.origin;
@@ -176,13 +175,19 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
   }
   for (std::string& note : maps::crsNotes(crs_of_file, true))
     out.notes.push_back(std::move(note));
-  for (const auto& [path, wkt] : crs_of_file)
-    if (const double f = maps::planUnitsPerHeightUnit(wkt); f != 1.0)
-      out.notes.push_back("'" + path + "' declares heights in " + maps::crsVerticalUnitName(wkt) +
-                          " and plan coordinates in " + maps::crsLinearUnitName(wkt) + " (" +
-                          maps::crsName(wkt) + "): heights are converted to " +
-                          maps::crsLinearUnitName(wkt) + " (x " + sevenDigits(f) +
-                          ") for the adjustment; corrected strips are in the file's units");
+  for (std::size_t f = 0; f < paths.size(); ++f) {
+    open[f].height_factor = heightFactor(out.inputs, f);
+    if (open[f].height_factor == 1.0)
+      continue;
+    const std::string& wkt = crs_of_file[f].second.empty() ? out.crs_wkt : crs_of_file[f].second;
+    out.notes.push_back("'" + paths[f] + "' " +
+                        (crs_of_file[f].second.empty() ? "declares no CRS, taken as " : "declares ") +
+                        "heights in " + maps::crsVerticalUnitName(wkt) + " and plan coordinates in " +
+                        maps::crsLinearUnitName(wkt) + " (" + maps::crsName(wkt) +
+                        "): heights are converted to " + maps::crsLinearUnitName(wkt) + " (x " +
+                        sevenDigits(open[f].height_factor) +
+                        ") for the adjustment; corrected strips are in the file's units");
+  }
   // The strips: one per input, or one per non-zero point-source id over all inputs.
   if (options.split_by_point_source) {
     std::map<int, std::vector<int>> ids;
@@ -248,6 +253,17 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
   return true;
 }
 
+double
+heightFactor(const std::vector<InputFile>& inputs, std::size_t f)
+{
+  if (maps::crsLinearUnit(inputs[f].crs_wkt) > 0.0)
+    return maps::planUnitsPerHeightUnit(inputs[f].crs_wkt);
+  for (const InputFile& in : inputs)
+    if (maps::crsLinearUnit(in.crs_wkt) > 0.0)
+      return maps::planUnitsPerHeightUnit(in.crs_wkt);
+  return 1.0;
+}
+
 bool
 loadStrip(const std::vector<InputFile>& inputs, const StripSource& source,
           const Eigen::Vector3d& block_origin, const StripLoadOptions& options, Strip& strip,
@@ -258,6 +274,7 @@ loadStrip(const std::vector<InputFile>& inputs, const StripSource& source,
     InputFile info;
     if (!openInput(inputs[static_cast<std::size_t>(f)].path, open[static_cast<std::size_t>(f)], info, error))
       return false;
+    open[static_cast<std::size_t>(f)].height_factor = heightFactor(inputs, static_cast<std::size_t>(f));
   }
   strip = buildStrip(open, source, block_origin, options);
   return true;

@@ -72,7 +72,7 @@ writeCorrected(const LoadedStrips& block, const OutputUnit& unit,
   const InputFile& input = block.inputs[static_cast<std::size_t>(unit.file)];
   const StripLookup lookup(block, unit.file);
   // The block was adjusted with heights in the plan unit; the file keeps its own.
-  const double f = maps::planUnitsPerHeightUnit(input.crs_wkt);
+  const double f = heightFactor(block.inputs, static_cast<std::size_t>(unit.file));
   std::vector<Eigen::Matrix4d> in_file_units = corrections;
   for (Eigen::Matrix4d& T : in_file_units)
     T = HeightUnits{f, f}.toFiles(T);

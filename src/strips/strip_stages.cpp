@@ -1,5 +1,6 @@
 // The distributed stages (strip_stages.h).
 #include <pcl_ls3d/estimators/robust_estimator.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/strips/overlap_matcher.h>
 #include <pcl_ls3d/strips/report_output.h>
 #include <pcl_ls3d/strips/strip_maps.h>
@@ -242,7 +243,8 @@ writeReportAndMaps(const PlanFile& f, const StripAdjustmentReport& report,
 {
   if (!f.json_path.empty()) {
     std::ofstream out(f.json_path, std::ios::trunc);
-    if (!out || !(out << reportJson(report) << '\n') || !out.flush()) {
+    const double heights = maps::planUnitsPerHeightUnit(f.crs_wkt);  // the block's CRS
+    if (!out || !(out << reportJson(report, 2, heights) << '\n') || !out.flush()) {
       error = "cannot write " + f.json_path;
       return false;
     }

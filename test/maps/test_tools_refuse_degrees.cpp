@@ -18,7 +18,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
+#include <vector>
 
 namespace fs = std::filesystem;
 using pcl_ls3d_test::runTool;
@@ -211,21 +213,31 @@ heightScale(double factor)
   return S;
 }
 
-/// A cloud written as LAS declaring UTM 31N (m) + NAVD88 height (ftUS), heights in feet.
+/// A cloud written with heights in units of \a metres_per_height_unit, declaring \a crs (none
+/// when empty).
 void
-writeInFeet(const std::string& path, pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud,
-            const Eigen::Vector3d& origin)
+writeWithHeights(const std::string& path, pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud,
+                 const Eigen::Vector3d& origin, double metres_per_height_unit, const std::string& crs)
 {
   ASSERT_FALSE(cloud.empty());
   for (auto& p : cloud)
-    p.z = static_cast<float>(p.z / kUsFoot);
+    p.z = static_cast<float>(p.z / metres_per_height_unit);
   pcl_ls3d::io::SaveOptions o;
-  pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsFromUserInput("EPSG:32631+6360"), o);
+  if (!crs.empty())
+    pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsFromUserInput(crs), o);
   o.las_scale = {0.001, 0.001, 0.001};
   std::string error;
-  ASSERT_TRUE(pcl_ls3d::io::saveCloud(path, cloud, heightScale(1.0 / kUsFoot).block<3, 3>(0, 0) * origin,
-                                      error, o))
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(
+      path, cloud, heightScale(1.0 / metres_per_height_unit).block<3, 3>(0, 0) * origin, error, o))
       << error;
+}
+
+/// A cloud written as LAS declaring UTM 31N (m) + NAVD88 height (ftUS), heights in feet.
+void
+writeInFeet(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& cloud,
+            const Eigen::Vector3d& origin)
+{
+  writeWithHeights(path, cloud, origin, kUsFoot, "EPSG:32631+6360");
 }
 
 /// The 4x4 "transformation" of a tool's JSON report (in the files' coordinates).
@@ -246,28 +258,56 @@ readJson(const std::string& path)
   return nlohmann::json::parse(in);
 }
 
-/// Mean distance in metres between where T and the truth put the source's points (files'
-/// coordinates, heights in US feet).
+/// The source's points in its file's coordinates (heights in US feet).
+std::vector<Eigen::Vector4d>
+sourceInFeet(const pcl::PointCloud<pcl_ls3d::PointLiDAR>& source, const Eigen::Vector3d& origin)
+{
+  std::vector<Eigen::Vector4d> out;
+  for (const auto& p : source)
+    out.push_back(heightScale(1.0 / kUsFoot) * (p.getVector3fMap().cast<double>() + origin).homogeneous());
+  return out;
+}
+
+/// Mean distance in metres between where T and the truth put the source's points (the source
+/// file's coordinates, heights in US feet, into the target file's, heights in units of
+/// \a target_unit metres).
 double
 meanErrorInMetres(const Eigen::Matrix4d& T, const Eigen::Matrix4d& truth,
-                  const pcl::PointCloud<pcl_ls3d::PointLiDAR>& source, const Eigen::Vector3d& origin)
+                  const std::vector<Eigen::Vector4d>& source, double target_unit)
 {
-  const Eigen::Matrix4d to_metres = heightScale(kUsFoot);
   double sum = 0.0;
-  for (const auto& p : source) {
-    const Eigen::Vector4d x = heightScale(1.0 / kUsFoot) *
-                              (p.getVector3fMap().cast<double>() + origin).homogeneous();
-    sum += (to_metres * (T * x - truth * x)).norm();
-  }
+  for (const Eigen::Vector4d& x : source)
+    sum += (heightScale(target_unit) * (T * x - truth * x)).norm();
   return sum / static_cast<double>(source.size());
+}
+
+/// Mean height distance in metres between a written cloud (heights in units of \a unit metres)
+/// and where \a expected puts the source's points in that file's coordinates.
+double
+meanHeightErrorInMetres(const std::string& path, const Eigen::Matrix4d& expected,
+                        const std::vector<Eigen::Vector4d>& source, double unit)
+{
+  pcl::PointCloud<pcl_ls3d::PointLiDAR> cloud;
+  pcl_ls3d::io::CloudInfo info;
+  std::string error;
+  EXPECT_TRUE(pcl_ls3d::io::loadCloud(path, cloud, info, error)) << error;
+  EXPECT_EQ(cloud.size(), source.size());
+  if (cloud.size() != source.size())
+    return std::numeric_limits<double>::infinity();
+  double sum = 0.0;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    sum += std::abs(cloud[i].z + info.origin.z() - (expected * source[i]).z()) * unit;
+  return sum / static_cast<double>(cloud.size());
 }
 
 }  // namespace
 
 // The same compound CRS on a generated pair tilted by 1.1 degrees: register, compare and
 // deformation match with heights in metres and give the transformation back in the files'
-// coordinates (heights in feet). The pair in metres is matched to 0.03 m (register's position
-// sigma 0.02 m); before, the feet pair came out 0.5 m off, CONVERGED and trustworthy.
+// coordinates: the source in feet onto a target in feet, in metres (EPSG:32631+5703), or in feet
+// without a CRS (taken in the source's units). The pair in metres is matched to 0.03 m
+// (register's position sigma 0.02 m); before, the feet pair came out 0.5 m off, CONVERGED and
+// trustworthy.
 TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
 {
   pcl_ls3d::synth::RegistrationPairSettings settings;
@@ -279,64 +319,80 @@ TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
   settings.origin = Eigen::Vector3d(500000.0, 5000000.0, 100.0);
   const pcl_ls3d::synth::RegistrationPair pair = pcl_ls3d::synth::makeRegistrationPair(settings);
   const TempDir dir("ls3d_plan_unit");
-  const std::string source = dir.file("source.las"), target = dir.file("target.las");
+  const std::string source = dir.file("source.las");
   writeInFeet(source, *pair.source, pair.origin);
-  writeInFeet(target, *pair.target, pair.origin);
-  // The truth in the files' coordinates: feet to metres, the true move, metres to feet.
-  const Eigen::Matrix4d truth =
-      heightScale(1.0 / kUsFoot) * pair.globalTruthMatrix() * heightScale(kUsFoot);
-  nlohmann::json truth_json;
-  for (int r = 0; r < 4; ++r)
-    truth_json["transformation"].push_back({truth(r, 0), truth(r, 1), truth(r, 2), truth(r, 3)});
-  std::ofstream(dir.file("truth.json")) << truth_json.dump();
+  const std::vector<Eigen::Vector4d> source_ft = sourceInFeet(*pair.source, pair.origin);
+  struct TargetCase
+  {
+    const char* file;
+    double unit;      ///< metres per height unit
+    const char* crs;  ///< "": none
+  };
+  for (const TargetCase& c : {TargetCase{"target.las", kUsFoot, "EPSG:32631+6360"},
+                              TargetCase{"target_m.las", 1.0, "EPSG:32631+5703"},
+                              TargetCase{"target_nocrs.pcd", kUsFoot, ""}}) {
+    SCOPED_TRACE(c.file);
+    const std::string target = dir.file(c.file), stem = fs::path(c.file).stem().string();
+    writeWithHeights(target, *pair.target, pair.origin, c.unit, c.crs);
+    // The truth in the files' coordinates: source feet to metres, the true move, metres to the
+    // target's unit.
+    const Eigen::Matrix4d truth =
+        heightScale(1.0 / c.unit) * pair.globalTruthMatrix() * heightScale(kUsFoot);
+    nlohmann::json truth_json;
+    for (int r = 0; r < 4; ++r)
+      truth_json["transformation"].push_back({truth(r, 0), truth(r, 1), truth(r, 2), truth(r, 3)});
+    std::ofstream(dir.file(stem + "_truth.json")) << truth_json.dump();
 
-  const pcl_ls3d_test::ToolRun reg =
-      runTool("pcl_ls3d_register", source + " " + target + " -json " + dir.file("reg.json") +
-                                       " -o " + dir.file("aligned.pcd"),
-              dir.path.string());
-  ASSERT_EQ(reg.code, 0) << reg.err;
-  EXPECT_EQ((reg.out + reg.err).find("mix the two units"), std::string::npos);
-  const nlohmann::json reg_json = readJson(dir.file("reg.json"));
-  EXPECT_LT(meanErrorInMetres(jsonTransformation(reg_json.at("transformation")), truth,
-                              *pair.source, pair.origin),
-            0.06);
-  EXPECT_NEAR(reg_json.at("heights").at("plan_units_per_height_unit").at("target").get<double>(),
-              kUsFoot, 1e-9);
-  // The aligned source is written in the files' units: heights in feet where the truth puts them.
-  pcl::PointCloud<pcl_ls3d::PointLiDAR> aligned;
-  pcl_ls3d::io::CloudInfo info;
-  std::string error;
-  ASSERT_TRUE(pcl_ls3d::io::loadCloud(dir.file("aligned.pcd"), aligned, info, error)) << error;
-  ASSERT_EQ(aligned.size(), pair.source->size());
-  double height_error_ft = 0.0;
-  for (std::size_t i = 0; i < aligned.size(); ++i) {
-    const Eigen::Vector4d x = heightScale(1.0 / kUsFoot) *
-                              ((*pair.source)[i].getVector3fMap().cast<double>() + pair.origin).homogeneous();
-    height_error_ft += std::abs(aligned[i].z + info.origin.z() - (truth * x).z());
+    const pcl_ls3d_test::ToolRun reg = runTool(
+        "pcl_ls3d_register", source + " " + target + " -json " + dir.file(stem + "_reg.json") +
+                                 " -o " + dir.file(stem + "_aligned.pcd"),
+        dir.path.string());
+    ASSERT_EQ(reg.code, 0) << reg.err;
+    EXPECT_EQ((reg.out + reg.err).find("mix the two units"), std::string::npos);
+    EXPECT_EQ(std::string(c.crs).empty(),
+              (reg.out + reg.err).find("declares no CRS: its heights are taken in ft") !=
+                  std::string::npos)
+        << reg.out;
+    const nlohmann::json reg_json = readJson(dir.file(stem + "_reg.json"));
+    EXPECT_LT(meanErrorInMetres(jsonTransformation(reg_json.at("transformation")), truth, source_ft,
+                                c.unit),
+              0.06);
+    EXPECT_NEAR(reg_json.at("heights").at("plan_units_per_height_unit").at("source").get<double>(),
+                kUsFoot, 1e-9);
+    // The aligned source in the target's frame and height unit where the truth puts it.
+    EXPECT_LT(meanHeightErrorInMetres(dir.file(stem + "_aligned.pcd"), truth, source_ft, c.unit), 0.02);
+
+    const pcl_ls3d_test::ToolRun cmp = runTool(
+        "pcl_ls3d_compare", source + " " + target + " -methods ls3d-lnd -truth " +
+                                dir.file(stem + "_truth.json") + " -json " + dir.file(stem + "_cmp.json"),
+        dir.path.string());
+    ASSERT_EQ(cmp.code, 0) << cmp.err;
+    const nlohmann::json row = readJson(dir.file(stem + "_cmp.json")).at("methods").at(0);
+    // compare's own error (metres: working coordinates) and the one of its transformation in the
+    // files' coordinates agree.
+    const double compare_error = row.at("error").at("mean").get<double>();
+    EXPECT_LT(compare_error, 0.06);
+    EXPECT_NEAR(meanErrorInMetres(jsonTransformation(row.at("transformation")), truth, source_ft,
+                                  c.unit),
+                compare_error, 1e-4);
+
+    const pcl_ls3d_test::ToolRun def = runTool(
+        "pcl_ls3d_deformation", target + " " + source + " -json " + dir.file(stem + "_def.json"),
+        dir.path.string());
+    ASSERT_EQ(def.code, 0) << def.err;
+    EXPECT_LT(meanErrorInMetres(jsonTransformation(readJson(dir.file(stem + "_def.json")).at("transformation")),
+                                truth, source_ft, c.unit),
+              0.06);
   }
-  EXPECT_LT(height_error_ft / static_cast<double>(aligned.size()), 0.05);
-
-  const pcl_ls3d_test::ToolRun cmp = runTool(
-      "pcl_ls3d_compare", source + " " + target + " -methods ls3d-lnd -truth " +
-                              dir.file("truth.json") + " -json " + dir.file("cmp.json"),
-      dir.path.string());
-  ASSERT_EQ(cmp.code, 0) << cmp.err;
-  const nlohmann::json row = readJson(dir.file("cmp.json")).at("methods").at(0);
-  // compare's own error (metres: working coordinates) and the one of its transformation in the
-  // files' coordinates agree.
-  const double compare_error = row.at("error").at("mean").get<double>();
-  EXPECT_LT(compare_error, 0.06);
-  EXPECT_NEAR(meanErrorInMetres(jsonTransformation(row.at("transformation")), truth, *pair.source,
-                                pair.origin),
-              compare_error, 1e-4);
-
-  const pcl_ls3d_test::ToolRun def = runTool(
-      "pcl_ls3d_deformation", target + " " + source + " -json " + dir.file("def.json"),
-      dir.path.string());
-  ASSERT_EQ(def.code, 0) << def.err;
-  EXPECT_LT(meanErrorInMetres(jsonTransformation(readJson(dir.file("def.json")).at("transformation")),
-                              truth, *pair.source, pair.origin),
-            0.06);
+  // A LAS source moved to LAS keeps its header and CRS, so its heights stay in feet, on a target
+  // in metres as well.
+  ASSERT_EQ(runTool("pcl_ls3d_register", source + " " + dir.file("target_m.las") + " -o " +
+                                             dir.file("aligned_m.las"),
+                    dir.path.string()).code,
+            0);
+  const Eigen::Matrix4d truth_in_feet =
+      heightScale(1.0 / kUsFoot) * pair.globalTruthMatrix() * heightScale(kUsFoot);
+  EXPECT_LT(meanHeightErrorInMetres(dir.file("aligned_m.las"), truth_in_feet, source_ft, kUsFoot), 0.02);
 }
 
 namespace {

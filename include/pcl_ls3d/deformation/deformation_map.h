@@ -34,9 +34,10 @@ struct DeformationMapSettings
   double k = 3.0;        ///< significance factor used (the colour range covers 2 k σ̂)
   bool lod95 = false;    ///< significance by the 95 % level of detection instead of k σ
   double cell = 0.0;     ///< cell edge; 0: 1.5 × the regions' point spacing
-  /// Plan units per height unit the residuals were computed with (HeightUnits); 1: heights as
-  /// the files store them.
-  double heights_converted_by = 1.0;
+  /// Said under the title when the heights were converted to the plan unit before matching
+  /// (HeightUnits), e.g. "heights converted from ft to m (x 0.3048006) before matching"; empty:
+  /// heights as the files store them.
+  std::string heights_note;
 };
 
 /// \brief The rasters and the rendered image.

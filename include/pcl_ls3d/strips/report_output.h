@@ -12,8 +12,11 @@ namespace pcl_ls3d {
 namespace strips {
 
 /// The report as JSON text: how it ended, strips, overlaps, log, notes, covariance, timings.
+/// \a plan_units_per_height_unit: the factor the strips' heights were adjusted with
+/// (heightFactor()); the parameters, origins and transformations are then in those working
+/// coordinates, which the JSON says.
 std::string
-reportJson(const StripAdjustmentReport& report, int indent = 2);
+reportJson(const StripAdjustmentReport& report, int indent = 2, double plan_units_per_height_unit = 1.0);
 
 /// Summary tables for a terminal (angles in mrad, m − 1 in ppm, lengths in the data's unit).
 std::string

@@ -38,6 +38,13 @@ struct InputFile
   std::map<int, std::size_t> point_sources;  ///< point-source id → points (LAS)
 };
 
+/// \brief Plan units per height unit of input \a f (maps::planUnitsPerHeightUnit()): the block
+///        is adjusted with heights in the plan unit and corrected files written in their own. An
+///        input that declares no CRS (a PCD or XYZ strip exported from the others) takes the
+///        first declared one's.
+double
+heightFactor(const std::vector<InputFile>& inputs, std::size_t f);
+
 /// \brief How strips are formed and which points are observed.
 struct StripLoadOptions
 {
