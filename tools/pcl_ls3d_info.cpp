@@ -81,8 +81,12 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   // applied the origin its header records; say so, as the file itself is not in that frame.
   if (info.has_file_origin)
     j["origin_applied"] = vec(info.file_origin);
-  if (!info.file_crs_wkt.empty())  // a PCD the tools wrote from a georeferenced input
-    j["crs_recorded"] = pcl_ls3d::maps::crsName(info.file_crs_wkt);
+  // The CRS a LAS declares in its VLRs, or a PCD / PLY the tools wrote records in its header.
+  if (const std::string wkt = pcl_ls3d::maps::crsOfFile(info); !wkt.empty()) {
+    j[info.format == "las" ? "crs_declared" : "crs_recorded"] = pcl_ls3d::maps::crsName(wkt);
+    j["crs_units"] = {{"plan", pcl_ls3d::maps::crsLinearUnitName(wkt)},
+                      {"height", pcl_ls3d::maps::crsVerticalUnitName(wkt)}};
+  }
   j["min"] = vec(info.min_file);
   j["max"] = vec(info.max_file);
   j["fields"] = info.fields;
@@ -128,6 +132,22 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   return j;
 }
 
+/// The CRS line: its name, where it comes from, and heights in another unit than the plan.
+void
+printCrs(const nlohmann::json& j)
+{
+  const bool declared = j.contains("crs_declared");
+  if (!declared && !j.contains("crs_recorded"))
+    return;
+  print_info("  crs %s (%s)\n", j[declared ? "crs_declared" : "crs_recorded"].get<std::string>().c_str(),
+             declared ? "declared in the LAS VLRs" : "recorded in the header");
+  const std::string plan = j["crs_units"]["plan"], height = j["crs_units"]["height"];
+  if (!plan.empty() && !height.empty() && plan != height)
+    print_info("  heights in %s, plan coordinates in %s: register, compare, deformation and the "
+               "strip adjustment convert the heights to %s\n",
+               height.c_str(), plan.c_str(), plan.c_str());
+}
+
 void
 printText(const nlohmann::json& j)
 {
@@ -139,8 +159,7 @@ printText(const nlohmann::json& j)
   const auto o = j["local_origin"].get<std::vector<double>>();
   const auto lo = j["min"].get<std::vector<double>>(), hi = j["max"].get<std::vector<double>>();
   // A recorded origin is the local origin too: one line, saying where it came from.
-  if (j.contains("crs_recorded"))
-    print_info("  crs %s (recorded in the header)\n", j["crs_recorded"].get<std::string>().c_str());
+  printCrs(j);
   if (j.contains("origin_applied")) {
     const auto f = j["origin_applied"].get<std::vector<double>>();
     print_info("  origin %.3f %.3f %.3f applied (local float coordinates in the file)\n", f[0], f[1],

@@ -197,6 +197,18 @@ TEST(ToolsWarnOfMixedUnits, HeightsInFeetOverMetres)
         << text;
     EXPECT_EQ(text.find("mix the two units"), std::string::npos) << text;
   }
+  // pcl_ls3d_info names the CRS and says what the tools do with such heights; not for one unit.
+  const pcl_ls3d_test::ToolRun info = runTool("pcl_ls3d_info", a, dir.path.string());
+  EXPECT_NE(info.out.find("crs WGS 84 / UTM zone 31N + NAVD88 height (ftUS) (declared in the LAS "
+                          "VLRs)\n  heights in ft, plan coordinates in m"),
+            std::string::npos)
+      << info.out;
+  const std::string c = dir.file("c.las");
+  writePatch(c, "EPSG:2154+5720", 1.0, 0.0f);
+  const pcl_ls3d_test::ToolRun one_unit = runTool("pcl_ls3d_info", c, dir.path.string());
+  EXPECT_NE(one_unit.out.find("crs RGF93 v1 / Lambert-93 + NGF-IGN69 height"), std::string::npos)
+      << one_unit.out;
+  EXPECT_EQ(one_unit.out.find("heights in"), std::string::npos) << one_unit.out;
 }
 
 namespace {
