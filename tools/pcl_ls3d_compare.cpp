@@ -54,7 +54,8 @@ printHelp(const char* name)
       "  stopped by its own criterion before the iteration limit with a finite result; trust =\n"
       "  LS3D's quality gate (- for PCL's methods: their hasConverged() is no such check).\n"
       "  Exits 1 when no method converged. Lengths are in the data's unit: that of the CRS an\n"
-      "  input declares (LAS, or a PCD header: m, ft), else \"units\"; a run without an\n"
+      "  input declares (LAS, or a PCD / PLY header: m, ft), else \"units\"; heights in\n"
+      "  another unit than the plan are matched in the plan unit. A run without an\n"
       "  estimate shows \"-\" (JSON null).\n"
       "  -truth FILE   : truth JSON with \"transformation\": 4x4 row-major source->target in file\n"
       "                  coordinates (as written by pcl_ls3d_synth); adds displacement errors\n"
@@ -288,10 +289,7 @@ loadClouds(const Options& o, Clouds& c, std::string& why)
     return false;
   c.source = toXYZ(source_lidar);
   c.target = toXYZ(target_lidar);
-  const double origin_z = c.target_info.origin.z();
-  pcl_ls3d::heightsToWorking(*c.target, c.heights.target, c.heights.target, origin_z);
-  pcl_ls3d::heightsToWorking(*c.source, c.heights.source, c.heights.target, origin_z);
-  c.working_origin = c.heights.targetToWorking(c.target_info.origin);
+  c.working_origin = pcl_ls3d::pairToWorking(c.heights, c.target_info.origin, *c.target, *c.source);
   print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "
              "(%.3f, %.3f, %.3f), in %.0f ms\n",
              o.source_path.c_str(), c.source->size(), o.target_path.c_str(), c.target->size(),

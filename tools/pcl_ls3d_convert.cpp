@@ -147,7 +147,8 @@ saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const Outpu
         break;
       }
   }
-  // The CRS goes with the points: a LAS's into a PCD header, a PCD's into a LAS (LAS 1.4, WKT).
+  // The CRS goes with the points: a LAS's into a PCD or PLY header, theirs into a LAS (LAS 1.4,
+  // WKT).
   pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsOfFile(info), s);
   if (o.las_format >= 0) {
     s.las_point_format = static_cast<std::uint8_t>(o.las_format);

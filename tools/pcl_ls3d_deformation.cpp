@@ -97,7 +97,9 @@ printHelp(const char* prog)
       "                       about 2.5 spacings, so that most cells hold points)\n"
       "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
       "                       PROJ string or WKT; default: the CRS the reference declares in its\n"
-      "                       LAS VLRs or its PCD header, if any)\n"
+      "                       LAS VLRs or its PCD / PLY header, if any); also the units of an\n"
+      "                       input that declares no CRS (heights in another unit than the plan\n"
+      "                       are converted to the plan unit for the matching)\n"
       "  -overwrite           allow replacing existing output files\n"
       "  -h                   this help\n"
       "Exit status: 0 done; 1 bad input or the matching failed (nothing written); 3 the matching\n"
@@ -416,10 +418,7 @@ loadEpochs(const Options& o, Epochs& e, std::string& error)
   if (!pcl_ls3d::tools::checkInputCrs({{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}},
                                        error, &e.heights, o.crs_wkt))
     return false;
-  const double origin_z = e.rinfo.origin.z();
-  pcl_ls3d::heightsToWorking(*e.reference, e.heights.target, e.heights.target, origin_z);
-  pcl_ls3d::heightsToWorking(*e.epoch, e.heights.source, e.heights.target, origin_z);
-  e.working_origin = e.heights.targetToWorking(e.rinfo.origin);
+  e.working_origin = pcl_ls3d::pairToWorking(e.heights, e.rinfo.origin, *e.reference, *e.epoch);
   e.load_ms = tt.toc();
   print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
              o.reference_path.c_str(), e.reference->size(), o.epoch_path.c_str(), e.epoch->size(),
@@ -499,8 +498,9 @@ printResult(const Epochs& e, const def::DeformationResult& result, const Centroi
   pcl_ls3d::tools::printTransformation(
       "Transformation (EPOCH -> REFERENCE, input coordinates):",
       e.heights.toFiles(pcl_ls3d::localToGlobal(a.transformation, origin, origin)));
-  print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)\n", c.centroid.x(),
-             c.centroid.y(), c.centroid.z(), c.shift.x(), c.shift.y(), c.shift.z());
+  print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)%s\n", c.centroid.x(),
+             c.centroid.y(), c.centroid.z(), c.shift.x(), c.shift.y(), c.shift.z(),
+             e.heights.converts() ? " (the shift with its height in the plan unit)" : "");
   printParameters(a, a.local_origin_source + origin, a.local_origin_target + origin,
                   e.heights.converts());
   if (!result.start_choice.candidates.empty()) {
@@ -539,7 +539,8 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
   nlohmann::json j;
   j["transformation"] =
       matrixJson(e.heights.toFiles(pcl_ls3d::localToGlobal(a.transformation, origin, origin)));
-  j["heights"] = pcl_ls3d::tools::heightUnitsJson(e.heights);
+  if (e.heights.converts())
+    j["heights"] = pcl_ls3d::heightUnitsJson(e.heights);
   j["converged"] = mr.termination == pcl_ls3d::TerminationType::CONVERGED;
   j["termination"] = pcl_ls3d::terminationTypeToString(mr.termination);
   j["message"] = mr.message;
@@ -550,8 +551,9 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
     s[names[i]] = finiteOrNull(a.sigmas[static_cast<int>(i)]);
   }
   j["parameters"] = p;
-  j["parameters_note"] = "reduced frame, input coordinates: x_t - local_origin_target = t + m R (x_s - "
-                         "local_origin_source); local_origin is the origin of the -o cloud's coordinates";
+  j["parameters_note"] = "reduced frame, input coordinates (heights in the plan unit when 'heights' "
+                         "says so): x_t - local_origin_target = t + m R (x_s - local_origin_source); "
+                         "local_origin is the origin of the -o cloud's coordinates";
   j["local_origin_source"] = {o_s.x(), o_s.y(), o_s.z()};
   j["local_origin_target"] = {o_t.x(), o_t.y(), o_t.z()};
   j["sigmas"] = s;

@@ -85,7 +85,8 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   if (const std::string wkt = pcl_ls3d::maps::crsOfFile(info); !wkt.empty()) {
     j[info.format == "las" ? "crs_declared" : "crs_recorded"] = pcl_ls3d::maps::crsName(wkt);
     j["crs_units"] = {{"plan", pcl_ls3d::maps::crsLinearUnitName(wkt)},
-                      {"height", pcl_ls3d::maps::crsVerticalUnitName(wkt)}};
+                      {"height", pcl_ls3d::maps::crsVerticalUnitName(wkt)},
+                      {"plan_units_per_height_unit", pcl_ls3d::maps::planUnitsPerHeightUnit(wkt)}};
   }
   j["min"] = vec(info.min_file);
   j["max"] = vec(info.max_file);
@@ -142,10 +143,11 @@ printCrs(const nlohmann::json& j)
   print_info("  crs %s (%s)\n", j[declared ? "crs_declared" : "crs_recorded"].get<std::string>().c_str(),
              declared ? "declared in the LAS VLRs" : "recorded in the header");
   const std::string plan = j["crs_units"]["plan"], height = j["crs_units"]["height"];
-  if (!plan.empty() && !height.empty() && plan != height)
-    print_info("  heights in %s, plan coordinates in %s: register, compare, deformation and the "
-               "strip adjustment convert the heights to %s\n",
-               height.c_str(), plan.c_str(), plan.c_str());
+  const double factor = j["crs_units"]["plan_units_per_height_unit"];
+  if (factor != 1.0)  // US and international feet differ too, though both are "ft"
+    print_info("  heights in %s, plan coordinates in %s (x %.7g): register, compare, deformation "
+               "and the strip adjustment convert the heights to the plan unit\n",
+               height.c_str(), plan.c_str(), factor);
 }
 
 void

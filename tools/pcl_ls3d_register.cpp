@@ -44,7 +44,9 @@ printHelp(const char* prog)
              "                       written as .las keeps its version, point format, VLRs (CRS)\n"
              "                       and every attribute: only X, Y, Z and the bounds change;\n"
              "                       other outputs declare the target's CRS (else the source's):\n"
-             "                       a PCD in its header, a LAS as a WKT VLR\n"
+             "                       a PCD or PLY in its header, a LAS as a WKT VLR. Heights in\n"
+             "                       another unit than the plan (a compound CRS, metres + US feet)\n"
+             "                       are matched in the plan unit; outputs keep the files' units\n"
              "  -rule lnd|lzd|icp    conjugate-point rule (default lnd)\n"
              "  -params 7|6|3|1      similarity, rigid (m fixed), translation, height only (default 6)\n"
              "  -fix tx,ty,...       also fix these parameters (tx ty tz phi omega kappa m)\n"
@@ -128,7 +130,7 @@ using pcl_ls3d::tools::finiteOrNull;
 
 nlohmann::json
 reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, bool converged,
-           const Eigen::Vector3d& origin)
+           const Eigen::Vector3d& origin, const Eigen::Vector3d& cloud_origin)
 {
   const auto& names = pcl_ls3d::similarityParameterNames();
   nlohmann::json j;
@@ -207,7 +209,7 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
   const Eigen::Vector3d o_t = r.local_origin_target + origin, o_s = r.local_origin_source + origin;
   j["local_origin"] = {o_t.x(), o_t.y(), o_t.z()};
   j["local_origin_source"] = {o_s.x(), o_s.y(), o_s.z()};
-  j["cloud_origin"] = {origin.x(), origin.y(), origin.z()};
+  j["cloud_origin"] = {cloud_origin.x(), cloud_origin.y(), cloud_origin.z()};  // of -o's coordinates
   return j;
 }
 
@@ -373,10 +375,8 @@ loadPair(const Options& o, Pair& pair, std::string& error)
   if (!pcl_ls3d::tools::checkInputCrs({{o.target_path, &pair.tinfo}, {o.source_path, &pair.sinfo}},
                                        error, &pair.heights))
     return false;
-  const double origin_z = pair.tinfo.origin.z();
-  pcl_ls3d::heightsToWorking(*pair.target, pair.heights.target, pair.heights.target, origin_z);
-  pcl_ls3d::heightsToWorking(*pair.source, pair.heights.source, pair.heights.target, origin_z);
-  pair.working_origin = pair.heights.targetToWorking(pair.tinfo.origin);
+  pair.working_origin =
+      pcl_ls3d::pairToWorking(pair.heights, pair.tinfo.origin, *pair.target, *pair.source);
   pair.whole_source = pair.source;
   const std::size_t target_points = pair.target->size();
   if (!keepClasses(pair.target, o.classes, o.target_path, error) ||
@@ -463,7 +463,7 @@ writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentRepor
     pcl::transformPointCloud(*pair.whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));
   if (!las_to_las)  // the target's height unit again
     pcl_ls3d::heightsToFile(aligned, pair.heights.target, pair.heights.target, pair.tinfo.origin.z());
-  const pcl_ls3d::HeightUnits in_source_units{pair.heights.source, pair.heights.source};
+  const pcl_ls3d::HeightUnits in_source_units = pcl_ls3d::HeightUnits::ofOneFile(pair.heights.source);
   if (las_to_las ? !writeMovedLas(o.source_path, in_source_units.toFiles(T_working), o.out_path,
                                   o.overwrite, error)
                  : !pcl_ls3d::io::saveCloud(o.out_path, aligned, pair.tinfo.origin, error, so))
@@ -507,10 +507,9 @@ main(int argc, char** argv)
   print_info("%s", r.fullReport().c_str());
   pcl_ls3d::tools::printTransformation("Transformation (SOURCE -> TARGET, input coordinates):", T_input);
   print_info("Timings: load %.0f ms, adjustment %.0f ms\n", pair.load_ms, t_align);
-  nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), origin);
-  j["heights"] = pcl_ls3d::tools::heightUnitsJson(pair.heights);
-  const Eigen::Vector3d& file_origin = pair.tinfo.origin;  // of the -o cloud's coordinates
-  j["cloud_origin"] = {file_origin.x(), file_origin.y(), file_origin.z()};
+  nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), origin, pair.tinfo.origin);
+  if (pair.heights.converts())
+    j["heights"] = pcl_ls3d::heightUnitsJson(pair.heights);
   j["timings_ms"] = {{"load", pair.load_ms}, {"adjust", t_align}};
   if (!o.truth_path.empty())
     reportTruthError(pair, T_working, o.truth, j);

@@ -13,8 +13,8 @@
 ///   bits, which root and /proc make meaningless).
 /// - checkInputCrs(): inputs in degrees (or earth-centred) are refused after loading, before any
 ///   work: distances and heights in degrees give a wrong answer that still converges; inputs
-///   declaring different CRSs, or mixing units, are said so in a warning (the run goes on); the
-///   pair tools take mixed-unit heights into the plan unit instead (HeightUnits).
+///   declaring different horizontal CRSs are said so in a warning (the run goes on); heights in
+///   another unit than the plan are converted to it (pairHeightUnits(), HeightUnits).
 
 #include <pcl_ls3d/common/height_units.h>
 #include <pcl_ls3d/io/cloud_io.h>
@@ -270,41 +270,33 @@ checkOutputFolder(const std::string& dir, std::string& why)
 }
 
 /// \brief Fills \a heights for a pair (target first): each file's plan units per height unit
-///        (maps::planUnitsPerHeightUnit()), one line per file converted. A file that declares no
-///        CRS (a PCD or XYZ exported from the other, an old PLY) is taken in the units of
-///        \a fallback_wkt when given, else of its partner, and said so.
+///        (maps::planUnitsPerHeightUnit()), one line per file converted
+///        (maps::heightConversionNote()). A file that declares no CRS (a PCD or XYZ exported
+///        from the other, an old PLY) is taken in the units of \a fallback_wkt when given, else
+///        of its partner.
 inline void
 pairHeightUnits(const std::vector<std::pair<std::string, std::string>>& files,
                 const std::string& fallback_wkt, HeightUnits& heights)
 {
-  std::string wkt[2] = {files[0].second, files[1].second};
-  for (int i = 0; i < 2; ++i)
-    if (!(maps::crsLinearUnit(wkt[i]) > 0.0)) {
-      wkt[i] = fallback_wkt.empty() ? files[1 - i].second : fallback_wkt;
-      if (maps::crsMixesUnits(wkt[i]))
-        pcl::console::print_info("'%s' declares no CRS: its heights are taken in %s, as %s\n",
-                                 files[i].first.c_str(), maps::crsVerticalUnitName(wkt[i]).c_str(),
-                                 fallback_wkt.empty() ? ("'" + files[1 - i].first + "' declares").c_str()
-                                                      : "-crs says");
-    }
-  heights.target = maps::planUnitsPerHeightUnit(wkt[0]);
-  heights.source = maps::planUnitsPerHeightUnit(wkt[1]);
-  for (int i = 0; i < 2; ++i)
-    if (const double f = i == 0 ? heights.target : heights.source; f != 1.0)
-      pcl::console::print_info(
-          "'%s' declares heights in %s and plan coordinates in %s (%s): heights are converted to "
-          "%s (x %.7g) for the matching; transformations and written clouds are in the file's "
-          "units\n",
-          files[static_cast<std::size_t>(i)].first.c_str(), maps::crsVerticalUnitName(wkt[i]).c_str(),
-          maps::crsLinearUnitName(wkt[i]).c_str(), maps::crsName(wkt[i]).c_str(),
-          maps::crsLinearUnitName(wkt[i]).c_str(), f);
+  double factor[2] = {1.0, 1.0};
+  for (std::size_t i = 0; i < 2; ++i) {
+    const bool declared = maps::crsLinearUnit(files[i].second) > 0.0;
+    const std::string& wkt =
+        declared ? files[i].second : (fallback_wkt.empty() ? files[1 - i].second : fallback_wkt);
+    factor[i] = maps::planUnitsPerHeightUnit(wkt);
+    if (const std::string note =
+            maps::heightConversionNote(files[i].first, wkt, declared, "the matching");
+        !note.empty())
+      pcl::console::print_info("%s\n", note.c_str());
+  }
+  heights.target = factor[0];
+  heights.source = factor[1];
 }
 
 /// \brief The loaded inputs' CRSs: false with one error line for the first input whose CRS is
 ///        not in lengths (a geographic CRS in degrees, a geocentric one); else true, after one
-///        warning line per maps::crsNotes() note (different CRSs, heights in another unit).
-///        With \a heights (a pair tool: target first, source second), the tool works on heights
-///        in the plan unit instead: pairHeightUnits() fills them, and mixed units are no warning.
+///        warning line per maps::crsNotes() note (different horizontal CRSs). With \a heights
+///        (a pair tool: target first, source second), pairHeightUnits() fills them.
 inline bool
 checkInputCrs(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs,
               std::string& why, HeightUnits* heights = nullptr, const std::string& fallback_wkt = "")
@@ -315,7 +307,7 @@ checkInputCrs(const std::vector<std::pair<std::string, const io::CloudInfo*>>& i
     if (!(why = maps::notInLengths(path, files.back().second)).empty())
       return false;
   }
-  for (const std::string& note : maps::crsNotes(files, heights != nullptr))
+  for (const std::string& note : maps::crsNotes(files))
     pcl::console::print_warn("Warning: %s\n", note.c_str());
   if (heights && files.size() == 2)
     pairHeightUnits(files, fallback_wkt, *heights);

@@ -2,7 +2,6 @@
 /// \file tool_output.h
 /// \brief Console output shared by the pcl_ls3d_* tools.
 
-#include <pcl_ls3d/common/height_units.h>
 #include <pcl_ls3d/io/json_text.h>
 
 #include <pcl/console/print.h>
@@ -43,19 +42,6 @@ writeJsonFile(const std::string& path, const Json& json)
 {
   std::ofstream out(path);
   return static_cast<bool>(out << io::toJsonText(json, 2) << "\n");
-}
-
-/// \brief What a pair tool did with heights in another unit than the plan (HeightUnits): the
-///        factors and which figures are in working coordinates; null when nothing was converted.
-inline nlohmann::json
-heightUnitsJson(const HeightUnits& heights)
-{
-  if (!heights.converts())
-    return nullptr;
-  return {{"plan_units_per_height_unit", {{"target", heights.target}, {"source", heights.source}}},
-          {"note", "heights were multiplied by these factors for the matching: parameters, sigmas, "
-                   "origins, residuals and errors are in working coordinates (heights in the plan "
-                   "unit); 'transformation' applies to the files' own coordinates"}};
 }
 
 /// \brief Prints a 4x4 transformation of input coordinates under `title`. The coordinates may be

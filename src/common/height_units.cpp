@@ -27,3 +27,19 @@ HeightUnits::toWorking(const Eigen::Matrix4d& T_files) const
 }
 
 }  // namespace pcl_ls3d
+
+namespace pcl_ls3d {
+
+nlohmann::json
+heightUnitsJson(const HeightUnits& heights)
+{
+  if (!heights.converts())
+    return nullptr;
+  return {{"plan_units_per_height_unit", {{"target", heights.target}, {"source", heights.source}}},
+          {"note", "heights were multiplied by these factors for the matching: parameters, sigmas, "
+                   "the reduced frame's origins, residuals and errors are in working coordinates "
+                   "(heights in the plan unit); 'transformation', the clouds' origins and positions "
+                   "of regions and centroids are in the files' own units"}};
+}
+
+}  // namespace pcl_ls3d

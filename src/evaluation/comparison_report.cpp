@@ -1,4 +1,5 @@
 #include <pcl_ls3d/evaluation/comparison_report.h>
+#include <pcl_ls3d/common/similarity_transform.h>
 #include <pcl_ls3d/io/json_text.h>
 
 #include <nlohmann/json.hpp>
@@ -126,16 +127,13 @@ comparisonJson(const std::vector<RegistrationRun>& runs, const ComparisonContext
                   {"unit", c.unit},
                   {"units", c.unit + ", s, rad; transformation maps source to target"}};
   if (c.heights.converts()) {
-    j["context"]["plan_units_per_height_unit"] = {{"target", c.heights.target},
-                                                  {"source", c.heights.source}};
+    j["context"]["heights"] = heightUnitsJson(c.heights);
     j["context"]["file_origin"] = {c.file_origin.x(), c.file_origin.y(), c.file_origin.z()};
   }
   json methods = json::array();
   for (const auto& r : runs) {
-    Eigen::Matrix4d shift = Eigen::Matrix4d::Identity();
-    shift.topRightCorner<3, 1>() = c.origin;
     // File coordinates: x_working = x_local + origin for both clouds, heights then in the files' units.
-    const Eigen::Matrix4d global = c.heights.toFiles(shift * r.transformation * shift.inverse());
+    const Eigen::Matrix4d global = c.heights.toFiles(localToGlobal(r.transformation, c.origin, c.origin));
     json m = {{"name", r.name},
               {"ran", r.ran},
               {"message", r.message},

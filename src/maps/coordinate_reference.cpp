@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <memory>
@@ -336,7 +337,7 @@ sameHorizontalCrs(const std::string& a, const std::string& b)
 }
 
 std::vector<std::string>
-crsNotes(const std::vector<std::pair<std::string, std::string>>& files, bool heights_converted)
+crsNotes(const std::vector<std::pair<std::string, std::string>>& files)
 {
   std::vector<std::string> notes;
   const std::pair<std::string, std::string>* first = nullptr;  // the first declared CRS
@@ -344,11 +345,6 @@ crsNotes(const std::vector<std::pair<std::string, std::string>>& files, bool hei
     const auto& [path, wkt] = file;
     if (!parse(wkt))  // none, or unreadable: no evidence of anything
       continue;
-    if (!heights_converted && crsMixesUnits(wkt))
-      notes.push_back("'" + path + "' declares heights in " + crsVerticalUnitName(wkt) +
-                      " and plan coordinates in " + unitName(crsLinearUnit(wkt)) + " (" +
-                      crsName(wkt) + "): distances, rotations and residuals mix the two units; "
-                      "convert the heights to the plan unit first");
     if (!first)
       first = &file;
     else if (!sameHorizontalCrs(first->second, wkt))
@@ -357,6 +353,22 @@ crsNotes(const std::vector<std::pair<std::string, std::string>>& files, bool hei
                       "reproject one into the other's CRS unless both describe the same frame");
   }
   return notes;
+}
+
+std::string
+heightConversionNote(const std::string& path, const std::string& wkt, bool declared,
+                     const std::string& purpose)
+{
+  const double factor = planUnitsPerHeightUnit(wkt);
+  if (factor == 1.0)
+    return "";
+  char times[32];
+  std::snprintf(times, sizeof times, "%.7g", factor);
+  const std::string plan = crsLinearUnitName(wkt);
+  return "'" + path + "' " + (declared ? "declares" : "declares no CRS, taken as") + " heights in " +
+         crsVerticalUnitName(wkt) + " and plan coordinates in " + plan + " (" + crsName(wkt) +
+         "): heights are converted to " + plan + " (x " + times + ") for " + purpose +
+         "; transformations and written clouds are in the file's units";
 }
 
 io::LasVlr

@@ -113,13 +113,15 @@ reportJson(const StripAdjustmentReport& r, int indent, double plan_units_per_hei
   j["model"] = r.model;
   j["precision_model"] = r.precision_model;
   j["parameter_order"] = {"tx", "ty", "tz", "phi", "omega", "kappa", "m"};
-  j["parameter_frame"] = "x' = origin + t + m R(phi, omega, kappa) (x - origin), per strip origin, file coordinates";
-  if (plan_units_per_height_unit != 1.0) {
-    j["parameter_frame"] = "x' = origin + t + m R(phi, omega, kappa) (x - origin), per strip origin, file "
-                           "coordinates with heights times plan_units_per_height_unit (the corrected "
-                           "files keep their own units)";
-    j["plan_units_per_height_unit"] = plan_units_per_height_unit;
-  }
+  const bool converted = plan_units_per_height_unit != 1.0;
+  j["parameter_frame"] = std::string("x' = origin + t + m R(phi, omega, kappa) (x - origin), per strip "
+                                     "origin, file coordinates") +
+                         (converted ? " with heights in the plan unit (see heights)" : "");
+  if (converted)
+    j["heights"] = {{"plan_units_per_height_unit", plan_units_per_height_unit},
+                    {"note", "heights were multiplied by this factor for the adjustment: parameters, "
+                             "origins, transformations and discrepancies are in working coordinates; "
+                             "the corrected files keep their own units"}};
   j["block_origin"] = vec(r.block_origin);
   j["footprint_cell"] = r.footprint_cell;
   j["notes"] = r.notes;

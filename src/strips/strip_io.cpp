@@ -32,14 +32,6 @@ struct OpenInput
   double height_factor = 1.0;
 };
 
-std::string
-sevenDigits(double v)
-{
-  char text[32];
-  std::snprintf(text, sizeof text, "%.7g", v);
-  return text;
-}
-
 bool
 isLas(const std::string& path)
 {
@@ -173,20 +165,15 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
     crs_of_file.emplace_back(info.path, info.crs_wkt);
     out.inputs.push_back(std::move(info));
   }
-  for (std::string& note : maps::crsNotes(crs_of_file, true))
+  for (std::string& note : maps::crsNotes(crs_of_file))
     out.notes.push_back(std::move(note));
   for (std::size_t f = 0; f < paths.size(); ++f) {
     open[f].height_factor = heightFactor(out.inputs, f);
-    if (open[f].height_factor == 1.0)
-      continue;
-    const std::string& wkt = crs_of_file[f].second.empty() ? out.crs_wkt : crs_of_file[f].second;
-    out.notes.push_back("'" + paths[f] + "' " +
-                        (crs_of_file[f].second.empty() ? "declares no CRS, taken as " : "declares ") +
-                        "heights in " + maps::crsVerticalUnitName(wkt) + " and plan coordinates in " +
-                        maps::crsLinearUnitName(wkt) + " (" + maps::crsName(wkt) +
-                        "): heights are converted to " + maps::crsLinearUnitName(wkt) + " (x " +
-                        sevenDigits(open[f].height_factor) +
-                        ") for the adjustment; corrected strips are in the file's units");
+    const bool declared = maps::crsLinearUnit(out.inputs[f].crs_wkt) > 0.0;
+    if (std::string note = maps::heightConversionNote(paths[f], heightCrs(out.inputs, f), declared,
+                                                      "the adjustment");
+        !note.empty())
+      out.notes.push_back(std::move(note));
   }
   // The strips: one per input, or one per non-zero point-source id over all inputs.
   if (options.split_by_point_source) {
@@ -253,15 +240,21 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
   return true;
 }
 
+const std::string&
+heightCrs(const std::vector<InputFile>& inputs, std::size_t f)
+{
+  if (maps::crsLinearUnit(inputs[f].crs_wkt) > 0.0)
+    return inputs[f].crs_wkt;
+  for (const InputFile& in : inputs)
+    if (maps::crsLinearUnit(in.crs_wkt) > 0.0)
+      return in.crs_wkt;
+  return inputs[f].crs_wkt;
+}
+
 double
 heightFactor(const std::vector<InputFile>& inputs, std::size_t f)
 {
-  if (maps::crsLinearUnit(inputs[f].crs_wkt) > 0.0)
-    return maps::planUnitsPerHeightUnit(inputs[f].crs_wkt);
-  for (const InputFile& in : inputs)
-    if (maps::crsLinearUnit(in.crs_wkt) > 0.0)
-      return maps::planUnitsPerHeightUnit(in.crs_wkt);
-  return 1.0;
+  return maps::planUnitsPerHeightUnit(heightCrs(inputs, f));
 }
 
 bool

@@ -75,10 +75,11 @@ writeCorrected(const LoadedStrips& block, const OutputUnit& unit,
   const double f = heightFactor(block.inputs, static_cast<std::size_t>(unit.file));
   std::vector<Eigen::Matrix4d> in_file_units = corrections;
   for (Eigen::Matrix4d& T : in_file_units)
-    T = HeightUnits{f, f}.toFiles(T);
+    T = HeightUnits::ofOneFile(f).toFiles(T);
   auto correction = [&](int psid) -> const Eigen::Matrix4d* {
     const int k = lookup(psid);
-    if (k < 0 || static_cast<std::size_t>(k) >= in_file_units.size() || corrections[static_cast<std::size_t>(k)].isIdentity(0.0))
+    if (k < 0 || static_cast<std::size_t>(k) >= in_file_units.size() ||
+        in_file_units[static_cast<std::size_t>(k)].isIdentity(0.0))
       return nullptr;
     return &in_file_units[static_cast<std::size_t>(k)];
   };

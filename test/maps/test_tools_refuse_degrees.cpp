@@ -166,7 +166,7 @@ TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
 // LCC in metres + NAVD88 height in US feet, as PDAL's autzen-bmx files) is said so: the tools
 // convert the heights to the plan unit, in one line each (the strip adjustment: a note). One
 // unit throughout: nothing said.
-TEST(ToolsWarnOfMixedUnits, HeightsInFeetOverMetres)
+TEST(ToolsSayHeightsAreConverted, HeightsInFeetOverMetres)
 {
   const std::string mixed_crs = pcl_ls3d::maps::crsFromUserInput("EPSG:32631+6360");
   ASSERT_FALSE(mixed_crs.empty());
@@ -200,7 +200,7 @@ TEST(ToolsWarnOfMixedUnits, HeightsInFeetOverMetres)
   // pcl_ls3d_info names the CRS and says what the tools do with such heights; not for one unit.
   const pcl_ls3d_test::ToolRun info = runTool("pcl_ls3d_info", a, dir.path.string());
   EXPECT_NE(info.out.find("crs WGS 84 / UTM zone 31N + NAVD88 height (ftUS) (declared in the LAS "
-                          "VLRs)\n  heights in ft, plan coordinates in m"),
+                          "VLRs)\n  heights in ft, plan coordinates in m (x 0.3048006)"),
             std::string::npos)
       << info.out;
   const std::string c = dir.file("c.las");
@@ -362,7 +362,7 @@ TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
     ASSERT_EQ(reg.code, 0) << reg.err;
     EXPECT_EQ((reg.out + reg.err).find("mix the two units"), std::string::npos);
     EXPECT_EQ(std::string(c.crs).empty(),
-              (reg.out + reg.err).find("declares no CRS: its heights are taken in ft") !=
+              (reg.out + reg.err).find("target_nocrs.pcd' declares no CRS, taken as heights in ft") !=
                   std::string::npos)
         << reg.out;
     const nlohmann::json reg_json = readJson(dir.file(stem + "_reg.json"));

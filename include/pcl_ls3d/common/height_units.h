@@ -2,10 +2,10 @@
 /// \file height_units.h
 /// \brief Heights in the plan unit. A compound CRS can store plan coordinates in metres and
 ///        heights in US survey feet (PDAL's autzen-bmx: NAD83 / Oregon LCC + NAVD88 height in
-///        ftUS). Rotations, normals and residuals need one unit, so the pair tools work in
-///        "working coordinates" (heights multiplied by plan units per height unit,
-///        maps::planUnitsPerHeightUnit()) and give transformations and written clouds back in
-///        the files' own units.
+///        ftUS). Rotations, normals and residuals need one unit, so the pair tools and the strip
+///        adjustment work in "working coordinates" (heights multiplied by plan units per height
+///        unit, maps::planUnitsPerHeightUnit()) and give transformations and written clouds back
+///        in the files' own units.
 ///
 /// Local clouds share the target's origin o (file = local + o); the working origin is
 /// targetToWorking(o), and a source point's working height is f_s (z + o_z) - f_t o_z.
@@ -13,6 +13,7 @@
 #include <pcl/point_cloud.h>
 
 #include <Eigen/Core>
+#include <nlohmann/json.hpp>
 
 namespace pcl_ls3d {
 
@@ -21,6 +22,14 @@ struct HeightUnits
 {
   double target = 1.0;
   double source = 1.0;
+
+  /// Both sides in one file's units (a strip corrected in its own file, a LAS source moved
+  /// with its own header).
+  static HeightUnits
+  ofOneFile(double factor)
+  {
+    return {factor, factor};
+  }
 
   /// True when either file's heights are converted.
   bool
@@ -45,13 +54,6 @@ struct HeightUnits
     return {p.x(), p.y(), p.z() * target};
   }
 
-  /// A point in working coordinates of the target's frame back in its file's units.
-  Eigen::Vector3d
-  targetToFile(const Eigen::Vector3d& p) const
-  {
-    return {p.x(), p.y(), p.z() / target};
-  }
-
   /// A point of the source, untransformed, in working coordinates back in its file's units.
   Eigen::Vector3d
   sourceToFile(const Eigen::Vector3d& p) const
@@ -59,6 +61,12 @@ struct HeightUnits
     return {p.x(), p.y(), p.z() / source};
   }
 };
+
+/// \brief What a report says about converted heights: {"plan_units_per_height_unit": {"target",
+///        "source"}, "note": which figures are in working coordinates}; null when nothing was
+///        converted.
+nlohmann::json
+heightUnitsJson(const HeightUnits& heights);
 
 /// \brief Converts the heights of a cloud held in local coordinates around the file origin
 ///        \a origin_z (target's height unit) into working coordinates around the working origin:
@@ -80,6 +88,18 @@ heightsToFile(pcl::PointCloud<PointT>& cloud, double factor, double target_facto
   const double shift = (factor - target_factor) * origin_z;
   for (auto& p : cloud)
     p.z = static_cast<float>((p.z - shift) / factor);
+}
+
+/// \brief A pair loaded around the target file's origin \a file_origin (the source in the
+///        target's origin) into working coordinates; returns the working origin.
+template <typename PointT>
+Eigen::Vector3d
+pairToWorking(const HeightUnits& h, const Eigen::Vector3d& file_origin, pcl::PointCloud<PointT>& target,
+              pcl::PointCloud<PointT>& source)
+{
+  heightsToWorking(target, h.target, h.target, file_origin.z());
+  heightsToWorking(source, h.source, h.target, file_origin.z());
+  return h.targetToWorking(file_origin);
 }
 
 }  // namespace pcl_ls3d

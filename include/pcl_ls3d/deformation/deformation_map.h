@@ -35,7 +35,7 @@ struct DeformationMapSettings
   bool lod95 = false;    ///< significance by the 95 % level of detection instead of k σ
   double cell = 0.0;     ///< cell edge; 0: 1.5 × the regions' point spacing
   /// Said under the title when the heights were converted to the plan unit before matching
-  /// (HeightUnits), e.g. "heights converted from ft to m (x 0.3048006) before matching"; empty:
+  /// (HeightUnits), e.g. "heights converted to m (x 0.3048006) before matching"; empty:
   /// heights as the files store them.
   std::string heights_note;
 };

@@ -25,9 +25,9 @@ crsFromLasVlrs(const std::vector<io::LasVlr>& vlrs, std::string* why = nullptr);
 io::LasVlr
 wktVlr(const std::string& wkt);
 
-/// Makes a written cloud declare \a wkt (nothing for an empty WKT): a PCD records it in its
-/// header (SaveOptions::crs_wkt), a LAS gets its WKT VLR (LAS 1.4) unless its VLRs declare a CRS
-/// already (copied from a LAS input).
+/// Makes a written cloud declare \a wkt (nothing for an empty WKT): a PCD or PLY records it in
+/// its header (SaveOptions::crs_wkt), a LAS gets its WKT VLR (LAS 1.4) unless its VLRs declare a
+/// CRS already (copied from a LAS input).
 void
 recordCrs(const std::string& wkt, io::SaveOptions& options);
 
@@ -99,19 +99,24 @@ sameCrs(const std::string& a, const std::string& b);
 bool
 sameHorizontalCrs(const std::string& a, const std::string& b);
 
-/// Notes on the CRSs of files used together, (path, WKT) in order: for each file whose heights
-/// are in another unit than its plan coordinates (crsMixesUnits()), "'PATH' declares heights in
-/// ft and plan coordinates in m (...): distances, rotations and residuals mix the two units;
-/// convert the heights to the plan unit first"; for each file whose horizontal CRS differs from
-/// the first declared one, "'B' declares WGS 84 / UTM 31N, 'A' RGF93 v1 / Lambert-93: their
-/// coordinates are used as they are; reproject one into the other's CRS unless both describe
-/// the same frame". Notes, not refusals: two definitions of one frame can differ in GDAL's eyes.
-/// Files that declare no CRS, or one GDAL cannot read, give none. \a heights_converted: the
-/// caller works on heights in the plan unit (planUnitsPerHeightUnit()), so mixed units are no
-/// note.
+/// Notes on the CRSs of files used together, (path, WKT) in order: for each file whose
+/// horizontal CRS differs from the first declared one, "'B' declares WGS 84 / UTM 31N, 'A'
+/// RGF93 v1 / Lambert-93: their coordinates are used as they are; reproject one into the other's
+/// CRS unless both describe the same frame". Notes, not refusals: two definitions of one frame
+/// can differ in GDAL's eyes. Files that declare no CRS, or one GDAL cannot read, give none.
+/// (Heights in another unit than the plan are converted by the tools: heightConversionNote().)
 std::vector<std::string>
-crsNotes(const std::vector<std::pair<std::string, std::string>>& files,
-         bool heights_converted = false);
+crsNotes(const std::vector<std::pair<std::string, std::string>>& files);
+
+/// The line that says \a path's heights are converted to the plan unit for \a purpose ("the
+/// matching", "the adjustment"): "'PATH' declares heights in ft and plan coordinates in m
+/// (NAME): heights are converted to m (x 0.3048006) for PURPOSE; transformations and written
+/// clouds are in the file's units"; for a file that declares no CRS and is taken in \a wkt's
+/// units (\a declared false) "'PATH' declares no CRS, taken as heights in ft and plan ...".
+/// Empty when \a wkt needs no conversion (planUnitsPerHeightUnit() is 1).
+std::string
+heightConversionNote(const std::string& path, const std::string& wkt, bool declared,
+                     const std::string& purpose);
 
 }  // namespace maps
 }  // namespace pcl_ls3d

@@ -38,10 +38,13 @@ struct InputFile
   std::map<int, std::size_t> point_sources;  ///< point-source id → points (LAS)
 };
 
-/// \brief Plan units per height unit of input \a f (maps::planUnitsPerHeightUnit()): the block
-///        is adjusted with heights in the plan unit and corrected files written in their own. An
-///        input that declares no CRS (a PCD or XYZ strip exported from the others) takes the
-///        first declared one's.
+/// \brief The CRS whose units input \a f is taken in: its own, or for an input that declares
+///        none (a PCD or XYZ strip exported from the others) the first declared one.
+const std::string&
+heightCrs(const std::vector<InputFile>& inputs, std::size_t f);
+
+/// \brief Plan units per height unit of input \a f (of heightCrs()): the block is adjusted with
+///        heights in the plan unit and corrected files are written in their own.
 double
 heightFactor(const std::vector<InputFile>& inputs, std::size_t f);
 
