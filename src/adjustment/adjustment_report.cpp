@@ -76,7 +76,8 @@ AdjustmentReport::fullReport() const
                : format("  quality: sigma0 = %.3g x the surfaces' own noise (%.3g)", quality.sigma0_ratio,
                         quality.expected_noise))
        << format(", coverage %.3f, rejected %.3f", quality.coverage, quality.rejected_fraction)
-       << format(", moved %.4g (position sigma %.3g)", quality.movement, quality.position_sigma) << ": "
+       << format(", moved %.4g (position sigma %.3g), kept %.3g of the start's correspondences",
+                 quality.movement, quality.position_sigma, quality.observations_kept) << ": "
        << (quality.trustworthy ? "trustworthy\n" : "NOT TRUSTWORTHY\n");
   os << format("  local origin (source) = (%.4f, %.4f, %.4f)\n", local_origin_source.x(),
                local_origin_source.y(), local_origin_source.z());

@@ -104,8 +104,9 @@ AdjustmentSettings::isValid(std::string* why) const
     return fail("max_scale_deviation, max_sigma0_ratio must be > 0, max_median_gradient and max_scale_growth >= 1 "
                 "(+inf switches a test off)");
   if (!(min_coverage >= 0.0 && min_coverage <= 1.0) ||
-      !(max_rejected_fraction >= 0.0 && max_rejected_fraction <= 1.0))
-    return fail("min_coverage and max_rejected_fraction must be in [0, 1]");
+      !(max_rejected_fraction >= 0.0 && max_rejected_fraction <= 1.0) ||
+      !(min_observations_kept >= 0.0 && min_observations_kept <= 1.0))
+    return fail("min_coverage, max_rejected_fraction and min_observations_kept must be in [0, 1]");
   if (!(min_movement_significance >= 0.0) || std::isinf(min_movement_significance) ||
       !(max_position_sigma_ratio > 0.0))
     return fail("min_movement_significance must be >= 0 and finite (0 switches the test off), "

@@ -109,6 +109,10 @@ measureQuality(const QualityInputs& in, const ObservationSet& observations)
   q.position_sigma = cornerPositionSigma(in.estimate, in.covariance, in.source_box);
   q.median_gradient = medianGradient(observations);
   q.start_scale = in.start_scale;
+  q.observations_kept = in.start_correspondences > 0
+                            ? static_cast<double>(in.correspondences) /
+                                  static_cast<double>(in.start_correspondences)
+                            : 1.0;
   q.final_scale = robustScale(observations.distances());
   return q;
 }
@@ -160,6 +164,10 @@ applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimate
                   q.position_sigma / q.expected_noise, s.max_position_sigma_ratio);
     add(buf);
   }
+  if (q.observations_kept < s.min_observations_kept)
+    add(figure("the adjustment ended with %.3g of the correspondences it started with (limit %.3g): "
+               "the source slid off the overlap",
+               q.observations_kept, s.min_observations_kept));
   if (q.median_gradient > s.max_median_gradient)
     add(figure("most observations lie on surfaces steeper than the rule measures (median gradient "
                "%.3g, limit %.3g): use a normal-distance rule (LND)",

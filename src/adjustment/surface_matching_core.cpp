@@ -54,6 +54,7 @@ struct PairRun
   Vector7d start;                  // the parameters at the initial guess
   double source_noise = 0.0;       // σ_s, the source's own roughness
   double start_scale = 0.0;        // 1.4826 · median |l| at the initial guess
+  std::size_t start_correspondences = 0;  // observations at the initial guess
   double spacing = 0.0;            // the target's point spacing (nearest-neighbour median)
   double guess_uncertainty = 0.0;  // the annealed cut's floor in the first iteration
   double normal_variance = -1.0;   // σ_u² of the target's normals where observed (< 0: not yet)
@@ -185,6 +186,7 @@ assess(const PairRun& run, const ObservationSet& obs, const TargetSurface& targe
   in.correspondences = obs.size();
   in.used = report.observations_used;
   in.start_scale = run.start_scale;
+  in.start_correspondences = run.start_correspondences;
   in.start = run.start;
   in.estimate = run.setup.source.values;
   in.source_box = run.setup.source_box;
@@ -279,8 +281,10 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       return noConjugatePoint(source, guess, target, pair.setup, report);
     if (tooFewObservations(obs.size(), it, settings, report))
       return report;
-    if (it == 1)
+    if (it == 1) {
       pair.start_scale = robustScale(obs.distances());
+      pair.start_correspondences = obs.size();
+    }
     pair.eiv.update(pair.setup.source.values[SCALE], pair.sol.sigma0, meanSquaredGradient(obs));
     const SourceRows row{matcher_, obs, pair.eiv};
     // Stages 3–4: robust weights (eq. 15), normal equations (eq. 8), solve (eqs. 9–11).

@@ -5,6 +5,8 @@
 // message) and must leave good fits CONVERGED.
 #include "ls3d_test_utils.h"
 
+#include <pcl_ls3d/synth/li_surface.h>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -143,4 +145,40 @@ TEST(QualityGate, VerticalRuleOnSteepSurfacesIsValidAndCanBeFlagged)
   const auto err = displacementError(*pair.source, lnd.getFinalTransformation().cast<double>(),
                                      pair.truth.matrix());
   EXPECT_LT(err.mean, 0.7 * 0.02);
+}
+
+// Found on a small, nearly flat surface with its middle 38 % raised by 8 σ (identity truth): the
+// source slid 26 m off the raised patch until only 14 % of its correspondences were left, with
+// σ0 at the noise and the move 23 × its position σ — CONVERGED and trusted. The share of the
+// start's correspondences kept at the end refuses it; without that test it would pass.
+TEST(QualityGate, SlideOffTheOverlapIsNotTrusted)
+{
+  pcl_ls3d::synth::LiSurfaceSettings s;
+  s.grid_size = 30;
+  s.spacing = 1.2;
+  s.relief = 0.5;
+  s.wavelength = 40.0;
+  s.noise_sigma = 0.03;
+  s.deformation_percent = 38.0;
+  s.deformation_c = 8.0;
+  s.position = pcl_ls3d::synth::DeformationPosition::MIDDLE;
+  s.truth = pcl_ls3d::SimilarityTransform();
+  const pcl_ls3d::synth::LiSurface li = pcl_ls3d::synth::makeLiSurface(s);
+  ASSERT_EQ(li.mate->size(), 900u);
+  const Cloud::Ptr source = li.mate, target = li.reference;
+  LS3D gated;
+  const pcl_ls3d::AdjustmentReport r = register_(source, target, gated);
+  EXPECT_FALSE(gated.hasConverged());
+  EXPECT_EQ(r.termination, TerminationType::UNRELIABLE) << r.message;
+  EXPECT_NE(r.message.find("the source slid off the overlap"), std::string::npos) << r.message;
+  EXPECT_LT(r.quality.observations_kept, 0.5);
+  const double slide = r.transformation.block<3, 1>(0, 3).norm();
+  EXPECT_GT(slide, 5.0);  // it did slide (truth: 0)
+  // The other tests alone pass it: this one is what refuses it.
+  pcl_ls3d::AdjustmentSettings without;
+  without.min_observations_kept = 0.0;
+  LS3D ungated;
+  ungated.setAdjustmentSettings(without);
+  register_(source, target, ungated);
+  EXPECT_TRUE(ungated.hasConverged()) << ungated.getReport().message;
 }

@@ -73,6 +73,9 @@ struct QualityFigures
   /// ends worse than it started moved away from the data.
   double start_scale = 0.0;
   double final_scale = 0.0;
+  /// Correspondences at the end as a fraction of those at the initial guess: far below 1 the
+  /// source slid off the overlap until what is left of it fits.
+  double observations_kept = 1.0;
   bool trustworthy = false;           ///< every figure within the settings' limits
 };
 

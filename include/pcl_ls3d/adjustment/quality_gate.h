@@ -30,6 +30,7 @@ struct QualityInputs
   std::size_t correspondences = 0;          ///< observations of the last iteration
   std::size_t used = 0;                     ///< of them with non-zero weight
   double start_scale = 0.0;                 ///< 1.4826 · median |l| of the first iteration's observations
+  std::size_t start_correspondences = 0;    ///< observations of the first iteration
   Vector7d start = Vector7d::Zero();        ///< parameters at the initial guess (reduced frame)
   Vector7d estimate = Vector7d::Zero();     ///< final parameters
   Eigen::AlignedBox3d source_box;           ///< of the reduced source points
