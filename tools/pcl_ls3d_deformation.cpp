@@ -61,7 +61,9 @@ printHelp(const char* prog)
       "                       MAD), huber, zuo, ls (plain least squares). mm and lms also fit from\n"
       "                       a block start and keep the fit whose stable part scatters least\n"
       "  -rule lzd|lnd        residuals along z (LHD, default) or along the surface normal\n"
-      "  -params 6|7|3        rigid (default), similarity, translation\n"
+      "  -params 6|7|3        rigid (default), similarity, translation; a rigid or similarity\n"
+      "                       fit the surface does not determine (nearly flat terrain) is\n"
+      "                       replaced by the translation alone, with a note\n"
       "  -subsets N           random subsets per search round for lms/mm (default: lms from Li\n"
       "                       eq. 12, at least 3000 above 40 %% contamination; mm 500 FAST-LTS\n"
       "                       starts); up to 3 rounds, re-linearised while the fit moves, so a run\n"
@@ -88,7 +90,8 @@ printHelp(const char* prog)
       "                       coordinates\n"
       "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
       "                       coordinates), converged, parameters and sigmas (reduced frame about\n"
-      "                       local_origin_source / local_origin_target), estimator, scale,\n"
+      "                       local_origin_source / local_origin_target), params (free\n"
+      "                       parameters; model_note when fewer than asked), estimator, scale,\n"
       "                       subsets, percent_deformed, regions\n"
       "  -map PREFIX          PREFIX.png (residual map, diverging colour bar, significant regions\n"
       "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals, NaN\n"
@@ -495,6 +498,8 @@ printResult(const Epochs& e, const def::DeformationResult& result, const Centroi
   print_info("%s\n", mr.brief().c_str());
   if (!mr.message.empty())
     print_info("  %s\n", mr.message.c_str());
+  if (!result.model_note.empty())
+    print_warn("Note: %s\n", result.model_note.c_str());
   pcl_ls3d::tools::printTransformation(
       "Transformation (EPOCH -> REFERENCE, input coordinates):",
       e.heights.toFiles(pcl_ls3d::localToGlobal(a.transformation, origin, origin)));
@@ -558,6 +563,12 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
   j["local_origin_target"] = {o_t.x(), o_t.y(), o_t.z()};
   j["sigmas"] = s;
   j["estimator"] = mr.estimator;
+  int free_parameters = 0;
+  for (int i = 0; i < 7; ++i)
+    free_parameters += !o.settings.matching.adjustment.isFixed(i);
+  j["params"] = result.model_note.empty() ? free_parameters : 3;
+  if (!result.model_note.empty())
+    j["model_note"] = result.model_note;
   j["method"] = pcl_ls3d::toString(mr.method);
   j["rule"] = o.rule_text;
   j["scale"] = mr.scale;

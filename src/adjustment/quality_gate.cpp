@@ -117,6 +117,13 @@ measureQuality(const QualityInputs& in, const ObservationSet& observations)
   return q;
 }
 
+bool
+moveUndetermined(const QualityFigures& q, const AdjustmentSettings& s)
+{
+  return q.position_sigma > s.max_position_sigma_ratio * q.expected_noise &&
+         q.movement > q.expected_noise && q.movement < s.min_movement_significance * q.position_sigma;
+}
+
 TerminationType
 applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimated,
                  const AdjustmentSettings& s, TerminationType termination, std::string& why)
@@ -153,9 +160,7 @@ applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimate
   // Both: the data fix the source's position far worse than the surfaces' noise, and the move
   // lies within that uncertainty. A move the data do support (significant) is kept, however
   // weak the geometry.
-  if (q.position_sigma > s.max_position_sigma_ratio * q.expected_noise && q.movement > q.expected_noise &&
-      q.movement < s.min_movement_significance * q.position_sigma)
-  {
+  if (moveUndetermined(q, s)) {
     char buf[320];
     std::snprintf(buf, sizeof(buf),
                   "the source moved %.3g, only %.3g x its position sigma %.3g (limit %.3g), which is "

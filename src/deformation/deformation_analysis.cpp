@@ -1,6 +1,9 @@
 #include <pcl_ls3d/deformation/deformation_analysis.h>
 
+#include <pcl_ls3d/adjustment/quality_gate.h>
+
 #include <algorithm>
+#include <cstdio>
 #include <random>
 
 namespace pcl_ls3d {
@@ -40,17 +43,14 @@ DeformationSettings::isValid(std::string* why) const
          refinement.isValid(why);
 }
 
+namespace {
+
 DeformationResult
-analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface& reference,
-                   const ConjugateRule& rule, const DeformationSettings& settings, const Eigen::Matrix4d& guess)
+analyseWithModel(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface& reference,
+                 const ConjugateRule& rule, const DeformationSettings& settings,
+                 const Eigen::Matrix4d& guess)
 {
   DeformationResult out;
-  std::string why;
-  if (!settings.isValid(&why)) {
-    out.matching.termination = TerminationType::INVALID_INPUT;
-    out.matching.message = "invalid settings: " + why;
-    return out;
-  }
   const std::vector<int> sample = matchingSample(epoch, settings.matching_points);
   std::vector<Eigen::Vector3d> sampled;
   if (!sample.empty()) {
@@ -95,6 +95,51 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
   out.field = computeResidualField(epoch, reference, rule, out.matching.adjustment, out.matching.scale, rs);
   out.regions = analyseRegions(epoch, out.field, regions);
   return out;
+}
+
+/// The fit failed because the data do not determine where a rotating model puts the epoch.
+bool
+rotationsUndetermined(const DeformationResult& r, const AdjustmentSettings& adjustment)
+{
+  const bool rotates = !adjustment.isFixed(3) || !adjustment.isFixed(4) || !adjustment.isFixed(5);
+  return rotates && !r.ok() && r.matching.adjustment.hasEstimate() &&
+         moveUndetermined(r.matching.adjustment.quality, adjustment);
+}
+
+}  // namespace
+
+DeformationResult
+analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface& reference,
+                   const ConjugateRule& rule, const DeformationSettings& settings, const Eigen::Matrix4d& guess)
+{
+  std::string why;
+  if (!settings.isValid(&why)) {
+    DeformationResult out;
+    out.matching.termination = TerminationType::INVALID_INPUT;
+    out.matching.message = "invalid settings: " + why;
+    return out;
+  }
+  DeformationResult out = analyseWithModel(epoch, reference, rule, settings, guess);
+  if (!settings.translation_when_undetermined ||
+      !rotationsUndetermined(out, settings.matching.adjustment))
+    return out;
+  DeformationSettings shift = settings;
+  shift.matching.adjustment.setParameterModel(ParameterModel::TRANSLATION_3);
+  shift.matching.sample_size = std::min(shift.matching.sample_size, 4);  // p + 1, as for 6 and 7
+  DeformationResult reduced = analyseWithModel(epoch, reference, rule, shift, guess);
+  if (!reduced.ok()) {
+    out.matching.message += "; with the translation alone: " + reduced.matching.message;
+    return out;
+  }
+  const QualityFigures& q = out.matching.adjustment.quality;
+  char note[240];
+  std::snprintf(note, sizeof note,
+                "translation only: the data do not determine the %s fit (it moved %.3g, its "
+                "position sigma %.3g is %.3g x the surfaces' noise)",
+                settings.matching.adjustment.isFixed(6) ? "rigid" : "similarity", q.movement,
+                q.position_sigma, q.position_sigma / q.expected_noise);
+  reduced.model_note = note;
+  return reduced;
 }
 
 }  // namespace deformation

@@ -166,6 +166,29 @@ highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, Ro
   return true;
 }
 
+/// Why the least-squares start is no place for the robust stages to begin ("" when it is).
+/// On nearly flat terrain with a raised patch the all-points fit slides sideways off the
+/// overlap (to 0 observations, or below the quality gate's share of its first ones); the
+/// robust stages then begin at the guess, which the start could not improve.
+std::string
+startSlidOff(const AdjustmentReport& start, const AdjustmentSettings& settings)
+{
+  char line[160];
+  if (!start.hasEstimate()) {
+    std::snprintf(line, sizeof line, "the least-squares start ended %s (%s)",
+                  terminationTypeToString(start.termination), start.message.c_str());
+    return line;
+  }
+  if (start.quality.observations_kept < settings.min_observations_kept) {
+    std::snprintf(line, sizeof line,
+                  "the least-squares start slid off the overlap (kept %.3f of its first "
+                  "correspondences)",
+                  start.quality.observations_kept);
+    return line;
+  }
+  return {};
+}
+
 }  // namespace
 
 const char*
@@ -267,34 +290,46 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
   SurfaceMatchingCore core;
   const LeastSquaresEstimator ls;
   Eigen::Matrix4d from = guess;
+  std::string start_note;  // why the robust stages begin at the guess
   if (s.least_squares_start || s.method == RobustMethod::LEAST_SQUARES) {
     report.start = core.run(points, point_indices, reference, rule, ls, s.adjustment, guess);
     report.iterations = report.start.iterations;
     // The start only brings the surfaces close: with much of the surface moved the quality gate
-    // rightly calls it untrustworthy, but its estimate is what the robust stages start from.
-    if (!report.start.hasEstimate()) {
+    // rightly calls it untrustworthy, but its estimate is what the robust stages start from,
+    // unless it slid off the overlap. Plain least squares has no other answer; an input the
+    // start found nothing in is no better at the guess.
+    start_note = startSlidOff(report.start, s.adjustment);
+    const bool no_input = report.start.termination == TerminationType::INVALID_INPUT ||
+                          report.start.termination == TerminationType::NO_OVERLAP;
+    if (!report.start.hasEstimate() && (s.method == RobustMethod::LEAST_SQUARES || no_input)) {
       report.adjustment = report.start;
       return fail(report, report.start.termination, "least-squares start: " + report.start.message);
     }
-    from = report.start.transformation;
+    if (start_note.empty())
+      from = report.start.transformation;
   }
   double fixed_scale = 0.0;
   std::vector<std::uint8_t> held_out;  // MM: points beyond 2.5 ŝ of the start
+  const auto failed = [&](TerminationType type, const std::string& message) {
+    return fail(report, type,
+                start_note.empty() ? message : start_note + "; from the guess: " + message);
+  };
 
   // 2. High-breakdown start (LMS, MM).
   if (s.method == RobustMethod::LMS || s.method == RobustMethod::MM) {
     LinearizedMatching lin;
     TerminationType failure = TerminationType::NO_OVERLAP;
     if (!lin.reset(points, reference, rule, s.adjustment, from, &why, &failure))
-      return fail(report, failure, why);
+      return failed(failure, why);
     const std::size_t matched = lin.size();
     if (matched < static_cast<std::size_t>(std::max(s.sample_size, lin.freeParameters() + 1)))
-      return fail(report, TerminationType::TOO_FEW_OBSERVATIONS,
-                  "only " + std::to_string(matched) + " epoch points have a conjugate point (sample size " +
-                      std::to_string(s.sample_size) + ")");
+      return failed(TerminationType::TOO_FEW_OBSERVATIONS,
+                    "only " + std::to_string(matched) +
+                        " epoch points have a conjugate point (sample size " +
+                        std::to_string(s.sample_size) + ")");
     if (!highBreakdownSearch(lin, s, report))
-      return fail(report, TerminationType::SINGULAR,
-                  "no subset of " + std::to_string(s.sample_size) + " points determined the parameters");
+      return failed(TerminationType::SINGULAR, "no subset of " + std::to_string(s.sample_size) +
+                                                   " points determined the parameters");
     from = report.high_breakdown_transformation;
     if (!(s.method == RobustMethod::LMS && s.lms_scale == LmsScale::MAD))
       fixed_scale = report.high_breakdown_scale;
@@ -318,6 +353,9 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
                          : w->name();
   report.termination = report.adjustment.termination;
   report.message = report.adjustment.message;
+  if (!start_note.empty() && s.method != RobustMethod::LEAST_SQUARES)
+    report.message += (report.message.empty() ? "" : "; ") + start_note +
+                      ": the robust stages began at the guess";
   if (report.adjustment.isSolutionUsable())
     report.scale = finalScale(*w, report.adjustment);
   return report;

@@ -30,6 +30,25 @@ liSurface(double percent, double c, pcl_ls3d::synth::DeformationPosition positio
   return pcl_ls3d::synth::makeLiSurface(s);
 }
 
+/// A small, nearly flat surface (30 × 30 nodes at 1.2 m, relief 0.5 m over a 40 m wavelength,
+/// noise 3 cm) with its middle 38 % raised by N(8σ, σ), identity truth: the surface fixes heights
+/// and tilts, barely the position in plan. The all-points least-squares fit slides off it.
+inline pcl_ls3d::synth::LiSurface
+gentleTerrain()
+{
+  pcl_ls3d::synth::LiSurfaceSettings s;
+  s.grid_size = 30;
+  s.spacing = 1.2;
+  s.relief = 0.5;
+  s.wavelength = 40.0;
+  s.noise_sigma = 0.03;
+  s.deformation_percent = 38.0;
+  s.deformation_c = 8.0;
+  s.position = pcl_ls3d::synth::DeformationPosition::MIDDLE;
+  s.truth = pcl_ls3d::SimilarityTransform();
+  return pcl_ls3d::synth::makeLiSurface(s);
+}
+
 struct LiSurfacePair
 {
   explicit LiSurfacePair(pcl_ls3d::synth::LiSurface generated) : li(std::move(generated))

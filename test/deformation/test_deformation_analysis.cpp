@@ -253,6 +253,31 @@ TEST(DeformationAnalysis, DenseNoisySurfaceGivesOneRegion)
   EXPECT_GE(d.precision, 0.99);
 }
 
+// Nearly flat terrain fixes heights and tilts but barely the position in plan: the rigid fit
+// is refused ("the data do not determine the move"), and the analysis runs again with the
+// translation alone, says so, and finds the raised middle. Without the fallback: no result.
+TEST(DeformationAnalysis, FlatTerrainFallsBackToTheTranslation)
+{
+  const synth::LiSurface li = li_test::gentleTerrain();
+  const LiPair pair(li);
+  DeformationSettings s;
+  s.translation_when_undetermined = false;
+  const DeformationResult rigid = pair.run(s);
+  ASSERT_FALSE(rigid.ok()) << "the case no longer needs the fallback";
+  EXPECT_NE(rigid.matching.message.find("the data do not determine the move"), std::string::npos)
+      << rigid.matching.message;
+  const DeformationResult r = pair.run(DeformationSettings());
+  ASSERT_TRUE(r.ok()) << r.matching.message;
+  EXPECT_NE(r.model_note.find("translation only"), std::string::npos) << r.model_note;
+  const Eigen::Matrix4d& T = r.matching.adjustment.transformation;
+  EXPECT_TRUE((T.topLeftCorner<3, 3>().isIdentity(0.0))) << T;  // no rotation estimated
+  EXPECT_LT(std::abs(T(2, 3)), 0.01);  // the height is determined (noise 3 cm)
+  const Detection d = score(r, li);
+  EXPECT_GE(d.precision, 0.8);
+  EXPECT_GE(d.recall, 0.95);
+  EXPECT_NEAR(r.regions.percent_deformed, li.percent, 8.0);
+}
+
 // A dense grid far from its start: 200 × 200 nodes at 8-unit spacing (1600 units across, the
 // relief of the 5000-unit surface) with Table 4's start, 500 units and 5° off. Seen from 500
 // units above steep relief, LZD's first neighbourhood lies on the nearest slope and one

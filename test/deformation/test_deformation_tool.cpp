@@ -1,7 +1,9 @@
 // pcl_ls3d_deformation end to end on Li's surface (known truth and planted deformation): the
 // JSON report's transformation is the truth, the residual cloud has one record per epoch point
 // in order with the documented fields, and bad input gives one error line and a non-zero exit.
+#include "../io/tool_json.h"
 #include "../io/tool_run.h"
+#include "li_surface_pair.h"
 
 #include <pcl_ls3d/deformation/point_residual.h>
 #include <pcl_ls3d/estimators/robust_matching.h>
@@ -29,7 +31,9 @@
 
 namespace fs = std::filesystem;
 using namespace pcl_ls3d;
+using pcl_ls3d_test::jsonMatrix;
 using pcl_ls3d_test::lineCount;
+using pcl_ls3d_test::readJson;
 using pcl_ls3d_test::runTool;
 
 namespace {
@@ -96,16 +100,6 @@ writeLiPairAtUtm(const Scratch& s)
   return epoch;
 }
 
-Eigen::Matrix4d
-jsonMatrix(const nlohmann::json& rows)
-{
-  Eigen::Matrix4d T;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      T(r, c) = rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)].get<double>();
-  return T;
-}
-
 Eigen::Vector3d
 jsonVector(const nlohmann::json& v)
 {
@@ -158,10 +152,7 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
   ASSERT_TRUE(j.contains("stable_refinement"));
   EXPECT_GE(j["stable_refinement"]["rounds"].get<int>(), 0);
   EXPECT_FALSE(j["stable_refinement"]["stopped"].get<std::string>().empty());
-  Eigen::Matrix4d T;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      T(r, c) = j["transformation"][static_cast<std::size_t>(r)][static_cast<std::size_t>(c)].get<double>();
+  const Eigen::Matrix4d T = jsonMatrix(j["transformation"]);
   Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(li.mate->size()));
   for (std::size_t i = 0; i < li.mate->size(); ++i)
     pts.col(static_cast<Eigen::Index>(i)) = (*li.mate)[i].getVector3fMap().cast<double>();
@@ -284,6 +275,41 @@ TEST(DeformationTool, NearHalfMovedIsReportedAsAmbiguous)
   const nlohmann::json j = nlohmann::json::parse(in);
   EXPECT_GT(j["percent_deformed"].get<double>(), 40.0);
   EXPECT_TRUE(j["stable_part_ambiguous"].get<bool>());
+}
+
+// Nearly flat terrain does not determine the rigid fit: the tool says it estimated the
+// translation alone, and the JSON's params and model_note say so too.
+TEST(DeformationTool, FlatTerrainIsMatchedByTheTranslation)
+{
+  const Scratch s;
+  const synth::LiSurface li = li_test::gentleTerrain();
+  pcl::PointCloud<pcl::PointXYZ> ref, mate;
+  pcl::copyPointCloud(*li.reference, ref);
+  pcl::copyPointCloud(*li.mate, mate);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("ref.pcd"), ref), 0);
+  ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("epoch.pcd"), mate), 0);
+  const auto run = runTool("pcl_ls3d_deformation",
+                           s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -json " + s.file("report.json"),
+                           s.dir.string());
+  ASSERT_EQ(run.code, 0) << run.err << run.out;
+  EXPECT_NE((run.out + run.err).find("translation only: the data do not determine the rigid fit"),
+            std::string::npos)
+      << run.out << run.err;
+  const nlohmann::json j = readJson(s.file("report.json"));
+  EXPECT_EQ(j.at("params").get<int>(), 3);
+  EXPECT_NE(j.at("model_note").get<std::string>().find("translation only"), std::string::npos);
+  const Eigen::Matrix4d T = jsonMatrix(j.at("transformation"));
+  EXPECT_TRUE((T.topLeftCorner<3, 3>().isIdentity(1e-12))) << T;
+  EXPECT_NEAR(j.at("percent_deformed").get<double>(), li.percent, 8.0);
+  // Asked for the translation, there is nothing to note.
+  const auto asked = runTool("pcl_ls3d_deformation",
+                             s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -params 3 -json " +
+                                 s.file("asked.json"),
+                             s.dir.string());
+  ASSERT_EQ(asked.code, 0) << asked.err << asked.out;
+  const nlohmann::json a = readJson(s.file("asked.json"));
+  EXPECT_EQ(a.at("params").get<int>(), 3);
+  EXPECT_FALSE(a.contains("model_note"));
 }
 
 // A matching that stops at its iteration limit is not a converged answer: the outputs are

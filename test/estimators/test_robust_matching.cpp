@@ -173,6 +173,23 @@ TEST(RobustMatching, EverythingDeformedIsATranslation)
 }
 
 // Bad input gets a stated termination and message, never a crash.
+// On nearly flat terrain with its middle raised the all-points least-squares start slides off
+// the overlap (to 0 observations); the robust stages then begin at the guess, which the start
+// could not improve, and say so. Before: the whole matching failed with the start.
+TEST(RobustMatching, StartThatSlidOffIsReplacedByTheGuess)
+{
+  const LiRun run(li_test::gentleTerrain());
+  const RobustMatchingReport r = run(RobustMethod::MM);
+  EXPECT_FALSE(r.start.hasEstimate()) << "the case no longer slides off: " << r.start.message;
+  ASSERT_TRUE(r.adjustment.hasEstimate()) << r.message;
+  EXPECT_NE(r.message.find("the robust stages began at the guess"), std::string::npos) << r.message;
+  EXPECT_GT(r.subsets_drawn, 0);
+  // Plain least squares has no other answer than its start.
+  const RobustMatchingReport ls = run(RobustMethod::LEAST_SQUARES);
+  EXPECT_FALSE(ls.adjustment.hasEstimate());
+  EXPECT_EQ(ls.termination, r.start.termination);
+}
+
 TEST(RobustMatching, BadInput)
 {
   // Flat reference and epoch: horizontal shifts and κ cannot be determined.

@@ -4,6 +4,7 @@
 // "shift" and reported it CONVERGED and trustworthy. And the PCDs the tools write record the
 // inputs' CRS, and inputs declaring different CRSs are warned of.
 #include "io/io_test_utils.h"
+#include "io/tool_json.h"
 #include "io/tool_run.h"
 
 #include <pcl_ls3d/io/cloud_io.h>
@@ -23,6 +24,8 @@
 #include <vector>
 
 namespace fs = std::filesystem;
+using pcl_ls3d_test::jsonMatrix;
+using pcl_ls3d_test::readJson;
 using pcl_ls3d_test::runTool;
 using pcl_ls3d_test::TempDir;
 
@@ -252,24 +255,6 @@ writeInFeet(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>
   writeWithHeights(path, cloud, origin, kUsFoot, "EPSG:32631+6360");
 }
 
-/// The 4x4 "transformation" of a tool's JSON report (in the files' coordinates).
-Eigen::Matrix4d
-jsonTransformation(const nlohmann::json& rows)
-{
-  Eigen::Matrix4d T;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c)
-      T(r, c) = rows.at(static_cast<std::size_t>(r)).at(static_cast<std::size_t>(c)).get<double>();
-  return T;
-}
-
-nlohmann::json
-readJson(const std::string& path)
-{
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
-
 /// The source's points in its file's coordinates (heights in US feet).
 std::vector<Eigen::Vector4d>
 sourceInFeet(const pcl::PointCloud<pcl_ls3d::PointLiDAR>& source, const Eigen::Vector3d& origin)
@@ -366,7 +351,7 @@ TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
                   std::string::npos)
         << reg.out;
     const nlohmann::json reg_json = readJson(dir.file(stem + "_reg.json"));
-    EXPECT_LT(meanErrorInMetres(jsonTransformation(reg_json.at("transformation")), truth, source_ft,
+    EXPECT_LT(meanErrorInMetres(jsonMatrix(reg_json.at("transformation")), truth, source_ft,
                                 c.unit),
               0.06);
     EXPECT_NEAR(reg_json.at("heights").at("plan_units_per_height_unit").at("source").get<double>(),
@@ -384,7 +369,7 @@ TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
     // files' coordinates agree.
     const double compare_error = row.at("error").at("mean").get<double>();
     EXPECT_LT(compare_error, 0.06);
-    EXPECT_NEAR(meanErrorInMetres(jsonTransformation(row.at("transformation")), truth, source_ft,
+    EXPECT_NEAR(meanErrorInMetres(jsonMatrix(row.at("transformation")), truth, source_ft,
                                   c.unit),
                 compare_error, 1e-4);
 
@@ -392,7 +377,7 @@ TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
         "pcl_ls3d_deformation", target + " " + source + " -json " + dir.file(stem + "_def.json"),
         dir.path.string());
     ASSERT_EQ(def.code, 0) << def.err;
-    EXPECT_LT(meanErrorInMetres(jsonTransformation(readJson(dir.file(stem + "_def.json")).at("transformation")),
+    EXPECT_LT(meanErrorInMetres(jsonMatrix(readJson(dir.file(stem + "_def.json")).at("transformation")),
                                 truth, source_ft, c.unit),
               0.06);
   }

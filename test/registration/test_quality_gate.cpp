@@ -3,6 +3,7 @@
 // vertical-difference rule on steep surfaces, and a source with a layer the target lacks. The
 // quality gate must report each as not trustworthy (hasConverged() false, a reason in the
 // message) and must leave good fits CONVERGED.
+#include "deformation/li_surface_pair.h"
 #include "ls3d_test_utils.h"
 
 #include <pcl_ls3d/synth/li_surface.h>
@@ -153,17 +154,7 @@ TEST(QualityGate, VerticalRuleOnSteepSurfacesIsValidAndCanBeFlagged)
 // start's correspondences kept at the end refuses it; without that test it would pass.
 TEST(QualityGate, SlideOffTheOverlapIsNotTrusted)
 {
-  pcl_ls3d::synth::LiSurfaceSettings s;
-  s.grid_size = 30;
-  s.spacing = 1.2;
-  s.relief = 0.5;
-  s.wavelength = 40.0;
-  s.noise_sigma = 0.03;
-  s.deformation_percent = 38.0;
-  s.deformation_c = 8.0;
-  s.position = pcl_ls3d::synth::DeformationPosition::MIDDLE;
-  s.truth = pcl_ls3d::SimilarityTransform();
-  const pcl_ls3d::synth::LiSurface li = pcl_ls3d::synth::makeLiSurface(s);
+  const pcl_ls3d::synth::LiSurface li = li_test::gentleTerrain();
   ASSERT_EQ(li.mate->size(), 900u);
   const Cloud::Ptr source = li.mate, target = li.reference;
   LS3D gated;

@@ -41,6 +41,12 @@ struct QualityInputs
 QualityFigures
 measureQuality(const QualityInputs& in, const ObservationSet& observations);
 
+/// The data fix the source's position far worse than the surfaces' noise (position_sigma above
+/// max_position_sigma_ratio × it) and the move lies within that uncertainty: the gate's "the
+/// data do not determine the move" (nearly flat terrain for rotations and horizontal shifts).
+bool
+moveUndetermined(const QualityFigures& q, const AdjustmentSettings& settings);
+
 /// Applies the settings' limits to a finished adjustment (CONVERGED or MAX_ITERATIONS):
 /// returns its termination, or STALLED / UNRELIABLE / IMPLAUSIBLE_SCALE with the reasons
 /// appended to `why`; sets q.trustworthy.

@@ -34,6 +34,11 @@ struct DeformationSettings
   /// field is always computed for every point.
   /// The transformation's σ are those of the sample. 0: all points.
   std::size_t matching_points = 50000;
+  /// When the data do not determine a rotating model's fit (the quality gate's "the data do not
+  /// determine the move": nearly flat terrain fixes heights and tilts only weakly in plan), the
+  /// analysis is run again with the translation alone, and says so (DeformationResult::
+  /// model_note). Epochs in one georeferenced frame differ mostly by a shift.
+  bool translation_when_undetermined = true;
 
   static RobustMatchingSettings
   defaultMatching()
@@ -56,6 +61,9 @@ struct DeformationResult
   StartChoice start_choice;  ///< LMS / MM: the fits from their starts that competed (start_choice.h)
   ResidualField field;
   RegionAnalysis regions;
+  /// Why the parameters are fewer than asked ("" when they are not): the rotating fit the data
+  /// did not determine (DeformationSettings::translation_when_undetermined).
+  std::string model_note;
   /// True when the matching gave a usable estimate and the field was computed.
   bool
   ok() const
