@@ -99,6 +99,9 @@ mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps
                            kSubtitleWidth);
   style.subtitle.push_back(format("%.1f %% of the area in %zu deformed regions (outlined), %zu noise clusters",
                                   r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size()));
+  // Fewer parameters than asked: the client reading the map should know.
+  for (const std::string& line : wrapped(r.model_note, kSubtitleWidth))
+    style.subtitle.push_back(line);
   // Heights in another unit than x, y (a compound CRS): the residuals are in neither, unless
   // the heights were converted to the plan unit.
   if (!s.heights_note.empty())

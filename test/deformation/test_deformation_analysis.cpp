@@ -3,6 +3,7 @@
 #include "deformation/li_surface_pair.h"
 
 #include <pcl_ls3d/deformation/deformation_analysis.h>
+#include <pcl_ls3d/deformation/deformation_map.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 #include <pcl_ls3d/synth/li_surface.h>
@@ -276,6 +277,12 @@ TEST(DeformationAnalysis, FlatTerrainFallsBackToTheTranslation)
   EXPECT_GE(d.precision, 0.8);
   EXPECT_GE(d.recall, 0.95);
   EXPECT_NEAR(r.regions.percent_deformed, li.percent, 8.0);
+  // The map a client reads says so too.
+  const DeformationMap map = makeDeformationMap(pair.points, r, DeformationMapSettings());
+  std::string subtitle;
+  for (const std::string& line : map.style.subtitle)
+    subtitle += line + " ";
+  EXPECT_NE(subtitle.find("translation only"), std::string::npos) << subtitle;
 }
 
 // A dense grid far from its start: 200 × 200 nodes at 8-unit spacing (1600 units across, the
