@@ -144,6 +144,7 @@ runTrial(const synth::LiSurface& li, const Method& method)
   std::string why;
   rule->prepare(surface, &why);
   deformation::DeformationSettings s;
+  s.translation_when_undetermined = false;  // Li's analogues score the model asked for
   s.matching.method = method.method;
   s.matching.lms_scale = method.lms_scale;
   if (g_refine >= 0)
@@ -366,6 +367,7 @@ pipeline(int n)
   std::string why;
   rule->prepare(surface, &why);
   deformation::DeformationSettings settings;
+  settings.translation_when_undetermined = false;  // scored against a truth with rotations
   if (g_refine >= 0)
     settings.refinement.max_rounds = g_refine;
   const deformation::DeformationResult r = deformation::analyseDeformation(pts, surface, *rule, settings);

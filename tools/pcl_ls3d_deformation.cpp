@@ -563,10 +563,13 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
   j["local_origin_target"] = {o_t.x(), o_t.y(), o_t.z()};
   j["sigmas"] = s;
   j["estimator"] = mr.estimator;
+  const pcl_ls3d::AdjustmentSettings& model = result.model_note.empty()
+                                                  ? o.settings.matching.adjustment
+                                                  : def::translationAlone(o.settings.matching.adjustment);
   int free_parameters = 0;
   for (int i = 0; i < 7; ++i)
-    free_parameters += !o.settings.matching.adjustment.isFixed(i);
-  j["params"] = result.model_note.empty() ? free_parameters : 3;
+    free_parameters += !model.isFixed(i);
+  j["params"] = free_parameters;
   if (!result.model_note.empty())
     j["model_note"] = result.model_note;
   j["method"] = pcl_ls3d::toString(mr.method);

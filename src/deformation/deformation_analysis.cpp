@@ -108,6 +108,15 @@ rotationsUndetermined(const DeformationResult& r, const AdjustmentSettings& adju
 
 }  // namespace
 
+AdjustmentSettings
+translationAlone(const AdjustmentSettings& settings)
+{
+  AdjustmentSettings s = settings;
+  for (int q = 3; q < 7; ++q)
+    s.fixParameter(q);
+  return s;
+}
+
 DeformationResult
 analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface& reference,
                    const ConjugateRule& rule, const DeformationSettings& settings, const Eigen::Matrix4d& guess)
@@ -124,7 +133,7 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
       !rotationsUndetermined(out, settings.matching.adjustment))
     return out;
   DeformationSettings shift = settings;
-  shift.matching.adjustment.setParameterModel(ParameterModel::TRANSLATION_3);
+  shift.matching.adjustment = translationAlone(settings.matching.adjustment);
   shift.matching.sample_size = std::min(shift.matching.sample_size, 4);  // p + 1, as for 6 and 7
   DeformationResult reduced = analyseWithModel(epoch, reference, rule, shift, guess);
   if (!reduced.ok()) {

@@ -173,18 +173,14 @@ highBreakdownSearch(LinearizedMatching& lin, const RobustMatchingSettings& s, Ro
 std::string
 startSlidOff(const AdjustmentReport& start, const AdjustmentSettings& settings)
 {
-  char line[160];
-  if (!start.hasEstimate()) {
-    std::snprintf(line, sizeof line, "the least-squares start ended %s (%s)",
-                  terminationTypeToString(start.termination), start.message.c_str());
-    return line;
-  }
+  if (!start.hasEstimate())
+    return std::string("the least-squares start ended ") + terminationTypeToString(start.termination) +
+           " (" + start.message + ")";
   if (start.quality.observations_kept < settings.min_observations_kept) {
-    std::snprintf(line, sizeof line,
-                  "the least-squares start slid off the overlap (kept %.3f of its first "
-                  "correspondences)",
-                  start.quality.observations_kept);
-    return line;
+    char kept[32];
+    std::snprintf(kept, sizeof kept, "%.3f", start.quality.observations_kept);
+    return std::string("the least-squares start slid off the overlap (kept ") + kept +
+           " of its first correspondences)";
   }
   return {};
 }
@@ -297,10 +293,11 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
     // The start only brings the surfaces close: with much of the surface moved the quality gate
     // rightly calls it untrustworthy, but its estimate is what the robust stages start from,
     // unless it slid off the overlap. Plain least squares has no other answer; an input the
-    // start found nothing in is no better at the guess.
+    // start found nothing in, or a start that failed at the guess itself, is no better there.
     start_note = startSlidOff(report.start, s.adjustment);
     const bool no_input = report.start.termination == TerminationType::INVALID_INPUT ||
-                          report.start.termination == TerminationType::NO_OVERLAP;
+                          report.start.termination == TerminationType::NO_OVERLAP ||
+                          report.start.iterations == 0;  // it failed at the guess itself
     if (!report.start.hasEstimate() && (s.method == RobustMethod::LEAST_SQUARES || no_input)) {
       report.adjustment = report.start;
       return fail(report, report.start.termination, "least-squares start: " + report.start.message);

@@ -149,6 +149,8 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
                           "subsets", "percent_deformed", "regions", "noise", "local_origin"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_TRUE(j["converged"].get<bool>());
+  EXPECT_EQ(j["params"].get<int>(), 6);  // the rigid default, determined here
+  EXPECT_FALSE(j.contains("model_note"));
   ASSERT_TRUE(j.contains("stable_refinement"));
   EXPECT_GE(j["stable_refinement"]["rounds"].get<int>(), 0);
   EXPECT_FALSE(j["stable_refinement"]["stopped"].get<std::string>().empty());

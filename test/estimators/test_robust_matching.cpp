@@ -172,7 +172,6 @@ TEST(RobustMatching, EverythingDeformedIsATranslation)
   EXPECT_NEAR(moved.z() - truth.z(), -10.0 * kSigma, 1.0 * kSigma);  // the "deformation" is tz
 }
 
-// Bad input gets a stated termination and message, never a crash.
 // On nearly flat terrain with its middle raised the all-points least-squares start slides off
 // the overlap (to 0 observations); the robust stages then begin at the guess, which the start
 // could not improve, and say so. Before: the whole matching failed with the start.
@@ -188,8 +187,21 @@ TEST(RobustMatching, StartThatSlidOffIsReplacedByTheGuess)
   const RobustMatchingReport ls = run(RobustMethod::LEAST_SQUARES);
   EXPECT_FALSE(ls.adjustment.hasEstimate());
   EXPECT_EQ(ls.termination, r.start.termination);
+  // Stopped after 20 iterations the start has an estimate, but with a quarter of its first
+  // correspondences left: it slid off, and the robust stages begin at the guess all the same.
+  RobustMatchingSettings s;
+  s.method = RobustMethod::MM;
+  s.adjustment.max_iterations = 20;
+  const RobustMatchingReport cut =
+      robustMatching(run.points, run.indices, *run.surface, *run.rule, s, Eigen::Matrix4d::Identity());
+  ASSERT_TRUE(cut.start.hasEstimate()) << cut.start.message;
+  EXPECT_LT(cut.start.quality.observations_kept, 0.5);
+  EXPECT_NE(cut.message.find("the least-squares start slid off the overlap"), std::string::npos)
+      << cut.message;
+  EXPECT_NE(cut.message.find("the robust stages began at the guess"), std::string::npos) << cut.message;
 }
 
+// Bad input gets a stated termination and message, never a crash.
 TEST(RobustMatching, BadInput)
 {
   // Flat reference and epoch: horizontal shifts and κ cannot be determined.

@@ -72,6 +72,12 @@ struct DeformationResult
   }
 };
 
+/// The model of the fallback (DeformationSettings::translation_when_undetermined): the
+/// rotations and the scale fixed at the guess, the translations as \a settings have them (free,
+/// soft or fixed).
+AdjustmentSettings
+translationAlone(const AdjustmentSettings& settings);
+
 /// Robust matching of `epoch` onto `reference`, then the residual field and its regions.
 /// \param[in] epoch points in the epoch's own coordinates (NaN allowed: no residual)
 /// \param[in] rule prepared on `reference`
