@@ -61,9 +61,10 @@ printHelp(const char* prog)
       "                       MAD), huber, zuo, ls (plain least squares). mm and lms also fit from\n"
       "                       a block start and keep the fit whose stable part scatters least\n"
       "  -rule lzd|lnd        residuals along z (LHD, default) or along the surface normal\n"
-      "  -params 6|7|3        rigid (default), similarity, translation; a rigid or similarity\n"
-      "                       fit the surface does not determine (nearly flat terrain) is\n"
-      "                       replaced by the translation alone, with a note\n"
+      "  -params 6|7|3        rigid (default), similarity, translation. Without -params, a\n"
+      "                       rigid fit the surface does not determine (nearly flat terrain)\n"
+      "                       is replaced by the translation alone, with a note; with it, the\n"
+      "                       model named or a refusal\n"
       "  -subsets N           random subsets per search round for lms/mm (default: lms from Li\n"
       "                       eq. 12, at least 3000 above 40 %% contamination; mm 500 FAST-LTS\n"
       "                       starts); up to 3 rounds, re-linearised while the fit moves, so a run\n"
@@ -349,6 +350,8 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   settings.regions.min_points = static_cast<std::size_t>(min_region);
   settings.regions.grow_k = grow_k;
   settings.refinement.max_rounds = refine;
+  // A model the user named is the model: rigid or nothing. The default may fall back.
+  settings.translation_when_undetermined = optionValue(argc, argv, "-params") == nullptr;
   settings.matching_points = static_cast<std::size_t>(matching_points);
   if (!settings.isValid(&why))
     return (why = "invalid settings: " + why), false;

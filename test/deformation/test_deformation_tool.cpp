@@ -303,6 +303,12 @@ TEST(DeformationTool, FlatTerrainIsMatchedByTheTranslation)
   const Eigen::Matrix4d T = jsonMatrix(j.at("transformation"));
   EXPECT_TRUE((T.topLeftCorner<3, 3>().isIdentity(1e-12))) << T;
   EXPECT_NEAR(j.at("percent_deformed").get<double>(), li.percent, 8.0);
+  // Asked for the rigid fit by name, the tool gives that or refuses.
+  const auto rigid = runTool("pcl_ls3d_deformation",
+                             s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -params 6", s.dir.string());
+  EXPECT_EQ(rigid.code, 1) << rigid.out << rigid.err;
+  EXPECT_NE((rigid.out + rigid.err).find("the data do not determine the move"), std::string::npos)
+      << rigid.out << rigid.err;
   // Asked for the translation, there is nothing to note.
   const auto asked = runTool("pcl_ls3d_deformation",
                              s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -params 3 -json " +
