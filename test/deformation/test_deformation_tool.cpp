@@ -309,6 +309,9 @@ TEST(DeformationTool, FlatTerrainIsMatchedByTheTranslation)
   EXPECT_EQ(rigid.code, 1) << rigid.out << rigid.err;
   EXPECT_NE((rigid.out + rigid.err).find("the data do not determine the move"), std::string::npos)
       << rigid.out << rigid.err;
+  EXPECT_NE((rigid.out + rigid.err).find("-params 3, or no -params, estimates the translation alone"),
+            std::string::npos)
+      << rigid.out << rigid.err;
   // Asked for the translation, there is nothing to note.
   const auto asked = runTool("pcl_ls3d_deformation",
                              s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -params 3 -json " +
