@@ -1,5 +1,7 @@
 #include <pcl_ls3d/strips/block_precision.h>
 
+#include <pcl_ls3d/adjustment/spatial_precision.h>
+
 #include <Eigen/LU>
 
 #include <algorithm>
@@ -103,7 +105,7 @@ blockSandwichCovariance(const std::vector<OverlapContribution>& contributions,
   for (Eigen::Index p = 0; p < u; ++p)
     if (determinable[static_cast<std::size_t>(p)] && apriori_weights[p] > 0.0 && std::isfinite(apriori_weights[p]))
       M(p, p) += sigma0 * sigma0 * apriori_weights[p];
-  return qxx * M * qxx;
+  return notBelowFormal<Eigen::MatrixXd>(qxx * M * qxx, sigma0 * sigma0 * qxx);
 }
 
 }  // namespace strips

@@ -8,8 +8,12 @@
 // deviations below 95 %), 1.3 % pooled over the 7 parameters (≥ 88 % is 5 below).
 #include "ls3d_test_utils.h"
 
+#include <pcl_ls3d/adjustment/spatial_precision.h>
+#include <pcl_ls3d/synth/li_surface.h>
+
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <vector>
@@ -109,4 +113,55 @@ TEST(Ls3dHonestSigma, SourceNoiseSpreadWithinFactor1p5AndCoverage)
 TEST(Ls3dHonestSigma, BothNoisySpreadWithinFactor1p5AndCoverage)
 {
   expectHonest(runDraws(0.05, 0.05), 1.5, 0.80, 0.88);
+}
+
+// The sandwich never reports less than eq. 14: positively correlated errors only add variance.
+// Scaling row and column keeps the correlations and leaves fixed (0) entries alone.
+TEST(Ls3dHonestSigma, SandwichIsNeverBelowTheFormalVariance)
+{
+  pcl_ls3d::Matrix7d sandwich = pcl_ls3d::Matrix7d::Zero(), formal = pcl_ls3d::Matrix7d::Zero();
+  sandwich.topLeftCorner<2, 2>() << 1.0, 0.6, 0.6, 4.0;  // correlation 0.3
+  formal.topLeftCorner<2, 2>() << 9.0, 0.0, 0.0, 1.0;
+  const pcl_ls3d::Matrix7d c = pcl_ls3d::notBelowFormal(sandwich, formal);
+  EXPECT_DOUBLE_EQ(c(0, 0), 9.0);  // raised to the formal
+  EXPECT_DOUBLE_EQ(c(1, 1), 4.0);  // already above it
+  EXPECT_NEAR(c(0, 1) / std::sqrt(c(0, 0) * c(1, 1)), 0.3, 1e-12);
+  EXPECT_EQ(c(6, 6), 0.0);
+}
+
+// A small patch (30 × 30 nodes at 1.2 m, relief 2 m, noise 3 cm on the moved cloud, its raised
+// middle left out, identity truth): the spatial cells of 8 spacings leave 2 × 2 blocks per grid,
+// and the sandwich alone reported σ(tz) 0.63 mm and σ(ω) 0.053 mrad where σ0/√n is 1.3 mm and
+// the formal σ(ω) 0.14 mrad (tz and ω then 2.7 and 4.3 "σ" off the truth). The reported σ are at
+// least the formal ones, and the height's at least σ0/√n.
+TEST(Ls3dHonestSigma, FewPrecisionBlocksDoNotShrinkSigma)
+{
+  pcl_ls3d::synth::LiSurfaceSettings settings;
+  settings.grid_size = 30;
+  settings.spacing = 1.2;
+  settings.relief = 2.0;
+  settings.wavelength = 40.0;
+  settings.noise_sigma = 0.03;
+  settings.deformation_percent = 38.0;
+  settings.deformation_c = 8.0;
+  settings.position = pcl_ls3d::synth::DeformationPosition::MIDDLE;
+  settings.truth = pcl_ls3d::SimilarityTransform();
+  const pcl_ls3d::synth::LiSurface li = pcl_ls3d::synth::makeLiSurface(settings);
+  Cloud::Ptr stable(new Cloud);
+  for (std::size_t i = 0; i < li.mate->size(); ++i)
+    if (!li.deformed[i])
+      stable->push_back((*li.mate)[i]);
+  LS3D ls3d;
+  ls3d.setConjugateRule(pcl_ls3d::ConjugateRuleType::LZD);
+  ls3d.setInputSource(stable);
+  ls3d.setInputTarget(li.reference);
+  Cloud aligned;
+  ls3d.align(aligned);
+  const pcl_ls3d::AdjustmentReport& r = ls3d.getReport();
+  // With honest σ the gate sees that the plan position is not determined (σ 3.4 × the noise):
+  // the estimate is there, and refused; with the shrunk σ it was trusted.
+  ASSERT_TRUE(r.hasEstimate()) << r.message;
+  for (int i = 0; i < 6; ++i)
+    EXPECT_GE(r.sigmas[i], r.sigmas_formal[i] * (1.0 - 1e-9)) << i;
+  EXPECT_GE(r.sigmas[2], 0.9 * r.sigma0 / std::sqrt(static_cast<double>(stable->size())));
 }

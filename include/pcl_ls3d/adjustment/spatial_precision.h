@@ -70,7 +70,30 @@ private:
   std::unordered_map<std::uint64_t, Cell> cells_;
 };
 
-/// \brief The sandwich covariance C = Q M Q of the parameters. `observation(j, x, a, p, v)` fills
+/// \brief \a sandwich with no variance below the formal one, \a formal = σ0² Q (eq. 14): the
+///        spatially correlated part of the errors can only add to what independent errors give;
+///        a sandwich below eq. 14 comes from too few blocks to estimate the middle term (a 36 m
+///        patch at h = 9.3 m holds 2 × 2 blocks per grid, and its σ came out 2.4–2.8 × too small,
+///        docs/BENCHMARKS.md "Gentle terrain"). Scaled as C' = D C D with D = diag(max(1,
+///        √(F_ii / C_ii))), so the sandwich's correlations stay; fixed (0) and undeterminable
+///        (non-finite) entries are left alone.
+template <typename Matrix>
+Matrix
+notBelowFormal(const Matrix& sandwich, const Matrix& formal)
+{
+  Matrix out = sandwich;
+  for (Eigen::Index i = 0; i < out.rows(); ++i) {
+    const double c = sandwich(i, i), f = formal(i, i);
+    if (!(c > 0.0) || !std::isfinite(c) || !std::isfinite(f) || f <= c)
+      continue;
+    const double d = std::sqrt(f / c);
+    out.row(i) *= d;
+    out.col(i) *= d;
+  }
+  return out;
+}
+
+/// \brief The sandwich covariance C = Q M Q of the parameters (notBelowFormal()). `observation(j, x, a, p, v)` fills
 ///        position x, design row a, weight p and residual v of observation j < m (false: skip).
 ///        Soft a-priori observations (finite weight p_e on a determinable parameter) add their
 ///        own independent term σ0² p_e to M.
@@ -92,7 +115,7 @@ spatialSandwichCovariance(std::size_t m, double cell, const Matrix7d& qxx, doubl
     if (determinable[static_cast<std::size_t>(i)] && apriori_weights[i] > 0.0 &&
         std::isfinite(apriori_weights[i]))
       meat(i, i) += sigma0 * sigma0 * apriori_weights[i];
-  return qxx * meat * qxx;
+  return notBelowFormal<Matrix7d>(qxx * meat * qxx, sigma0 * sigma0 * qxx);
 }
 
 }  // namespace pcl_ls3d
