@@ -34,12 +34,12 @@ liSurface(double percent, double c, pcl_ls3d::synth::DeformationPosition positio
 /// noise 3 cm) with its middle 38 % raised by N(8σ, σ), identity truth: the surface fixes heights
 /// and tilts, barely the position in plan. The all-points least-squares fit slides off it.
 inline pcl_ls3d::synth::LiSurface
-gentleTerrain()
+gentleTerrain(double relief = 0.5)
 {
   pcl_ls3d::synth::LiSurfaceSettings s;
   s.grid_size = 30;
   s.spacing = 1.2;
-  s.relief = 0.5;
+  s.relief = relief;
   s.wavelength = 40.0;
   s.noise_sigma = 0.03;
   s.deformation_percent = 38.0;

@@ -6,10 +6,10 @@
 // "within a factor 1.5" is a ≥ 3.5-standard-error band. The coverage of 40 nominal-95 %
 // intervals has a binomial standard deviation of 3.4 % per parameter (≥ 85 % is 3 standard
 // deviations below 95 %), 1.3 % pooled over the 7 parameters (≥ 88 % is 5 below).
+#include "deformation/li_surface_pair.h"
 #include "ls3d_test_utils.h"
 
 #include <pcl_ls3d/adjustment/spatial_precision.h>
-#include <pcl_ls3d/synth/li_surface.h>
 
 #include <gtest/gtest.h>
 
@@ -136,17 +136,7 @@ TEST(Ls3dHonestSigma, SandwichIsNeverBelowTheFormalVariance)
 // least the formal ones, and the height's at least σ0/√n.
 TEST(Ls3dHonestSigma, FewPrecisionBlocksDoNotShrinkSigma)
 {
-  pcl_ls3d::synth::LiSurfaceSettings settings;
-  settings.grid_size = 30;
-  settings.spacing = 1.2;
-  settings.relief = 2.0;
-  settings.wavelength = 40.0;
-  settings.noise_sigma = 0.03;
-  settings.deformation_percent = 38.0;
-  settings.deformation_c = 8.0;
-  settings.position = pcl_ls3d::synth::DeformationPosition::MIDDLE;
-  settings.truth = pcl_ls3d::SimilarityTransform();
-  const pcl_ls3d::synth::LiSurface li = pcl_ls3d::synth::makeLiSurface(settings);
+  const pcl_ls3d::synth::LiSurface li = li_test::gentleTerrain(2.0);
   Cloud::Ptr stable(new Cloud);
   for (std::size_t i = 0; i < li.mate->size(); ++i)
     if (!li.deformed[i])
