@@ -3,7 +3,6 @@
 #include "tool_arguments.h"
 #include "tool_output.h"
 
-#include <pcl_ls3d/adjustment/quality_gate.h>
 #include <pcl_ls3d/common/similarity_transform.h>
 #include <pcl_ls3d/deformation/deformation_analysis.h>
 #include <pcl_ls3d/deformation/deformation_map.h>
@@ -464,9 +463,8 @@ analyse(const Options& o, const Epochs& e, def::DeformationResult& result, doubl
     why = std::string("robust matching failed: ") + pcl_ls3d::terminationTypeToString(mr.termination) +
           ": " + mr.message;
     // A model named with -params that the surface does not determine: say what would do.
-    const pcl_ls3d::AdjustmentSettings& a = o.settings.matching.adjustment;
-    if (!o.settings.translation_when_undetermined && !a.isFixed(5) && mr.adjustment.hasEstimate() &&
-        pcl_ls3d::moveUndetermined(mr.adjustment.quality, a))
+    if (!o.settings.translation_when_undetermined &&
+        def::rotationsUndetermined(result, o.settings.matching.adjustment))
       why += " (-params 3, or no -params, estimates the translation alone)";
     return false;
   }

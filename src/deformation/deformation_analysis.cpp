@@ -97,7 +97,8 @@ analyseWithModel(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface&
   return out;
 }
 
-/// The fit failed because the data do not determine where a rotating model puts the epoch.
+}  // namespace
+
 bool
 rotationsUndetermined(const DeformationResult& r, const AdjustmentSettings& adjustment)
 {
@@ -105,8 +106,6 @@ rotationsUndetermined(const DeformationResult& r, const AdjustmentSettings& adju
   return rotates && !r.ok() && r.matching.adjustment.hasEstimate() &&
          moveUndetermined(r.matching.adjustment.quality, adjustment);
 }
-
-}  // namespace
 
 AdjustmentSettings
 translationAlone(const AdjustmentSettings& settings)

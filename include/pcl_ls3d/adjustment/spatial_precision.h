@@ -93,8 +93,9 @@ notBelowFormal(const Matrix& sandwich, const Matrix& formal)
   return out;
 }
 
-/// \brief The sandwich covariance C = Q M Q of the parameters (notBelowFormal()). `observation(j, x, a, p, v)` fills
-///        position x, design row a, weight p and residual v of observation j < m (false: skip).
+/// \brief The sandwich covariance C = Q M Q of the parameters, at least σ0² Q (notBelowFormal()).
+///        `observation(j, x, a, p, v)` fills position x, design row a, weight p and residual v
+///        of observation j < m (false: skip).
 ///        Soft a-priori observations (finite weight p_e on a determinable parameter) add their
 ///        own independent term σ0² p_e to M.
 template <typename ObservationFn>

@@ -78,6 +78,11 @@ struct DeformationResult
 AdjustmentSettings
 translationAlone(const AdjustmentSettings& settings);
 
+/// True when \a r failed because the data do not determine where the rotating model of
+/// \a adjustment puts the epoch (the quality gate's moveUndetermined()): what the fallback acts on.
+bool
+rotationsUndetermined(const DeformationResult& r, const AdjustmentSettings& adjustment);
+
 /// Robust matching of `epoch` onto `reference`, then the residual field and its regions.
 /// \param[in] epoch points in the epoch's own coordinates (NaN allowed: no residual)
 /// \param[in] rule prepared on `reference`
