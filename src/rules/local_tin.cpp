@@ -88,6 +88,33 @@ containsOrigin(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::
 
 namespace {
 
+// True when all points lie in an open half-plane through the origin with an angular margin,
+// i.e. the origin is clearly outside their convex hull and no triangle of them can enclose it:
+// the largest gap between the points' directions exceeds π. Queries at the border of the target
+// meet this case often, and the search over all triples would try every one to learn it.
+bool
+clearlyOutsideHull(const std::vector<Eigen::Vector2d>& points, std::vector<double>& angles)
+{
+  angles.clear();
+  for (const auto& p : points) {
+    if (!(p.squaredNorm() > 0.0))
+      return false;  // a point at the query: its triangles may enclose it
+    angles.push_back(std::atan2(p.y(), p.x()));
+  }
+  std::sort(angles.begin(), angles.end());
+  double largest_gap = angles.front() + 2.0 * M_PI - angles.back();
+  for (std::size_t i = 1; i < angles.size(); ++i)
+    largest_gap = std::max(largest_gap, angles[i] - angles[i - 1]);
+  return largest_gap > M_PI + 1e-6;
+}
+
+// Cross product a × b, the edge function containsOrigin() evaluates for the edge a → b.
+double
+cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b)
+{
+  return a.x() * b.y() - a.y() * b.x();
+}
+
 // The smallest enclosing triangle with vertices from `order` (sorted by distance r) and, when
 // fixed >= 0, through point `fixed`; visiting in order of distance lets the search stop once no
 // smaller triangle can follow (the sums only grow). `best` and `triangle` carry the best so far.
@@ -106,10 +133,19 @@ smallestEnclosing(const std::vector<Eigen::Vector2d>& points, const std::vector<
     }
   };
   if (fixed >= 0) {
+    // The origin can lie in (fixed, j, k) only when j and k are not strictly on the same side of
+    // the line through the origin and `fixed` (containsOrigin's first and third edge functions).
+    const Eigen::Vector2d& f = points[static_cast<std::size_t>(fixed)];
     const double r0 = r[static_cast<std::size_t>(fixed)];
+    thread_local std::vector<double> sides;
+    sides.resize(m);
+    double* side = sides.data();  // one thread-local lookup, not one per pair
+    for (std::size_t i = 0; i < m; ++i)
+      side[i] = cross(f, points[at(i)]);
     for (std::size_t j = 0; j + 1 < m && r0 + r[at(j)] + r[at(j + 1)] < best; ++j)
       for (std::size_t k = j + 1; k < m && r0 + r[at(j)] + r[at(k)] < best; ++k)
-        tryTriangle(fixed, order[j], order[k], r0 + r[at(j)] + r[at(k)]);
+        if (!(side[j] > 0.0 && side[k] > 0.0) && !(side[j] < 0.0 && side[k] < 0.0))
+          tryTriangle(fixed, order[j], order[k], r0 + r[at(j)] + r[at(k)]);
     return;
   }
   for (std::size_t i = 0; i + 2 < m && r[at(i)] + r[at(i + 1)] + r[at(i + 2)] < best; ++i)
@@ -126,9 +162,12 @@ enclosingTriangle(const std::vector<Eigen::Vector2d>& points, std::array<int, 3>
   const int n = static_cast<int>(points.size());
   if (n < 3)
     return false;
+  // Per-thread scratch: this runs once per correspondence search, millions of times a match.
+  thread_local std::vector<double> r, angles;
+  thread_local std::vector<int> others;
   // Distances to the query and the other points (not the nearest) nearest first.
-  std::vector<double> r(points.size());
-  std::vector<int> others;
+  r.resize(points.size());
+  others.clear();
   for (int i = 0; i < n; ++i) {
     r[static_cast<std::size_t>(i)] = points[static_cast<std::size_t>(i)].norm();
     if (i > 0)
@@ -139,7 +178,7 @@ enclosingTriangle(const std::vector<Eigen::Vector2d>& points, std::array<int, 3>
   double best = std::numeric_limits<double>::max();
   // First triangles through the nearest point; then all triangles of the others.
   smallestEnclosing(points, r, others, 0, best, triangle);
-  if (best == std::numeric_limits<double>::max())
+  if (best == std::numeric_limits<double>::max() && !clearlyOutsideHull(points, angles))
     smallestEnclosing(points, r, others, -1, best, triangle);
   return best < std::numeric_limits<double>::max();
 }
