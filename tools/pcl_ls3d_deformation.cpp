@@ -574,10 +574,7 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
   const pcl_ls3d::AdjustmentSettings& model = result.model_note.empty()
                                                   ? o.settings.matching.adjustment
                                                   : def::translationAlone(o.settings.matching.adjustment);
-  int free_parameters = 0;
-  for (int i = 0; i < 7; ++i)
-    free_parameters += !model.isFixed(i);
-  j["params"] = free_parameters;
+  j["params"] = pcl_ls3d::freeParameterCount(model.apriori_weights);
   if (!result.model_note.empty())
     j["model_note"] = result.model_note;
   j["method"] = pcl_ls3d::toString(mr.method);

@@ -20,6 +20,15 @@ parameterModelWeights(ParameterModel model)
   return weights;
 }
 
+int
+freeParameterCount(const Vector7d& apriori_weights)
+{
+  int n = 0;
+  for (int i = 0; i < 7; ++i)
+    n += !std::isinf(apriori_weights[i]);
+  return n;
+}
+
 ParameterBlock
 ParameterBlock::fixedIdentity(const Eigen::Vector3d& origin)
 {

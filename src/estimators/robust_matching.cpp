@@ -295,10 +295,10 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
     // unless it slid off the overlap. Plain least squares has no other answer; an input the
     // start found nothing in, or a start that failed at the guess itself, is no better there.
     start_note = startSlidOff(report.start, s.adjustment);
-    const bool no_input = report.start.termination == TerminationType::INVALID_INPUT ||
-                          report.start.termination == TerminationType::NO_OVERLAP ||
-                          report.start.iterations == 0;  // it failed at the guess itself
-    if (!report.start.hasEstimate() && (s.method == RobustMethod::LEAST_SQUARES || no_input)) {
+    const bool nothing_to_retry = report.start.termination == TerminationType::INVALID_INPUT ||
+                                  report.start.termination == TerminationType::NO_OVERLAP ||
+                                  report.start.iterations == 0;  // it failed at the guess itself
+    if (!report.start.hasEstimate() && (s.method == RobustMethod::LEAST_SQUARES || nothing_to_retry)) {
       report.adjustment = report.start;
       return fail(report, report.start.termination, "least-squares start: " + report.start.message);
     }

@@ -101,10 +101,7 @@ LinearizedMatching::matrixOf(const Vector7d& X) const
 int
 LinearizedMatching::freeParameters() const
 {
-  int n = 0;
-  for (int i = 0; i < 7; ++i)
-    n += !block_.isFixed(i);
-  return n;
+  return freeParameterCount(block_.apriori_weights);
 }
 
 bool

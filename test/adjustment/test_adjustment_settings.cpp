@@ -64,3 +64,16 @@ TEST(SourceBlockFromGuess, FixedParametersStartExactlyAtTheirAprioriValues)
   EXPECT_EQ(b.values[TX], 0.0);              // ... and start at 0, not at L_e's 0.5
   EXPECT_TRUE(b.apriori_values.isApprox(rigid.apriori_values));
 }
+
+TEST(FreeParameterCount, CountsWhatThePresetsAndSoftWeightsLeaveFree)
+{
+  EXPECT_EQ(freeParameterCount(parameterModelWeights(ParameterModel::SIMILARITY_7)), 7);
+  EXPECT_EQ(freeParameterCount(parameterModelWeights(ParameterModel::RIGID_6)), 6);
+  EXPECT_EQ(freeParameterCount(parameterModelWeights(ParameterModel::TRANSLATION_3)), 3);
+  EXPECT_EQ(freeParameterCount(parameterModelWeights(ParameterModel::HEIGHT_1)), 1);
+  // A soft constraint (finite weight) still leaves the parameter to the adjustment.
+  AdjustmentSettings soft = AdjustmentSettings::rigid6();
+  soft.apriori_weights[KAPPA] = 1e6;
+  soft.fixParameter(TZ);
+  EXPECT_EQ(freeParameterCount(soft.apriori_weights), 5);
+}

@@ -27,6 +27,11 @@ enum class ParameterModel {
 Vector7d
 parameterModelWeights(ParameterModel model);
 
+/// How many of the 7 parameters the a-priori weights leave to be estimated (weight not +inf:
+/// free or softly constrained).
+int
+freeParameterCount(const Vector7d& apriori_weights);
+
 /// The identity similarity (t = 0, angles 0, m = 1) as a parameter vector.
 inline Vector7d
 identityParameters()
