@@ -9,7 +9,7 @@
 //   -coverage N: N noise seeds of a 3-strip block; per parameter the share of |estimate − truth|
 //           ≤ σ and ≤ 2σ, spatial-sandwich σ (reported) and formal σ0 √q_ii. Expected 68 / 95 %.
 // Usage: benchmark_strip_block -chain [-cross 2] [-length 400] [-swath 160] [-density 2] [-seed 1]
-//        benchmark_strip_block -coverage 100 [-length 240] [-swath 120] [-density 2]
+//        benchmark_strip_block -coverage 100 [-length 400] [-swath 160] [-density 2]   (defaults shown)
 #include "strip_bench_common.h"
 
 #include <pcl/console/parse.h>
