@@ -51,6 +51,10 @@ printHelp(const char* prog)
       "  -max_obs N             default 60000 (at least 10)\n"
       "  -max_dist D            farthest conjugate point (default 10, data units)\n"
       "  -min_area A            skip overlaps with a smaller common area (default 100 footprint cells)\n"
+      "  -min_obs N             match an overlap's direction only with at least N observed points\n"
+      "                         (default 100)\n"
+      "  -one_way               observe each overlap one way (the first strip's points on the\n"
+      "                         second's surface; default: both ways)\n"
       "  -max_iter N            iteration limit (default 30)\n"
       "  -o DIR                 write the corrected strips (LAS: every attribute and VLR kept, only\n"
       "                         x, y, z and the header bounds change); never into a folder holding an input\n"
@@ -79,8 +83,8 @@ fail(const std::string& message)
 
 const std::set<std::string> kWithValue = {"-split", "-reference", "-soft", "-params", "-rule", "-estimator",
                                           "-classes", "-spacing", "-max_obs", "-max_dist", "-min_area",
-                                          "-max_iter", "-o", "-json", "-maps", "-bands", "-work", "-job", "-unit"};
-const std::set<std::string> kSwitches = {"-keep_files", "-overwrite", "-q"};
+                                          "-min_obs", "-max_iter", "-o", "-json", "-maps", "-bands", "-work", "-job", "-unit"};
+const std::set<std::string> kSwitches = {"-keep_files", "-overwrite", "-q", "-one_way"};
 
 // Options shared by the single run and the plan stage, parsed into the plan request.
 struct Options
@@ -128,18 +132,22 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
       s.stable_classes.insert(static_cast<std::uint8_t>(c));
   }
   // Numbers parsed strictly (tool_arguments.h): "6x" or "abc" is an error, not 6 or 0.
-  long long count = -1;
+  long long count = -1, min_obs = -1;
   // Ranges stated here, in the options' own names (the settings' isValid() speaks of fields).
   if (!tools::numberOption(argc, argv, "-spacing", s.observation_spacing, why, 0.0) ||
       !tools::integerOption(argc, argv, "-max_obs", count, why, 10, 2147483647) ||
       !tools::numberOption(argc, argv, "-max_dist", s.max_distance, why) ||
       !tools::numberOption(argc, argv, "-min_area", s.min_overlap_area, why, 0.0) ||
+      !tools::integerOption(argc, argv, "-min_obs", min_obs, why, 1, 2147483647) ||
       !tools::integerOption(argc, argv, "-max_iter", s.max_iterations, why, 1, 1000000) ||
       !tools::integerOption(argc, argv, "-job", o.job, why, 0, 2147483647) ||
       !tools::integerOption(argc, argv, "-unit", o.unit, why, 0, 2147483647))
     return false;
   if (count >= 0)
     s.max_observations = static_cast<std::size_t>(count);
+  if (min_obs >= 0)
+    s.min_overlap_observations = static_cast<std::size_t>(min_obs);
+  s.both_directions = !find_switch(argc, argv, "-one_way");
   if (tools::optionValue(argc, argv, "-max_dist") && !(s.max_distance > 0.0))
     return (why = "-max_dist must be > 0").empty();
   if (parse_argument(argc, argv, "-bands", text) >= 0) {

@@ -156,8 +156,10 @@ solveIteration(const StripPlan& plan, const std::vector<OverlapContribution>& co
   if (ne.observations() == 0) {
     ++state.iteration;
     return stop(state, TerminationType::TOO_FEW_OBSERVATIONS,
-                "no overlap has an observation: no point of the observed classes (-classes) has a "
-                "conjugate point on the other strip within -max_dist");
+                "no overlap has an observation: no overlap direction has " +
+                    std::to_string(s.min_overlap_observations) +
+                    " observed points (-min_obs), or none of the observed classes (-classes) has a "
+                    "conjugate point on the other strip within -max_dist");
   }
   std::vector<ParameterBlock> blocks = state.blocks(plan);
   GaussMarkovProblem problem = plan.problem(blocks);

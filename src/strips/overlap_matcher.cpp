@@ -57,6 +57,13 @@ struct OverlapMatcher::Direction
   double spacing = 1.0;  // thinning cell edge of the overlap
 };
 
+bool
+directionWanted(const DirectionSelection& selection, bool forward, const StripAdjustmentSettings& settings)
+{
+  return (forward || settings.both_directions) && selection.surface && selection.surface->size() >= 3 &&
+         !selection.points.empty() && selection.points.size() >= settings.min_overlap_observations;
+}
+
 Matrix14d
 OverlapMatcher::noiseFloor(const Direction& D, const ObservationSet& set, const Eigen::VectorXd& p)
 {
@@ -78,7 +85,7 @@ OverlapMatcher::OverlapMatcher(const OverlapSelection& selection, const Conjugat
     D.forward = d == 0;
     D.spacing = selection.spacing > 0.0 ? selection.spacing : 1.0;
     D.eiv.setSourceNoise(noise[d]);
-    if (!sel[d]->surface || sel[d]->surface->size() < 3 || sel[d]->points.empty())
+    if (!directionWanted(*sel[d], d == 0, settings))
       continue;
     D.search.reset(new pcl_ls3d::search::FlannKdTree<pcl::PointXYZ>);
     D.search->setInputCloud(sel[d]->surface);

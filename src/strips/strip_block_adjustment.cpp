@@ -61,9 +61,15 @@ prepareOverlaps(const std::vector<Strip>& strips, const StripPlan& plan,
     const double noise_j = stripNoise(*w.selection.forward.surface, footprints.density(j));
     w.matcher = std::make_unique<OverlapMatcher>(w.selection, rule, estimator, settings, noise_i, noise_j);
     w.evaluator = std::make_unique<DiscrepancyEvaluator>(w.selection, settings.max_distance);
-    say(format("overlap %zu of %zu (%s-%s): %zu + %zu observed points, spacing %.3g", k + 1, jobs.size(),
+    const bool forward = directionWanted(w.selection.forward, true, settings);
+    const bool backward = directionWanted(w.selection.backward, false, settings);
+    say(format("overlap %zu of %zu (%s-%s): %zu + %zu observed points, spacing %.3g%s", k + 1, jobs.size(),
                strips[i].name.c_str(), strips[j].name.c_str(), w.selection.forward.points.size(),
-               w.selection.backward.points.size(), w.selection.spacing));
+               w.selection.backward.points.size(), w.selection.spacing,
+               forward && backward ? ""
+               : forward           ? "; one way: points of the first on the second"
+               : backward          ? "; one way: points of the second on the first"
+                                   : "; not matched: too few observed points"));
   }
   return work;
 }

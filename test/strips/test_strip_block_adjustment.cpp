@@ -119,6 +119,38 @@ TEST(StripBlockAdjustment, DatumOptionsGiveTheSameRelativeCorrections)
   EXPECT_FALSE(error.empty());
 }
 
+TEST(StripBlockAdjustment, OneWayMatchingAndTheMinimumOfObservedPointsAreHonoured)
+{
+  const Block b = makeBlock(smallBlock(3, 3));
+  strips::StripAdjustmentSettings settings;
+  settings.reference_strips = {0};
+  const strips::StripAdjustmentReport both = adjust(b, settings);
+  settings.both_directions = false;
+  const strips::StripAdjustmentReport one = adjust(b, settings);
+  ASSERT_TRUE(both.converged()) << both.message;
+  ASSERT_TRUE(one.converged()) << one.message;
+  // One way: each overlap observes only its first strip's points, about half as many.
+  ASSERT_EQ(one.overlaps.size(), both.overlaps.size());
+  for (std::size_t o = 0; o < one.overlaps.size(); ++o) {
+    EXPECT_GT(one.overlaps[o].observations, 0.3 * both.overlaps[o].observations) << o;
+    EXPECT_LT(one.overlaps[o].observations, 0.7 * both.overlaps[o].observations) << o;
+  }
+  for (std::size_t k = 1; k < 3; ++k)
+    EXPECT_LT(meanDisplacementError(b, one, k), 0.05) << k;
+
+  // A direction with fewer observed points than the minimum is not matched: above every
+  // overlap's count, nothing is observed and no strip is adjusted.
+  settings.both_directions = true;
+  settings.min_overlap_observations = 10 * both.overlaps[0].observations + 10 * both.overlaps[1].observations;
+  strips::StripBlockAdjustment adjustment;
+  adjustment.setSettings(settings);
+  strips::StripAdjustmentReport none;
+  std::string error;
+  const bool ran = adjustment.run(b.strips, none, error);
+  std::printf("min observations above every overlap: ran %d, %s / %s\n", ran, error.c_str(), none.message.c_str());
+  EXPECT_FALSE(ran && none.converged());
+}
+
 TEST(StripBlockAdjustment, StripWithoutOverlapIsReportedAndLeftUnchanged)
 {
   Block b = makeBlock(smallBlock(3, 3));

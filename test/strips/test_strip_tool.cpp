@@ -2,6 +2,7 @@
 // X, Y, Z and the header bounds, their coordinates are the input's moved by the reported
 // correction, and bad input (one strip, unknown reference, a split finding one strip, no
 // overlap, LAZ, an output folder holding an input) gives one error line and a non-zero exit.
+#include "../io/tool_json.h"
 #include "../io/tool_run.h"
 
 #include <nlohmann/json.hpp>
@@ -234,6 +235,27 @@ TEST_F(StripTool, NoObservationIsNamedAsTheCause)
   EXPECT_NE(r.out.find("no overlap has an observation"), std::string::npos) << r.out;
   EXPECT_EQ(r.out.find("SINGULAR"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("no observation (0 conjugate points"), std::string::npos) << r.out;
+  // More observed points asked per direction than the overlap has: nothing is matched either,
+  // and the message names the option.
+  const auto few = runTool("pcl_ls3d_strip_adjust", in("strip_1.las") + " " + in("strip_2.las") + " -min_obs 100000000", dir);
+  EXPECT_EQ(few.code, 2) << few.err;
+  EXPECT_NE(few.out.find("no overlap direction has 100000000 observed points (-min_obs)"), std::string::npos) << few.out;
+}
+
+// -one_way observes each overlap in one direction: about half the observations of both ways.
+TEST_F(StripTool, OneWayHalvesTheObservations)
+{
+  const std::string both = in("strip_1.las") + " " + in("strip_2.las");
+  const auto two = runTool("pcl_ls3d_strip_adjust", both + " -q -json '" + dir + "/two.json'", dir);
+  const auto one = runTool("pcl_ls3d_strip_adjust", both + " -q -one_way -json '" + dir + "/one.json'", dir);
+  ASSERT_EQ(two.code, 0) << two.out << two.err;
+  ASSERT_EQ(one.code, 0) << one.out << one.err;
+  const auto observations = [this](const std::string& name) {
+    return pcl_ls3d_test::readJson(dir + "/" + name).at("overlaps").at(0).at("observations").get<double>();
+  };
+  const double n_two = observations("two.json"), n_one = observations("one.json");
+  EXPECT_GT(n_one, 0.3 * n_two);
+  EXPECT_LT(n_one, 0.7 * n_two);
 }
 
 // IGN's 1 km test_semis_2023 block (0.3 pts/m²): the adjustment moves strip 1 by 0.61 m
@@ -268,6 +290,8 @@ TEST_F(StripTool, OptionErrorsNameTheOption)
       {" -max_obs 5", "-max_obs expects an integer >= 10, got '5'"},
       {" -max_dist -5", "-max_dist must be > 0"},
       {" -min_area -1", "-min_area expects a number >= 0, got '-1'"},
+      {" -min_obs 0", "-min_obs expects an integer >= 1, got '0'"},
+      {" -min_obs 5x", "-min_obs expects an integer >= 1, got '5x'"},
   };
   for (const auto& c : cases) {
     const auto r = runTool("pcl_ls3d_strip_adjust", both + c.first + " -q", dir);

@@ -70,6 +70,12 @@ public:
   ~OverlapMatcher();
 };
 
+/// True when the adjustment matches this direction of an overlap: the forward one (points of
+/// strip i on j), the backward one only with `both_directions`, and either only when it has at
+/// least `min_overlap_observations` observed points and a target surface.
+bool
+directionWanted(const DirectionSelection& selection, bool forward, const StripAdjustmentSettings& settings);
+
 /// σ of a strip's own noise from its stable points (local quadrics, errors_in_variables.h).
 double
 stripNoise(const pcl::PointCloud<pcl::PointXYZ>& stable_points, double density);

@@ -23,7 +23,8 @@ struct StripAdjustmentSettings
   double footprint_cell = 0.0;
   /// Overlaps with a smaller common area are skipped (listed with the reason); 0 = 100 cells.
   double min_overlap_area = 0.0;
-  /// Overlaps giving fewer observations in either direction are skipped.
+  /// A direction of an overlap with fewer observed points (after thinning) is not matched: a
+  /// sliver of overlap would weigh two strips' parameters with a handful of points.
   std::size_t min_overlap_observations = 100;
 
   // --- observations ----------------------------------------------------------------------------
@@ -37,7 +38,8 @@ struct StripAdjustmentSettings
   /// (2 × the point spacing, widened so an overlap direction gives at most max_observations).
   double observation_spacing = 0.0;
   std::size_t max_observations = 60000;  ///< per overlap and direction (automatic spacing)
-  /// Source points of strip i are observed on strip j's surface and vice versa.
+  /// Source points of strip i are observed on strip j's surface and vice versa; false: only
+  /// strip i's points on strip j, half the matching.
   bool both_directions = true;
 
   // --- model -------------------------------------------------------------------------------------
