@@ -216,8 +216,9 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
   report.determinable = flags7(sol.determinable);
   report.redundancy = sol.redundancy;
   report.source_noise = run.eiv.active() ? run.eiv.sourceNoise() : 0.0;
+  // Cell 0: the formal covariance of eq. 14 (the caller switched the sandwich off).
   fillCovariance(report, sol, row, weights, settings.apriori_weights,
-                 precisionCell(settings, run.setup, target_size));
+                 settings.spatial_precision ? precisionCell(settings, run.setup, target_size) : 0.0);
   const std::string undetermined = fillPrecision(report, sol);
   if (!undetermined.empty())
     report.message = "undeterminable from this geometry (held at their initial values): " + undetermined;

@@ -155,3 +155,25 @@ TEST(Ls3dHonestSigma, FewPrecisionBlocksDoNotShrinkSigma)
     EXPECT_GE(r.sigmas[i], r.sigmas_formal[i] * (1.0 - 1e-9)) << i;
   EXPECT_GE(r.sigmas[2], 0.9 * r.sigma0 / std::sqrt(static_cast<double>(stable->size())));
 }
+
+// spatial_precision = false reports the formal σ0 √q_ii of eq. 14; the default the sandwich.
+TEST(Ls3dHonestSigma, SandwichCanBeSwitchedOff)
+{
+  const auto pair = smallPair(100, 100.0, 1.0, 1.0, 0.8, 0.05, 60.0, 10.0);
+  for (const bool sandwich : {true, false}) {
+    LS3D ls3d;
+    pcl_ls3d::AdjustmentSettings settings = ls3d.getAdjustmentSettings();
+    settings.spatial_precision = sandwich;
+    ls3d.setAdjustmentSettings(settings);
+    ls3d.setInputSource(pair.source);
+    ls3d.setInputTarget(pair.target);
+    Cloud aligned;
+    ls3d.align(aligned);
+    const pcl_ls3d::AdjustmentReport& r = ls3d.getReport();
+    ASSERT_TRUE(r.hasEstimate()) << r.message;
+    EXPECT_EQ(r.precision_model.rfind(sandwich ? "spatial sandwich" : "formal", 0), 0u) << r.precision_model;
+    for (int i = 0; i < 6; ++i)
+      if (!sandwich)
+        EXPECT_NEAR(r.sigmas[i], r.sigmas_formal[i], 1e-12 * r.sigmas_formal[i]) << i;
+  }
+}
