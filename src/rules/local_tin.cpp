@@ -73,13 +73,24 @@ centredSupport(const std::vector<Eigen::Vector2d>& projected, double max_offset)
   return mean.squaredNorm() <= max_offset * max_offset * ms;
 }
 
+namespace {
+
+// Cross product a × b: the edge function of the edge a → b at the origin.
+double
+cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b)
+{
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+}  // namespace
+
 bool
 containsOrigin(const Eigen::Vector2d& a, const Eigen::Vector2d& b, const Eigen::Vector2d& c)
 {
   // Signs of the three edge functions at the origin must agree (either orientation).
-  const double d1 = a.x() * b.y() - a.y() * b.x();
-  const double d2 = b.x() * c.y() - b.y() * c.x();
-  const double d3 = c.x() * a.y() - c.y() * a.x();
+  const double d1 = cross(a, b);
+  const double d2 = cross(b, c);
+  const double d3 = cross(c, a);
   const bool has_neg = d1 < 0.0 || d2 < 0.0 || d3 < 0.0;
   const bool has_pos = d1 > 0.0 || d2 > 0.0 || d3 > 0.0;
   const double area2 = (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
@@ -106,13 +117,6 @@ clearlyOutsideHull(const std::vector<Eigen::Vector2d>& points, std::vector<doubl
   for (std::size_t i = 1; i < angles.size(); ++i)
     largest_gap = std::max(largest_gap, angles[i] - angles[i - 1]);
   return largest_gap > M_PI + 1e-6;
-}
-
-// Cross product a × b, the edge function containsOrigin() evaluates for the edge a → b.
-double
-cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b)
-{
-  return a.x() * b.y() - a.y() * b.x();
 }
 
 // The smallest enclosing triangle with vertices from `order` (sorted by distance r) and, when
