@@ -97,6 +97,25 @@ drawTruths(const StripSettings& s, std::vector<StripTruth>& strips)
   }
 }
 
+/// Per scan line of each strip, its offset (u across, v along) in [0, 1) of a point spacing;
+/// ½ is the regular lattice.
+std::vector<std::vector<Eigen::Vector2d>>
+drawLinePhases(const StripSettings& s, const std::vector<StripTruth>& strips)
+{
+  std::vector<std::vector<Eigen::Vector2d>> phase(strips.size());
+  for (std::size_t i = 0; i < strips.size(); ++i) {
+    phase[i].assign(strips[i].scan_lines, Eigen::Vector2d::Constant(0.5));
+    if (!s.line_phase)
+      continue;
+    Random rng(s.seed, 0x9a5eu, static_cast<std::uint32_t>(i));
+    for (auto& p : phase[i]) {
+      const double u = rng.uniform(0.0, 1.0);
+      p = Eigen::Vector2d(u, rng.uniform(0.0, 1.0));
+    }
+  }
+  return phase;
+}
+
 }  // namespace
 
 namespace {
@@ -169,6 +188,7 @@ makeStripBlock(const StripSettings& s)
   Eigen::AlignedBox2d region;
   const std::vector<FlightLine> lines = layOut(s, block, da, n_c, region);
   drawTruths(s, block.strips);
+  const auto phase = drawLinePhases(s, block.strips);
 
   const Terrain terrain(s.seed, s.relief, s.wavelength);
   auto landscape = std::make_shared<Landscape>(terrain, s.landscape, s.buildings,
@@ -194,12 +214,15 @@ makeStripBlock(const StripSettings& s)
     const std::size_t local = idx - firsts[strip];
     const std::size_t k = local / n_c, j = local % n_c;
     const double f = (static_cast<double>(j) + 0.5) / static_cast<double>(n_c);
+    const Eigen::Vector2d& uv = phase[strip][k];
+    const double fu = (static_cast<double>(j) + uv.x()) / static_cast<double>(n_c);
     const bool reverse = s.pattern == ScanPattern::ZIGZAG && (k % 2 == 1);
-    const double across = ((reverse ? 1.0 - f : f) - 0.5) * s.swath_width;
+    const double across = ((reverse ? 1.0 - fu : fu) - 0.5) * s.swath_width;
     const double along_pos = (static_cast<double>(k) + f) * da;
+    const double along_ground = along_pos + (uv.y() - 0.5) * da;
     const FlightLine& fl = lines[strip];
     const StripTruth& st = block.strips[strip];
-    const Eigen::Vector2d xy = fl.c + (along_pos - 0.5 * fl.length) * fl.d + across * fl.a;
+    const Eigen::Vector2d xy = fl.c + (along_ground - 0.5 * fl.length) * fl.d + across * fl.a;
     const Hit hit = landscape->hit(xy.x(), xy.y(), rng);
     const Eigen::Vector4d p(xy.x(), xy.y(), hit.z, 1.0);
     const Eigen::Vector4d noisy = p + (Eigen::Vector4d() << rng.normal3(s.noise_sigma), 0.0).finished();

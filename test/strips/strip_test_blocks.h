@@ -1,6 +1,7 @@
 #pragma once
 // Generated strip blocks with known truth for the strip-adjustment tests: the strips, and the
 // error of an adjusted strip against its truth (mean displacement over the strip's points).
+#include <pcl_ls3d/adjustment/similarity_jacobian.h>
 #include <pcl_ls3d/strips/strip_block_adjustment.h>
 #include <pcl_ls3d/strips/strip_io.h>
 #include <pcl_ls3d/synth/strip_block.h>
@@ -54,6 +55,25 @@ meanDisplacementError(const Block& b, const strips::StripAdjustmentReport& r, st
   for (std::size_t i = 0; i < s.size(); i += 7) {
     const Eigen::Vector4d x = s.blockPoint(i).homogeneous();
     sum += ((est - truth) * x).head<3>().norm();
+  }
+  return sum / std::ceil(static_cast<double>(s.size()) / 7.0);
+}
+
+/// Mean over the strip's points of the σ of T_est x that the report's covariance gives,
+/// √trace(J C_k Jᵀ) with J = ∂x'/∂X at the estimate (parameters about the strip's origin): the
+/// scale of meanDisplacementError() that the estimate's own precision predicts.
+inline double
+meanDisplacementSigma(const Block& b, const strips::StripAdjustmentReport& r, std::size_t k)
+{
+  const strips::StripResult& res = r.strips[k];
+  const Eigen::Index first = 7 * static_cast<Eigen::Index>(k);
+  const Eigen::Matrix<double, 7, 7> C = r.covariance.block<7, 7>(first, first);
+  const SimilarityLinearization at(SimilarityTransform(res.parameters));
+  double sum = 0.0;
+  const strips::Strip& s = b.strips[k];
+  for (std::size_t i = 0; i < s.size(); i += 7) {
+    const Matrix37d J = at.jacobian(s.blockPoint(i) - res.origin);
+    sum += std::sqrt(std::max(0.0, (J * C * J.transpose()).trace()));
   }
   return sum / std::ceil(static_cast<double>(s.size()) / 7.0);
 }

@@ -152,6 +152,54 @@ TEST(Synth, StripDeterminismAndPattern)
   EXPECT_GT(((*zig.cloud)[n_c].getVector3fMap() - (*par.cloud)[n_c].getVector3fMap()).norm(), 50.f);
 }
 
+// Each scan line gets its own sub-spacing offset (u across, v along, read back from the true
+// position of the line's first point; even lines, which sweep left to right in ZIGZAG); without
+// line_phase every line has u = v = ½. The truths do not depend on the phases.
+TEST(Synth, StripLinePhases)
+{
+  auto s = smallStrips();
+  s.noise_sigma = 0.0;
+  const int lines = 20;
+  auto phases = [&s, lines](const StripBlock& b, std::size_t strip) {
+    const StripTruth& st = b.strips[strip];
+    const Eigen::Vector2d a(-b.direction.y(), b.direction.x());
+    const double n_c = static_cast<double>(st.points_per_line);
+    const double swath = (st.footprint[0] - st.footprint[1]).norm();
+    const double length = (st.footprint[3] - st.footprint[0]).norm();
+    const double da = 1.0 / (s.density * swath / n_c);
+    std::vector<Eigen::Vector2d> uv;
+    for (int k = 0; k < lines; k += 2) {
+      const std::size_t i = st.first_index + static_cast<std::size_t>(k) * st.points_per_line;
+      const Eigen::Vector3d p = st.transform.apply((*b.cloud)[i].getVector3fMap().cast<double>());
+      const Eigen::Vector2d rel = p.head<2>() - st.centre.head<2>();
+      const double u = (a.dot(rel) / swath + 0.5) * n_c;
+      const double v = (b.direction.dot(rel) + 0.5 * length) / da - k - 0.5 / n_c + 0.5;
+      uv.emplace_back(u, v);
+    }
+    return uv;
+  };
+  s.line_phase = false;
+  const StripBlock regular = makeStripBlock(s);
+  s.line_phase = true;
+  const StripBlock moved = makeStripBlock(s);
+  std::vector<Eigen::Vector2d> first_lines;
+  for (std::size_t k = 0; k < moved.strips.size(); ++k) {
+    for (const auto& uv : phases(regular, k))
+      EXPECT_LT((uv - Eigen::Vector2d::Constant(0.5)).norm(), 1e-3);
+    const auto uv = phases(moved, k);
+    double spread = 0.0;
+    for (const auto& p : uv) {
+      EXPECT_TRUE(p.minCoeff() > -1e-3 && p.maxCoeff() < 1.0 + 1e-3) << p.transpose();
+      spread = std::max(spread, (p - uv[0]).norm());
+    }
+    EXPECT_GT(spread, 0.1) << "strip " << k << ": its lines share one lattice";
+    for (const auto& p : first_lines)
+      EXPECT_GT((uv[0] - p).norm(), 0.01) << "strip " << k << " starts on another strip's lattice";
+    first_lines.push_back(uv[0]);
+    EXPECT_LT((moved.strips[k].transform.matrix() - regular.strips[k].transform.matrix()).norm(), 1e-15);
+  }
+}
+
 TEST(Synth, StripInvalid)
 {
   auto s = smallStrips();
