@@ -1,7 +1,8 @@
 // Chain test (issue 8): 8 strips in a row with small random errors, tied by 2 cross strips.
 // The simultaneous block adjustment's worst strip is at least 2× closer to the truth than pairwise
 // LS3D chained strip by strip (strip k adjusted onto strip k − 1 alone, corrections composed from
-// the reference), whose errors add up along the row.
+// the reference), whose errors add up along the row. Each block strip's error is within 3× the
+// displacement σ its covariance gives.
 #include "strip_test_blocks.h"
 
 #include <gtest/gtest.h>
@@ -56,7 +57,9 @@ TEST(StripChain, BlockBeatsChainedPairsByTwo)
     ASSERT_TRUE(pair.converged()) << k << ": " << pair.message;
     chained = chained * pair.strips[1].transformation;
     const double eb = error(b, k, block.strips[k].transformation), ec = error(b, k, chained);
-    std::printf("strip %zu: block %.4f m, chain %.4f m\n", k + 1, eb, ec);
+    const double sigma = meanDisplacementSigma(b, block, k);
+    std::printf("strip %zu: block %.4f m (its sigma %.4f m), chain %.4f m\n", k + 1, eb, sigma, ec);
+    EXPECT_LE(eb, 3.0 * sigma) << "strip " << k + 1 << ": the block's error is not within its own precision";
     worst_block = std::max(worst_block, eb);
     worst_chain = std::max(worst_chain, ec);
   }

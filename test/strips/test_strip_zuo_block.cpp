@@ -76,3 +76,28 @@ TEST(StripZuoBlock, UrbanRecoversTable2Corrections)
 {
   expectRecovered(synth::LandscapeType::URBAN, 0.25, 3.0, 0.05);
 }
+
+// ICP's closest points on the urban block's flat ground stop metres from the truth (Zuo's 3 m
+// errors, no coarse alignment); here (seed 1) the overlap psid1–psid2 keeps a median offset of
+// 0.15 m (against ~0 after a right adjustment), which makes the result UNRELIABLE instead of an
+// iteration-limit result delivered with exit 0. At 0.4 of Zuo's size the same seed reported
+// CONVERGED 1.8 m off before the offset check. Known gap (docs/BENCHMARKS.md): with seed 2 ICP
+// stops 1.6 m off with no offset and no grown spread, and is still reported CONVERGED.
+TEST(StripZuoBlock, IcpStoppedOffTheTruthIsNotConfirmed)
+{
+  const synth::StripSettings s = synth::zuoBlock(synth::LandscapeType::URBAN, 0.2, 1);
+  const Block b = makeBlock(s);
+  strips::StripAdjustmentSettings settings;
+  settings.model = ParameterModel::SIMILARITY_7;
+  settings.reference_strips = {1};
+  settings.rule = ConjugateRuleType::ICP;
+  strips::StripBlockAdjustment adjustment;
+  adjustment.setSettings(settings);
+  strips::StripAdjustmentReport r;
+  std::string error;
+  ASSERT_TRUE(adjustment.run(b.strips, r, error)) << error;
+  ASSERT_GT(std::max(meanDisplacementError(b, r, 0), meanDisplacementError(b, r, 2)), 0.3)
+      << "the premise: ICP stops far from the truth here";
+  EXPECT_EQ(r.termination, TerminationType::UNRELIABLE) << r.message;
+  EXPECT_NE(r.message.find("still offset"), std::string::npos) << r.message;
+}
