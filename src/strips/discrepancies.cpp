@@ -7,6 +7,8 @@
 
 #include <pcl/search/kdtree.h>
 
+#include <Eigen/LU>
+
 #include <cmath>
 
 namespace pcl_ls3d {
@@ -81,6 +83,7 @@ measure(const std::vector<Eigen::Vector3d>& points, const TargetSurface& target,
     const double up = o.direction.z() >= 0.0 ? 1.0 : -1.0;
     out.xy.push_back(matcher.position(o).head<2>());
     out.value.push_back(static_cast<float>(sign * up * o.distance));
+    out.normal.push_back((up * o.direction).cast<float>());
   }
 }
 
@@ -138,6 +141,32 @@ DiscrepancyEvaluator::ownNoise(const ParameterBlock& block_i, const ParameterBlo
     }
     out[static_cast<std::size_t>(k)].value = std::move(local.value);
   }
+  return out;
+}
+
+AskedTranslation
+askedTranslation(const DiscrepancySamples& samples, double max_abs)
+{
+  AskedTranslation out;
+  Eigen::Matrix3d N = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  std::vector<double> kept;
+  for (std::size_t k = 0; k < samples.value.size() && k < samples.normal.size(); ++k) {
+    const double v = samples.value[k];
+    if (!(std::abs(v) <= max_abs))
+      continue;
+    const Eigen::Vector3d n = samples.normal[k].cast<double>();
+    N += n * n.transpose();
+    b += n * v;
+    kept.push_back(v);
+  }
+  const Eigen::FullPivLU<Eigen::Matrix3d> lu(N);
+  if (kept.size() < 3 || lu.rank() < 3)
+    return out;
+  const Eigen::Matrix3d Ni = lu.inverse();
+  out.count = kept.size();
+  out.t = -Ni * b;
+  out.sigma = stats::mad(kept, true) * Ni.diagonal().cwiseMax(0.0).cwiseSqrt();
   return out;
 }
 

@@ -91,6 +91,9 @@ overlap(const OverlapResult& o, const StripAdjustmentReport& r)
   j["discrepancy_before"] = stats(o.before);
   j["discrepancy_after"] = stats(o.after);
   j["own_noise"] = {stats(o.noise_i), stats(o.noise_j)};
+  j["asked_translation"] = {{"count", o.asked.count},
+                            {"t", {o.asked.t.x(), o.asked.t.y(), o.asked.t.z()}},
+                            {"sigma", {o.asked.sigma.x(), o.asked.sigma.y(), o.asked.sigma.z()}}};
   return j;
 }
 

@@ -11,7 +11,7 @@ namespace strips {
 
 namespace {
 
-constexpr std::uint32_t kVersion = 2;  // 2: DirectionCounts::surface_variance
+constexpr std::uint32_t kVersion = 3;  // 2: DirectionCounts::surface_variance; 3: sample normals
 
 class Writer
 {
@@ -260,6 +260,7 @@ writeSamples(const std::string& path, const OverlapSamples& s, std::string& erro
   for (const DiscrepancySamples* d : {&s.before, &s.after, &s.noise[0], &s.noise[1]}) {
     w.putVector(d->xy);
     w.putVector(d->value);
+    w.putVector(d->normal);
   }
   return w.finish(path, error);
 }
@@ -273,6 +274,7 @@ readSamples(const std::string& path, OverlapSamples& s, std::string& error)
   for (DiscrepancySamples* d : {&s.before, &s.after, &s.noise[0], &s.noise[1]}) {
     r.getVector(d->xy);
     r.getVector(d->value);
+    r.getVector(d->normal);
   }
   return r.finish(path, error);
 }

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <random>
 
 using namespace pcl_ls3d;
 using namespace strip_test;
@@ -201,4 +202,41 @@ TEST(StripBlockAdjustment, FlatOverlapsFlagHorizontalParametersUndeterminable)
     const Vector7d truth = trueParameters(b, k);
     EXPECT_LT(std::abs(r.strips[k].parameters[TZ] - truth[TZ]), 3.5 * r.strips[k].sigmas[TZ] + 0.01) << k;
   }
+}
+
+// The translation the discrepancies ask for: values v = −nᵀt + noise on tilted normals give t
+// back within a few of its σ; values beyond max_abs (edges seen from two sides) do not count;
+// normals in one plane cannot determine t (count 0).
+TEST(StripDiscrepancies, AskedTranslationRecoversAKnownMove)
+{
+  const Eigen::Vector3d t(0.04, -0.07, 0.01);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 0.02), tilt(0.0, 0.3);
+  strips::DiscrepancySamples s;
+  for (int k = 0; k < 20000; ++k) {
+    const Eigen::Vector3d n = Eigen::Vector3d(tilt(rng), tilt(rng), 1.0).normalized();
+    s.xy.emplace_back(0.0, 0.0);
+    s.normal.push_back(n.cast<float>());
+    s.value.push_back(static_cast<float>(-n.dot(t) + noise(rng)));
+  }
+  for (int k = 0; k < 500; ++k) {  // a wall's worth of large values on one side
+    s.xy.emplace_back(0.0, 0.0);
+    s.normal.push_back(Eigen::Vector3f::UnitX());
+    s.value.push_back(2.0f);
+  }
+  const strips::AskedTranslation a = strips::askedTranslation(s, 0.5);
+  ASSERT_EQ(a.count, 20000u);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_GT(a.sigma[c], 0.0);
+    EXPECT_NEAR(a.t[c], t[c], 4.0 * a.sigma[c]) << "axis " << c;
+  }
+  EXPECT_LT(strips::askedTranslation(s, 5.0).t.x(), t.x() - 0.1) << "the wall counts without the cut";
+
+  strips::DiscrepancySamples flat;
+  for (int k = 0; k < 100; ++k) {
+    flat.xy.emplace_back(0.0, 0.0);
+    flat.normal.push_back(Eigen::Vector3f::UnitZ());
+    flat.value.push_back(0.01f);
+  }
+  EXPECT_EQ(strips::askedTranslation(flat, 1.0).count, 0u);
 }

@@ -20,19 +20,37 @@ namespace pcl_ls3d {
 namespace strips {
 
 /// \brief Samples of a discrepancy: where (block XY of the observed point, as moved by its
-///        strip's pose) and how much.
+///        strip's pose), how much, and along which surface normal (oriented upwards: moving
+///        strip i by t relative to strip j changes a value by normalᵀ t).
 struct DiscrepancySamples
 {
   std::vector<Eigen::Vector2d> xy;
   std::vector<float> value;
+  std::vector<Eigen::Vector3f> normal;
 
   void
   append(const DiscrepancySamples& o)
   {
     xy.insert(xy.end(), o.xy.begin(), o.xy.end());
     value.insert(value.end(), o.value.begin(), o.value.end());
+    normal.insert(normal.end(), o.normal.begin(), o.normal.end());
   }
 };
+
+/// \brief The relative translation of strip i against strip j that the discrepancies ask for:
+///        least squares over the values within `max_abs` (walls and edges seen from two sides
+///        left out), t = −(Σ n nᵀ)⁻¹ Σ n v, with its σ per axis for independent values of
+///        spread σ_MAD. Zero with count 0 when there are fewer than 3 values or Σ n nᵀ is
+///        singular.
+struct AskedTranslation
+{
+  std::size_t count = 0;
+  Eigen::Vector3d t = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sigma = Eigen::Vector3d::Zero();
+};
+
+AskedTranslation
+askedTranslation(const DiscrepancySamples& samples, double max_abs);
 
 /// \brief Summary of a sample: mean, RMS, σ_MAD = 1.4826 MAD and the 5/16/50/84/95 % points.
 struct DiscrepancyStatistics

@@ -49,7 +49,15 @@ struct OverlapResult
   double sigma_surface = 0.0;
   DiscrepancyStatistics before, after;
   DiscrepancyStatistics noise_i, noise_j;  ///< the strips' own noise on the same surfaces
+  /// The translation of i against j that the discrepancies after adjustment still ask for
+  /// (values within kAskedWithinNoise × the larger own noise): ~0 at a least-squares solution
+  /// of LND's distances, which the discrepancies are.
+  AskedTranslation asked;
 };
+
+/// Discrepancies beyond this multiple of the strips' own noise (walls, edges seen from two
+/// sides) are left out of OverlapResult::asked.
+constexpr double kAskedWithinNoise = 5.0;
 
 /// \brief The block adjustment's report.
 struct StripAdjustmentReport
