@@ -94,6 +94,13 @@ stripResult(const StripPlan& plan, const BlockState& state, const Eigen::MatrixX
   return r;
 }
 
+// The floor an overlap's discrepancies can reach: the larger own noise of its two strips.
+double
+ownNoise(const OverlapResult& o)
+{
+  return std::max(o.noise_i.sigma_mad, o.noise_j.sigma_mad);
+}
+
 OverlapResult
 overlapResult(const Overlap& o, const OverlapContribution* c, const OverlapSamples* s)
 {
@@ -120,7 +127,7 @@ overlapResult(const Overlap& o, const OverlapContribution* c, const OverlapSampl
     r.after = discrepancyStatistics(s->after.value);
     r.noise_i = discrepancyStatistics(s->noise[0].value);
     r.noise_j = discrepancyStatistics(s->noise[1].value);
-    r.asked = askedTranslation(s->after, kAskedWithinNoise * std::max(r.noise_i.sigma_mad, r.noise_j.sigma_mad));
+    r.asked = askedTranslation(s->after, kAskedWithinNoise * ownNoise(r));
   }
   return r;
 }
@@ -144,7 +151,7 @@ spreadNotConfirmed(const StripAdjustmentReport& report, const StripPlan& plan)
       continue;
     ++used;
     grew += o.after.sigma_mad > o.before.sigma_mad ? 1 : 0;
-    noise.push_back(std::max(o.noise_i.sigma_mad, o.noise_j.sigma_mad));
+    noise.push_back(ownNoise(o));
   }
   // How far a correction moves a strip at its edge (radius r from its origin): the shift, plus
   // r times the rotation and the scale change.
@@ -179,7 +186,7 @@ offsetNotConfirmed(const StripAdjustmentReport& report)
   for (const OverlapResult& o : report.overlaps) {
     if (!evaluated(o))
       continue;
-    const double own_noise = std::max(o.noise_i.sigma_mad, o.noise_j.sigma_mad);
+    const double own_noise = ownNoise(o);
     if (!(std::abs(o.after.p50) > kMaxOffset * own_noise))
       continue;
     char buf[320];
@@ -204,15 +211,15 @@ offsetNotConfirmed(const StripAdjustmentReport& report)
 // up to 14 σ (the plain mean here is not the adjustment's robust one), sparse ones for up to
 // 4.4 × the noise at 4.5 σ (docs/BENCHMARKS.md).
 std::string
-lndNotAtRest(const StripAdjustmentReport& report)
+lndNotAtRest(const StripAdjustmentReport& report, const StripPlan& plan)
 {
   const double kMaxAskedSigmas = 10.0, kMaxAskedNoise = 1.0;
-  if (report.rule == "LND")
+  if (plan.settings.rule == ConjugateRuleType::LND)
     return {};
   for (const OverlapResult& o : report.overlaps) {
     if (!evaluated(o) || o.asked.count == 0)
       continue;
-    const double own_noise = std::max(o.noise_i.sigma_mad, o.noise_j.sigma_mad);
+    const double own_noise = ownNoise(o);
     const Eigen::Vector3d z = o.asked.t.cwiseAbs().cwiseQuotient(o.asked.sigma.cwiseMax(1e-12));
     if (!(z.maxCoeff() > kMaxAskedSigmas && o.asked.t.norm() > kMaxAskedNoise * own_noise))
       continue;
@@ -240,7 +247,7 @@ confirmByDiscrepancies(StripAdjustmentReport& report, const StripPlan& plan)
   if (why.empty())
     why = offsetNotConfirmed(report);
   if (why.empty())
-    why = lndNotAtRest(report);
+    why = lndNotAtRest(report, plan);
   if (why.empty())
     return;
   report.termination = TerminationType::UNRELIABLE;

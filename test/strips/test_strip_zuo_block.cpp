@@ -16,6 +16,22 @@ using namespace strip_test;
 
 namespace {
 
+// Zuo's set-up: 7 parameters per strip, strip 2 (index 1) the reference, the given rule.
+strips::StripAdjustmentReport
+adjustZuoBlock(const Block& b, ConjugateRuleType rule)
+{
+  strips::StripAdjustmentSettings settings;
+  settings.model = ParameterModel::SIMILARITY_7;
+  settings.reference_strips = {1};
+  settings.rule = rule;
+  strips::StripBlockAdjustment adjustment;
+  adjustment.setSettings(settings);
+  strips::StripAdjustmentReport r;
+  std::string error;
+  EXPECT_TRUE(adjustment.run(b.strips, r, error)) << error;
+  return r;
+}
+
 // `k_sigma`: bound on |estimate − truth| / σ per parameter, and on the mean correction error
 // over the strip against the σ the covariance gives it (meanDisplacementSigma); `max_error`
 // [m]: an absolute bound on that error (a fraction of the noise).
@@ -25,14 +41,7 @@ expectRecovered(synth::LandscapeType type, double scale, double k_sigma, double 
   const synth::StripSettings s = synth::zuoBlock(type, scale, 2);
   const Block b = makeBlock(s);
   ASSERT_EQ(b.strips.size(), 3u);
-  strips::StripAdjustmentSettings settings;
-  settings.model = ParameterModel::SIMILARITY_7;
-  settings.reference_strips = {1};
-  strips::StripBlockAdjustment adjustment;
-  adjustment.setSettings(settings);
-  strips::StripAdjustmentReport r;
-  std::string error;
-  ASSERT_TRUE(adjustment.run(b.strips, r, error)) << error;
+  const strips::StripAdjustmentReport r = adjustZuoBlock(b, ConjugateRuleType::LND);
   ASSERT_TRUE(r.converged()) << r.message;
   EXPECT_TRUE(r.strips[1].reference);
   for (std::size_t k : {0u, 2u}) {
@@ -87,15 +96,8 @@ expectIcpNotConfirmed(std::uint32_t seed, const std::string& reason)
 {
   const synth::StripSettings s = synth::zuoBlock(synth::LandscapeType::URBAN, 0.2, seed);
   const Block b = makeBlock(s);
-  strips::StripAdjustmentSettings settings;
-  settings.model = ParameterModel::SIMILARITY_7;
-  settings.reference_strips = {1};
-  settings.rule = ConjugateRuleType::ICP;
-  strips::StripBlockAdjustment adjustment;
-  adjustment.setSettings(settings);
-  strips::StripAdjustmentReport r;
-  std::string error;
-  ASSERT_TRUE(adjustment.run(b.strips, r, error)) << error;
+  const strips::StripAdjustmentReport r = adjustZuoBlock(b, ConjugateRuleType::ICP);
+  ASSERT_EQ(r.strips.size(), 3u);
   ASSERT_GT(std::max(meanDisplacementError(b, r, 0), meanDisplacementError(b, r, 2)), 0.3)
       << "the premise: ICP stops far from the truth here";
   EXPECT_EQ(r.termination, TerminationType::UNRELIABLE) << r.message;
