@@ -13,6 +13,8 @@
 //        benchmark_strip_block -coverage 100 [-length 400] [-swath 160] [-density 2]   (defaults shown)
 #include "strip_bench_common.h"
 
+#include <pcl_ls3d/stats/descriptive.h>
+
 #include <pcl/console/parse.h>
 
 #include <algorithm>
@@ -72,6 +74,12 @@ chainPairwise(const Block& b, int n, double& seconds)
 struct ChainResult
 {
   double worst_block = 0.0, worst_chain = 0.0;
+
+  double
+  ratio() const
+  {
+    return worst_chain / worst_block;
+  }
 };
 
 ChainResult
@@ -95,7 +103,7 @@ runChain(int cross, double length, double swath, double density, std::uint32_t s
   std::printf("  seed %2u (%zu points): block %s, %d iterations, %.1f s; chain of %d pairs %.1f s; worst strip block "
               "%.4f m, chain %.4f m, ratio %.2f\n", seed, b.strips.size() * b.strips[0].size(),
               terminationTypeToString(block.report.termination), block.report.iterations, block.seconds, n - 1, chain_s,
-              r.worst_block, r.worst_chain, r.worst_chain / r.worst_block);
+              r.worst_block, r.worst_chain, r.ratio());
   return r;
 }
 
@@ -108,16 +116,14 @@ runChains(int cross, double length, double swath, double density, int first, int
               "seeds %d..%d (load %.2f)\n", length, swath, density, cross, first, first + seeds - 1, loadAverage());
   std::vector<double> ratios;
   for (int k = 0; k < seeds; ++k) {
-    const ChainResult r = runChain(cross, length, swath, density, static_cast<std::uint32_t>(first + k), seeds == 1);
-    ratios.push_back(r.worst_chain / r.worst_block);
+    ratios.push_back(runChain(cross, length, swath, density, static_cast<std::uint32_t>(first + k), seeds == 1).ratio());
   }
   const std::size_t at_least_two = static_cast<std::size_t>(
       std::count_if(ratios.begin(), ratios.end(), [](double q) { return q >= 2.0; }));
-  std::sort(ratios.begin(), ratios.end());
-  const double median = ratios.size() % 2 ? ratios[ratios.size() / 2]
-                                          : 0.5 * (ratios[ratios.size() / 2 - 1] + ratios[ratios.size() / 2]);
+  const double median = stats::median(ratios);
+  const auto range = std::minmax_element(ratios.begin(), ratios.end());
   std::printf("  worst-strip ratio chain/block: median %.2f over %d seeds (range %.2f .. %.2f), >= 2 on %zu; "
-              "target median >= 2: %s (load %.2f)\n", median, seeds, ratios.front(), ratios.back(), at_least_two,
+              "target median >= 2: %s (load %.2f)\n", median, seeds, *range.first, *range.second, at_least_two,
               median >= 2.0 ? "PASS" : "FAIL", loadAverage());
 }
 

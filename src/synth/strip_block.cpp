@@ -109,7 +109,7 @@ drawLinePhases(const StripSettings& s, const std::vector<StripTruth>& strips)
       continue;
     Random rng(s.seed, 0x9a5eu, static_cast<std::uint32_t>(i));
     for (auto& p : phase[i]) {
-      const double u = rng.uniform(0.0, 1.0);
+      const double u = rng.uniform(0.0, 1.0);  // drawn first: argument order is unspecified
       p = Eigen::Vector2d(u, rng.uniform(0.0, 1.0));
     }
   }
