@@ -2,11 +2,14 @@
 /// \file laz_chunk_walker.h
 /// \brief Test-side stand-in for the LAZ file reader until the container lands: reads a LAS/LAZ
 ///        file's header and VLRs, and decodes a LAZ file's point data by walking its chunks one
-///        after the other with the bytes each occupied (the chunk table is not read), so it
-///        handles fixed-size chunks only. Swap for io::loadCloud's LAZ path once that exists.
+///        after the other with the bytes each occupied (the chunk table is not read). For
+///        variable-sized chunks (COPC) it takes each chunk's point count from the count field
+///        that layered chunks store after their first record. Swap for io::loadCloud's LAZ path
+///        once that exists.
 
 #include "io/laz/laszip_items.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -129,8 +132,9 @@ walkLaz(const LasFile& f)
   if (!laz::parseLaszipVlr(f.bytes.data() + v->data, v->size, f.point_format, f.record_length,
                            r.vlr, r.error))
     return r;
-  if (r.vlr.chunk_size == laz::kVariableChunkSize) {
-    r.error = "variable-sized chunks need the chunk table, which this walker does not read";
+  const bool variable = r.vlr.chunk_size == laz::kVariableChunkSize;
+  if (variable && r.vlr.compressor != laz::Compressor::LayeredChunked) {
+    r.error = "variable-sized pointwise chunks need the chunk table, which this walker does not read";
     return r;
   }
   auto decoder = laz::makeChunkDecoder(r.vlr, r.error);
@@ -140,10 +144,14 @@ walkLaz(const LasFile& f)
   const std::uint8_t* p = f.bytes.data() + f.offset_to_points + 8;  // skip the chunk-table offset
   const std::uint8_t* end = f.bytes.data() + f.bytes.size();
   for (std::uint64_t done = 0; done < f.point_count; ++r.chunks) {
-    const std::size_t n = static_cast<std::size_t>(
-        std::min<std::uint64_t>(r.vlr.chunk_size, f.point_count - done));
-    const std::size_t used = decoder->decode(p, end, n, r.records.data() + done * f.record_length,
-                                             r.error);
+    std::uint64_t n = std::min<std::uint64_t>(r.vlr.chunk_size, f.point_count - done);
+    if (variable && p + f.record_length + 4 <= end) {
+      std::uint32_t stored = 0;
+      std::memcpy(&stored, p + f.record_length, 4);
+      n = std::min<std::uint64_t>(stored, f.point_count - done);
+    }
+    const std::size_t used = decoder->decode(p, end, static_cast<std::size_t>(n),
+                                             r.records.data() + done * f.record_length, r.error);
     if (used == 0)
       return r;
     r.chunk_bytes.push_back(used);
