@@ -395,6 +395,31 @@ TEST(LazLayeredReal, ReencodingGivesTheOriginalChunkBytes)
   }
 }
 
+// LASzip-written files with four scanner channels (test/data/laz_layered, versions 3 and 4):
+// version 3 hands the channel to RGB / NIR / BYTE only on a switch and predicts from the previous
+// channel's value after switching back; both decode to LASzip's own uncompressed records and
+// re-encode to LASzip's chunk bytes.
+TEST(LazLayeredLaszip, MultiChannelFilesMatchLaszip)
+{
+  const std::string dir = std::string(PCL_LS3D_TEST_SOURCE_DIR) + "/data/laz_layered/";
+  for (const std::string name : {"laszip_v3_pf8_4channels", "laszip_v4_pf8_4channels"}) {
+    laz_test::LasFile laz_file, las_file;
+    ASSERT_TRUE(laz_test::openLasFile(dir + name + ".laz", laz_file)) << name;
+    ASSERT_TRUE(laz_test::openLasFile(dir + name + ".las", las_file)) << name;
+    const laz_test::WalkResult r = laz_test::walkLaz(laz_file);
+    ASSERT_TRUE(r.ok) << name << ": " << r.error;
+    EXPECT_EQ(r.vlr.items.size(), 3u);
+    EXPECT_EQ(r.vlr.items[0].version, name.find("_v3_") != std::string::npos ? 3 : 4);
+    EXPECT_EQ(r.chunks, 3u);
+    EXPECT_TRUE(r.records == las_file.rawRecords()) << name;
+    std::vector<std::size_t> sizes;
+    const std::vector<std::uint8_t> bytes = encodeChunks(r.vlr, r.records, r.vlr.chunk_size, &sizes);
+    EXPECT_EQ(sizes, r.chunk_bytes) << name;
+    EXPECT_TRUE(std::equal(bytes.begin(), bytes.end(),
+                           laz_file.bytes.data() + laz_file.offset_to_points + 8)) << name;
+  }
+}
+
 // ---- round trips on generated records --------------------------------------------------------
 
 struct RoundTripCase

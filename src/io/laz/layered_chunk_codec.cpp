@@ -77,7 +77,7 @@ public:
   {
     for (const Item& item : vlr.items) {
       if (item.type == ItemType::Point14)
-        coders_.push_back(makePoint14Decoder());
+        coders_.push_back(makePoint14Decoder(contextSwitchOf(item)));
       else if (item.type == ItemType::Byte14)
         coders_.push_back(makeByte14Decoder(item.size, contextSwitchOf(item)));
       else
@@ -153,6 +153,7 @@ private:
     }
     for (std::size_t i = 1; i < count; ++i) {
       std::uint8_t* record = out + i * record_length_;
+      channel = 0;  // LASzip's per-record context (see ContextSwitch)
       for (std::size_t k = 0; k < coders_.size(); ++k)
         coders_[k]->decode(record + slots_[k].offset, channel);
     }
@@ -174,7 +175,7 @@ public:
   {
     for (const Item& item : vlr.items) {
       if (item.type == ItemType::Point14)
-        coders_.push_back(makePoint14Encoder());
+        coders_.push_back(makePoint14Encoder(contextSwitchOf(item)));
       else if (item.type == ItemType::Byte14)
         coders_.push_back(makeByte14Encoder(item.size, contextSwitchOf(item)));
       else
@@ -216,6 +217,7 @@ private:
       coders_[k]->start(records + slots_[k].offset, channel);
     for (std::size_t i = 1; i < count; ++i) {
       const std::uint8_t* record = records + i * record_length_;
+      channel = 0;  // LASzip's per-record context (see ContextSwitch)
       for (std::size_t k = 0; k < coders_.size(); ++k)
         coders_[k]->encode(record + slots_[k].offset, channel);
     }

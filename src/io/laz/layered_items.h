@@ -38,7 +38,8 @@ public:
   /// `channel` is the scanner channel: POINT14 sets it, the other items read it.
   virtual void
   start(const std::uint8_t* first, const Layer* layers, unsigned& channel) = 0;
-  /// Decodes the item of the next record into `item`.
+  /// Decodes the item of the next record into `item`. The chunk codec sets `channel` to 0 before
+  /// each record, as LASzip does (see ContextSwitch).
   virtual void
   decode(std::uint8_t* item, unsigned& channel) = 0;
   /// Bytes the item's layers were asked for beyond their ends (0 for a well-formed chunk).
@@ -67,9 +68,14 @@ public:
 /// Scanner channels, and so contexts, per item (two bits in the record).
 constexpr unsigned kChannels = 4;
 
-/// LASzip 3 and 4 differ only here: after the scanner channel switches back to a context already
-/// in use, version 3's RGB / NIR / extra-bytes coders predict that one record from (and store it
-/// into) the previous channel's last value; version 4 uses the new channel's own.
+/// LASzip's item versions 3 and 4 differ only in how the scanner channel reaches the RGB / NIR /
+/// BYTE coders, and version 3's way is part of its format:
+/// - version 3's POINT14 hands the channel on only for a record where it changed; for every other
+///   record the others receive channel 0 (LASzip's per-record context variable starts at 0), so
+///   they drift into context 0 after the first record;
+/// - after a switch to a context already in use, version 3's RGB / NIR / BYTE coders predict that
+///   record from (and store it into) the previous context's last value.
+/// Version 4 hands on the true channel for every record and uses the new context's own value.
 enum class ContextSwitch
 {
   Version3,
@@ -97,9 +103,9 @@ switchChannel(std::array<Context, kChannels>& contexts, unsigned& current, unsig
 
 // The item coders (point14_coder.cpp, rgb14_coder.cpp, byte14_coder.cpp).
 std::unique_ptr<LayeredItemDecoder>
-makePoint14Decoder();
+makePoint14Decoder(ContextSwitch rule);
 std::unique_ptr<LayeredItemEncoder>
-makePoint14Encoder();
+makePoint14Encoder(ContextSwitch rule);
 /// RGB14 (6 bytes) or, with `nir`, RGBNIR14 (8 bytes).
 std::unique_ptr<LayeredItemDecoder>
 makeRgb14Decoder(bool nir, ContextSwitch rule);

@@ -66,6 +66,8 @@ classificationContext(std::uint8_t last_class, const ReturnContext& rc)
 class Point14Decoder final : public LayeredItemDecoder
 {
 public:
+  explicit Point14Decoder(ContextSwitch rule) : rule_(rule) {}
+
   std::size_t
   layerCount() const override
   {
@@ -97,6 +99,8 @@ public:
         dec_[kChannelReturnsXY].decodeSymbol(c->changed_values[previousReturnContext(c->last)]);
     if (changed & kChannelChanged)
       c = &decodeChannel(*c, channel);
+    else if (rule_ == ContextSwitch::Version4)
+      channel = current_;
     const bool gps_changed = (changed & kGpsTimeChanged) != 0;
     decodeReturns(*c, changed, gps_changed);
     const ReturnContext rc = returnContext(c->last.number_of_returns, c->last.return_number);
@@ -202,6 +206,7 @@ private:
       p.gps_time = c.gps.decode(dec_[kGpsTime]);
   }
 
+  ContextSwitch rule_;
   std::array<ArithmeticDecoder, kPoint14Layers> dec_;
   std::array<bool, kPoint14Layers> present_{};
   std::array<std::unique_ptr<Point14Context>, 4> contexts_;
@@ -212,6 +217,8 @@ private:
 class Point14Encoder final : public LayeredItemEncoder
 {
 public:
+  explicit Point14Encoder(ContextSwitch rule) : rule_(rule) {}
+
   std::size_t
   layerCount() const override
   {
@@ -246,6 +253,8 @@ public:
     enc_[kChannelReturnsXY].encodeSymbol(c->changed_values[lpr], changed);
     if (changed & kChannelChanged)
       c = &encodeChannel(*c, p.channel, channel);
+    else if (rule_ == ContextSwitch::Version4)
+      channel = current_;
     const bool gps_changed = (changed & kGpsTimeChanged) != 0;
     encodeReturns(*c, p, changed, gps_changed);
     const ReturnContext rc = returnContext(p.number_of_returns, p.return_number);
@@ -363,6 +372,7 @@ private:
     }
   }
 
+  ContextSwitch rule_;
   std::array<ArithmeticEncoder, kPoint14Layers> enc_;
   std::array<bool, kPoint14Layers> changed_{};
   std::array<std::unique_ptr<Point14Context>, 4> contexts_;
@@ -372,15 +382,15 @@ private:
 }  // namespace
 
 std::unique_ptr<LayeredItemDecoder>
-makePoint14Decoder()
+makePoint14Decoder(ContextSwitch rule)
 {
-  return std::make_unique<Point14Decoder>();
+  return std::make_unique<Point14Decoder>(rule);
 }
 
 std::unique_ptr<LayeredItemEncoder>
-makePoint14Encoder()
+makePoint14Encoder(ContextSwitch rule)
 {
-  return std::make_unique<Point14Encoder>();
+  return std::make_unique<Point14Encoder>(rule);
 }
 
 }  // namespace laz
