@@ -622,6 +622,19 @@ TEST(LazLayeredHostile, GarbageLayersDecodeBoundedOrAreRefused)
   RecordProperty("refused", static_cast<int>(refused));
 }
 
+// A one-point chunk is its raw record: it decodes even when a writer left every layer empty.
+TEST(LazLayeredHostile, OnePointChunkNeedsNoLayerBytes)
+{
+  HostileFixture f;
+  ASSERT_TRUE(f.decoder) << f.error;
+  const std::size_t head = 41 + 4 + 4 * layerCount(f.vlr);
+  std::vector<std::uint8_t> chunk(head, 0);
+  std::copy(f.records.begin(), f.records.begin() + 41, chunk.begin());
+  setField<std::uint32_t>(chunk.data(), 41, 1u);
+  EXPECT_EQ(f.decode(chunk, 1), head) << f.error;
+  EXPECT_TRUE(std::equal(f.records.begin(), f.records.begin() + 41, f.out.begin()));
+}
+
 TEST(LazLayeredHostile, ItemListsOutOfOrderOrMisSizedAreRefused)
 {
   std::string error;

@@ -113,7 +113,8 @@ public:
     }
     std::copy(begin, begin + record_length_, out);
     decodeRecords(out, count);
-    for (std::size_t i = 0; i < coders_.size(); ++i) {
+    // A one-point chunk decodes nothing from its layers (a writer may leave them all empty).
+    for (std::size_t i = 0; i < coders_.size() && count > 1; ++i) {
       if (coders_[i]->overrun() != 0) {
         error = "a layered LAZ chunk's layers of item " + std::to_string(i) +
                 " end before its records do (corrupt data)";
