@@ -5,6 +5,7 @@
 ///        format round-trip, with empty layers for fields that never change; corrupt chunks are
 ///        refused with one line or decode to bounded garbage, never outside their bytes.
 
+#include "io/laz/arithmetic_decoder.h"
 #include "io/laz/laszip_items.h"
 #include "io/laz_chunk_walker.h"
 
@@ -620,6 +621,29 @@ TEST(LazLayeredHostile, GarbageLayersDecodeBoundedOrAreRefused)
     }
   }
   RecordProperty("refused", static_cast<int>(refused));
+}
+
+// Garbage can push the arithmetic decoder's value past its interval; the symbol decoder's table
+// look-up must stay inside the table (this read past it before the index was clamped: run
+// under -fsanitize=address to see it), and every symbol stays in range.
+TEST(LazLayeredHostile, GarbageKeepsTheSymbolDecoderInsideItsTable)
+{
+  std::mt19937_64 rng(2024);
+  std::size_t out_of_range = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    // Value == length at the start (four 0xFF bytes) is where a valid stream can never be.
+    std::vector<std::uint8_t> garbage(8 + rng() % 56, 0xFF);
+    for (std::size_t i = 4; i < garbage.size() && trial % 2 == 1; ++i)
+      garbage[i] = static_cast<std::uint8_t>(rng());
+    laz::ArithmeticDecoder dec(garbage.data(), garbage.data() + garbage.size());
+    laz::SymbolModel small(128), mid(256), big(2048);
+    for (int i = 0; i < 400; ++i) {
+      out_of_range += dec.decodeSymbol(small) >= 128;
+      out_of_range += dec.decodeSymbol(mid) >= 256;
+      out_of_range += dec.decodeSymbol(big) >= 2048;
+    }
+  }
+  EXPECT_EQ(out_of_range, 0u);
 }
 
 // A one-point chunk is its raw record: it decodes even when a writer left every layer empty.

@@ -8,6 +8,7 @@
 
 #include "../las_format.h"
 
+#include <algorithm>
 #include <numeric>
 
 namespace pcl_ls3d {
