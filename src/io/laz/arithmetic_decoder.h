@@ -7,6 +7,7 @@
 
 #include "arithmetic_models.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -65,7 +66,9 @@ public:
     std::uint32_t n, sym, x, y = length_;
     if (!m.decoder_table.empty()) {
       const std::uint32_t dv = value_ / (length_ >>= kSymbolLengthShift);
-      const std::uint32_t t = dv >> m.table_shift;
+      // A valid stream keeps value_ < length_, so t <= table_size; garbage can push value_
+      // past length_ and t past the table, so it is clamped (valid streams are unaffected).
+      const std::uint32_t t = std::min(dv >> m.table_shift, m.table_size);
       sym = m.decoder_table[t];
       n = m.decoder_table[t + 1] + 1;
       while (n > sym + 1) {
