@@ -94,7 +94,7 @@ drawMapArea(Drawing& d, const Layout& l, const Raster& raster, const ColourMap& 
             const MapStyle& style, const Raster* outline)
 {
   const Image cells = detail::cellPixels(raster, l.scale, colours, style.no_data);
-  d.image(cells, l.map_x, l.map_y, l.scale >= 1.0 ? l.scale : 1.0);
+  d.image(cells, l.map_x, l.map_y);
   if (outline && outline->grid.cols == raster.grid.cols && outline->grid.rows == raster.grid.rows)
     d.lines(detail::outlineSegments(*outline, l.scale, l.map_x, l.map_y), kOutlineColour, 2.0);
   d.frame(l.map_x - 1, l.map_y - 1, l.map_w + 2, l.map_h + 2, kFrame);

@@ -84,12 +84,12 @@ cellPixels(const Raster& raster, double scale, const ColourMap& colours, Rgb no_
 {
   const GridGeometry& g = raster.grid;
   const bool enlarged = scale >= 1.0;
-  const int w = enlarged ? g.cols : std::max(1, static_cast<int>(g.cols * scale));
-  const int h = enlarged ? g.rows : std::max(1, static_cast<int>(g.rows * scale));
+  const int factor = enlarged ? static_cast<int>(scale) : 1;
+  const int w = std::max(1, static_cast<int>(g.cols * scale)), h = std::max(1, static_cast<int>(g.rows * scale));
   Image pixels(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const float v = enlarged ? raster.at(x, y) : sampleCells(raster, scale, x, y);
+      const float v = enlarged ? raster.at(x / factor, y / factor) : sampleCells(raster, scale, x, y);
       pixels.set(x, y, std::isfinite(v) ? colours.colour(v) : no_data);
     }
   return pixels;

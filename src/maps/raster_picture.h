@@ -12,8 +12,9 @@ namespace pcl_ls3d {
 namespace maps {
 namespace detail {
 
-/// The raster in colour, one pixel per cell when \a scale ≥ 1 (the drawing enlarges it), else
-/// at the map's size with each pixel the mean of the finite cells under it.
+/// The raster in colour at the map's size: each cell a block of \a scale × \a scale pixels when
+/// \a scale ≥ 1 (a whole number), else each pixel the mean of the finite cells under it.
+/// Enlarged here rather than by the drawing: SVG viewers smooth an enlarged image.
 Image
 cellPixels(const Raster& raster, double scale, const ColourMap& colours, Rgb no_data);
 

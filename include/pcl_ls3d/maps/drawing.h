@@ -89,7 +89,8 @@ public:
   verticalGradient(double x, double y, double w, double h,
                    const std::vector<std::pair<double, Rgb>>& stops);
   /// Draws \a pixels with its top left corner at (x, y), each pixel a square of \a scale
-  /// (sharp edges, no smoothing: cells stay cells in every format).
+  /// (unsmoothed in PNG and PDF; SVG viewers smooth an enlarged image, so where sharp cells
+  /// matter enlarge the pixels first and draw at scale 1).
   void
   image(const Image& pixels, double x, double y, double scale = 1.0);
   /// Draws UTF-8 text with its baseline at y (invalid bytes shown as '?'); returns its width.
