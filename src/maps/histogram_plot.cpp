@@ -150,20 +150,30 @@ drawBars(Drawing& d, const Plot& p, const std::vector<HistogramSeries>& series,
   d.fillRect(p.left, p.bottom(), p.width + 1, 1, kInk);
 }
 
-// Legend at the top right: a swatch and the label per series, with the count outside the axis.
+// Legend at the top right, on a light backing so that bars and marks under it do not cross its
+// text: a swatch and the label per series, with the count outside the axis.
 void
 drawLegend(Drawing& d, const Plot& p, const std::vector<HistogramSeries>& series,
            const std::vector<std::size_t>& outside)
 {
-  int ly = p.top + 8;
+  std::vector<std::string> texts;
+  double widest = 0.0;
   for (std::size_t s = 0; s < series.size(); ++s) {
-    std::string text = series[s].label;
+    texts.push_back(series[s].label);
     if (outside[s] > 0)
-      text += " (" + std::to_string(outside[s]) + " outside the axis)";
-    const double x = p.left + p.width - Drawing::textWidth(text) - 8;
+      texts.back() += " (" + std::to_string(outside[s]) + " outside the axis)";
+    widest = std::max(widest, Drawing::textWidth(texts.back()));
+  }
+  const int row = Drawing::lineHeight() + 2;
+  const double right = p.left + p.width - 4;
+  d.fillRect(right - widest - 30, p.top + 2, widest + 30, row * static_cast<double>(texts.size()) + 2,
+             {255, 255, 255}, 0.85);
+  int ly = p.top + 8;
+  for (std::size_t s = 0; s < texts.size(); ++s) {
+    const double x = p.left + p.width - Drawing::textWidth(texts[s]) - 8;
     d.fillRect(std::floor(x) - 22, ly - 9, 14, 10, series[s].colour);
-    d.text(x, ly, text, kInk);
-    ly += Drawing::lineHeight() + 2;
+    d.text(x, ly, texts[s], kInk);
+    ly += row;
   }
 }
 
