@@ -98,7 +98,7 @@ Drawing::line(double x0, double y0, double x1, double y1, Rgb c, double line_wid
 }
 
 void
-Drawing::lines(const std::vector<Eigen::Vector4d>& segments, Rgb c, double line_width)
+Drawing::lines(const std::vector<Eigen::Vector4d>& segments, Rgb c, double line_width, bool square_ends)
 {
   if (!recording_ || segments.empty() || !std::isfinite(line_width) || line_width <= 0.0)
     return;
@@ -106,7 +106,7 @@ Drawing::lines(const std::vector<Eigen::Vector4d>& segments, Rgb c, double line_
   cairo_save(cr);
   setColour(cr, c);
   cairo_set_line_width(cr, line_width);
-  cairo_set_line_cap(cr, CAIRO_LINE_CAP_SQUARE);  // the corners of joining lines close
+  cairo_set_line_cap(cr, square_ends ? CAIRO_LINE_CAP_SQUARE : CAIRO_LINE_CAP_BUTT);
   for (const Eigen::Vector4d& s : segments)
     if (s.allFinite()) {
       cairo_move_to(cr, s[0], s[1]);

@@ -95,8 +95,12 @@ drawMapArea(Drawing& d, const Layout& l, const Raster& raster, const ColourMap& 
 {
   const Image cells = detail::cellPixels(raster, l.scale, colours, style.no_data);
   d.image(cells, l.map_x, l.map_y);
-  if (outline && outline->grid.cols == raster.grid.cols && outline->grid.rows == raster.grid.rows)
-    d.lines(detail::outlineSegments(*outline, l.scale, l.map_x, l.map_y), kOutlineColour, 2.0);
+  if (outline && outline->grid.cols == raster.grid.cols && outline->grid.rows == raster.grid.rows) {
+    // Two pixels on large cells; one on small cells, which a wider line would hide.
+    const double width = l.scale >= 8.0 ? 2.0 : 1.0;
+    d.lines(detail::outlineSegments(*outline, l.scale, l.map_x, l.map_y, width / 2.0), kOutlineColour, width,
+            false);
+  }
   d.frame(l.map_x - 1, l.map_y - 1, l.map_w + 2, l.map_h + 2, kFrame);
 }
 

@@ -59,21 +59,30 @@ isMarked(const Raster& m, int col, int row)
   return col >= 0 && row >= 0 && col < m.grid.cols && row < m.grid.rows && m.at(col, row) > 0.5f;
 }
 
-// Runs of border edges along one line of cells: `edge(k)` says whether the k-th edge is a border;
-// `segment(first, end)` receives each run (its first edge and one past its last).
-template <typename IsBorder, typename Segment>
+// Which side of the edge between cells a (above or left) and b is marked: 0 none or both, +1 b
+// (below or right), −1 a.
+int
+markedSide(bool a, bool b)
+{
+  return a == b ? 0 : b ? 1 : -1;
+}
+
+// Runs of border edges along one line of cells: `side(k)` is the k-th edge's markedSide();
+// `segment(first, end, side)` receives each run of one side (first edge, one past its last).
+template <typename Side, typename Segment>
 void
-joinRuns(int count, IsBorder edge, Segment segment)
+joinRuns(int count, Side side, Segment segment)
 {
   for (int k = 0; k < count;) {
-    if (!edge(k)) {
+    const int s = side(k);
+    if (s == 0) {
       ++k;
       continue;
     }
     const int start = k;
-    while (k < count && edge(k))
+    while (k < count && side(k) == s)
       ++k;
-    segment(start, k);
+    segment(start, k, s);
   }
 }
 
@@ -109,21 +118,25 @@ markedPixels(const Raster& marked, double scale)
 }
 
 std::vector<Eigen::Vector4d>
-outlineSegments(const Raster& marked, double scale, double x0, double y0)
+outlineSegments(const Raster& marked, double scale, double x0, double y0, double inset)
 {
   if (scale < 1.0)  // outline the pixels that show a marked cell, as the averaged map shows them
-    return outlineSegments(markedPixels(marked, scale), 1.0, x0, y0);
+    return outlineSegments(markedPixels(marked, scale), 1.0, x0, y0, inset);
   std::vector<Eigen::Vector4d> segments;
   const int cols = marked.grid.cols, rows = marked.grid.rows;
   for (int row = 0; row <= rows; ++row) {  // horizontal edges above each row (and below the last)
     const double y = y0 + row * scale;
-    joinRuns(cols, [&](int c) { return isMarked(marked, c, row - 1) != isMarked(marked, c, row); },
-             [&](int a, int b) { segments.emplace_back(x0 + a * scale, y, x0 + b * scale, y); });
+    joinRuns(cols, [&](int c) { return markedSide(isMarked(marked, c, row - 1), isMarked(marked, c, row)); },
+             [&](int a, int b, int side) {
+               segments.emplace_back(x0 + a * scale, y + side * inset, x0 + b * scale, y + side * inset);
+             });
   }
   for (int col = 0; col <= cols; ++col) {  // vertical edges left of each column
     const double x = x0 + col * scale;
-    joinRuns(rows, [&](int r) { return isMarked(marked, col - 1, r) != isMarked(marked, col, r); },
-             [&](int a, int b) { segments.emplace_back(x, y0 + a * scale, x, y0 + b * scale); });
+    joinRuns(rows, [&](int r) { return markedSide(isMarked(marked, col - 1, r), isMarked(marked, col, r)); },
+             [&](int a, int b, int side) {
+               segments.emplace_back(x + side * inset, y0 + a * scale, x + side * inset, y0 + b * scale);
+             });
   }
   return segments;
 }

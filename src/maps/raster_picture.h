@@ -24,10 +24,12 @@ markedPixels(const Raster& marked, double scale);
 
 /// The border between cells of \a marked holding values > 0.5 and the other cells (or the
 /// grid's edge), as horizontal and vertical lines in pixels of a map whose top left corner is
-/// (x0, y0) and whose cells are \a scale pixels wide; runs along one row or column are joined.
-/// At \a scale < 1 the border of the pixels under which a marked cell lies.
+/// (x0, y0) and whose cells are \a scale pixels wide, each moved \a inset into the marked cells
+/// (half the line width: the line then lies on the marked cells' border pixels, and flat ends
+/// meet at the corners); runs along one row or column are joined. At \a scale < 1 the border
+/// of the pixels under which a marked cell lies.
 std::vector<Eigen::Vector4d>
-outlineSegments(const Raster& marked, double scale, double x0, double y0);
+outlineSegments(const Raster& marked, double scale, double x0, double y0, double inset);
 
 }  // namespace detail
 }  // namespace maps

@@ -236,8 +236,8 @@ TEST(RasterMap, SvgIsWellFormedWithAGlyphPerCharacter)
   EXPECT_LE(glyphs, all);
 }
 
-// Marked cells are outlined along their border (two pixels centred on the cell edges) and only
-// there; without marks no pixel has the outline's colour.
+// Marked cells are outlined on their border pixels (two pixels wide at 20 pixels per cell) and
+// only there; without marks no pixel has the outline's colour.
 TEST(RasterMap, OutlineSurroundsTheMarkedCells)
 {
   const Raster r = rampRaster();
@@ -257,12 +257,14 @@ TEST(RasterMap, OutlineSurroundsTheMarkedCells)
       plain_outline += plain.get(x, y) == kOutlineColour;
     }
   EXPECT_EQ(plain_outline, 0u);
-  // A ring two pixels wide centred on the border of 60 × 40 pixels: 62 × 42 − 58 × 38 = 400.
-  EXPECT_EQ(outline, 400u);
-  EXPECT_EQ(img.get(x0 + 120, y0 + 20), kOutlineColour);      // inside the top left corner
-  EXPECT_EQ(img.get(x0 + 119, y0 + 19), kOutlineColour);      // outside it
-  EXPECT_EQ(img.get(x0 + 130, y0 + 30), colours.colour(r.at(6, 1)));  // the cell itself
-  EXPECT_EQ(img.get(x0 + 100, y0 + 30), colours.colour(r.at(5, 1)));  // the cell left of it
+  // A ring two pixels wide just inside the 60 × 40 pixels of the block: 60 × 40 − 56 × 36 = 384.
+  EXPECT_EQ(outline, 384u);
+  EXPECT_EQ(img.get(x0 + 120, y0 + 20), kOutlineColour);  // the block's top left pixel
+  EXPECT_EQ(img.get(x0 + 121, y0 + 21), kOutlineColour);
+  EXPECT_EQ(img.get(x0 + 179, y0 + 59), kOutlineColour);  // its bottom right pixel
+  EXPECT_EQ(img.get(x0 + 122, y0 + 22), colours.colour(r.at(6, 1)));  // the cell inside
+  EXPECT_EQ(img.get(x0 + 119, y0 + 20), colours.colour(r.at(5, 1)));  // the cell left of it
+  EXPECT_EQ(img.get(x0 + 120, y0 + 19), colours.colour(r.at(6, 0)));  // the cell above it
 }
 
 // A histogram's PDF holds its title, axis label and both series' labels.

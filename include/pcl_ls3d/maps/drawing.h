@@ -76,10 +76,11 @@ public:
   /// of that length.
   void
   line(double x0, double y0, double x1, double y1, Rgb c, double line_width = 1.0, double dash = 0.0);
-  /// Lines of one colour and width in one path, each element (x0, y0, x1, y1), with square ends
-  /// (half the width beyond each end) so that the corners of an outline close.
+  /// Lines of one colour and width in one path, each element (x0, y0, x1, y1); \a square_ends
+  /// extend each by half the width (pixel-centred lines then cover their end pixels), else
+  /// the ends are flat.
   void
-  lines(const std::vector<Eigen::Vector4d>& segments, Rgb c, double line_width);
+  lines(const std::vector<Eigen::Vector4d>& segments, Rgb c, double line_width, bool square_ends = true);
   /// Fills the polygon through \a corners.
   void
   fillPolygon(const std::vector<Eigen::Vector2d>& corners, Rgb c);

@@ -34,7 +34,8 @@ struct MapStyle
 
 /// Draws the raster (north up; cells enlarged by a whole factor, or averaged down when the
 /// raster is larger than the map area). Where \a outline (a raster on the same grid) holds
-/// values > 0.5, the border of those cells is drawn as a dark line (e.g. deformed regions).
+/// values > 0.5, the border of those cells is drawn as a dark line on their outermost pixels
+/// (e.g. deformed regions).
 Drawing
 renderRasterMap(const Raster& raster, const ColourMap& colours, const MapStyle& style,
                 const Raster* outline = nullptr);
