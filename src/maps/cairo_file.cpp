@@ -2,10 +2,24 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 
 namespace pcl_ls3d {
 namespace maps {
 namespace detail {
+
+namespace {
+
+// Removes what a failed write left; a device or pipe written to (/dev/full) is not ours to remove.
+void
+removePartial(const std::string& path)
+{
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec))
+    std::filesystem::remove(path, ec);
+}
+
+}  // namespace
 
 OutputFile::OutputFile(const std::string& path, bool overwrite) : path_(path)
 {
@@ -21,7 +35,7 @@ OutputFile::~OutputFile()
     return;
   if (file_) {
     std::fclose(file_);
-    std::remove(path_.c_str());
+    removePartial(path_);
   }
 }
 
@@ -41,17 +55,19 @@ OutputFile::commit(cairo_status_t status, std::string& error)
 {
   std::FILE* f = file_;
   file_ = nullptr;
-  const bool flushed = std::fflush(f) == 0;
+  const bool flushed = std::fflush(f) == 0 && !std::ferror(f);
   if (!flushed && errno_ == 0)
-    errno_ = errno;
+    errno_ = errno ? errno : EIO;
   const bool closed = std::fclose(f) == 0;
   if (!closed && errno_ == 0)
-    errno_ = errno;
-  if (status == CAIRO_STATUS_SUCCESS && flushed && closed) {
+    errno_ = errno ? errno : EIO;
+  // cairo 1.16 does not report every failed stream write in the PDF surface's status, so a
+  // write error seen here (errno_) fails the file whatever cairo says.
+  if (status == CAIRO_STATUS_SUCCESS && flushed && closed && errno_ == 0) {
     committed_ = true;
     return true;
   }
-  std::remove(path_.c_str());
+  removePartial(path_);
   error = "cannot write " + path_ + ": " +
           (errno_ != 0 ? std::strerror(errno_) : cairo_status_to_string(status));
   return false;

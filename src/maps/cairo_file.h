@@ -31,8 +31,8 @@ public:
   /// cairo_write_func_t; the closure is the OutputFile.
   static cairo_status_t
   write(void* closure, const unsigned char* data, unsigned int length);
-  /// Closes the file after checking \a status (cairo's, of the finished surface); false with
-  /// "cannot write PATH: reason" in \a error, the file then removed.
+  /// Closes the file after checking \a status (cairo's, of the finished surface) and every
+  /// write; false with "cannot write PATH: reason" in \a error, the file then removed.
   bool
   commit(cairo_status_t status, std::string& error);
   /// "cannot write PATH: reason" for a file that did not open.

@@ -11,8 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -313,4 +315,23 @@ TEST(Drawing, RefusesUnwritableAndExistingFiles)
     EXPECT_FALSE(fs::exists(s.file("empty" + ext)));
   }
   EXPECT_NE(slurpBytes(s.file("m.pdf")).find("/Title (Test map)"), std::string::npos);
+}
+
+// A write that fails on the way (a full disk: /dev/full) is reported with the system's reason;
+// the device written to is not removed as a partial file would be.
+TEST(Drawing, FullDiskIsReportedAndTheDeviceKept)
+{
+  if (!fs::exists("/dev/full"))
+    GTEST_SKIP() << "no /dev/full on this system";
+  Drawing d(300, 200);
+  d.text(10, 20, "a map that does not fit", {0, 0, 0});
+  for (MapFormat f : {MapFormat::PNG, MapFormat::PDF, MapFormat::SVG}) {
+    std::string error;
+    EXPECT_FALSE(d.write("/dev/full", f, error, true)) << mapFormatName(f);
+    EXPECT_EQ(error, "cannot write /dev/full: " + std::string(std::strerror(ENOSPC))) << mapFormatName(f);
+    EXPECT_TRUE(fs::exists("/dev/full"));
+  }
+  std::string error;
+  EXPECT_FALSE(writePng("/dev/full", d.rasterise(), error));
+  EXPECT_TRUE(fs::exists("/dev/full"));
 }
