@@ -5,14 +5,18 @@
 #include "../io/tool_run.h"
 #include "maps/vector_files.h"
 
+#include <pcl_ls3d/strips/strip_files.h>
 #include <pcl_ls3d/synth/li_surface.h>
 
 #include <pcl/common/io.h>
 #include <pcl/io/pcd_io.h>
 
+#include <nlohmann/json.hpp>
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -126,4 +130,29 @@ TEST(MapFormatTools, StripAdjustWritesEveryMapInTheFormatAsked)
   EXPECT_EQ(lineCount(r.err), 1u) << r.err;
   EXPECT_NE(r.err.find("-map_format"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(s.file("maps2")));
+}
+
+// The staged strip adjustment carries the format in its plan file; a plan written before the
+// option existed (no map_format) draws PNG, and an unknown format is refused when read.
+TEST(MapFormatTools, StripPlanFileCarriesTheFormat)
+{
+  const Scratch s;
+  pcl_ls3d::strips::PlanFile plan;
+  plan.map_format = pcl_ls3d::maps::MapFormat::SVG;
+  std::string error;
+  ASSERT_TRUE(pcl_ls3d::strips::writePlanFile(s.file("plan.json"), plan, error)) << error;
+  pcl_ls3d::strips::PlanFile back;
+  ASSERT_TRUE(pcl_ls3d::strips::readPlanFile(s.file("plan.json"), back, error)) << error;
+  EXPECT_EQ(back.map_format, pcl_ls3d::maps::MapFormat::SVG);
+
+  nlohmann::json j = nlohmann::json::parse(slurpBytes(s.file("plan.json")));
+  j.erase("map_format");
+  std::ofstream(s.file("old.json")) << j.dump();
+  ASSERT_TRUE(pcl_ls3d::strips::readPlanFile(s.file("old.json"), back, error)) << error;
+  EXPECT_EQ(back.map_format, pcl_ls3d::maps::MapFormat::PNG);
+
+  j["map_format"] = "gif";
+  std::ofstream(s.file("bad.json")) << j.dump();
+  EXPECT_FALSE(pcl_ls3d::strips::readPlanFile(s.file("bad.json"), back, error));
+  EXPECT_NE(error.find("map_format"), std::string::npos) << error;
 }
