@@ -63,7 +63,7 @@ printHelp(const char* prog)
       "                         (default: NAME_psid<ID>.EXT per input and point-source id)\n"
       "  -json REPORT           JSON report\n"
       "  -maps DIR              discrepancy maps before/after per overlap and for the whole block\n"
-      "                         (GeoTIFF in the input's CRS + PNG), histograms\n"
+      "                         (GeoTIFF in the input's CRS + PNG, PDF or SVG), histograms\n"
       "  -map_format F          png (default), pdf or svg: the maps and histograms as .F files\n"
       "                         (pdf and svg: vector graphics for reports)\n"
       "  -bands a,b             tolerance classes of the maps in metres (default 0.10,0.20; without\n"
