@@ -7,7 +7,7 @@
 ///        classes shown (class colours) and a one-line caption (segments or classes, points,
 ///        view, pixel size); -plain writes the picture alone, as before the margin existed.
 ///
-/// Usage: render_top_view INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class]
+/// Usage: render_top_view INPUT OUT.png|pdf|svg [-pixel m] [-splat n] [-by rgb|label|class]
 ///                       [-crop x0,x1,y0,y1] [-view top|north|east|south|west] [-plain] [-overwrite]
 ///   INPUT  SEGMENTS.pcd of pcl_ls3d_segment (x y z rgba label [classification]), or any cloud
 ///          pcl_ls3d reads (-by class colours by the LAS classification / PCD label with a fixed
@@ -31,6 +31,7 @@
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
+#include <pcl_ls3d/maps/map_format.h>
 #include <pcl_ls3d/maps/map_rendering.h>
 #include <pcl_ls3d/maps/png_io.h>
 
@@ -200,9 +201,9 @@ struct Options
 };
 
 constexpr const char* kUsage =
-    "Usage: %s INPUT OUT.png [-pixel m] [-splat n] [-by rgb|label|class] [-crop x0,x1,y0,y1]\n"
-    "       [-view top|north|east|south|west] [-plain] [-overwrite]\n"
-    "  A PNG of the highest point per pixel (side views: the nearest), segment borders darkened,\n"
+    "Usage: %s INPUT OUT.png|pdf|svg [-pixel m] [-splat n] [-by rgb|label|class]\n"
+    "       [-crop x0,x1,y0,y1] [-view top|north|east|south|west] [-plain] [-overwrite]\n"
+    "  A map (PNG, PDF or SVG) of the highest point per pixel (side views: the nearest), segment borders darkened,\n"
     "  in a margin with a scale bar in the cloud's unit (metres unless its CRS says otherwise),\n"
     "  a north arrow (top view) or the side view's direction, a legend of the classes shown\n"
     "  (class colours) and a caption: segments (or classes), points, view and pixel size.\n"
@@ -213,8 +214,17 @@ constexpr const char* kUsage =
     "          label (segment, or class); class: ASPRS palette by classification / PCD label\n"
     "  -crop   keep points with x0 <= x <= x1 and y0 <= y <= y1 (the file's local coordinates)\n"
     "  -view   top (default), or a side view looking north, east, south or west\n"
-    "  -plain  the picture alone, without the margin\n"
-    "  -overwrite  replace an existing OUT.png\n";
+    "  -plain  the picture alone, without the margin (PNG only)\n"
+    "  -overwrite  replace an existing output\n";
+
+/// The map's format by the output's extension (png, pdf or svg; checked by parseOptions).
+pcl_ls3d::maps::MapFormat
+formatOf(const std::string& path)
+{
+  pcl_ls3d::maps::MapFormat format = pcl_ls3d::maps::MapFormat::PNG;
+  pcl_ls3d::maps::parseMapFormat(pcl_ls3d::io::fileExtension(path), format);
+  return format;
+}
 
 /// The options, checked before the input is read; false with a one-line reason.
 bool
@@ -225,11 +235,14 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   if (!tools::splitArguments(argc, argv, 1, {"-pixel", "-splat", "-by", "-crop", "-view"},
                              {"-overwrite", "-plain"}, files, why))
     return false;
-  if (files.size() != 2 || pcl_ls3d::io::fileExtension(files[1]) != "png")
-    return (why = "expected INPUT OUT.png (see -h)").empty();
+  pcl_ls3d::maps::MapFormat format;
+  if (files.size() != 2 || !pcl_ls3d::maps::parseMapFormat(pcl_ls3d::io::fileExtension(files[1]), format))
+    return (why = "expected INPUT OUT.png, OUT.pdf or OUT.svg (see -h)").empty();
   o.input = files[0];
   o.output = files[1];
   o.plain = pcl::console::find_switch(argc, argv, "-plain");
+  if (o.plain && format != pcl_ls3d::maps::MapFormat::PNG)
+    return (why = "-plain writes a PNG (the picture's pixels), not " + files[1]).empty();
   long long splat = o.splat;
   if (!tools::numberOption(argc, argv, "-pixel", o.pixel, why) ||
       !tools::integerOption(argc, argv, "-splat", splat, why, 0, 50))
@@ -343,86 +356,89 @@ className(const Margin& m, std::uint32_t code)
 int
 legendRowHeight()
 {
-  return std::max(kSwatch, pcl_ls3d::maps::Image::lineHeight() + 4);
+  return std::max(kSwatch, pcl_ls3d::maps::Drawing::lineHeight() + 4);
+}
+
+int
+textWidth(const std::string& text, pcl_ls3d::maps::FontStyle style = pcl_ls3d::maps::FontStyle::REGULAR)
+{
+  return static_cast<int>(std::ceil(pcl_ls3d::maps::Drawing::textWidth(text, style)));
 }
 
 /// Width and height of the side panel.
 std::pair<int, int>
 panelSize(const Margin& m)
 {
+  using pcl_ls3d::maps::Drawing;
   using pcl_ls3d::maps::FontStyle;
-  using pcl_ls3d::maps::Image;
   int w = 20, h = kArrowHeight;
   if (!m.view_lines.empty()) {
-    w = std::max(Image::textWidth(m.view_lines[0], FontStyle::BOLD), Image::textWidth(m.view_lines[1]));
-    h = Image::lineHeight(FontStyle::BOLD) + Image::lineHeight();
+    w = std::max(textWidth(m.view_lines[0], FontStyle::BOLD), textWidth(m.view_lines[1]));
+    h = Drawing::lineHeight(FontStyle::BOLD) + Drawing::lineHeight();
   }
   if (!m.classes.empty()) {
-    h += 12 + Image::lineHeight(FontStyle::BOLD) + static_cast<int>(m.classes.size()) * legendRowHeight();
-    const int code_w = Image::textWidth(std::to_string(m.classes.back()));
+    h += 12 + Drawing::lineHeight(FontStyle::BOLD) + static_cast<int>(m.classes.size()) * legendRowHeight();
+    const int code_w = textWidth(std::to_string(m.classes.back()));
     for (std::uint32_t c : m.classes)
-      w = std::max(w, kSwatch + 12 + code_w +
-                          Image::textWidth(className(m, c)));
+      w = std::max(w, kSwatch + 12 + code_w + textWidth(className(m, c)));
   }
   return {w, h};
 }
 
 void
-drawPanel(pcl_ls3d::maps::Image& img, int x, int y, const Margin& m)
+drawPanel(pcl_ls3d::maps::Drawing& img, int x, int y, const Margin& m)
 {
+  using Image = pcl_ls3d::maps::Drawing;  // its font metrics
   using pcl_ls3d::maps::FontStyle;
-  using pcl_ls3d::maps::Image;
   using pcl_ls3d::maps::TextAlign;
   if (m.view_lines.empty()) {
     pcl_ls3d::maps::drawNorthArrow(img, x + 10, y);
     y += kArrowHeight;
   }
   else {
-    img.drawText(x, y + Image::ascent(FontStyle::BOLD), m.view_lines[0], kInk, FontStyle::BOLD);
+    img.text(x, y + Image::ascent(FontStyle::BOLD), m.view_lines[0], kInk, FontStyle::BOLD);
     y += Image::lineHeight(FontStyle::BOLD);
-    img.drawText(x, y + Image::ascent(), m.view_lines[1], kInk);
+    img.text(x, y + Image::ascent(), m.view_lines[1], kInk);
     y += Image::lineHeight();
   }
   if (m.classes.empty())
     return;
   y += 12;
-  img.drawText(x, y + Image::ascent(FontStyle::BOLD), "Classes", kInk, FontStyle::BOLD);
+  img.text(x, y + Image::ascent(FontStyle::BOLD), "Classes", kInk, FontStyle::BOLD);
   y += Image::lineHeight(FontStyle::BOLD);
-  const int code_w = Image::textWidth(std::to_string(m.classes.back()));
+  const int code_w = textWidth(std::to_string(m.classes.back()));
   for (std::uint32_t c : m.classes) {
     const std::uint32_t rgb = classColour(c);
     // The swatch is the class's own colour, exactly as in the picture (tests find it there).
     const pcl_ls3d::maps::Rgb colour{static_cast<std::uint8_t>(rgb >> 16),
                                      static_cast<std::uint8_t>(rgb >> 8), static_cast<std::uint8_t>(rgb)};
     img.fillRect(x, y + 2, kSwatch, 10, colour);
-    img.drawRect(x - 1, y + 1, kSwatch + 2, 12, kFrame);
+    img.frame(x - 1, y + 1, kSwatch + 2, 12, kFrame);
     const int base = y + 2 + Image::ascent() - 1;
-    img.drawText(x + kSwatch + 6 + code_w, base, std::to_string(c), kInk, FontStyle::REGULAR,
-                 TextAlign::RIGHT);
-    img.drawText(x + kSwatch + 12 + code_w, base, className(m, c), kInk);
+    img.text(x + kSwatch + 6 + code_w, base, std::to_string(c), kInk, FontStyle::REGULAR, TextAlign::RIGHT);
+    img.text(x + kSwatch + 12 + code_w, base, className(m, c), kInk);
     y += legendRowHeight();
   }
 }
 
 /// The picture at (kMargin, kMargin), framed, with the margin around it; `bar` and `bar_y` say
 /// what scale bar was drawn where (printed, so that scripts and tests can find it).
-pcl_ls3d::maps::Image
+pcl_ls3d::maps::Drawing
 decorate(const pcl_ls3d::maps::Image& picture, double pixel, const Margin& m,
          pcl_ls3d::maps::ScaleBar& bar, int& bar_y)
 {
-  using pcl_ls3d::maps::Image;
+  using Image = pcl_ls3d::maps::Drawing;  // its font metrics
   const int w = picture.width(), h = picture.height();
   const auto [panel_w, panel_h] = panelSize(m);
   const int line = Image::lineHeight();
   int width = kMargin + w + kGap + panel_w + kMargin;
-  width = std::max(width, 2 * kMargin + std::max(Image::textWidth(m.caption), Image::textWidth(m.footer)));
+  width = std::max(width, 2 * kMargin + std::max(textWidth(m.caption), textWidth(m.footer)));
   const int below = kMargin + std::max(h, panel_h) + 12;  // top of the scale bar
   const int height = below + (m.unit.empty() ? 0 : 30) + line + (m.footer.empty() ? 0 : line) + kMargin;
-  Image img(width, height);
-  for (int y = 0; y < h; ++y)
-    std::copy_n(picture.pixels().begin() + 3 * static_cast<std::ptrdiff_t>(y) * w, 3 * w,
-                img.pixels().begin() + 3 * (static_cast<std::ptrdiff_t>(kMargin + y) * width + kMargin));
-  img.drawRect(kMargin - 1, kMargin - 1, w + 2, h + 2, kFrame);
+  pcl_ls3d::maps::Drawing img(width, height);
+  img.setTitle(m.caption);
+  img.image(picture, kMargin, kMargin);
+  img.frame(kMargin - 1, kMargin - 1, w + 2, h + 2, kFrame);
   drawPanel(img, kMargin + w + kGap, kMargin, m);
   int y = bar_y = below;
   if (!m.unit.empty()) {
@@ -430,10 +446,10 @@ decorate(const pcl_ls3d::maps::Image& picture, double pixel, const Margin& m,
     bar = pcl_ls3d::maps::drawScaleBar(img, kMargin, y, std::max(w, 160), pixel, m.unit);
     y += 30;
   }
-  img.drawText(kMargin, y + Image::ascent(), m.caption, kInk);
+  img.text(kMargin, y + Image::ascent(), m.caption, kInk);
   y += line;
   if (!m.footer.empty())
-    img.drawText(kMargin, y + Image::ascent(), m.footer, kFrame);
+    img.text(kMargin, y + Image::ascent(), m.footer, kFrame);
   return img;
 }
 
@@ -507,9 +523,11 @@ main(int argc, char** argv)
   m.unit = meaning.unit;
   pcl_ls3d::maps::ScaleBar bar;
   int bar_y = 0;
-  const pcl_ls3d::maps::Image image = o.plain ? picture : decorate(picture, pixel, m, bar, bar_y);
   std::string error;
-  if (!pcl_ls3d::maps::writePng(o.output, image, error)) {
+  const pcl_ls3d::maps::Drawing map = o.plain ? pcl_ls3d::maps::Drawing() : decorate(picture, pixel, m, bar, bar_y);
+  const bool written = o.plain ? pcl_ls3d::maps::writePng(o.output, picture, error)
+                               : map.write(o.output, formatOf(o.output), error, true);
+  if (!written) {
     std::fprintf(stderr, "render_top_view: %s\n", error.c_str());
     return 1;
   }
@@ -520,7 +538,7 @@ main(int argc, char** argv)
   }
   std::printf("Wrote %s (%d x %d pixels; picture %d x %d pixels of %.3g at %d,%d, %zu points, "
               "x %.1f..%.1f, y %.1f..%.1f)\n",
-              o.output.c_str(), image.width(), image.height(), w, h, pixel, kMargin, kMargin,
+              o.output.c_str(), map.width(), map.height(), w, h, pixel, kMargin, kMargin,
               pts.size(), x0, x1, y0, y1);
   std::printf("Caption: %s\n", m.caption.c_str());
   if (bar.pixels > 0)

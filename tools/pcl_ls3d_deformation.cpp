@@ -94,9 +94,12 @@ printHelp(const char* prog)
       "                       local_origin_source / local_origin_target), params (free\n"
       "                       parameters; model_note when fewer than asked), estimator, scale,\n"
       "                       subsets, percent_deformed, regions\n"
-      "  -map PREFIX          PREFIX.png (residual map, diverging colour bar, significant regions\n"
-      "                       outlined) and PREFIX.tif (float32 GeoTIFF of the residuals, NaN\n"
-      "                       where no point has one, with the CRS of -crs or the reference's)\n"
+      "  -map PREFIX          PREFIX.png, .pdf or .svg (residual map, diverging colour bar,\n"
+      "                       significant regions outlined) and PREFIX.tif (float32 GeoTIFF of\n"
+      "                       the residuals, NaN where no point has one, with the CRS of -crs or\n"
+      "                       the reference's)\n"
+      "  -map_format F        png (default), pdf or svg: the map as PREFIX.F (pdf and svg: vector\n"
+      "                       graphics for reports)\n"
       "  -map_cell C          map cell edge (default 1.5 point spacings; irregular airborne data:\n"
       "                       about 2.5 spacings, so that most cells hold points)\n"
       "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
@@ -258,12 +261,12 @@ heightsNote(const pcl_ls3d::HeightUnits& h, const std::string& crs_wkt)
   return line;
 }
 
-/// PREFIX.png and PREFIX.tif of the residuals (deformation/deformation_map.h).
+/// PREFIX.png (.pdf, .svg) and PREFIX.tif of the residuals (deformation/deformation_map.h).
 bool
 writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, const def::DeformationResult& r,
          const Eigen::Vector3d& origin, const std::string& crs_wkt, const std::string& reference_path,
          const std::string& epoch_path, double k, bool lod95, double cell, const std::string& heights_note,
-         bool overwrite, std::string& error)
+         bool overwrite, pcl_ls3d::maps::MapFormat format, std::string& error)
 {
   def::DeformationMapSettings ms;
   ms.title = "Deformation: " + std::filesystem::path(epoch_path).filename().string() + " against " +
@@ -274,14 +277,16 @@ writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, 
   ms.lod95 = lod95;
   ms.cell = cell;
   ms.heights_note = heights_note;
-  return def::writeDeformationMap(prefix, def::makeDeformationMap(points, r, ms), crs_wkt, overwrite, error);
+  return def::writeDeformationMap(prefix, def::makeDeformationMap(points, r, ms), crs_wkt, overwrite, error,
+                                  format);
 }
 
 /// Everything the command line asks for, checked before any input is read.
 struct Options
 {
   std::string reference_path, epoch_path, rule_text = "lzd", out_path, json_path, map_prefix;
-  std::string png_path, tif_path, crs_wkt;  ///< the map's files; the -crs CRS (empty: none)
+  std::string picture_path, tif_path, crs_wkt;  ///< the map's files; the -crs CRS (empty: none)
+  pcl_ls3d::maps::MapFormat map_format = pcl_ls3d::maps::MapFormat::PNG;
   bool overwrite = false, lod95 = false;
   double map_cell = 0.0;
   def::DeformationSettings settings;
@@ -365,7 +370,7 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
                                                "-contamination", "-seed", "-k", "-min_region", "-grow_k", "-refine",
                                                "-max_iter", "-max_dist", "-matching_points", "-o", "-json",
-                                               "-map", "-crs", "-map_cell"};
+                                               "-map", "-crs", "-map_cell", "-map_format"};
   std::vector<std::string> files;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite", "-lod95"}, files, why))
     return false;
@@ -379,13 +384,17 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   parse_argument(argc, argv, "-json", o.json_path);
   parse_argument(argc, argv, "-map", o.map_prefix);
   parse_argument(argc, argv, "-crs", crs_text);
+  std::string format_text;
+  if (parse_argument(argc, argv, "-map_format", format_text) >= 0 &&
+      !pcl_ls3d::maps::parseMapFormat(format_text, o.map_format))
+    return (why = "-map_format takes png, pdf or svg, not '" + format_text + "'"), false;
   if (!parseSettings(argc, argv, o, why))
     return false;
   if (!crs_text.empty() && (o.crs_wkt = pcl_ls3d::maps::crsFromUserInput(crs_text, &why)).empty())
     return (why = "invalid -crs " + crs_text + ": " + why), false;
-  o.png_path = o.map_prefix.empty() ? "" : o.map_prefix + ".png";
+  o.picture_path = o.map_prefix.empty() ? "" : o.map_prefix + pcl_ls3d::maps::mapExtension(o.map_format);
   o.tif_path = o.map_prefix.empty() ? "" : o.map_prefix + ".tif";
-  for (const std::string& out : {o.out_path, o.json_path, o.png_path, o.tif_path})
+  for (const std::string& out : {o.out_path, o.json_path, o.picture_path, o.tif_path})
     if (!pcl_ls3d::tools::checkOutputFile(out, {o.reference_path, o.epoch_path}, o.overwrite, why))
       return false;
   if (!o.out_path.empty() && pcl_ls3d::io::isSameFile(o.out_path, o.json_path))
@@ -661,9 +670,9 @@ main(int argc, char** argv)
   if (!o.map_prefix.empty()) {
     if (!writeMap(o.map_prefix, e.points, result, e.working_origin, crs_wkt, o.reference_path,
                   o.epoch_path, o.settings.residuals.k, o.lod95, o.map_cell,
-                  heightsNote(e.heights, crs_wkt), o.overwrite, error))
+                  heightsNote(e.heights, crs_wkt), o.overwrite, o.map_format, error))
       return fail(error), 1;
-    print_info("Wrote %s and %s%s\n", o.png_path.c_str(), o.tif_path.c_str(),
+    print_info("Wrote %s and %s%s\n", o.picture_path.c_str(), o.tif_path.c_str(),
                crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");
   }
   if (!o.json_path.empty() &&

@@ -63,7 +63,9 @@ printHelp(const char* prog)
       "                         (default: NAME_psid<ID>.EXT per input and point-source id)\n"
       "  -json REPORT           JSON report\n"
       "  -maps DIR              discrepancy maps before/after per overlap and for the whole block\n"
-      "                         (GeoTIFF in the input's CRS + PNG), histograms\n"
+      "                         (GeoTIFF in the input's CRS + PNG, PDF or SVG), histograms\n"
+      "  -map_format F          png (default), pdf or svg: the maps and histograms as .F files\n"
+      "                         (pdf and svg: vector graphics for reports)\n"
       "  -bands a,b             tolerance classes of the maps in metres (default 0.10,0.20; without\n"
       "                         a CRS in the input's own unit)\n"
       "  -overwrite             replace existing outputs (never an input)\n"
@@ -84,7 +86,8 @@ fail(const std::string& message)
 
 const std::set<std::string> kWithValue = {"-split", "-reference", "-soft", "-params", "-rule", "-estimator",
                                           "-classes", "-spacing", "-max_obs", "-max_dist", "-min_area",
-                                          "-min_obs", "-max_iter", "-o", "-json", "-maps", "-bands", "-work", "-job", "-unit"};
+                                          "-min_obs", "-max_iter", "-o", "-json", "-maps", "-bands", "-work", "-job", "-unit",
+                                          "-map_format"};
 const std::set<std::string> kSwitches = {"-keep_files", "-overwrite", "-q", "-one_way"};
 
 // Options shared by the single run and the plan stage, parsed into the plan request.
@@ -160,6 +163,8 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   parse_argument(argc, argv, "-o", o.request.output_dir);
   parse_argument(argc, argv, "-json", o.request.json_path);
   parse_argument(argc, argv, "-maps", o.request.maps_dir);
+  if (parse_argument(argc, argv, "-map_format", text) >= 0 && !maps::parseMapFormat(text, o.request.map_format))
+    return (why = "-map_format takes png, pdf or svg, not '" + text + "'").empty();
   o.request.keep_files = find_switch(argc, argv, "-keep_files");
   o.overwrite = find_switch(argc, argv, "-overwrite");
   o.quiet = find_switch(argc, argv, "-q");
@@ -192,6 +197,13 @@ checkOutputs(const Options& o, std::string& why)
   return tools::checkOutputFile(o.request.json_path, o.inputs, o.overwrite, why);
 }
 
+// A file of the kind the maps folder receives: a GeoTIFF or a map in the chosen format.
+bool
+isMapFile(const Options& o, const fs::path& path)
+{
+  return path.extension() == ".tif" || path.extension() == maps::mapExtension(o.request.map_format);
+}
+
 // After loading (the split names are known), before the adjustment: no corrected file may
 // exist without -overwrite or be the report, and a maps folder must not hold maps already.
 bool
@@ -207,7 +219,7 @@ checkCorrectedOutputs(const Options& o, const std::vector<strips::OutputUnit>& u
   if (o.request.maps_dir.empty() || o.overwrite)
     return true;
   for (fs::directory_iterator it(o.request.maps_dir, ec), end; !ec && it != end; it.increment(ec))
-    if (it->path().extension() == ".tif" || it->path().extension() == ".png")
+    if (isMapFile(o, it->path()))
       return (why = "the maps folder " + o.request.maps_dir + " holds maps already (" +
                     it->path().filename().string() + "; use -overwrite to replace them)").empty();
   return true;
@@ -246,7 +258,7 @@ clearOutputs(const Options& o, const std::vector<strips::OutputUnit>& units)
     fs::remove(u.path, ec);
   if (!o.request.maps_dir.empty())
     for (fs::directory_iterator it(o.request.maps_dir, ec), end; !ec && it != end; it.increment(ec))
-      if (it->path().extension() == ".tif" || it->path().extension() == ".png")
+      if (isMapFile(o, it->path()))
         fs::remove(it->path(), ec);
 }
 

@@ -4,12 +4,10 @@
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/geotiff_io.h>
 #include <pcl_ls3d/maps/map_rendering.h>
-#include <pcl_ls3d/maps/png_io.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdarg>
-#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
@@ -119,35 +117,6 @@ mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps
   return style;
 }
 
-/// Outlines the region cells on `image`: the map rendered with those cells left empty differs
-/// from `image` exactly at their pixels (the layout depends on the grid and the style only);
-/// pixels of that set next to one outside it are drawn dark.
-void
-outlineRegions(maps::Image& image, const maps::Raster& residual, const maps::Raster& in_region,
-               const maps::ColourMap& colours, const maps::MapStyle& style)
-{
-  maps::Raster shown = residual;
-  for (std::size_t i = 0; i < shown.values.size(); ++i)
-    if (in_region.values[i] > 0.5f && std::isfinite(shown.values[i]))
-      shown.values[i] = std::numeric_limits<float>::quiet_NaN();
-  const maps::Image marked = maps::renderRasterMap(shown, colours, style);
-  const int w = image.width(), h = image.height();
-  if (marked.width() != w || marked.height() != h)
-    return;
-  std::vector<std::uint8_t> inside(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), 0);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      inside[static_cast<std::size_t>(y) * w + x] = marked.get(x, y) != image.get(x, y);
-  auto in = [&](int x, int y) {
-    return x >= 0 && y >= 0 && x < w && y < h && inside[static_cast<std::size_t>(y) * w + x];
-  };
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      if (in(x, y) && (!in(x - 1, y) || !in(x + 1, y) || !in(x, y - 1) || !in(x, y + 1)))
-        image.set(x, y, {20, 20, 20});
-    }
-}
-
 }  // namespace
 
 DeformationMap
@@ -168,7 +137,7 @@ makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationR
   if (magnitudes.empty())
     return out;  // writeDeformationMap says "no residual to map"
   const double cell = s.cell > 0.0 ? s.cell : std::max(1.5 * r.regions.spacing, 1e-9);
-  // Two double rasters and an RGB image per cell: 40 M cells is ~1 GB, far beyond any picture.
+  // Two rasters and their accumulators per cell: 40 M cells is ~1 GB, far beyond any picture.
   constexpr double kMaxCells = 4e7;
   const double cells = std::ceil((hi.x() - lo.x()) / cell + 1.0) * std::ceil((hi.y() - lo.y()) / cell + 1.0);
   if (!(cells <= kMaxCells)) {
@@ -192,24 +161,22 @@ makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationR
   out.limit = colourLimit(std::move(magnitudes), s.k, r.matching.scale);
   const maps::ColourMap colours = maps::ColourMap::diverging(out.limit);
   out.style = mapStyle(r, s, grid, out.limit);
-  out.image = maps::renderRasterMap(out.residual, colours, out.style);
-  if (!out.image.empty())
-    outlineRegions(out.image, out.residual, out.in_region, colours, out.style);
+  out.drawing = maps::renderRasterMap(out.residual, colours, out.style, &out.in_region);
   return out;
 }
 
 bool
 writeDeformationMap(const std::string& prefix, const DeformationMap& map, const std::string& crs_wkt,
-                    bool overwrite, std::string& error)
+                    bool overwrite, std::string& error, maps::MapFormat format)
 {
-  if (map.image.empty())
+  if (map.drawing.empty())
     return (error = map.why_empty.empty() ? "no residual to map" : map.why_empty).empty();
-  const std::string png = prefix + ".png", tif = prefix + ".tif";
-  if (!overwrite && std::filesystem::exists(png))
-    return (error = png + " exists (not overwritten)").empty();
+  const std::string picture = prefix + maps::mapExtension(format), tif = prefix + ".tif";
+  if (!overwrite && std::filesystem::exists(picture))
+    return (error = picture + " exists (not overwritten)").empty();
   if (!maps::writeGeoTiff(tif, map.residual, crs_wkt, error, overwrite))
     return false;
-  return maps::writePng(png, map.image, error);
+  return map.drawing.write(picture, format, error, overwrite);
 }
 
 }  // namespace deformation

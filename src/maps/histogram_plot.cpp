@@ -1,6 +1,8 @@
 // Overlaid histograms in percent per bin, with axes, reference lines and a legend.
 #include <pcl_ls3d/maps/map_rendering.h>
 
+#include "colour_bar.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,7 +12,8 @@ namespace maps {
 
 namespace {
 
-const Rgb kInk{30, 30, 30}, kGrid{225, 225, 225}, kMark{120, 120, 120};
+using detail::kInk;
+const Rgb kGrid{225, 225, 225}, kMark{120, 120, 120};
 
 // The x range: the style's, or the 0.5–99.5 % range of all values (symmetric about 0 when the
 // values straddle it, so before and after read on one centred axis).
@@ -78,85 +81,131 @@ label(double v, double step)
   return s;
 }
 
+// The plot area and its value → pixel mapping.
+struct Plot
+{
+  int left = 64, top = 0, width = 0, height = 0;
+  double lo = 0.0, hi = 1.0, ymax = 1.0, ystep = 1.0;
+
+  int
+  x(double v) const
+  {
+    return left + static_cast<int>(std::lround((v - lo) / (hi - lo) * width));
+  }
+  int
+  y(double percent) const
+  {
+    return top + height - static_cast<int>(std::lround(percent / ymax * height));
+  }
+  int
+  bottom() const
+  {
+    return top + height;
+  }
+};
+
+// Horizontal grid with percent labels, x ticks with labels, dashed reference marks.
+void
+drawAxes(Drawing& d, const Plot& p, const HistogramStyle& style)
+{
+  for (double v = 0.0; v <= p.ymax + 1e-9; v += p.ystep) {
+    d.fillRect(p.left, p.y(v), p.width + 1, 1, kGrid);
+    d.text(p.left - 6, p.y(v) + 4, label(v, p.ystep) + " %", kInk, FontStyle::REGULAR, TextAlign::RIGHT);
+  }
+  const double xstep = niceStep(p.hi - p.lo, 8);
+  for (double v = std::ceil(p.lo / xstep) * xstep; v <= p.hi + 1e-9 * xstep; v += xstep) {
+    d.fillRect(p.x(v), p.bottom(), 1, 5, kInk);
+    d.text(p.x(v) + 0.5, p.bottom() + 18, label(v, xstep), kInk, FontStyle::REGULAR, TextAlign::CENTRE);
+  }
+  for (double m : style.marks)
+    if (m > p.lo && m < p.hi)
+      d.line(p.x(m) + 0.5, p.top, p.x(m) + 0.5, p.bottom(), kMark, 1.0, 3.0);
+}
+
+// Each series: a translucent fill under its bars, then its outline as a step line.
+void
+drawBars(Drawing& d, const Plot& p, const std::vector<HistogramSeries>& series,
+         const std::vector<std::vector<double>>& h, int bins)
+{
+  auto edge = [&](int b) { return p.x(p.lo + (p.hi - p.lo) * b / bins); };
+  for (std::size_t s = 0; s < series.size(); ++s)
+    for (int b = 0; b < bins; ++b) {
+      const int y = p.y(h[s][static_cast<std::size_t>(b)]);
+      d.fillRect(edge(b), y, edge(b + 1) - edge(b), p.bottom() - y, series[s].colour, 0.35);
+    }
+  for (std::size_t s = 0; s < series.size(); ++s) {
+    // Pixel-centred lines (+0.5) with square ends cover the same pixels as a one-pixel step.
+    std::vector<Eigen::Vector4d> outline;
+    int prev = p.bottom();
+    for (int b = 0; b < bins; ++b) {
+      const int y = p.y(h[s][static_cast<std::size_t>(b)]);
+      outline.emplace_back(edge(b) + 0.5, prev + 0.5, edge(b) + 0.5, y + 0.5);
+      outline.emplace_back(edge(b) + 0.5, y + 0.5, edge(b + 1) + 0.5, y + 0.5);
+      prev = y;
+    }
+    outline.emplace_back(p.left + p.width + 0.5, prev + 0.5, p.left + p.width + 0.5, p.bottom() + 0.5);
+    d.lines(outline, series[s].colour, 1.0);
+  }
+  d.fillRect(p.left, p.top, 1, p.height + 1, kInk);
+  d.fillRect(p.left, p.bottom(), p.width + 1, 1, kInk);
+}
+
+// Legend at the top right, on a light backing so that bars and marks under it do not cross its
+// text: a swatch and the label per series, with the count outside the axis.
+void
+drawLegend(Drawing& d, const Plot& p, const std::vector<HistogramSeries>& series,
+           const std::vector<std::size_t>& outside)
+{
+  std::vector<std::string> texts;
+  double widest = 0.0;
+  for (std::size_t s = 0; s < series.size(); ++s) {
+    texts.push_back(series[s].label);
+    if (outside[s] > 0)
+      texts.back() += " (" + std::to_string(outside[s]) + " outside the axis)";
+    widest = std::max(widest, Drawing::textWidth(texts.back()));
+  }
+  const int row = Drawing::lineHeight() + 2;
+  const double right = p.left + p.width - 4;
+  d.fillRect(right - widest - 30, p.top + 2, widest + 30, row * static_cast<double>(texts.size()) + 2,
+             {255, 255, 255}, 0.85);
+  int ly = p.top + 8;
+  for (std::size_t s = 0; s < texts.size(); ++s) {
+    const double x = p.left + p.width - Drawing::textWidth(texts[s]) - 8;
+    d.fillRect(std::floor(x) - 22, ly - 9, 14, 10, series[s].colour);
+    d.text(x, ly, texts[s], kInk);
+    ly += row;
+  }
+}
+
 }  // namespace
 
-Image
+Drawing
 renderHistogram(const std::vector<HistogramSeries>& series, const HistogramStyle& style)
 {
-  const int left = 64, right = 24, top = 40 + static_cast<int>(series.size()) * 4, bottom = 56;
-  Image img(std::max(300, style.width), std::max(200, style.height));
-  const int pw = img.width() - left - right, ph = img.height() - top - bottom;
+  Drawing d(std::max(300, style.width), std::max(200, style.height));
+  Plot p;
+  p.top = 40 + static_cast<int>(series.size()) * 4;
+  p.width = d.width() - p.left - 24;
+  p.height = d.height() - p.top - 56;
   const int bins = std::max(1, style.bins);
-  double lo = 0.0, hi = 1.0;
-  xRange(series, style, lo, hi);
+  xRange(series, style, p.lo, p.hi);
   std::vector<std::vector<double>> h;
   std::vector<std::size_t> outside;
   double ymax = 0.0;
   for (const auto& s : series) {
     outside.emplace_back();
-    h.push_back(percentPerBin(s.values, lo, hi, bins, outside.back()));
+    h.push_back(percentPerBin(s.values, p.lo, p.hi, bins, outside.back()));
     ymax = std::max(ymax, *std::max_element(h.back().begin(), h.back().end()));
   }
-  const double ystep = niceStep(std::max(ymax, 1e-9) * 1.1, 5);
-  ymax = std::ceil(std::max(ymax, 1e-9) * 1.1 / ystep) * ystep;
-  auto X = [&](double v) { return left + static_cast<int>(std::lround((v - lo) / (hi - lo) * pw)); };
-  auto Y = [&](double p) { return top + ph - static_cast<int>(std::lround(p / ymax * ph)); };
-
-  // Grid and axes.
-  for (double p = 0.0; p <= ymax + 1e-9; p += ystep) {
-    img.drawLine(left, Y(p), left + pw, Y(p), kGrid);
-    img.drawText(left - 6, Y(p) + 4, label(p, ystep) + " %", kInk, FontStyle::REGULAR, TextAlign::RIGHT);
-  }
-  const double xstep = niceStep(hi - lo, 8);
-  for (double v = std::ceil(lo / xstep) * xstep; v <= hi + 1e-9 * xstep; v += xstep) {
-    img.drawLine(X(v), top + ph, X(v), top + ph + 4, kInk);
-    img.drawText(X(v), top + ph + 18, label(v, xstep), kInk, FontStyle::REGULAR, TextAlign::CENTRE);
-  }
-  for (double m : style.marks)
-    if (m > lo && m < hi)
-      for (int y = top; y < top + ph; y += 6)
-        img.drawLine(X(m), y, X(m), std::min(y + 2, top + ph), kMark);
-
-  // Bars: translucent fill, then the outline of each series.
-  for (std::size_t s = 0; s < series.size(); ++s)
-    for (int b = 0; b < bins; ++b) {
-      const int x0 = X(lo + (hi - lo) * b / bins), x1 = X(lo + (hi - lo) * (b + 1) / bins);
-      for (int y = Y(h[s][static_cast<std::size_t>(b)]); y < top + ph; ++y)
-        for (int x = x0; x < x1; ++x)
-          img.blend(x, y, series[s].colour, 0.35);
-    }
-  for (std::size_t s = 0; s < series.size(); ++s) {
-    int prev = top + ph;
-    for (int b = 0; b < bins; ++b) {
-      const int x0 = X(lo + (hi - lo) * b / bins), x1 = X(lo + (hi - lo) * (b + 1) / bins);
-      const int y = Y(h[s][static_cast<std::size_t>(b)]);
-      img.drawLine(x0, prev, x0, y, series[s].colour);
-      img.drawLine(x0, y, x1, y, series[s].colour);
-      prev = y;
-    }
-    img.drawLine(left + pw, prev, left + pw, top + ph, series[s].colour);
-  }
-  img.drawLine(left, top, left, top + ph, kInk);
-  img.drawLine(left, top + ph, left + pw, top + ph, kInk);
-
-  // Title, axis label, legend (with the share outside the range).
-  img.drawText(left, 20, style.title, kInk, FontStyle::BOLD);
-  img.drawText(left + pw / 2, img.height() - 14, style.x_label, kInk, FontStyle::REGULAR, TextAlign::CENTRE);
-  int ly = top + 8;
-  for (std::size_t s = 0; s < series.size(); ++s) {
-    std::string text = series[s].label;
-    if (outside[s] > 0) {
-      char buf[64];
-      std::snprintf(buf, sizeof(buf), " (%zu outside the axis)", outside[s]);
-      text += buf;
-    }
-    const int w = Image::textWidth(text);
-    const int x = left + pw - w - 8;
-    img.fillRect(x - 22, ly - 9, 14, 10, series[s].colour);
-    img.drawText(x, ly, text, kInk);
-    ly += Image::lineHeight() + 2;
-  }
-  return img;
+  p.ystep = niceStep(std::max(ymax, 1e-9) * 1.1, 5);
+  p.ymax = std::ceil(std::max(ymax, 1e-9) * 1.1 / p.ystep) * p.ystep;
+  d.setTitle(style.title);
+  drawAxes(d, p, style);
+  drawBars(d, p, series, h, bins);
+  d.text(p.left, 20, style.title, kInk, FontStyle::BOLD);
+  d.text(p.left + p.width / 2.0, d.height() - 14, style.x_label, kInk, FontStyle::REGULAR, TextAlign::CENTRE);
+  drawLegend(d, p, series, outside);
+  return d;
 }
 
 }  // namespace maps

@@ -217,7 +217,8 @@ writePlanFile(const std::string& path, const PlanFile& f, std::string& error)
                   {"inputs", inputs}, {"sources", sources}, {"crs_wkt", f.crs_wkt},
                   {"unassigned", f.unassigned}, {"load_notes", f.load_notes},
                   {"output_dir", f.output_dir}, {"keep_files", f.keep_files}, {"json_path", f.json_path},
-                  {"maps_dir", f.maps_dir}, {"bands", {f.band_inner, f.band_outer}}};
+                  {"maps_dir", f.maps_dir}, {"bands", {f.band_inner, f.band_outer}},
+                  {"map_format", maps::mapFormatName(f.map_format)}};
   return writeJson(path, j, error);
 }
 
@@ -256,6 +257,9 @@ readPlanFile(const std::string& path, PlanFile& f, std::string& error)
     f.maps_dir = j.at("maps_dir");
     f.band_inner = j.at("bands").at(0);
     f.band_outer = j.at("bands").at(1);
+    // Plan files written before the option existed drew PNG.
+    if (j.contains("map_format") && !maps::parseMapFormat(j.at("map_format").get<std::string>(), f.map_format))
+      throw std::runtime_error("unknown map_format " + j.at("map_format").dump());
   }
   catch (const std::exception& e) {
     error = path + ": " + e.what();

@@ -2,7 +2,6 @@
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/geotiff_io.h>
 #include <pcl_ls3d/maps/map_rendering.h>
-#include <pcl_ls3d/maps/png_io.h>
 #include <pcl_ls3d/strips/strip_maps.h>
 
 #include <cmath>
@@ -91,7 +90,7 @@ public:
       return false;
     if (settings_.geotiff)
       written_.push_back(path(stem + ".tif"));
-    if (!settings_.png)
+    if (!settings_.pictures)
       return true;
     maps::MapStyle style;
     style.title = title;
@@ -110,19 +109,16 @@ public:
                   units_.name.c_str(), r.grid.min_x, r.grid.maxX(), r.grid.minY(), r.grid.max_y,
                   crs.empty() ? "no CRS in the input" : crs.c_str());
     style.footer = foot;
-    return png(stem, maps::renderRasterMap(r, colours_, style), error);
+    return picture(stem, maps::renderRasterMap(r, colours_, style), error);
   }
 
   bool
-  png(const std::string& stem, const maps::Image& img, std::string& error)
+  picture(const std::string& stem, const maps::Drawing& drawing, std::string& error)
   {
-    if (fs::exists(path(stem + ".png"))) {
-      error = path(stem + ".png") + " exists (not overwritten)";
+    const std::string file = path(stem + maps::mapExtension(settings_.format));
+    if (!drawing.write(file, settings_.format, error))
       return false;
-    }
-    if (!maps::writePng(path(stem + ".png"), img, error))
-      return false;
-    written_.push_back(path(stem + ".png"));
+    written_.push_back(file);
     return true;
   }
 
@@ -160,7 +156,7 @@ histogram(MapWriter& w, const std::string& stem, const std::string& title, const
   style.x_label = "signed normal discrepancy [" + u + "]";
   const double i = settings.inner * w.units().per_metre, o = settings.outer * w.units().per_metre;
   style.marks = {-o, -i, i, o};
-  return w.png(stem, maps::renderHistogram({b, a}, style), error);
+  return settings.pictures ? w.picture(stem, maps::renderHistogram({b, a}, style), error) : true;
 }
 
 }  // namespace

@@ -257,6 +257,7 @@ writeReportAndMaps(const PlanFile& f, const StripAdjustmentReport& report,
   m.inner = f.band_inner;
   m.outer = f.band_outer;
   m.crs_wkt = f.crs_wkt;
+  m.format = f.map_format;
   return writeStripMaps(report, f.plan, samples, f.maps_dir, m, written, error);
 }
 

@@ -74,7 +74,7 @@ TEST(DeformationMap, RastersShowThePlantedPatch)
   const Analysed& a = analysed();
   ASSERT_TRUE(a.result.ok());
   const DeformationMap map = makeDeformationMap(a.points, a.result, DeformationMapSettings());
-  ASSERT_FALSE(map.image.empty());
+  ASSERT_FALSE(map.drawing.empty());
   ASSERT_EQ(map.residual.values.size(), map.in_region.values.size());
   // Cells of the region hold the patch's height, the others the stable surface's zero.
   double in_sum = 0.0, out_sum = 0.0;
@@ -112,11 +112,11 @@ TEST(DeformationMap, RegionsAreOutlinedOnlyWhenThereAreRegions)
   DeformationResult none = a.result;
   std::fill(none.regions.region.begin(), none.regions.region.end(), 0);
   const DeformationMap plain = makeDeformationMap(a.points, none, DeformationMapSettings());
-  ASSERT_EQ(plain.image.width(), map.image.width());
-  ASSERT_EQ(plain.image.height(), map.image.height());
-  EXPECT_EQ(darkPixels(plain.image), 0u);
+  ASSERT_EQ(plain.drawing.width(), map.drawing.width());
+  ASSERT_EQ(plain.drawing.height(), map.drawing.height());
+  EXPECT_EQ(darkPixels(plain.drawing.rasterise()), 0u);
   // A closed outline two pixels wide around a patch of about 2000 × 2000 units.
-  EXPECT_GT(darkPixels(map.image), 200u);
+  EXPECT_GT(darkPixels(map.drawing.rasterise()), 200u);
 }
 
 TEST(DeformationMap, FilesReadBackWithTheirCrs)
@@ -137,9 +137,9 @@ TEST(DeformationMap, FilesReadBackWithTheirCrs)
 
   maps::Image png;
   ASSERT_TRUE(maps::readPng(prefix + ".png", png, error)) << error;
-  EXPECT_EQ(png.width(), map.image.width());
-  EXPECT_EQ(png.height(), map.image.height());
-  EXPECT_TRUE(png.pixels() == map.image.pixels());
+  EXPECT_EQ(png.width(), map.drawing.width());
+  EXPECT_EQ(png.height(), map.drawing.height());
+  EXPECT_TRUE(png.pixels() == map.drawing.rasterise().pixels());
 
   maps::Raster tif;
   std::string tif_crs;

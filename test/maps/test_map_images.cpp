@@ -1,4 +1,4 @@
-// Map images (maps/map_rendering.h, image.h, png_io.h): what is drawn can be read back from the
+// Map images (maps/map_rendering.h, drawing.h, png_io.h): what is drawn can be read back from the
 // PNG pixel for pixel; a discrepancy map shows each class in its colour, the no-data grey, a
 // colour bar with its class boundaries and text; histograms show both series.
 #include <pcl_ls3d/maps/map_rendering.h>
@@ -52,15 +52,18 @@ countDark(const Image& img, int x0, int y0, int x1, int y1)
 
 TEST(Image, TextIsDrawnAndMeasured)
 {
-  Image img(200, 40);
-  const int w = img.drawText(10, 25, "\u03c3 = 0.10 m \u00b1", {0, 0, 0});
-  EXPECT_EQ(w, Image::textWidth("\u03c3 = 0.10 m \u00b1"));
+  Drawing drawing(200, 40);
+  const double w = drawing.text(10, 25, "\u03c3 = 0.10 m \u00b1", {0, 0, 0});
+  EXPECT_EQ(w, Drawing::textWidth("\u03c3 = 0.10 m \u00b1"));
   EXPECT_GT(w, 40);
-  EXPECT_GT(countDark(img, 10, 10, 10 + w, 30), 30u);
-  EXPECT_EQ(countDark(img, 10 + w + 2, 0, 200, 40), 0u);
-  // Unknown characters become '?', not nothing.
-  EXPECT_EQ(Image::textWidth("\u4e2d"), Image::textWidth("?"));
-  EXPECT_GT(Image::lineHeight(FontStyle::BOLD), Image::lineHeight());
+  const Image img = drawing.rasterise();
+  const int end = static_cast<int>(std::ceil(10 + w));
+  EXPECT_GT(countDark(img, 10, 10, end, 30), 30u);
+  EXPECT_EQ(countDark(img, end + 2, 0, 200, 40), 0u);
+  // Bytes that are no UTF-8 become '?', not nothing (cairo would refuse the whole text).
+  EXPECT_EQ(Drawing::textWidth("\xff"), Drawing::textWidth("?"));
+  EXPECT_EQ(Drawing::textWidth("a\xc3" "b"), Drawing::textWidth("a?b"));  // truncated sequence
+  EXPECT_GT(Drawing::lineHeight(FontStyle::BOLD), Drawing::lineHeight());
 }
 
 TEST(PngIo, WrittenPixelsReadBackExactly)
@@ -98,7 +101,7 @@ TEST(RasterMap, ShowsEveryClassTheNoDataGreyAndALegend)
   style.subtitle = {"n = 800  RMS 0.180 m"};
   style.legend = {"|d| < 0.10 m: within tolerance"};
   style.footer = "cell 1 m";
-  const Image img = renderRasterMap(r, cmap, style);
+  const Image img = renderRasterMap(r, cmap, style).rasterise();
   ASSERT_FALSE(img.empty());
   // 40 cells fit 760 px 19 times: each cell is a 19 × 19 block.
   for (float v : {-0.25f, -0.05f, 0.15f, 0.25f})
@@ -131,7 +134,7 @@ TEST(RasterMap, LargeRastersAreAveragedDownToTheMapArea)
   for (std::size_t k = 0; k < r.values.size(); ++k)
     r.values[k] = 0.25f;
   MapStyle style;
-  const Image img = renderRasterMap(r, ColourMap::bandedDiverging(), style);
+  const Image img = renderRasterMap(r, ColourMap::bandedDiverging(), style).rasterise();
   ASSERT_FALSE(img.empty());
   EXPECT_LE(img.width(), 760 + 400);
   EXPECT_GE(countColour(img, ColourMap::bandedDiverging().colour(0.25)), 700u * 350u);
@@ -149,7 +152,7 @@ TEST(Histogram, BothSeriesAreVisible)
   HistogramStyle style;
   style.title = "Normal discrepancies";
   style.marks = {-0.2, -0.1, 0.1, 0.2};
-  const Image img = renderHistogram({before, after}, style);
+  const Image img = renderHistogram({before, after}, style).rasterise();
   ASSERT_FALSE(img.empty());
   EXPECT_GT(countColour(img, before.colour), 200u);
   EXPECT_GT(countColour(img, after.colour), 200u);

@@ -3,7 +3,8 @@
 /// \brief The map of a deformation analysis (issue 9): the residual of every epoch point on a
 ///        grid, drawn with a diverging colour bar (blue: the epoch lies below / inside the
 ///        reference, red: above / outside) and the cells of the significant regions outlined;
-///        written as a PNG and as a float32 GeoTIFF carrying the input's CRS (maps library).
+///        written as a PNG, PDF or SVG and as a float32 GeoTIFF carrying the input's CRS (maps
+///        library).
 ///
 /// Cells are 1.5 point spacings by default (on a grid every cell holds a point) on the plane the
 /// regions were counted on (xy for terrain); a cell holds the mean residual of its points.
@@ -13,7 +14,8 @@
 /// the significance threshold k σ̂ lies inside the bar.
 
 #include <pcl_ls3d/deformation/deformation_analysis.h>
-#include <pcl_ls3d/maps/image.h>
+#include <pcl_ls3d/maps/drawing.h>
+#include <pcl_ls3d/maps/map_format.h>
 #include <pcl_ls3d/maps/map_rendering.h>
 #include <pcl_ls3d/maps/raster.h>
 
@@ -40,28 +42,29 @@ struct DeformationMapSettings
   std::string heights_note;
 };
 
-/// \brief The rasters and the rendered image.
+/// \brief The rasters and the drawn map.
 struct DeformationMap
 {
   maps::Raster residual;   ///< mean residual per cell, NaN where no point has one
   maps::Raster in_region;  ///< 1 where a point of a significant region falls, 0 elsewhere
-  maps::Image image;       ///< the rendered map (empty when nothing could be drawn)
+  maps::Drawing drawing;   ///< the map (empty when nothing could be drawn)
   maps::MapStyle style;    ///< its text: title, subtitle, colour-bar unit, footer
   double limit = 0.0;      ///< the colour range is [−limit, +limit]
-  std::string why_empty;   ///< why the image is empty, when not for want of residuals (too many cells)
+  std::string why_empty;   ///< why the drawing is empty, when not for want of residuals (too many cells)
 };
 
-/// Builds the rasters and renders the map of `result` over `epoch` (the points analysed, epoch
-/// order, local coordinates). An empty image when no point has a residual.
+/// Builds the rasters and draws the map of `result` over `epoch` (the points analysed, epoch
+/// order, local coordinates). An empty drawing when no point has a residual.
 DeformationMap
 makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationResult& result,
                    const DeformationMapSettings& settings);
 
-/// Writes PREFIX.png (the image) and PREFIX.tif (the residual raster, NaN no data, with
-/// `crs_wkt` when not empty); refuses existing files unless `overwrite`. False with a reason.
+/// Writes PREFIX.png, .pdf or .svg (the map, in `format`) and PREFIX.tif (the residual raster,
+/// NaN no data, with `crs_wkt` when not empty); refuses existing files unless `overwrite`. False
+/// with a reason.
 bool
 writeDeformationMap(const std::string& prefix, const DeformationMap& map, const std::string& crs_wkt,
-                    bool overwrite, std::string& error);
+                    bool overwrite, std::string& error, maps::MapFormat format = maps::MapFormat::PNG);
 
 }  // namespace deformation
 }  // namespace pcl_ls3d

@@ -72,6 +72,12 @@ public:
   {
     return name_;
   }
+  /// The stops, in non-decreasing order of value (empty when invalid).
+  const std::vector<Stop>&
+  stops() const
+  {
+    return stops_;
+  }
   /// Values labelled on a colour bar (default: five evenly spaced, ends included).
   const std::vector<double>&
   ticks() const

@@ -1,11 +1,12 @@
 #pragma once
 /// \file map_rendering.h
-/// \brief Map and chart images a client can read without the software: a raster in colour with
-///        a title, a colour bar with labelled ticks and class boundaries, a legend, a scale bar
-///        and a north arrow; and overlaid histograms (e.g. discrepancies before / after).
+/// \brief Maps and charts a client can read without the software: a raster in colour with a
+///        title, a colour bar with labelled ticks and class boundaries, a legend, a scale bar and
+///        a north arrow; and overlaid histograms (e.g. discrepancies before / after). Each is a
+///        Drawing, written as PNG, PDF or SVG.
 
 #include <pcl_ls3d/maps/colour_map.h>
-#include <pcl_ls3d/maps/image.h>
+#include <pcl_ls3d/maps/drawing.h>
 #include <pcl_ls3d/maps/raster.h>
 
 #include <limits>
@@ -31,10 +32,16 @@ struct MapStyle
   int max_width = 760, max_height = 640;  ///< the map area fits in this (cells scaled)
 };
 
-/// Renders the raster (north up; cells enlarged by a whole factor, or averaged down when the
-/// raster is larger than the map area).
-Image
-renderRasterMap(const Raster& raster, const ColourMap& colours, const MapStyle& style);
+/// Draws the raster (north up; cells enlarged by a whole factor, or averaged down when the
+/// raster is larger than the map area). Where \a outline (a raster on the same grid) holds
+/// values > 0.5, the border of those cells is drawn as a dark line on their outermost pixels
+/// (e.g. deformed regions).
+Drawing
+renderRasterMap(const Raster& raster, const ColourMap& colours, const MapStyle& style,
+                const Raster* outline = nullptr);
+
+/// Colour of the outline renderRasterMap() draws around marked cells.
+constexpr Rgb kOutlineColour{20, 20, 20};
 
 /// \brief One distribution of a histogram chart.
 struct HistogramSeries
@@ -59,7 +66,7 @@ struct HistogramStyle
 
 /// Overlaid histograms, each normalised to percent of its own values per bin (so series of
 /// different sizes compare).
-Image
+Drawing
 renderHistogram(const std::vector<HistogramSeries>& series, const HistogramStyle& style);
 
 /// \brief What drawScaleBar() drew: a round length in ground units and its length in pixels
@@ -74,12 +81,12 @@ struct ScaleBar
 /// `map_width` pixels: four black and white parts 6 px high, "0" and "length unit" under its
 /// ends; 30 px high in all. Used by renderRasterMap() and by pictures with their own layout.
 ScaleBar
-drawScaleBar(Image& image, int x, int y, int map_width, double ground_per_pixel,
+drawScaleBar(Drawing& drawing, int x, int y, int map_width, double ground_per_pixel,
              const std::string& unit);
 
 /// Draws a bold "N" over an arrow pointing up, centred on x, 36 px high from y down.
 void
-drawNorthArrow(Image& image, int x, int y);
+drawNorthArrow(Drawing& drawing, int x, int y);
 
 /// A "nice" tick step (1, 2 or 5 × 10^k) giving about `count` ticks over `range`.
 double

@@ -1,7 +1,7 @@
 #pragma once
 /// \file png_io.h
-/// \brief PNG files of an Image through libpng (8-bit RGB). readPng exists so tests and tools
-///        can check what was written.
+/// \brief PNG files of an Image through cairo (8-bit RGB): the plain pictures that are no
+///        Drawing, and readPng so that tests and tools can check what was written.
 
 #include <pcl_ls3d/maps/image.h>
 
@@ -10,11 +10,12 @@
 namespace pcl_ls3d {
 namespace maps {
 
-/// Writes an 8-bit RGB PNG; false with a one-line reason.
+/// Writes an 8-bit RGB PNG (replacing \a path; callers check first); false with a one-line
+/// reason, no partial file left.
 bool
 writePng(const std::string& path, const Image& image, std::string& error);
 
-/// Reads an 8-bit RGB or RGBA PNG (alpha dropped; palettes and grey expanded); false with a
+/// Reads a PNG (alpha dropped; palettes, grey and 16 bits converted as cairo does); false with a
 /// one-line reason.
 bool
 readPng(const std::string& path, Image& image, std::string& error);

@@ -7,6 +7,7 @@
 ///        process run bit for bit).
 
 #include <pcl_ls3d/adjustment/pair_matcher.h>
+#include <pcl_ls3d/maps/map_format.h>
 #include <pcl_ls3d/strips/block_solve.h>
 #include <pcl_ls3d/strips/strip_block_adjustment.h>
 #include <pcl_ls3d/strips/strip_io.h>
@@ -33,6 +34,7 @@ struct PlanFile
   std::string json_path;    ///< report ("" = none)
   std::string maps_dir;     ///< maps ("" = none)
   double band_inner = 0.10, band_outer = 0.20;
+  maps::MapFormat map_format = maps::MapFormat::PNG;  ///< of the drawn maps (GeoTIFFs besides)
 
   /// The loaded-block view the writers take (inputs, sources, origin).
   LoadedStrips

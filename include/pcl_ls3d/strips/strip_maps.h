@@ -1,10 +1,11 @@
 #pragma once
 /// \file strip_maps.h
 /// \brief The maps a client looks at: per overlap the signed normal discrepancy before and
-///        after adjustment as a GeoTIFF (in the input's CRS) and a PNG with lasoverlap-style
-///        tolerance classes (±0.10 / ±0.20 m by default), a mosaic of all overlaps before and
-///        after, and histograms of the discrepancies before and after.
+///        after adjustment as a GeoTIFF (in the input's CRS) and a map (PNG, PDF or SVG) with
+///        lasoverlap-style tolerance classes (±0.10 / ±0.20 m by default), a mosaic of all
+///        overlaps before and after, and histograms of the discrepancies before and after.
 
+#include <pcl_ls3d/maps/map_format.h>
 #include <pcl_ls3d/strips/strip_adjustment_report.h>
 #include <pcl_ls3d/strips/strip_block_adjustment.h>
 
@@ -21,7 +22,9 @@ struct StripMapSettings
   double outer = 0.20;
   double cell = 0.0;           ///< raster cell in data units; 0 = 2 × the overlap's observation spacing
   std::string crs_wkt;         ///< written into the GeoTIFFs; its unit labels the maps
-  bool geotiff = true, png = true;
+  bool geotiff = true;         ///< the discrepancy rasters as GeoTIFF
+  bool pictures = true;        ///< the maps and histograms, drawn in `format`
+  maps::MapFormat format = maps::MapFormat::PNG;
 };
 
 /// Writes the maps into `dir` (which must exist); the names written are appended to `written`.
