@@ -226,37 +226,39 @@ TEST(LazReal, ExtraBytesAreKept)
   EXPECT_GT(extra_nonzero, 1065u) << "the extra bytes decode to data, not zeros";
 }
 
-// Re-encoding autzen_trim's records (from its LAS twin) gives a file within 1 % of the original
-// LAZ, and the chunk bytes are those LASzip wrote (same coder, same models, same flush).
-TEST(LazReal, ReEncodingAutzenTrimMatchesTheOriginal)
+// Re-encoding the records of each pointwise LAZ file (decoded, then compressLas() with the
+// file's chunk size) gives the original's chunk bytes and chunk table exactly: same coder, same
+// models, same flush. The header and VLRs differ only where the LASzip VLR does.
+TEST(LazReal, ReEncodingGivesTheOriginalChunksByteForByte)
 {
-  const std::string laz_path = sharedData("laz/pdal/autzen_trim.laz");
-  const std::string las_path = sharedData("registration/pdal/autzen_trim.las");
-  PCL_LS3D_REQUIRE_DATA(laz_path);
-  const std::vector<std::uint8_t> original = readBytes(laz_path), las = readBytes(las_path);
-  std::vector<std::uint8_t> ours, back;
-  std::string error;
-  ASSERT_TRUE(io::compressLas(las.data(), las.size(), ours, error)) << error;
-  const double ratio = static_cast<double>(ours.size()) / static_cast<double>(original.size());
-  std::cout << "autzen_trim: original LAZ " << original.size() << " bytes, re-encoded "
-            << ours.size() << " bytes (ratio " << ratio << ")\n";
-  EXPECT_NEAR(ratio, 1.0, 0.01);
-  ASSERT_TRUE(io::decompressLaz(ours.data(), ours.size(), back, error)) << error;
-  io::LasHeaderInfo h1, h2;
-  EXPECT_EQ(lasRecords(back, h1), lasRecords(las, h2));
-  // The chunks (from the 8-byte table offset to the table) compared byte for byte.
-  io::LasHeaderInfo ho, hn;
-  ASSERT_TRUE(io::readLasHeader(original.data(), original.size(), ho, error)) << error;
-  ASSERT_TRUE(io::readLasHeader(ours.data(), ours.size(), hn, error)) << error;
-  std::int64_t to, tn;
-  std::memcpy(&to, original.data() + ho.offset_to_points, 8);
-  std::memcpy(&tn, ours.data() + hn.offset_to_points, 8);
-  const std::vector<std::uint8_t> chunks_o(original.begin() + ho.offset_to_points + 8, original.begin() + to);
-  const std::vector<std::uint8_t> chunks_n(ours.begin() + hn.offset_to_points + 8, ours.begin() + tn);
-  EXPECT_EQ(chunks_o.size(), chunks_n.size());
-  EXPECT_TRUE(chunks_o == chunks_n) << "the chunk bytes differ from LASzip's";
-  EXPECT_TRUE(std::equal(original.begin() + to, original.end(), ours.begin() + tn, ours.end()))
-      << "the chunk tables differ";
+  for (const char* name : {"laz/pdal/autzen_trim.laz", "laz/pdal/lone-star.laz",
+                           "laz/laspy/simple.laz", "laz/laspy/plane.laz", "laz/laspy/extra.laz"}) {
+    SCOPED_TRACE(name);
+    const std::string path = sharedData(name);
+    PCL_LS3D_REQUIRE_DATA(path);
+    const std::vector<std::uint8_t> original = readBytes(path);
+    std::vector<std::uint8_t> las, ours, back;
+    std::string error;
+    ASSERT_TRUE(io::decompressLaz(original.data(), original.size(), las, error)) << error;
+    ASSERT_TRUE(io::compressLas(las.data(), las.size(), ours, error)) << error;
+    const double ratio = static_cast<double>(ours.size()) / static_cast<double>(original.size());
+    std::cout << name << ": original " << original.size() << " bytes, re-encoded " << ours.size()
+              << " (ratio " << ratio << ")\n";
+    EXPECT_NEAR(ratio, 1.0, 0.01);
+    ASSERT_TRUE(io::decompressLaz(ours.data(), ours.size(), back, error)) << error;
+    EXPECT_TRUE(back == las) << "the re-encoded file decodes to the same LAS file";
+    io::LasHeaderInfo ho, hn;
+    ASSERT_TRUE(io::readLasHeader(original.data(), original.size(), ho, error)) << error;
+    ASSERT_TRUE(io::readLasHeader(ours.data(), ours.size(), hn, error)) << error;
+    std::int64_t to, tn;
+    std::memcpy(&to, original.data() + ho.offset_to_points, 8);
+    std::memcpy(&tn, ours.data() + hn.offset_to_points, 8);
+    EXPECT_TRUE(std::equal(original.begin() + ho.offset_to_points + 8, original.begin() + to,
+                           ours.begin() + hn.offset_to_points + 8, ours.begin() + tn))
+        << "the chunk bytes differ from the original's";
+    EXPECT_TRUE(std::equal(original.begin() + to, original.end(), ours.begin() + tn, ours.end()))
+        << "the chunk tables differ";
+  }
 }
 
 // Decoding on two threads gives exactly what one thread gives (lone-star.laz: 11 chunks).
@@ -320,4 +322,24 @@ TEST(LazReal, PlaneDecodes)
     EXPECT_GE(info.min_file[k], info.las.min[k] - info.las.scale[k]);
     EXPECT_LE(info.max_file[k], info.las.max[k] + info.las.scale[k]);
   }
+}
+
+// 1_4_w_evlr.laz (layered, LAS 1.4): its EVLR after the chunk table is read, as in its LAS twin.
+TEST(LazReal, EvlrsAfterTheChunkTable)
+{
+  const std::string path = sharedData("laz/laspy/1_4_w_evlr.laz");
+  PCL_LS3D_REQUIRE_DATA(path);
+  const std::vector<std::uint8_t> laz = readBytes(path), las = readBytes(sharedData("laz/laspy/1_4_w_evlr.las"));
+  io::LasHeaderInfo hz, hs;
+  std::string error;
+  ASSERT_TRUE(io::readLasHeader(laz.data(), laz.size(), hz, error)) << error;
+  ASSERT_TRUE(io::readLasHeader(las.data(), las.size(), hs, error)) << error;
+  ASSERT_EQ(hz.evlrs.size(), 1u);
+  ASSERT_EQ(hs.evlrs.size(), 1u);
+  EXPECT_EQ(hz.evlrs[0].user_id, "pylastest");
+  EXPECT_EQ(hz.evlrs[0].record_id, 42);
+  EXPECT_EQ(hz.evlrs[0].data, hs.evlrs[0].data);
+  EXPECT_EQ(hz.laz.compressor, 3);
+  EXPECT_EQ(hz.laz.chunk_count, 1u);
+  EXPECT_TRUE(hz.laz.chunk_table);
 }
