@@ -285,13 +285,15 @@ constexpr std::uint64_t kPointsPerThread = 65536;
 std::size_t
 LazChunkReader::batchEnd(std::size_t first, std::size_t threads) const
 {
-  // At least one chunk per thread, and enough points that the two parallel regions of a batch
-  // cost little beside the decoding (small chunks come in the hundreds).
+  // At least one chunk per thread, and some chunks' worth of points per thread, so that the
+  // waits at the end of a batch's two parallel regions cost little beside the decoding (small
+  // chunks come in the hundreds); the batch's records are what is held beside the output.
   constexpr std::size_t kMaxChunks = 4096;
+  constexpr std::uint64_t kBatchPointsPerThread = 4 * kPointsPerThread;
   std::size_t end = first;
   std::uint64_t points = 0;
   while (end < chunkCount() && end - first < kMaxChunks &&
-         (end - first < threads || points < threads * kPointsPerThread))
+         (end - first < threads || points < threads * kBatchPointsPerThread))
     points += points_[end++];
   return end;
 }

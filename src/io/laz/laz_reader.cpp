@@ -9,6 +9,7 @@
 #include "../las_format.h"
 #include "../las_header.h"
 
+#include <algorithm>
 #include <cstring>
 
 #ifdef _OPENMP
@@ -57,6 +58,15 @@ toLocalFrame(pcl::PointCloud<PointLiDAR>& cloud, const las::LocalFrame& frame)
   }
 }
 
+/// Points to reserve room for: the header's count, but no more than one per compressed byte
+/// (real files take several bytes a point), so a hostile count reserves nothing large; an output
+/// that needs more grows as its chunks decode.
+std::size_t
+reservation(const LasHeaderInfo& h, std::size_t file_size)
+{
+  return static_cast<std::size_t>(std::min<std::uint64_t>(h.point_count, file_size));
+}
+
 void
 describe(const laz::LazChunkReader& reader, LasHeaderInfo& h)
 {
@@ -90,6 +100,7 @@ readLazPoints(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointL
   info.points_in_file = static_cast<std::size_t>(h.point_count);
   // One integer box per chunk: chunks are visited concurrently.
   std::vector<las::IntegerBox> boxes(reader.chunkCount());
+  cloud.reserve(reservation(h, size));
   const auto grow = [&](std::uint64_t points) { cloud.resize(static_cast<std::size_t>(points)); };
   const auto visit = [&](std::size_t chunk, const std::uint8_t* records, std::string&) {
     const std::size_t first = reader.firstPoint(chunk), n = reader.chunkPoints(chunk);
@@ -139,6 +150,7 @@ decompressLaz(const std::uint8_t* data, std::size_t size, std::vector<std::uint8
     return false;
   out = las::rebuildHead(data, h, {});
   const std::size_t head = out.size(), length = h.record_length;
+  out.reserve(head + reservation(h, size) * length);
   const auto grow = [&](std::uint64_t points) { out.resize(head + points * length); };
   const auto visit = [&](std::size_t chunk, const std::uint8_t* records, std::string&) {
     std::memcpy(out.data() + head + reader.firstPoint(chunk) * length, records,
