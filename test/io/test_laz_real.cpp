@@ -8,6 +8,8 @@
 #include <pcl_ls3d/io/las_io.h>
 #include <pcl_ls3d/io/las_records.h>
 
+#include "io/laz/laszip_items.h"
+#include "io/laz/laz_chunk_reader.h"
 #include "io/laz_test_utils.h"
 
 #include <gtest/gtest.h>
@@ -342,4 +344,66 @@ TEST(LazReal, EvlrsAfterTheChunkTable)
   EXPECT_EQ(hz.laz.compressor, 3);
   EXPECT_EQ(hz.laz.chunk_count, 1u);
   EXPECT_TRUE(hz.laz.chunk_table);
+}
+
+// The compressor-1 file of version-1 items: encoding simple.las's records with the version-1
+// coders gives its point data byte for byte (the first record raw, then one stream).
+TEST(LazReal, VersionOneEncodersReproduceTheOldFile)
+{
+  const std::string path = sharedData("laz/pdal/simple-laszip-compressor-version-1.2r0.laz");
+  PCL_LS3D_REQUIRE_DATA(path);
+  const std::vector<std::uint8_t> laz = readBytes(path);
+  io::LasHeaderInfo hz, hs;
+  std::string error;
+  ASSERT_TRUE(io::readLasHeader(laz.data(), laz.size(), hz, error)) << error;
+  const std::vector<std::uint8_t> records = lasRecords(readBytes(sharedData("laz/laspy/simple.las")), hs);
+  io::laz::LaszipVlr vlr = io::laz::defaultLaszipVlr(3, 0);
+  for (io::laz::Item& item : vlr.items)
+    item.version = 1;
+  auto encoder = io::laz::makeChunkEncoder(vlr, error);
+  ASSERT_TRUE(encoder) << error;
+  std::vector<std::uint8_t> stream;
+  encoder->encode(records.data(), 1065, stream);
+  const std::vector<std::uint8_t> original(laz.begin() + hz.offset_to_points, laz.end());
+  EXPECT_EQ(stream.size(), original.size());
+  EXPECT_TRUE(stream == original);
+}
+
+// The streaming reader: with a chunk table any chunk decodes on its own, in any order; without
+// one, only the next chunk in order can be found.
+TEST(LazReal, ChunksDecodeInAnyOrderWithATableAndInOrderWithout)
+{
+  const std::string path = sharedData("laz/pdal/lone-star.laz");
+  PCL_LS3D_REQUIRE_DATA(path);
+  std::vector<std::uint8_t> laz = readBytes(path);
+  io::LasHeaderInfo h;
+  const std::vector<std::uint8_t> all = lazRecords(laz, h);
+  std::string error;
+  ASSERT_TRUE(io::readLasHeader(laz.data(), laz.size(), h, error)) << error;
+  io::laz::LazChunkReader reader;
+  ASSERT_TRUE(reader.open(laz.data(), laz.size(), h, error)) << error;
+  ASSERT_EQ(reader.chunkCount(), 11u);
+  auto decoder = reader.makeDecoder(error);
+  ASSERT_TRUE(decoder) << error;
+  std::vector<std::uint8_t> buffer(reader.maxChunkPoints() * 28);
+  for (std::size_t i : {10u, 3u, 0u, 7u}) {
+    ASSERT_TRUE(reader.decodeChunk(i, *decoder, buffer.data(), error)) << error;
+    EXPECT_TRUE(std::equal(buffer.begin(), buffer.begin() + reader.chunkPoints(i) * 28,
+                           all.begin() + reader.firstPoint(i) * 28))
+        << "chunk " << i;
+  }
+  // The table offset pointed outside the file: the chunks are walked.
+  const std::int64_t nowhere = -5;
+  std::memcpy(laz.data() + h.offset_to_points, &nowhere, 8);
+  io::laz::LazChunkReader walker;
+  ASSERT_TRUE(walker.open(laz.data(), laz.size(), h, error)) << error;
+  EXPECT_FALSE(walker.hasChunkTable());
+  EXPECT_FALSE(walker.decodeChunk(3, *decoder, buffer.data(), error));
+  EXPECT_NE(error.find("no chunk table"), std::string::npos) << error;
+  for (std::size_t i = 0; i < walker.chunkCount(); ++i) {
+    ASSERT_TRUE(walker.decodeChunk(i, *decoder, buffer.data(), error)) << error;
+    EXPECT_TRUE(std::equal(buffer.begin(), buffer.begin() + walker.chunkPoints(i) * 28,
+                           all.begin() + walker.firstPoint(i) * 28))
+        << "chunk " << i;
+  }
 }
