@@ -86,7 +86,7 @@ loadByFormat(const std::string& format, const std::string& path,
              pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
              const LoadOptions& options)
 {
-  if (format == "las")
+  if (format == "las" || format == "laz")  // a LAZ file is LAS with compressed records
     return readLasFile(path, cloud, info, error, options);
   if (format == "pcd" || format == "ply") {
     detail::MappedFile file;
@@ -121,15 +121,13 @@ loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo
     reason = "is a directory, not a point-cloud file";
   else if (fs::file_size(path, ec) == 0)
     reason = "empty file";
-  else if (ext == "laz")
-    reason = kLazNotSupported;
   else {
     format = sniffFormat(path);
     if (format.empty())
       format = formatOf(ext);
     if (format.empty())
       reason = "unknown file type " + detail::quote("." + ext) +
-               " (supported: .las .pcd .ply .xyz .txt .csv)";
+               " (supported: .las .laz .pcd .ply .xyz .txt .csv)";
   }
   if (reason.empty() && !options.origin.allFinite() && options.use_origin)
     reason = "the forced origin is not finite";
@@ -153,9 +151,10 @@ canSaveFormat(const std::string& path, std::string& why)
 {
   const std::string ext = fileExtension(path);
   const std::string format = formatOf(ext);
-  if (!format.empty() && format != "laz")
+  if (!format.empty())
     return true;
-  why = "cannot write " + detail::quote("." + ext) + " files (supported: .las .pcd .ply .xyz .txt .csv)";
+  why = "cannot write " + detail::quote("." + ext) +
+        " files (supported: .las .laz .pcd .ply .xyz .txt .csv)";
   return false;
 }
 
@@ -180,6 +179,8 @@ saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
     reason = "is a directory";
   else if (format == "las")
     writeLasFile(path, cloud, origin, reason, options);
+  else if (format == "laz")
+    writeLazFile(path, cloud, origin, reason, options);
   else if (format == "xyz")
     writeXyzFile(path, cloud, origin, reason, options);
   else

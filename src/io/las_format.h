@@ -28,7 +28,7 @@ constexpr std::size_t kWaveformStart = 227;                          // 1.3+
 constexpr std::size_t kEvlrStart = 235, kEvlrCount = 243, kCount64 = 247, kByReturn64 = 255;  // 1.4
 
 constexpr std::size_t kHeaderSize10 = 227, kHeaderSize13 = 235, kHeaderSize14 = 375;
-constexpr std::size_t kVlrHeaderSize = 54;
+constexpr std::size_t kVlrHeaderSize = 54, kEvlrHeaderSize = 60;
 
 /// Header size a version requires.
 inline std::size_t

@@ -5,6 +5,9 @@
 #include <pcl_ls3d/io/las_io.h>
 
 #include "las_format.h"
+#include "las_header.h"
+#include "laz/laszip_items.h"
+#include "laz/laz_chunk_reader.h"
 #include "local_origin.h"
 #include "point_fields.h"
 
@@ -19,6 +22,8 @@ namespace io {
 const char* const kLazNotSupported =
     "compressed LAZ is not supported; decompress first, e.g. `las2las -i in.laz -o out.las` or "
     "`pdal translate in.laz out.las`";
+
+const char* const kLaszipUserId = "laszip encoded";
 
 std::uint16_t
 lasPointRecordLength(int point_format)
@@ -48,7 +53,7 @@ concat(const Args&... args)
 }
 
 /// Reads the VLRs between the header and the points; a VLR that would run past the point block is
-/// an error (the file is inconsistent). Detects the LASzip VLR.
+/// an error (the file is inconsistent).
 bool
 readVlrs(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
 {
@@ -67,10 +72,6 @@ readVlrs(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
     vlr.record_id = las::get<std::uint16_t>(v + 18);
     const std::size_t length = las::get<std::uint16_t>(v + 20);
     vlr.description = fixedString(v + 22, 32);
-    if (vlr.user_id == "laszip encoded" || vlr.record_id == 22204) {
-      error = kLazNotSupported;
-      return false;
-    }
     if (pos + las::kVlrHeaderSize + length > end) {
       error = concat("VLR ", i + 1, " (", detail::clip(vlr.user_id), "/", vlr.record_id, ") of ",
                      length, " bytes runs past the point data at byte ", end);
@@ -129,16 +130,13 @@ readVersion(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::s
   return true;
 }
 
-/// Point format 0-10, not compressed, and a record length that holds the format (the rest of
-/// each record is extra bytes).
+/// Point format 0-10 and a record length that holds the format (the rest of each record is extra
+/// bytes). The compression bits are noted.
 bool
 readPointFormat(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
 {
   const std::uint8_t format_byte = data[las::kPointFormat];
-  if (format_byte & 0xC0) {  // LASzip sets bit 7 (and bit 6 in some writers)
-    error = kLazNotSupported;
-    return false;
-  }
+  h.laz.compressed = (format_byte & 0xC0) != 0;  // LASzip sets bit 7 (and bit 6 in some writers)
   h.point_format = format_byte & 0x3F;
   const std::uint16_t min_length = lasPointRecordLength(h.point_format);
   if (min_length == 0) {
@@ -237,41 +235,143 @@ checkPointBlock(const LasHeaderInfo& h, std::size_t size, std::string& error)
   return true;
 }
 
-/// Pass 1 over the records: their integer bounds (\a box) and from them the file coordinates'
-/// bounds in \a info (a negative scale swaps the ends). False: scale and offset give
-/// non-finite coordinates.
+/// The LASzip VLR of a compressed file, checked against the point format and record length; a
+/// LASzip VLR also marks a file compressed whose format byte does not say so.
 bool
-readFileBounds(const std::uint8_t* block, std::size_t n, const LasHeaderInfo& h,
-               las::IntegerBox& box, CloudInfo& info, std::string& error)
+readLaszipVlr(LasHeaderInfo& h, std::string& error)
 {
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint8_t* r = block + i * h.record_length;
-    for (int k = 0; k < 3; ++k)
-      box.add(k, las::get<std::int32_t>(r + 4 * k));
-  }
-  if (n == 0)
+  const LasVlr* found = nullptr;
+  for (const LasVlr& v : h.vlrs)
+    if (v.user_id == kLaszipUserId && v.record_id == 22204)
+      found = &v;
+  if (!found && !h.laz.compressed)
     return true;
-  for (int k = 0; k < 3; ++k) {
-    const double a = box.lo[k] * h.scale[k] + h.offset[k], b = box.hi[k] * h.scale[k] + h.offset[k];
-    info.min_file[k] = std::min(a, b);
-    info.max_file[k] = std::max(a, b);
-  }
-  if (!info.min_file.allFinite() || !info.max_file.allFinite()) {
-    error = "scale and offset give non-finite coordinates";
+  h.laz.compressed = true;
+  if (!found) {
+    error = "the point format byte marks the records as compressed (LAZ), but the file has no "
+            "LASzip VLR to say how";
     return false;
+  }
+  laz::LaszipVlr vlr;
+  if (!laz::parseLaszipVlr(found->data.data(), found->data.size(), h.point_format,
+                           h.record_length, vlr, error))
+    return false;
+  h.laz.compressor = static_cast<int>(vlr.compressor);
+  h.laz.chunk_size = vlr.chunk_size;
+  h.laz.items = laz::describeItems(vlr);
+  return true;
+}
+
+/// LAS 1.4 EVLRs: each must lie after the point data's start and within the file.
+bool
+readEvlrs(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
+{
+  h.evlrs.clear();
+  if (h.version_minor < 4)
+    return true;
+  std::uint64_t pos = las::get<std::uint64_t>(data + las::kEvlrStart);
+  const std::uint32_t count = las::get<std::uint32_t>(data + las::kEvlrCount);
+  if (count > 0 && pos < h.offset_to_points) {
+    error = concat("the EVLRs start at byte ", pos, ", before the point data at byte ",
+                   h.offset_to_points);
+    return false;
+  }
+  for (std::uint32_t i = 0; i < count; ++i) {
+    if (pos > size || size - pos < las::kEvlrHeaderSize) {
+      error = concat("EVLR ", i + 1, " of ", count, " at byte ", pos, " runs past the end of the file (",
+                     size, " bytes)");
+      return false;
+    }
+    const std::uint8_t* v = data + pos;
+    const std::uint64_t length = las::get<std::uint64_t>(v + 20);
+    if (length > size - pos - las::kEvlrHeaderSize) {
+      error = concat("EVLR ", i + 1, " of ", count, " at byte ", pos, " holds ", length,
+                     " bytes, past the end of the file (", size, " bytes)");
+      return false;
+    }
+    LasVlr vlr;
+    vlr.user_id = fixedString(v + 2, 16);
+    vlr.record_id = las::get<std::uint16_t>(v + 18);
+    vlr.description = fixedString(v + 28, 32);
+    vlr.data.assign(v + las::kEvlrHeaderSize, v + las::kEvlrHeaderSize + length);
+    h.evlrs.push_back(std::move(vlr));
+    pos += las::kEvlrHeaderSize + length;
   }
   return true;
 }
 
-/// One point record in the local frame: x_local = X * s + \a shift (offset − origin), one double
-/// multiply-add per coordinate; the attribute bits where the point format puts them.
-void
-decodeRecord(const std::uint8_t* r, const LasHeaderInfo& h, const Eigen::Vector3d& shift,
-             std::size_t gps_offset, PointLiDAR& p)
+}  // namespace
+
+namespace las {
+
+bool
+parseHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
 {
-  p.x = static_cast<float>(las::get<std::int32_t>(r) * h.scale[0] + shift[0]);
-  p.y = static_cast<float>(las::get<std::int32_t>(r + 4) * h.scale[1] + shift[1]);
-  p.z = static_cast<float>(las::get<std::int32_t>(r + 8) * h.scale[2] + shift[2]);
+  // `h` is left as it was for a file that is no LAS header at all; later stages fill it in order,
+  // so a failing check leaves what was read up to it.
+  if (!checkSignature(data, size, error))
+    return false;
+  h = LasHeaderInfo();
+  if (!(readVersion(data, size, h, error) && readPointFormat(data, h, error) &&
+        readLegacyFields(data, h, error) && readPointCount(data, h, error) &&
+        checkPointOffset(h, size, error) && readVlrs(data, h, error) &&
+        readLaszipVlr(h, error)))
+    return false;
+  if (!h.laz.compressed && !checkPointBlock(h, size, error))
+    return false;
+  return readEvlrs(data, size, h, error);
+}
+
+std::vector<std::uint8_t>
+rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h,
+            const std::vector<std::uint8_t>& extra_vlr)
+{
+  std::vector<std::uint8_t> head(data, data + h.header_size);
+  std::size_t pos = h.header_size;
+  std::uint32_t count = 0;
+  for (const LasVlr& v : h.vlrs) {
+    const std::size_t bytes = kVlrHeaderSize + v.data.size();
+    if (!(v.user_id == kLaszipUserId && v.record_id == 22204)) {
+      head.insert(head.end(), data + pos, data + pos + bytes);
+      ++count;
+    }
+    pos += bytes;
+  }
+  head.insert(head.end(), extra_vlr.begin(), extra_vlr.end());
+  count += extra_vlr.empty() ? 0 : 1;
+  head.insert(head.end(), data + pos, data + h.offset_to_points);
+  head[kPointFormat] = h.point_format;
+  put<std::uint32_t>(head.data() + kNumberOfVlrs, count);
+  put<std::uint32_t>(head.data() + kOffsetToPoints, static_cast<std::uint32_t>(head.size()));
+  return head;
+}
+
+void
+appendEvlrs(const std::uint8_t* data, const LasHeaderInfo& h, std::vector<std::uint8_t>& out)
+{
+  if (h.evlrs.empty())
+    return;
+  const auto start = get<std::uint64_t>(data + kEvlrStart);
+  std::uint64_t bytes = 0;
+  for (const LasVlr& v : h.evlrs)
+    bytes += kEvlrHeaderSize + v.data.size();
+  put<std::uint64_t>(out.data() + kEvlrStart, out.size());
+  out.insert(out.end(), data + start, data + start + bytes);
+}
+
+std::vector<std::string>
+loadedFields(const LasHeaderInfo& h)
+{
+  std::vector<std::string> fields = {"x", "y", "z", "intensity", "return_number",
+                                     "number_of_returns", "classification", "point_source_id"};
+  if (las::gpsTimeOffset(h.point_format))
+    fields.push_back("gps_time");
+  return fields;
+}
+
+void
+decodeAttributes(const std::uint8_t* r, const LasHeaderInfo& h, PointLiDAR& p)
+{
   p.intensity = static_cast<float>(las::get<std::uint16_t>(r + 12));
   const std::uint8_t returns = r[14];
   if (h.point_format >= 6) {
@@ -286,23 +386,43 @@ decodeRecord(const std::uint8_t* r, const LasHeaderInfo& h, const Eigen::Vector3
     p.classification = r[15] & 0x1F;
     p.point_source_id = las::get<std::uint16_t>(r + 18);
   }
+  const std::size_t gps_offset = las::gpsTimeOffset(h.point_format);
   p.gps_time = gps_offset ? las::get<double>(r + gps_offset) : 0.0;
 }
 
-}  // namespace
+bool
+chooseFrame(const IntegerBox& box, std::size_t n, const LasHeaderInfo& h,
+            const LoadOptions& options, CloudInfo& info, LocalFrame& frame, std::string& error)
+{
+  // The file coordinates' bounds from the integer bounds (a negative scale swaps the ends).
+  for (int k = 0; k < 3 && n > 0; ++k) {
+    const double a = box.lo[k] * h.scale[k] + h.offset[k], b = box.hi[k] * h.scale[k] + h.offset[k];
+    info.min_file[k] = std::min(a, b);
+    info.max_file[k] = std::max(a, b);
+  }
+  if (n > 0 && (!info.min_file.allFinite() || !info.max_file.allFinite())) {
+    error = "scale and offset give non-finite coordinates";
+    return false;
+  }
+  info.origin = options.use_origin ? options.origin : chooseOrigin(info.min_file, info.max_file);
+  frame.scale = h.scale;
+  frame.shift = h.offset - info.origin;
+  // The local coordinates' extremes (at the integer bounds) must fit in a float.
+  Eigen::Vector3d local_lo, local_hi;
+  for (int k = 0; k < 3; ++k) {
+    local_lo[k] = box.lo[k] * h.scale[k] + frame.shift[k];
+    local_hi[k] = box.hi[k] * h.scale[k] + frame.shift[k];
+  }
+  return n == 0 || detail::fitsInFloat(local_lo, local_hi, Eigen::Vector3d::Zero(), error);
+}
+
+}  // namespace las
 
 bool
 readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
 {
-  // `h` is left as it was for a file that is no LAS header at all; later stages fill it in order,
-  // so a failing check leaves what was read up to it.
-  if (!checkSignature(data, size, error))
-    return false;
-  h = LasHeaderInfo();
-  return readVersion(data, size, h, error) && readPointFormat(data, h, error) &&
-         readLegacyFields(data, h, error) && readPointCount(data, h, error) &&
-         checkPointOffset(h, size, error) && readVlrs(data, h, error) &&
-         checkPointBlock(h, size, error);
+  return las::parseHeader(data, size, h, error) &&
+         (!h.laz.compressed || laz_detail::describeChunks(data, size, h, error));
 }
 
 bool
@@ -312,41 +432,40 @@ readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
   info = CloudInfo();
   info.format = "las";
   cloud.clear();
-  if (!readLasHeader(data, size, info.las, error))
+  if (!las::parseHeader(data, size, info.las, error))
     return false;
   const LasHeaderInfo& h = info.las;
-  const std::size_t n = static_cast<std::size_t>(h.point_count);
-  const std::uint8_t* block = data + h.offset_to_points;
-  info.points_in_file = n;
-  info.fields = {"x", "y", "z", "intensity", "return_number", "number_of_returns",
-                 "classification", "point_source_id"};
-  const std::size_t gps_offset = las::gpsTimeOffset(h.point_format);
-  if (gps_offset)
-    info.fields.push_back("gps_time");
-
-  las::IntegerBox box;
-  if (!readFileBounds(block, n, h, box, info, error))
-    return false;
-  info.origin = options.use_origin ? options.origin : chooseOrigin(info.min_file, info.max_file);
-  // The local coordinates' extremes (at the integer bounds) must fit in a float.
-  const Eigen::Vector3d shift = h.offset - info.origin;
-  Eigen::Vector3d local_lo, local_hi;
-  for (int k = 0; k < 3; ++k) {
-    local_lo[k] = box.lo[k] * h.scale[k] + shift[k];
-    local_hi[k] = box.hi[k] * h.scale[k] + shift[k];
+  info.fields = las::loadedFields(h);
+  if (h.laz.compressed) {
+    if (!laz_detail::readLazPoints(data, size, cloud, info, error, options))
+      return false;
+  } else {
+    const std::size_t n = static_cast<std::size_t>(h.point_count);
+    const std::uint8_t* block = data + h.offset_to_points;
+    info.points_in_file = n;
+    las::IntegerBox box;
+    for (std::size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 3; ++k)
+        box.add(k, las::get<std::int32_t>(block + i * h.record_length + 4 * k));
+    las::LocalFrame frame;
+    if (!las::chooseFrame(box, n, h, options, info, frame, error))
+      return false;
+    cloud.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint8_t* r = block + i * h.record_length;
+      PointLiDAR& p = cloud[i];
+      p.x = frame.local(0, las::get<std::int32_t>(r));
+      p.y = frame.local(1, las::get<std::int32_t>(r + 4));
+      p.z = frame.local(2, las::get<std::int32_t>(r + 8));
+      las::decodeAttributes(r, h, p);
+    }
+    info.points_loaded = n;
   }
-  if (n > 0 && !detail::fitsInFloat(local_lo, local_hi, Eigen::Vector3d::Zero(), error))
-    return false;
-
-  cloud.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-    decodeRecord(block + i * h.record_length, h, shift, gps_offset, cloud[i]);
-  cloud.width = static_cast<std::uint32_t>(n);
+  cloud.width = static_cast<std::uint32_t>(cloud.size());
   cloud.height = 1;
   cloud.is_dense = true;
-  info.points_loaded = n;
-  if (n == 0 && !options.allow_empty) {
-    error = "the LAS file holds no points";
+  if (cloud.empty() && !options.allow_empty) {
+    error = h.laz.compressed ? "the LAZ file holds no points" : "the LAS file holds no points";
     return false;
   }
   return true;

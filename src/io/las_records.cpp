@@ -31,6 +31,23 @@ struct LasRecordFile::Impl
     if (map)
       ::munmap(map, size);
   }
+
+  /// A LAZ file is decoded into memory whole, as the LAS file it compresses: records and header
+  /// are then those of that LAS file (rewriteLas() writes LAS).
+  bool
+  decompress(std::string& error)
+  {
+    std::vector<std::uint8_t> las;
+    if (!decompressLaz(data, size, las, error))
+      return false;
+    if (map)
+      ::munmap(map, size);
+    map = nullptr;
+    buffer.swap(las);
+    data = buffer.data();
+    size = buffer.size();
+    return readLasHeader(data, size, header, error);
+  }
 };
 
 LasRecordFile::LasRecordFile() : impl_(std::make_unique<Impl>()) {}
@@ -77,7 +94,8 @@ LasRecordFile::open(const std::string& path, std::string& error)
     impl_->data = impl_->buffer.data();
   }
   ::close(fd);
-  if (!readLasHeader(impl_->data, impl_->size, impl_->header, error)) {
+  if (!readLasHeader(impl_->data, impl_->size, impl_->header, error) ||
+      (impl_->header.laz.compressed && !impl_->decompress(error))) {
     error = path + ": " + error;
     return false;
   }

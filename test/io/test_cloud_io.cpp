@@ -336,7 +336,8 @@ TEST(CloudIO, FormatDetectionAndWriterRefusals)
   EXPECT_FALSE(io::loadCloud(dir.file("t.ply"), back, info, error));
   EXPECT_NE(error.find("PLY header says 5 vertex items"), std::string::npos) << error;
   EXPECT_EQ(error.find('\n'), std::string::npos);
-  EXPECT_FALSE(io::saveCloud(dir.file("c.laz"), cloud, Eigen::Vector3d::Zero(), error));
+  EXPECT_FALSE(io::saveCloud(dir.file("c.las7"), cloud, Eigen::Vector3d::Zero(), error));
+  EXPECT_NE(error.find("cannot write"), std::string::npos) << error;
   EXPECT_FALSE(io::saveCloud(dir.file("c.pcd"), pcl::PointCloud<PointLiDAR>(),
                              Eigen::Vector3d::Zero(), error));
   EXPECT_NE(error.find("empty cloud"), std::string::npos) << error;

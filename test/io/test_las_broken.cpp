@@ -86,13 +86,15 @@ TEST(LasBroken, EachErrorKindHasItsMessage)
   expectError(patched<std::uint32_t>(b, 96, 1u << 30), "beyond the end of the file");
   expectError(patched<std::uint32_t>(b, 96, 100), "inside the 227-byte header");
   expectError(patched<std::uint16_t>(b14, 94, 235), "smaller than the 375 bytes");
-  expectError(patched<std::uint8_t>(b, 104, 0x83), "compressed LAZ is not supported");
-  expectError(patched<std::uint8_t>(b, 104, 0x43), "las2las");
+  expectError(patched<std::uint8_t>(b, 104, 0x83), "compressed (LAZ), but the file has no LASzip VLR");
+  expectError(patched<std::uint8_t>(b, 104, 0x43), "no LASzip VLR");
   expectError(patched<std::uint32_t>(b, 100, 1), "does not fit before the point data");
   expectError(patched<double>(b, 131, 0.0), "invalid scale factor");
   expectError(patched<std::uint32_t>(validLas(), 107, 0), "no points");
 }
 
+// A LASzip VLR marks the records compressed even when the format byte does not: this one (all
+// zeros) names no compressor, so the file is refused.
 TEST(LasBroken, LaszipVlrIsDetected)
 {
   pcl::PointCloud<PointLiDAR> cloud;
@@ -106,20 +108,26 @@ TEST(LasBroken, LaszipVlrIsDetected)
   std::string error;
   ASSERT_TRUE(io::writeLas(cloud, Eigen::Vector3d::Zero(), bytes, error, so)) << error;
   bytes[227 + 2 + 6] = ' ';  // "laszip_encoded" -> "laszip encoded"
-  expectError(bytes, "compressed LAZ is not supported");
+  expectError(bytes, "the LASzip VLR names compressor 0");
 }
 
+// A file is read by its content: an uncompressed LAS file named .laz loads; a compression bit
+// without its LASzip VLR is refused.
 TEST(LasBroken, LazExtensionAndEmptyFileThroughLoadCloud)
 {
   pcl_ls3d_test::TempDir dir("ls3d_las_broken");
-  const auto b = validLas();
+  auto b = validLas();
+  std::ofstream(dir.file("plain.laz"), std::ios::binary).write(reinterpret_cast<const char*>(b.data()), b.size());
+  b[104] |= 0x80;
   std::ofstream(dir.file("a.laz"), std::ios::binary).write(reinterpret_cast<const char*>(b.data()), b.size());
   std::ofstream(dir.file("empty.las"));
   pcl::PointCloud<PointLiDAR> cloud;
   io::CloudInfo info;
   std::string error;
+  EXPECT_TRUE(io::loadCloud(dir.file("plain.laz"), cloud, info, error)) << error;
+  EXPECT_EQ(cloud.size(), 5u);
   EXPECT_FALSE(io::loadCloud(dir.file("a.laz"), cloud, info, error));
-  EXPECT_NE(error.find("compressed LAZ is not supported"), std::string::npos) << error;
+  EXPECT_NE(error.find("no LASzip VLR"), std::string::npos) << error;
   EXPECT_FALSE(io::loadCloud(dir.file("empty.las"), cloud, info, error));
   EXPECT_NE(error.find("empty file"), std::string::npos) << error;
   EXPECT_FALSE(io::loadCloud(dir.file("missing.las"), cloud, info, error));

@@ -46,7 +46,20 @@ struct LasVlr
   std::vector<std::uint8_t> data;    ///< payload (record length after header bytes)
 };
 
-/// \brief LAS public-header summary (filled when CloudInfo::format == "las").
+/// \brief How the point records of a LAZ file are compressed (LASzip); all zero for LAS.
+struct LazInfo
+{
+  bool compressed = false;          ///< the records are LASzip-compressed (a .laz file)
+  int compressor = 0;               ///< 1 pointwise, 2 pointwise-chunked, 3 layered-chunked
+  std::uint32_t chunk_size = 0;     ///< points per chunk; 0xFFFFFFFF: chunks of varying size
+  std::uint64_t chunk_count = 0;    ///< chunks holding the points
+  /// The chunk table was read; false: it is missing or unusable and the chunks are found by
+  /// decoding them in order (no parallel decoding then).
+  bool chunk_table = false;
+  std::string items;                ///< the item list, e.g. "POINT10 v2, GPSTIME11 v2"
+};
+
+/// \brief LAS public-header summary (filled when CloudInfo::format == "las", LAZ included).
 struct LasHeaderInfo
 {
   std::uint8_t version_major = 1, version_minor = 2;
@@ -67,6 +80,8 @@ struct LasHeaderInfo
   Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< header bounds (file units)
   Eigen::Vector3d max = Eigen::Vector3d::Zero();
   std::vector<LasVlr> vlrs;                 ///< the VLRs between header and points
+  std::vector<LasVlr> evlrs;                ///< LAS 1.4 extended VLRs after the points
+  LazInfo laz;                              ///< compression of the records (LAZ)
 };
 
 /// \brief How loadCloud() reads a file.
@@ -108,7 +123,7 @@ struct SaveOptions
 /// \brief What a reader found.
 struct CloudInfo
 {
-  std::string format;                                ///< "las", "pcd", "ply", "xyz"
+  std::string format;                                ///< "las" (LAZ too: las.laz), "pcd", "ply", "xyz"
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< local origin subtracted from every point (double)
   /// PCD: the origin its header records ("# pcl_ls3d origin", pcd_io.h; the file holds local
   /// floats, x_file = stored value + file_origin); zero for any other file.
@@ -136,13 +151,15 @@ struct CloudInfo
   }
 };
 
-/// Loads PCD, PLY, LAS (1.0–1.4, formats 0–10, uncompressed) or ASCII XYZ (by extension and/or
-/// signature) into local coordinates x_local = x_file - origin. Returns false with a one-line reason.
+/// Loads PCD, PLY, LAS (1.0–1.4, formats 0–10), LAZ (LASzip-compressed LAS, see las_io.h) or
+/// ASCII XYZ (by extension and/or signature) into local coordinates x_local = x_file - origin.
+/// Returns false with a one-line reason.
 bool
 loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
           std::string& error, const LoadOptions& options = {});
 
-/// Writes by extension (.pcd .ply .las .xyz/.txt), restoring x_file = x_local + origin in double.
+/// Writes by extension (.pcd .ply .las .laz .xyz/.txt), restoring x_file = x_local + origin in
+/// double.
 /// PCD/PLY store x, y, z as FLOAT64 when origin is non-zero (FLOAT32 otherwise).
 bool
 saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,

@@ -1,7 +1,7 @@
 #pragma once
 /// \file las_records.h
-/// \brief Raw, read-only access to the point records of an uncompressed LAS 1.0–1.4 file
-///        (mapped, no copy): the header as validated by readLasHeader(), and per record the
+/// \brief Raw, read-only access to the point records of a LAS 1.0–1.4 file (mapped, no copy;
+///        a LAZ file is decompressed into memory): the header as validated by readLasHeader(), and per record the
 ///        quantised X, Y, Z, the file coordinates in double, the classification with its flags
 ///        (synthetic, key-point, withheld, overlap) and the point-source id. The strip adjustment
 ///        reads its strips this way and rewrites them record by record (las_rewrite.h), so every
@@ -35,7 +35,9 @@ public:
   LasRecordFile&
   operator=(LasRecordFile&&) noexcept;
 
-  /// Maps and validates the file (LAZ and damaged files are refused with a one-line reason).
+  /// Maps and validates the file (damaged files are refused with a one-line reason). A LAZ file
+  /// is decompressed into memory whole: header(), data() and the records are then those of the
+  /// LAS file it compresses (no LASzip VLR, no compression bits).
   bool
   open(const std::string& path, std::string& error);
 

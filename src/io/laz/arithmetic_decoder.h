@@ -25,13 +25,21 @@ public:
   void
   start(const std::uint8_t* begin, const std::uint8_t* end)
   {
-    next_ = begin;
+    begin_ = next_ = begin;
     end_ = end;
     overrun_ = 0;
     length_ = kMaxLength;
     value_ = 0;
     for (int i = 0; i < 4; ++i)
       value_ = (value_ << 8) | nextByte();
+  }
+
+  /// Bytes of the range read so far. Once the last symbol is decoded this is the stream's length:
+  /// the encoder's flush ends exactly where the decoder's look-ahead does.
+  std::size_t
+  consumed() const
+  {
+    return static_cast<std::size_t>(next_ - begin_);
   }
 
   /// Bytes requested beyond the range (0 for a well-formed stream).
@@ -175,6 +183,7 @@ private:
     } while ((length_ <<= 8) < kMinLength);
   }
 
+  const std::uint8_t* begin_ = nullptr;
   const std::uint8_t* next_ = nullptr;
   const std::uint8_t* end_ = nullptr;
   std::size_t overrun_ = 0;
