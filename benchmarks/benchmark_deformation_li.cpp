@@ -11,6 +11,9 @@
 //   estimator's own answer, as in Li et al.'s tables. Default: the library's.
 //   -cap 0: the M-step keeps the high-breakdown fit's own scale (no neighbour-noise cap).
 //   -hold_out 0: MM's M-step over every point (no reweighting cut at 2.5 s of the start).
+//   -scatter_gate R: the analysis refuses a final fit whose stable part scatters by more than
+//   R x sigma_d (DeformationSettings::max_stable_scatter_ratio; 0: off, to measure the figures
+//   of fits the gate would refuse). -v prints them per trial, in sigma.
 //   benchmark_deformation_li -grid [-methods m,md,lms,mm] [-percents 4,9,...] [-mags 3,3.5,...]
 //       [-positions upper_left,upper,middle,...|all] [-seeds N] [-first_seed S] [-full]
 //       Tables 3 and 5 analogues: a trial succeeds when the recovered transform moves no grid
@@ -26,6 +29,7 @@
 //       The whole analysis (default MM estimator, residual field, regions) on a Li surface of
 //       N × N nodes over the same 5000 × 5000 extent (20 % deformed by 10 σ): time and peak RSS.
 #include <pcl_ls3d/deformation/deformation_analysis.h>
+#include <pcl_ls3d/estimators/neighbour_noise.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 #include <pcl_ls3d/sample_consensus/subset_search.h>
@@ -38,6 +42,7 @@
 #include <pcl/console/time.h>
 #include <pcl/search/kdtree.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -58,6 +63,7 @@ int g_cap = -1;         ///< cap the M-step scale by the neighbour noise (-cap 0
 int g_block_start = -1; ///< LMS, MM: the block start and the choice between starts (-block_start 0|1; -1: default)
 int g_hold_out = -1;    ///< MM: points beyond 2.5 s of the start out of the M-step (-hold_out 0|1; -1: default)
 bool g_verbose = false; ///< one line per trial (-v)
+double g_scatter_gate = -1.0;  ///< the analysis' stable-scatter gate (-scatter_gate R; 0 off; < 0: default)
 
 /// Precision and recall of a region labelling against the planted patch, over observed nodes.
 std::pair<double, double>
@@ -106,8 +112,44 @@ struct Trial
   double grown_precision = 1.0, grown_recall = 1.0;  ///< the same with the regions grown at -grow_k
   double scale = 0.0;
   double ms = 0.0;
+  double field_noise = 0.0;     ///< σ_d of the final residual field
+  double stable_scatter = 0.0;  ///< 1.4826 · med |r| of the observed points outside the regions
+  double weighted_rms = 0.0;    ///< √(Σ w v² / Σ w) of the final adjustment
+  double kept_mad = 0.0;        ///< 1.4826 · med |v| of its observations with weight > 0
   deformation::DeformationResult result;
 };
+
+/// σ_d of the final field and the scatter of its stable part (outside the regions).
+void
+measureFinalFit(const std::vector<Eigen::Vector3d>& pts, Trial& t)
+{
+  const deformation::ResidualField& f = t.result.field;
+  t.field_noise = neighbourDifferenceScale(pts, f.residual);
+  std::vector<double> outside;
+  for (std::size_t i = 0; i < f.residual.size(); ++i)
+    if (std::isfinite(f.residual[i]) && t.result.regions.region[i] <= 0)
+      outside.push_back(std::abs(f.residual[i]));
+  const AdjustmentReport& a = t.result.matching.adjustment;
+  double sw = 0.0, swv2 = 0.0;
+  std::vector<double> kept;
+  for (std::size_t j = 0; j < a.residuals.size() && j < a.weights.size(); ++j) {
+    sw += a.weights[j];
+    swv2 += a.weights[j] * a.residuals[j] * a.residuals[j];
+    if (a.weights[j] > 0.0)
+      kept.push_back(std::abs(a.residuals[j]));
+  }
+  t.weighted_rms = sw > 0.0 ? std::sqrt(swv2 / sw) : 0.0;
+  if (!kept.empty()) {
+    auto m = kept.begin() + static_cast<std::ptrdiff_t>(kept.size() / 2);
+    std::nth_element(kept.begin(), m, kept.end());
+    t.kept_mad = 1.4826 * *m;
+  }
+  if (outside.empty())
+    return;
+  auto mid = outside.begin() + static_cast<std::ptrdiff_t>(outside.size() / 2);
+  std::nth_element(outside.begin(), mid, outside.end());
+  t.stable_scatter = 1.4826 * *mid;
+}
 
 /// A method name of robustMatching, or an LMS variant by the scale of its M-step: lms (σ* of
 /// the LMS fit, default), lms_s0 (s0 of the LMS fit), lms_mad (eq. 7 on all residuals).
@@ -155,6 +197,8 @@ runTrial(const synth::LiSurface& li, const Method& method)
     s.matching.mm_hold_out_beyond_start = g_hold_out != 0;
   if (g_block_start >= 0)
     s.matching.block_start = g_block_start != 0;
+  if (g_scatter_gate >= 0.0)
+    s.max_stable_scatter_ratio = g_scatter_gate;
   Trial t;
   pcl::console::TicToc tt;
   tt.tic();
@@ -172,6 +216,7 @@ runTrial(const synth::LiSurface& li, const Method& method)
   t.error_sigma = evaluation::computeTransformError(t.result.matching.adjustment.transformation,
                                                     li.truth.matrix(), eval).max / kSigma;
   std::tie(t.precision, t.recall) = detection(li, t.result.field, t.result.regions.region);
+  measureFinalFit(pts, t);
   deformation::RegionSettings grown = s.regions;
   grown.grow_k = g_grow_k;
   grown.plane_axis = t.result.regions.plane_normal_axis;
@@ -262,8 +307,11 @@ grid(const std::vector<std::string>& methods, const std::vector<double>& percent
               for (const auto& c : t.result.start_choice.candidates)
                 std::printf("      %s: scatter %.2f on %zu points%s\n", c.name.c_str(), c.scatter, c.outside,
                             c.usable ? "" : " (no usable fit)");
-              std::printf("   %s seed %d err %.3f (start %.3f) chosen %s refine %d left %zu (%s) %s\n",
+              std::printf("   %s seed %d err %.3f (start %.3f) sigma_d %.2f stable %.2f wrms %.2f kmad %.2f hb %.2f chosen %s refine %d left %zu (%s) %s\n",
                           synth::toString(positions[pi]), seed, t.error_sigma, t.start_error_sigma,
+                          t.field_noise / kSigma, t.stable_scatter / kSigma, t.weighted_rms / kSigma,
+                          t.kept_mad / kSigma,
+                          t.result.matching.high_breakdown_scale / kSigma,
                           t.result.start_choice.chosen.c_str(), t.result.refinement.rounds, t.result.refinement.left_out,
                           t.result.refinement.stopped.c_str(), (t.result.matching.brief() + " / " + t.result.matching.message).c_str());
             }
@@ -421,6 +469,7 @@ main(int argc, char** argv)
   pcl::console::parse_argument(argc, argv, "-cap", g_cap);
   pcl::console::parse_argument(argc, argv, "-hold_out", g_hold_out);
   pcl::console::parse_argument(argc, argv, "-block_start", g_block_start);
+  pcl::console::parse_argument(argc, argv, "-scatter_gate", g_scatter_gate);
   g_verbose = pcl::console::find_switch(argc, argv, "-v");
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   int pipeline_n = 0;

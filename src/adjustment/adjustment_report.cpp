@@ -75,6 +75,8 @@ AdjustmentReport::fullReport() const
                         "%.3g is below it)", quality.sigma0_ratio, quality.noise_yardstick, quality.expected_noise)
                : format("  quality: sigma0 = %.3g x the surfaces' own noise (%.3g)", quality.sigma0_ratio,
                         quality.expected_noise))
+       << (quality.normal_sigma_ratio > 0.0
+               ? format(" (across the surface %.3g x)", quality.normal_sigma_ratio) : std::string())
        << format(", coverage %.3f, rejected %.3f", quality.coverage, quality.rejected_fraction)
        << format(", moved %.4g (position sigma %.3g), kept %.3g of the start's correspondences",
                  quality.movement, quality.position_sigma, quality.observations_kept) << ": "

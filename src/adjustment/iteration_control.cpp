@@ -23,8 +23,11 @@ changesBelow(const GaussMarkovSolution& sol, double fraction)
   return true;
 }
 
-IterationControl::IterationControl(const AdjustmentSettings& settings, std::size_t n, bool culling)
-: settings_(settings), culling_(culling)
+IterationControl::IterationControl(const AdjustmentSettings& settings, std::size_t n, bool culling,
+                                   double spacing)
+: settings_(settings)
+, culling_(culling)
+, extrapolator_(spacing > 0.0 ? spacing : std::numeric_limits<double>::infinity())
 {
   // Coarse phase: every stride-th point only, until the estimate has settled to ~1 σ_i.
   const std::size_t wanted = settings.coarse_observations;

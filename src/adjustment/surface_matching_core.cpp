@@ -174,11 +174,12 @@ solveAndUpdate(PairRun& run, const NormalEquations& ne, const std::vector<bool>&
 
 // The quality gate on a finished adjustment (quality_gate.h).
 void
-assess(const PairRun& run, const ObservationSet& obs, const TargetSurface& target,
-       const AdjustmentSettings& settings, AdjustmentReport& report)
+assess(const PairRun& run, const ObservationSet& obs, const Eigen::VectorXd& weights,
+       const TargetSurface& target, const AdjustmentSettings& settings, AdjustmentReport& report)
 {
   QualityInputs in;
   in.sigma0 = run.sol.sigma0;
+  in.normal_sigma = normalComponentSigma(obs, weights);
   in.source_noise = run.source_noise;
   in.target_noise = estimateSurfaceNoise(target, conjugatePoints(obs));
   in.spacing = run.spacing;
@@ -227,7 +228,7 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
                       "iteration limit reached before the changes fell below the epsilons";
   if (settings.store_observations)
     storeObservations(report, sol, row, weights, source_indices);
-  assess(run, row.set, target, settings, report);
+  assess(run, row.set, weights, target, settings, report);
 }
 
 }  // namespace
@@ -256,7 +257,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
   pair.spacing = estimatePointSpacing(target);
   const BlockLinearization target_pose(pair.setup.target);
   matcher_.reset(reduced_, target, rule, settings.max_correspondence_distance);
-  IterationControl control(settings, reduced_.size(), matcher_.culling());
+  IterationControl control(settings, reduced_.size(), matcher_.culling(), pair.spacing);
 
   for (int it = 1; it <= settings.max_iterations; ++it) {
     if (it > 1) {  // the reach follows the fit (automatic_reach)

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <unordered_map>
 
 namespace pcl_ls3d {
 
@@ -185,6 +186,62 @@ startSlidOff(const AdjustmentReport& start, const AdjustmentSettings& settings)
   return {};
 }
 
+// The final fit's residuals: per observed point (its first observation) its position and
+// residual, and |v| of every observation the estimator kept (weight > 0).
+void
+finalResiduals(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices,
+               const AdjustmentReport& fit, std::vector<Eigen::Vector3d>& positions,
+               std::vector<double>& residuals, std::vector<double>& kept)
+{
+  std::unordered_map<int, std::size_t> position_of;
+  for (std::size_t k = 0; k < points.size(); ++k)
+    position_of.emplace(point_indices[k], k);
+  const std::size_t m = std::min({fit.residuals.size(), fit.weights.size(),
+                                  fit.observation_source_index.size()});
+  int last = std::numeric_limits<int>::min();
+  for (std::size_t j = 0; j < m; ++j) {
+    if (fit.weights[j] > 0.0)
+      kept.push_back(std::abs(fit.residuals[j]));
+    const int index = fit.observation_source_index[j];
+    const auto at = position_of.find(index);
+    if (index == last || at == position_of.end())
+      continue;
+    last = index;
+    positions.push_back(points[at->second]);
+    residuals.push_back(fit.residuals[j]);
+  }
+}
+
+// RobustMatchingSettings::max_kept_scale_ratio on a usable LMS / MM fit.
+void
+keptScaleGate(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices,
+              double limit, RobustMatchingReport& report)
+{
+  std::vector<Eigen::Vector3d> positions;
+  std::vector<double> residuals, kept;
+  finalResiduals(points, point_indices, report.adjustment, positions, residuals, kept);
+  report.final_neighbour_noise = neighbourDifferenceScale(positions, residuals);
+  if (kept.empty() || !(report.final_neighbour_noise > 0.0))
+    return;
+  const auto mid = kept.begin() + static_cast<std::ptrdiff_t>(kept.size() / 2);
+  std::nth_element(kept.begin(), mid, kept.end());
+  report.kept_scale = 1.4826 * *mid;
+  const double ratio = report.kept_scale / report.final_neighbour_noise;
+  if (!(limit > 0.0) || !(ratio > limit) || !report.adjustment.isSolutionUsable())
+    return;
+  char why[320];
+  std::snprintf(why, sizeof why,
+                "NOT TRUSTWORTHY: the residuals the M-step kept have a scale of %.4g, %.3g x the "
+                "noise of neighbouring residuals %.4g (limit %.3g): the fit compromises between the "
+                "stable and the moved part",
+                report.kept_scale, ratio, report.final_neighbour_noise, limit);
+  report.adjustment.termination = TerminationType::UNRELIABLE;
+  report.adjustment.quality.trustworthy = false;
+  report.adjustment.message += (report.adjustment.message.empty() ? "" : "; ") + std::string(why);
+  report.termination = TerminationType::UNRELIABLE;
+  report.message += (report.message.empty() ? "" : "; ") + std::string(why);
+}
+
 }  // namespace
 
 const char*
@@ -236,6 +293,8 @@ RobustMatchingSettings::isValid(std::string* why) const
     return bad("sample_size must be in [1, 64]");
   if (max_rounds < 1)
     return bad("max_rounds must be >= 1");
+  if (!(max_kept_scale_ratio >= 0.0))
+    return bad("max_kept_scale_ratio must be >= 0 (0: off)");
   return true;
 }
 
@@ -355,6 +414,8 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
                       ": the robust stages began at the guess";
   if (report.adjustment.isSolutionUsable())
     report.scale = finalScale(*w, report.adjustment);
+  if (s.method == RobustMethod::LMS || s.method == RobustMethod::MM)
+    keptScaleGate(points, point_indices, s.max_kept_scale_ratio, report);
   return report;
 }
 

@@ -78,7 +78,10 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     if (settings.max_iterations > 0)
       ls3d.setMaximumIterations(settings.max_iterations);
     ls3d.setSourceThinning(settings.source_thinning);
-    ls3d.setTransformationEpsilon(settings.translation_epsilon * settings.translation_epsilon);
+    // The translation epsilon alone (PCL's setTransformationEpsilon would also set the angle's).
+    AdjustmentSettings adjustment = ls3d.getAdjustmentSettings();
+    adjustment.translation_epsilon = settings.translation_epsilon;
+    ls3d.setAdjustmentSettings(adjustment);
     ls3d.setInputSource(source);
     ls3d.setInputTarget(target);
     pcl::PointCloud<pcl::PointXYZ> output;

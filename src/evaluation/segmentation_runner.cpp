@@ -32,10 +32,15 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
     seg.setNormalAngleThreshold(s.normal_angle_deg * kDegToRad);
   if (s.principal_angle_deg > 0.0)
     seg.setPrincipalAngleThreshold(s.principal_angle_deg * kDegToRad);
-  seg.setResidualThreshold(s.residual_threshold);
-  seg.setDistanceThreshold(s.distance_threshold);
-  seg.setSimilarityThreshold(s.similarity_threshold);
-  seg.setVolumeChangeThreshold(s.volume_threshold);
+  // Negative here means adaptive (the tools' convention), the class's default.
+  if (s.residual_threshold >= 0.0)
+    seg.setResidualThreshold(s.residual_threshold);
+  if (s.distance_threshold >= 0.0)
+    seg.setDistanceThreshold(s.distance_threshold);
+  if (s.similarity_threshold >= 0.0)
+    seg.setSimilarityThreshold(s.similarity_threshold);
+  if (s.volume_threshold >= 0.0)
+    seg.setVolumeChangeThreshold(s.volume_threshold);
   if (s.threads > 0)
     seg.setNumberOfThreads(s.threads);
   if (s.min_fragment_size >= 0)

@@ -304,3 +304,39 @@ TEST(RobustMatching, NoOverlapOnASoundReferenceIsNoOverlap)
     EXPECT_EQ(none.message.find("degenerate"), std::string::npos) << toString(m) << ": " << none.message;
   }
 }
+
+// Robust matching alone (the compare tool's path), LMS at 36 % deformed by N(5σ, σ): the
+// subset fit and its M-step end 4.5 σ off, and main reported them CONVERGED. The residuals the
+// M-step kept scatter by 2.0 σ_d (the noise of neighbouring residuals; right fits on Li's grid:
+// at most 1.43): the kept-scale gate, switched on, refuses it. Without it (the default, since
+// σ_d underestimates the noise of dense surfaces) it is the old CONVERGED.
+TEST(RobustMatching, KeptScaleGateRefusesTheCompromise)
+{
+  const synth::LiSurface li = liSurface(36.0, 5.0, synth::DeformationPosition::UPPER, 1);
+  const LiRun run(li);
+  RobustMatchingSettings s;
+  s.method = RobustMethod::LMS;
+  s.block_start = true;  // as the grid was measured (the analysis' default)
+  s.max_kept_scale_ratio = 1.5;  // off by default (dense surfaces, robust_matching.h)
+  const RobustMatchingReport gated = robustMatching(run.points, run.indices, *run.surface, *run.rule, s,
+                                                    Eigen::Matrix4d::Identity());
+  s.max_kept_scale_ratio = 0.0;
+  const RobustMatchingReport ungated = robustMatching(run.points, run.indices, *run.surface, *run.rule, s,
+                                                      Eigen::Matrix4d::Identity());
+  ASSERT_TRUE(ungated.isSolutionUsable()) << ungated.message;
+  EXPECT_GT(run.errorSigma(ungated.adjustment.transformation), 2.0) << "the case no longer shows the compromise";
+  EXPECT_GT(gated.kept_scale, 1.5 * gated.final_neighbour_noise);
+  EXPECT_FALSE(gated.isSolutionUsable());
+  EXPECT_EQ(gated.termination, TerminationType::UNRELIABLE);
+  EXPECT_NE(gated.message.find("the M-step kept"), std::string::npos) << gated.message;
+  EXPECT_TRUE(gated.adjustment.hasEstimate());
+  // A right fit passes: 40 % by 25 σ (LmsAndMmRecoverTruthWith40PercentDeformed) keeps the noise.
+  const LiRun easy(liSurface(40.0, 25.0, synth::DeformationPosition::UPPER_RIGHT));
+  RobustMatchingSettings on;
+  on.method = RobustMethod::LMS;
+  on.max_kept_scale_ratio = 1.5;
+  const RobustMatchingReport right =
+      robustMatching(easy.points, easy.indices, *easy.surface, *easy.rule, on, Eigen::Matrix4d::Identity());
+  ASSERT_TRUE(right.isSolutionUsable()) << right.message;
+  EXPECT_LT(right.kept_scale, 1.5 * right.final_neighbour_noise);
+}

@@ -333,7 +333,7 @@ TEST(MultiRuleRegionGrowing, BadInput)
   s.setDistanceThreshold(nan);
   s.extract(clusters);
   EXPECT_TRUE(clusters.empty());
-  s.setDistanceThreshold(-1.0);  // back to adaptive
+  s.useAdaptiveThresholds();
   s.extract(clusters);
   EXPECT_FALSE(clusters.empty());
   s.setNeighbourhoodRange(20, 10);

@@ -57,6 +57,11 @@ struct QualityFigures
   /// (noise-free data would make any σ0 infinitely many times its noise).
   double noise_yardstick = 0.0;
   double sigma0_ratio = 0.0;          ///< σ0 / noise_yardstick (≈ 1 for a good fit; 0: unknown)
+  /// Rules with several observations per point (ICP: the normal and two down-weighted
+  /// tangents): the weighted RMS of the first observation of each point (the one across the
+  /// surface) / noise_yardstick. σ0 averages it with the tangents, which carry the sampling
+  /// offset of the closest point and no misfit. 0: single-observation rule (σ0 is that).
+  double normal_sigma_ratio = 0.0;
   /// Source points over the target's extent that have an observation, as a fraction of them.
   double coverage = 0.0;
   double rejected_fraction = 0.0;     ///< correspondences the estimator gave weight 0, as a fraction

@@ -29,7 +29,10 @@ class IterationControl
 public:
   /// \param[in] source_points points the matcher may observe
   /// \param[in] culling the matcher culls points outside the overlap (finite reach)
-  IterationControl(const AdjustmentSettings& settings, std::size_t source_points, bool culling);
+  /// \param[in] spacing the target's point spacing: steps moving the source's edge by more are
+  ///            not creep and are never extrapolated (step_extrapolation.h); 0 or less: no limit
+  IterationControl(const AdjustmentSettings& settings, std::size_t source_points, bool culling,
+                   double spacing = 0.0);
 
   /// Observe every k-th point in this iteration (k > 1 only while coarse).
   std::size_t

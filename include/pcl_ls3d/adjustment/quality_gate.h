@@ -23,6 +23,7 @@ namespace pcl_ls3d {
 struct QualityInputs
 {
   double sigma0 = 0.0;                      ///< σ̂0 of the last solve
+  double normal_sigma = 0.0;                ///< normalComponentSigma() of the last solve (0: n/a)
   double source_noise = 0.0;                ///< σ_s (surface_noise.h)
   double target_noise = 0.0;                ///< σ_t near the conjugate points
   double spacing = 0.0;                     ///< mean target point spacing: σ0 below 1e-3 of it is an exact fit
@@ -40,6 +41,13 @@ struct QualityInputs
 /// The figures of QualityFigures from the last observation set (distinct observed points).
 QualityFigures
 measureQuality(const QualityInputs& in, const ObservationSet& observations);
+
+/// For a rule with several observations per point: √(Σ w l² / Σ w) over the first observation
+/// of each point (component 0: across the surface; l / |u|, a distance for every rule), with
+/// the estimator's weights `w` (one per observation). 0 when every observation is a point's
+/// only one (LND, LZD: σ0 measures that already) or no weight is positive.
+double
+normalComponentSigma(const ObservationSet& observations, const Eigen::VectorXd& weights);
 
 /// The data fix the source's position far worse than the surfaces' noise (position_sigma above
 /// max_position_sigma_ratio × it) and the move lies within that uncertainty: the gate's "the

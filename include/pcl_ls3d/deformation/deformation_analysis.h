@@ -39,6 +39,19 @@ struct DeformationSettings
   /// analysis is run again with the translation alone, and says so (DeformationResult::
   /// model_note). Epochs in one georeferenced frame differ mostly by a shift.
   bool translation_when_undetermined = true;
+  /// The final fit is UNRELIABLE when the scatter of its stable part (1.4826 · med |r| of the
+  /// observed points outside the deformed regions) exceeds this multiple of σ_d, the noise of
+  /// neighbouring residuals of the same field (neighbour_noise.h). At the truth the stable part
+  /// is the noise and the ratio ≈ 1; a fit that compromises between the stable and the moved
+  /// part leaves a tilted stable part, which σ_d (differences of neighbours) does not see.
+  /// On Li's 50 × 50 grid no successful LMS or MM trial exceeded 1.04, while every one ending
+  /// more than 2 σ off but one exceeded 1.10 (docs/HONESTY_API.md). Off (0) by default: on
+  /// denser surfaces σ_d is not the noise (neighbouring residuals share the reference's local
+  /// surface: σ_d 13 for σ = 20 at 5–8-unit spacing), and right fits there reach 1.25–1.9.
+  /// Set e.g. 1.10 for surfaces sampled no denser than their noise's correlation length. Not
+  /// applied to the translation-only fallback (translation_when_undetermined), whose stable
+  /// part keeps the trace of the tilts it cannot follow.
+  double max_stable_scatter_ratio = 0.0;
 
   static RobustMatchingSettings
   defaultMatching()
@@ -64,6 +77,10 @@ struct DeformationResult
   /// Why the parameters are fewer than asked ("" when they are not): the rotating fit the data
   /// did not determine (DeformationSettings::translation_when_undetermined).
   std::string model_note;
+  /// The stable part's scatter and σ_d of the final field (DeformationSettings::
+  /// max_stable_scatter_ratio); 0: not measured.
+  double stable_scatter = 0.0;
+  double field_noise = 0.0;
   /// True when the matching gave a usable estimate and the field was computed.
   bool
   ok() const

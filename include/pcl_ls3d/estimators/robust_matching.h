@@ -110,6 +110,17 @@ struct RobustMatchingSettings
   /// When false the guess is taken as the all-points least-squares start (already computed by
   /// the caller) and stage 1 is skipped; report.start then stays NOT_RUN.
   bool least_squares_start = true;
+  /// LMS and MM: the final fit is UNRELIABLE when the scale of the residuals its M-step kept
+  /// (1.4826 · med |v| over the observations with weight > 0) exceeds this multiple of σ_d, the
+  /// noise of neighbouring residuals at that fit (neighbour_noise.h). A fit that compromises
+  /// between the stable and the moved part keeps a tilted stable part and some of the patch:
+  /// LMS at 25 % deformed by 4 σ ended CONVERGED 2.4–2.9 σ off with the kept scale 1.3–1.5 σ_d.
+  /// On Li's 50 × 50 grid (16, 25, 36 % × 3.5–7 σ × 9 positions × 3 seeds) no successful trial
+  /// of LMS or MM was above 1.43, and 1.5 refused 65 of the 148 LMS fits more than 2 σ off
+  /// (docs/HONESTY_API.md). Off (0) by default: on denser surfaces σ_d underestimates the noise
+  /// (neighbouring residuals share the reference's local surface), so right fits would be
+  /// refused there. 0: off.
+  double max_kept_scale_ratio = 0.0;
 
   /// The number of subsets that will be drawn.
   int
@@ -150,6 +161,10 @@ struct RobustMatchingReport
   Eigen::Matrix4d block_start_transformation = Eigen::Matrix4d::Identity();
   double block_support = 0.0;
   std::size_t held_out = 0;           ///< MM: points beyond 2.5 ŝ of the start, out of the M-step
+  /// LMS, MM: 1.4826 · med |v| of the observations the final M-step kept, and σ_d of the
+  /// final residuals (RobustMatchingSettings::max_kept_scale_ratio); 0: not measured.
+  double kept_scale = 0.0;
+  double final_neighbour_noise = 0.0;
   int iterations = 0;                 ///< adjustment iterations over all stages
 
   /// Usable estimate (the final adjustment converged or hit its iteration limit).

@@ -42,11 +42,19 @@ namespace pcl_ls3d {
 /// With a finite setMaxCorrespondenceDistance() source points with no target point within it
 /// are culled by a grid look-up before any neighbour search (overlap_grid.h).
 /// Base-class knobs keep their PCL meaning: setMaximumIterations(), setMaxCorrespondenceDistance(),
-/// setTransformationEpsilon() (a squared translation, as in ICP: its square root replaces the
-/// translation epsilon when > 0), setSearchMethodTarget() (the kd-tree is reused across
-/// iterations and across align() calls on the same target).
-/// Also honoured as in pcl::IterativeClosestPoint (PCL 1.13.1):
+/// setSearchMethodTarget() (the kd-tree is reused across iterations and across align() calls
+/// on the same target).
+/// Also honoured as in pcl::IterativeClosestPoint (PCL 1.13.1), with every rule:
+/// - setTransformationEpsilon(ε > 0): as ICP sets up DefaultConvergenceCriteria, a squared
+///   translation (√ε replaces the translation epsilon) and, unless a rotation epsilon is set,
+///   1 − ε is the cosine of the largest rotation change still converged (the angle epsilon
+///   becomes acos(1 − ε); 1e-8 gives 1.4e-4 rad, looser than LS3D's own 1e-6). The test is on
+///   the iteration's step in the reduced frame, where ICP tests the increment's translation in
+///   cloud coordinates (which also holds the rotation about the cloud's origin). 0 (PCL's
+///   default, with which ICP never converges by this test) keeps LS3D's own epsilons.
 /// - setTransformationRotationEpsilon(): a cosine; acos of it replaces the angle epsilon.
+/// - getLastIncrementalTransformation(): the last iteration's step as a 4×4 in cloud
+///   coordinates (final = step × the pose before it), identity when nothing was estimated.
 /// - setEuclideanFitnessEpsilon(): DefaultConvergenceCriteria's relative-MSE test, on the mean
 ///   squared observation l² of consecutive iterations (an epsilon > 1 stops after one, as ICP).
 /// - addCorrespondenceRejector(): the rejectors run on every iteration's observations, in order,
@@ -177,9 +185,10 @@ public:
     return settings_.source_thinning;
   }
 
-  /// \brief All settings at once; also copies max_iterations, max_correspondence_distance and
-  ///        translation_epsilon into the pcl::Registration members. Invalid settings are
-  ///        rejected with PCL_ERROR and false.
+  /// \brief All settings at once; also copies max_iterations and max_correspondence_distance
+  ///        into the pcl::Registration members and unsets PCL's transformation and rotation
+  ///        epsilons (the settings' own epsilons then rule). Invalid settings are rejected with
+  ///        PCL_ERROR and false.
   bool
   setAdjustmentSettings(const AdjustmentSettings& settings);
   /// \brief The settings as the next align() will use them (base-class knobs merged in).
@@ -231,6 +240,10 @@ private:
   /// PCL's members (final transformation, convergence, iterations) from report_.
   void
   adoptReport();
+  /// As ICP: transformation_ = the last iteration's increment (final = increment × pose before
+  /// it), previous_transformation_ = the increment before it (identity when there was none).
+  void
+  adoptIncrements();
   /// PCL_WARN once per object for each pcl::Registration strategy that LS3D does not use.
   void
   warnIgnoredStrategies();
@@ -266,6 +279,11 @@ private:
   typename Base::CorrespondenceEstimationPtr default_correspondence_estimation_;
   pcl::PCLPointCloud2::Ptr target_blob_;  ///< target for rejectors needing points / normals
   double previous_mse_ = 0.0;             ///< fitness epsilon: the last iteration's MSE
+  /// Poses (cloud coordinates) after the last iteration and the two before it (the start
+  /// before the first): PCL's incremental transformations are their ratios.
+  Eigen::Matrix4d pose_last_ = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d pose_before_ = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d pose_before_that_ = Eigen::Matrix4d::Identity();
   bool warned_estimation_ = false, warned_correspondence_ = false;
 };
 

@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -78,8 +79,27 @@ namespace pcl_ls3d {
 /// pieces), and Level::Objects, the result of steps 4–8 (default).
 ///
 /// Plain MRG (the paper's comparison) = setMode(Mode::MRG): no seed condition, distance-only
-/// merging, no object assembly. Every adaptive threshold can be overridden by its setter (a negative value restores
-/// the adaptive rule) and read after extract().
+/// merging, no object assembly. Every adaptive threshold can be overridden by its setter and
+/// read after extract(); useAdaptiveThresholds() restores the adaptive rules.
+///
+/// Used in place of pcl::RegionGrowing (PCL 1.13), the differences are:
+///  - Normals are optional. Without setInputNormals() the class uses its own (the λ3
+///    eigenvector of each point's optimal neighbourhood, computed for the dimensionality
+///    features anyway) and segments; pcl::RegionGrowing returns no segment without normals.
+///    Given normals replace the computed ones in the planar rule only.
+///  - Invalid settings are refused as pcl::RegionGrowing refuses them: extract() logs one
+///    PCL_ERROR line and returns no segment (getNumberOfNeighbours() < 1, a residual threshold
+///    ≤ 0 — PCL's residual test refuses it too —, a negative or non-finite d_t, s_t or V_t,
+///    normals or numbers of returns of another size than the cloud, fewer finite points than
+///    the smallest neighbourhood).
+///  - setResidualTestFlag() is the IMRG seed condition (a point grows its segment only when its
+///    plane-fit residual is below v_t), on by default (IMRG mode); there is no curvature test
+///    and setSmoothnessThreshold() is N_t (setNormalAngleThreshold()), 10° by default.
+///  - getSegmentFromPoint() before extract() runs the segmentation itself, as PCL's does.
+///  - Output is whole objects by default (Level::Objects, after merging); Level::Planes is
+///    closest to pcl::RegionGrowing's smooth regions. The minimum cluster size defaults to 1
+///    (pcl::RegionGrowing: 1 as well) and fragments under 30 points join a neighbour instead of
+///    being dropped (setMinFragmentSize()).
 template <typename PointT, typename NormalT = pcl::Normal>
 class MultiRuleRegionGrowing : public pcl::PCLBase<PointT>
 {
@@ -155,10 +175,18 @@ public:
   /// \brief Enable/disable the planar seed condition (IMRG §3.1).
   void setUseSeedCondition(bool on) { grow_.use_seed_condition = on; }
   bool getUseSeedCondition() const { return grow_.use_seed_condition; }
-  /// \brief v_t [m]; negative: adaptive median residual of the linear set (default).
+  /// \brief pcl::RegionGrowing's name of the seed condition (its residual test).
+  void setResidualTestFlag(bool on) { setUseSeedCondition(on); }
+  bool getResidualTestFlag() const { return getUseSeedCondition(); }
+  /// \brief v_t [m], fixed; must be > 0 (extract() refuses anything else, as
+  ///        pcl::RegionGrowing's residual test does). Default: adaptive, the median residual of
+  ///        the linear set (useAdaptiveThresholds()).
   void setResidualThreshold(double v) { user_residual_threshold_ = v; }
   /// \brief v_t used by the last extract() (NaN before).
   double getResidualThreshold() const { return grow_.residual_threshold; }
+  /// \brief pcl::RegionGrowing's name of N_t [rad] (setNormalAngleThreshold()).
+  void setSmoothnessThreshold(double rad) { setNormalAngleThreshold(rad); }
+  double getSmoothnessThreshold() const { return getNormalAngleThreshold(); }
 
   // ---- merging -----------------------------------------------------------------------------
   void setMergeRule(MergeRule rule) { merge_.rule = rule; }
@@ -166,12 +194,20 @@ public:
   /// \brief Mode::IMRG: seed condition, full merge rule, object assembly; Mode::MRG: none of
   ///        them (distance-only merging).
   void setMode(Mode mode);
-  /// \brief d_t [m]; negative: adaptive (Baarda snooping over nearest-segment distances).
-  void setDistanceThreshold(double d) { merge_.distance_threshold = d; }
-  /// \brief s_t [m]; negative: adaptive (smallest gap of 3 k-means centres of R_i).
-  void setSimilarityThreshold(double s) { merge_.similarity_threshold = s; }
-  /// \brief V_t; negative: adaptive (Baarda snooping over candidate ΔV).
-  void setVolumeChangeThreshold(double v) { merge_.volume_threshold = v; }
+  /// \brief d_t [m], fixed, ≥ 0 (default adaptive: Baarda snooping over nearest-segment
+  ///        distances).
+  void setDistanceThreshold(double d) { user_distance_threshold_ = d; }
+  /// \brief s_t [m], fixed, ≥ 0 (default adaptive: smallest gap of 3 k-means centres of R_i).
+  void setSimilarityThreshold(double s) { user_similarity_threshold_ = s; }
+  /// \brief V_t, fixed, ≥ 0 (default adaptive: Baarda snooping over candidate ΔV).
+  void setVolumeChangeThreshold(double v) { user_volume_threshold_ = v; }
+  /// \brief Back to the adaptive rules for v_t, d_t, s_t and V_t (the default).
+  void
+  useAdaptiveThresholds()
+  {
+    user_residual_threshold_ = user_distance_threshold_ = user_similarity_threshold_ =
+        user_volume_threshold_ = std::nullopt;
+  }
   /// \brief Significance α of each w-test in the data snooping (default 0.001).
   void setSnoopingSignificance(double alpha) { merge_.alpha = alpha; }
   /// \brief Thresholds actually used by the last extract() and merge statistics.
@@ -261,7 +297,9 @@ public:
   {
     return level == Level::Planes ? plane_clusters_ : object_clusters_;
   }
-  /// \brief The cluster containing the cloud point \a index (empty if none).
+  /// \brief The cluster containing the cloud point \a index (empty if none). Before any
+  ///        extract() (or after one that gave no segment) it runs extract() first, as
+  ///        pcl::RegionGrowing::getSegmentFromPoint does.
   void getSegmentFromPoint(pcl::index_t index, pcl::PointIndices& cluster);
   /// \brief Input cloud with one random colour per cluster; other points white.
   pcl::PointCloud<pcl::PointXYZRGB>::Ptr getColoredCloud() const;
@@ -278,6 +316,8 @@ protected:
   /// Empties the results, reports and stage times of the previous run.
   void resetRunState();
   bool prepareForSegmentation();
+  /// Why the user's thresholds cannot be used ("" when they can); fills merge_'s thresholds.
+  std::string checkThresholds();
   bool computeFeatures();
   void growSegments();
   /// Plane level: fragments in plane_of_ join their most-linked plane, on-plane links only.
@@ -305,7 +345,9 @@ protected:
   segmentation::MergeSettings merge_;
   double user_growth_radius_ = 0.0;
   double user_volumetric_radius_ = 0.0;
-  double user_residual_threshold_ = -1.0;
+  std::optional<double> user_residual_threshold_;  ///< v_t set by the user (none: adaptive)
+  std::optional<double> user_distance_threshold_, user_similarity_threshold_,
+      user_volume_threshold_;  ///< d_t, s_t, V_t set by the user (none: adaptive)
   pcl::uindex_t min_cluster_size_ = 1;
   pcl::uindex_t max_cluster_size_ = std::numeric_limits<pcl::uindex_t>::max();
   int threads_ = 0;

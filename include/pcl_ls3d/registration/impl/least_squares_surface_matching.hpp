@@ -77,7 +77,9 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::setAdjustmentSett
   settings_ = settings;
   max_iterations_ = settings.max_iterations;
   corr_dist_threshold_ = settings.max_correspondence_distance;
-  transformation_epsilon_ = settings.translation_epsilon * settings.translation_epsilon;
+  // The settings' own epsilons rule from now on: PCL's (which override them) are unset.
+  transformation_epsilon_ = 0.0;
+  transformation_rotation_epsilon_ = 0.0;
   return true;
 }
 
@@ -88,9 +90,14 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::getAdjustmentSett
   AdjustmentSettings s = settings_;
   s.max_iterations = max_iterations_;
   s.max_correspondence_distance = corr_dist_threshold_;
-  if (transformation_epsilon_ > 0.0)  // PCL's epsilon is a squared translation
+  // As pcl::DefaultConvergenceCriteria set up by ICP: the transformation epsilon is a squared
+  // translation, and without a rotation epsilon 1 − epsilon is the cosine of the largest
+  // rotation change still "converged"; a rotation epsilon is that cosine itself.
+  if (transformation_epsilon_ > 0.0) {
     s.translation_epsilon = std::sqrt(transformation_epsilon_);
-  // PCL's rotation epsilon is the cosine of the largest rotation change still "converged".
+    // cos θ = 1 − ε, written so that a tiny ε keeps its precision: θ = 2 asin(√(ε / 2)).
+    s.angle_epsilon = 2.0 * std::asin(std::sqrt(std::min(1.0, 0.5 * transformation_epsilon_)));
+  }
   if (transformation_rotation_epsilon_ > 0.0 && transformation_rotation_epsilon_ < 1.0)
     s.angle_epsilon = std::acos(transformation_rotation_epsilon_);
   return s;
@@ -237,6 +244,20 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::adoptReport()
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::adoptIncrements()
+{
+  // ICP leaves both at the identity when nothing was estimated; final_transformation_ then
+  // stays the guess too.
+  if (nr_iterations_ == 0 || !report_.hasEstimate()) {
+    transformation_ = previous_transformation_ = Matrix4::Identity();
+    return;
+  }
+  transformation_ = (pose_last_ * pose_before_.inverse()).template cast<Scalar>();
+  previous_transformation_ = (pose_before_ * pose_before_that_.inverse()).template cast<Scalar>();
+}
+
+template <typename PointSource, typename PointTarget, typename Scalar>
+void
 LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::warnIgnoredStrategies()
 {
   if (transformation_estimation_ && !warned_estimation_) {
@@ -364,6 +385,9 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::pclHooks(
                                                       const Eigen::Matrix4d& pose,
                                                       const ObservationSet& obs) {
     nr_iterations_ = rec.iteration;  // as ICP: counted while iterating
+    pose_before_that_ = pose_before_;
+    pose_before_ = pose_last_;
+    pose_last_ = pose;
     if (update_visualizer_) {
       pcl::Correspondences corr;
       std::vector<std::size_t> first_obs;
@@ -428,12 +452,12 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransforma
                getClassName().c_str());
       start = centroidStart(points, start);
     }
+    pose_last_ = pose_before_ = pose_before_that_ = start;
     report_ = core_.run(points, index_of, surface, *rule, *estimator_, settings, start);
     core_.setHooks(IterationHooks());
     adoptReport();
   }
-  transformation_ = final_transformation_;
-  previous_transformation_ = final_transformation_;
+  adoptIncrements();
   transformInput(final_transformation_.template cast<double>(), output);  // as ICP: normals too
 }
 

@@ -14,8 +14,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <random>
+#include <string>
+#include <utility>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -187,12 +190,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
               "> 0, radii finite).\n", name, grow_.graph_k);
     return false;
   }
-  const auto bad = [](double v) { return std::isnan(v) || std::isinf(v); };
-  if (bad(user_residual_threshold_) || bad(merge_.distance_threshold) ||
-      bad(merge_.similarity_threshold) || bad(merge_.volume_threshold) ||
-      !(merge_.alpha > 0.0 && merge_.alpha < 1.0)) {
-    PCL_ERROR("[pcl_ls3d::%s::extract] Thresholds must be finite (negative = adaptive) and the "
-              "snooping significance in (0, 1).\n", name);
+  if (const std::string why = checkThresholds(); !why.empty()) {
+    PCL_ERROR("[pcl_ls3d::%s::extract] %s\n", name, why.c_str());
     return false;
   }
   if (normals_ && normals_->size() != input_->size()) {
@@ -234,6 +233,38 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
   search_->setInputCloud(input_, pcl::IndicesConstPtr(new pcl::Indices(valid_indices_.begin(),
                                                                        valid_indices_.end())));
   return true;
+}
+
+template <typename PointT, typename NormalT>
+std::string
+MultiRuleRegionGrowing<PointT, NormalT>::checkThresholds()
+{
+  // As pcl::RegionGrowing: an impossible threshold refuses the segmentation, it does not fall
+  // back to a default. v_t > 0 (PCL's residual test refuses <= 0); d_t, s_t, V_t >= 0.
+  char buf[160];
+  if (user_residual_threshold_ &&
+      !(std::isfinite(*user_residual_threshold_) && *user_residual_threshold_ > 0.0)) {
+    std::snprintf(buf, sizeof(buf), "Invalid residual threshold %g (must be > 0; "
+                  "useAdaptiveThresholds() restores the adaptive one).", *user_residual_threshold_);
+    return buf;
+  }
+  const std::pair<const char*, const std::optional<double>*> merge_thresholds[] = {
+      {"distance", &user_distance_threshold_},
+      {"similarity", &user_similarity_threshold_},
+      {"volume change", &user_volume_threshold_}};
+  for (const auto& [what, value] : merge_thresholds)
+    if (*value && !(std::isfinite(**value) && **value >= 0.0)) {
+      std::snprintf(buf, sizeof(buf), "Invalid %s threshold %g (must be >= 0; "
+                    "useAdaptiveThresholds() restores the adaptive one).", what, **value);
+      return buf;
+    }
+  if (!(merge_.alpha > 0.0 && merge_.alpha < 1.0))
+    return "The snooping significance must be in (0, 1).";
+  // segment_merging.h: a negative threshold there is its adaptive rule.
+  merge_.distance_threshold = user_distance_threshold_.value_or(-1.0);
+  merge_.similarity_threshold = user_similarity_threshold_.value_or(-1.0);
+  merge_.volume_threshold = user_volume_threshold_.value_or(-1.0);
+  return "";
 }
 
 template <typename PointT, typename NormalT>
@@ -305,11 +336,9 @@ MultiRuleRegionGrowing<PointT, NormalT>::growSegments()
       user_volumetric_radius_ > 0.0 ? user_volumetric_radius_ : 1.0 * spacing_;
 
   // v_t (§3.1): median plane-fit residual of the linear set unless given.
-  if (user_residual_threshold_ >= 0.0) {
-    grow_.residual_threshold = user_residual_threshold_;
-  } else {
-    grow_.residual_threshold = segmentation::seedResidualThreshold(features_);
-  }
+  grow_.residual_threshold = user_residual_threshold_
+                                 ? *user_residual_threshold_
+                                 : segmentation::seedResidualThreshold(features_);
 
   std::vector<Eigen::Vector3f> normals(n);
   for (std::size_t p = 0; p < n; ++p) {
@@ -457,6 +486,10 @@ MultiRuleRegionGrowing<PointT, NormalT>::getSegmentFromPoint(pcl::index_t index,
                                                              pcl::PointIndices& cluster)
 {
   cluster.indices.clear();
+  if (plane_clusters_.empty() && object_clusters_.empty()) {  // not segmented yet: as PCL, do it
+    std::vector<pcl::PointIndices> clusters;
+    extract(clusters);
+  }
   if (index < 0 || static_cast<std::size_t>(index) >= position_of_.size())
     return;
   const int pos = position_of_[index];
