@@ -175,7 +175,7 @@ solveAndUpdate(PairRun& run, const NormalEquations& ne, const std::vector<bool>&
 // The quality gate on a finished adjustment (quality_gate.h).
 void
 assess(const PairRun& run, const ObservationSet& obs, const TargetSurface& target,
-       const AdjustmentSettings& settings, AdjustmentReport& report)
+       const AdjustmentSettings& settings, const OmittedParameterTest& held_out, AdjustmentReport& report)
 {
   QualityInputs in;
   in.sigma0 = run.sol.sigma0;
@@ -192,6 +192,14 @@ assess(const PairRun& run, const ObservationSet& obs, const TargetSurface& targe
   in.source_box = run.setup.source_box;
   in.covariance = report.covariance;
   report.quality = measureQuality(in, obs);
+  if (held_out.ok) {
+    QualityFigures& q = report.quality;
+    q.held_out_scale_tested = true;
+    q.held_out_scale = held_out.parameters[0].estimate;
+    q.held_out_scale_sigma = held_out.parameters[0].sigma;
+    q.held_out_scale_z = held_out.parameters[0].z;
+    q.held_out_scale_effect = std::abs(q.held_out_scale) * run.setup.radius;
+  }
   if (report.termination != TerminationType::CONVERGED &&
       report.termination != TerminationType::MAX_ITERATIONS)
     return;
@@ -217,8 +225,8 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
   report.redundancy = sol.redundancy;
   report.source_noise = run.eiv.active() ? run.eiv.sourceNoise() : 0.0;
   // Cell 0: the formal covariance of eq. 14 (the caller switched the sandwich off).
-  fillCovariance(report, sol, row, weights, settings.apriori_weights,
-                 settings.spatial_precision ? precisionCell(settings, run.setup, target_size) : 0.0);
+  const double cell = settings.spatial_precision ? precisionCell(settings, run.setup, target_size) : 0.0;
+  fillCovariance(report, sol, row, weights, settings.apriori_weights, cell);
   const std::string undetermined = fillPrecision(report, sol);
   if (!undetermined.empty())
     report.message = "undeterminable from this geometry (held at their initial values): " + undetermined;
@@ -227,7 +235,10 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
                       "iteration limit reached before the changes fell below the epsilons";
   if (settings.store_observations)
     storeObservations(report, sol, row, weights, source_indices);
-  assess(run, row.set, target, settings, report);
+  const OmittedParameterTest held_out = std::isinf(settings.held_out_z)
+                                            ? OmittedParameterTest()
+                                            : heldOutScaleTest(sol, row, weights, run.problem, cell);
+  assess(run, row.set, target, settings, held_out, report);
 }
 
 }  // namespace
