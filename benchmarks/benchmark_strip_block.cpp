@@ -20,7 +20,7 @@
 // Usage: benchmark_strip_block -chain [-cross 2] [-length 400] [-swath 160] [-density 2] [-seed 1] [-seeds 5]
 //        benchmark_strip_block -coverage 100 [-length 400] [-swath 160] [-density 2]   (defaults shown)
 //        benchmark_strip_block -honesty [-strips 6] [-length 400] [-swath 160] [-density 2] [-seed 1] [-seeds 5]
-//                              [-scale_sigma 5e-5] [-truth both|rigid|scaled] [-models both|6|7]
+//                              [-scale_sigma 5e-5] [-truth both|rigid|scaled] [-models both|6|7] [-buildings 1] [-relief 10] [-rule lnd]
 #include "strip_bench_common.h"
 
 #include <pcl_ls3d/stats/descriptive.h>
@@ -201,6 +201,9 @@ struct HonestySettings
   int strips = 6, first = 1, seeds = 5;
   double length = 400.0, swath = 160.0, density = 2.0, scale_sigma = 5e-5;
   bool rigid_truth = true, scaled_truth = true, rigid_model = true, free_model = true;
+  bool buildings = true;
+  double relief = 10.0;
+  ConjugateRuleType rule = ConjugateRuleType::LND;
 };
 
 // What one (truth, model) pair gathers over the seeds.
@@ -288,11 +291,15 @@ runHonesty(const HonestySettings& h)
       const auto seed = static_cast<std::uint32_t>(h.first + k);
       synth::StripSettings s = rowOfStrips(h.strips, 0, h.length, h.swath, h.density, seed);
       s.scale_sigma = scaled ? h.scale_sigma : 0.0;
+      s.buildings = h.buildings;
+      s.relief = h.relief;
       const Block b = makeBlock(s);
+      strips::StripAdjustmentSettings rigid_settings = rigidWithReference(0);
+      rigid_settings.rule = h.rule;
       if (h.rigid_model)
-        tallyRun(b, adjust(b.strips, rigidWithReference(0)), true, seed, rigid);
+        tallyRun(b, adjust(b.strips, rigid_settings), true, seed, rigid);
       if (h.free_model) {
-        strips::StripAdjustmentSettings settings = rigidWithReference(0);
+        strips::StripAdjustmentSettings settings = rigid_settings;
         settings.model = ParameterModel::SIMILARITY_7;
         tallyRun(b, adjust(b.strips, settings), false, seed, freed);
       }
@@ -321,6 +328,13 @@ parseHonesty(int argc, char** argv, HonestySettings& h)
   h.scaled_truth = truth != "rigid";
   h.rigid_model = models != "7";
   h.free_model = models != "6";
+  int buildings = 1;
+  pcl::console::parse_argument(argc, argv, "-buildings", buildings);
+  h.buildings = buildings != 0;
+  pcl::console::parse_argument(argc, argv, "-relief", h.relief);
+  std::string rule;
+  if (pcl::console::parse_argument(argc, argv, "-rule", rule) >= 0 && !parseConjugateRuleType(rule, h.rule))
+    return false;
   return h.strips >= 2 && h.seeds >= 1;
 }
 

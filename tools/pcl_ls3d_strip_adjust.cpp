@@ -59,7 +59,7 @@ printHelp(const char* prog)
       "                         second's surface; default: both ways)\n"
       "  -max_iter N            iteration limit (default 30)\n"
       "  -held_out_z Z          with -params 6: a strip's held-out scale is significant beyond Z\n"
-      "                         times its sigma (default 3; inf: no test)\n"
+      "                         times its sigma (default 5; inf: no test)\n"
       "  -held_out_noise F      ... and makes the result NOT CONFIRMED when it also moves the\n"
       "                         strip's edge by more than F x the strip's own noise (default 1)\n"
       "  -o DIR                 write the corrected strips (LAS: every attribute and VLR kept, only\n"

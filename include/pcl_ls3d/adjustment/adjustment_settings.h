@@ -156,7 +156,7 @@ struct AdjustmentSettings
   /// A rigid fit whose held-out scale (QualityFigures::held_out_scale) is beyond held_out_z × its
   /// σ and moves the source's edge by more than held_out_noise_factor × the surfaces' noise is not
   /// trustworthy: the data ask for a scale (free it, -params 7). +inf switches the test off.
-  double held_out_z = 3.0;
+  double held_out_z = 5.0;  ///< as the strip adjustment's (docs/MODEL_ADEQUACY.md)
   double held_out_noise_factor = 1.0;
 
   // --- results ----------------------------------------------------------------------------------
