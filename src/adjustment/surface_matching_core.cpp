@@ -132,6 +132,22 @@ noiseDominatedParameters(PairRun& run, const TargetSurface& target, const Source
   return noiseDominated(ne.N, M, run.problem.apriori_weights, run.problem.scaling, kPairNoiseShare);
 }
 
+// Would the held-out scale, freed, be determinable? The noise-floor test of the solve with the
+// scale free: a scale with no more information than the normals' noise would be held by
+// -params 7 too, and testing it would read the misfit of held directions as a scale.
+bool
+freedScaleDeterminable(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights)
+{
+  if (run.normal_variance < 0.0)  // a rule whose correspondences fix every direction
+    return true;
+  const NormalEquations ne = accumulateNormalEquations(row, weights);
+  const Matrix7d M =
+      noiseFloor(row.set, weights, run.normal_variance, [&row](const Observation& o) { return row.of(o); });
+  Vector7d freed = run.problem.apriori_weights;
+  freed[SCALE] = 0.0;
+  return !noiseDominated(ne.N, M, freed, run.problem.scaling, kPairNoiseShare)[SCALE];
+}
+
 // Stage 4: solve eqs. 9–11 and apply dx; false (the report says why) when it cannot.
 bool
 solveAndUpdate(PairRun& run, const NormalEquations& ne, const std::vector<bool>& held, int it,
@@ -235,9 +251,10 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
                       "iteration limit reached before the changes fell below the epsilons";
   if (settings.store_observations)
     storeObservations(report, sol, row, weights, source_indices);
-  const OmittedParameterTest held_out = std::isinf(settings.held_out_z)
-                                            ? OmittedParameterTest()
-                                            : heldOutScaleTest(sol, row, weights, run.problem, cell);
+  const OmittedParameterTest held_out =
+      std::isinf(settings.held_out_z) || !freedScaleDeterminable(run, row, weights)
+          ? OmittedParameterTest()
+          : heldOutScaleTest(sol, row, weights, run.problem, cell);
   assess(run, row.set, target, settings, held_out, report);
 }
 

@@ -1,5 +1,6 @@
 // The test of the parameters a strip model holds out (model_adequacy.h).
 #include <pcl_ls3d/adjustment/block_normal_equations.h>
+#include <pcl_ls3d/adjustment/noise_floor.h>
 #include <pcl_ls3d/adjustment/omitted_parameters.h>
 #include <pcl_ls3d/strips/block_precision.h>
 #include <pcl_ls3d/strips/model_adequacy.h>
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 namespace pcl_ls3d {
 namespace strips {
@@ -34,8 +36,34 @@ struct FreedModel
   std::vector<bool> estimated;
 };
 
+// Would strip k's freed scale be determinable? The solve's noise-floor test (noise_floor.h) on
+// the strip's block of the final pass with the scale free: a scale whose information is no more
+// than the surface normals' noise would be held by -params 7 too, and testing it would read the
+// horizontal misfit the held parameters leave as a scale.
+bool
+freedScaleDeterminable(const std::vector<OverlapContribution>& final_pass, const GaussMarkovProblem& problem,
+                       std::size_t k, double weight)
+{
+  Matrix7d N = Matrix7d::Zero(), M = Matrix7d::Zero();
+  for (const OverlapContribution& c : final_pass) {
+    if (static_cast<std::size_t>(c.i) == k) {
+      N += c.normal.N.topLeftCorner<7, 7>();
+      M += c.noise_floor.topLeftCorner<7, 7>();
+    }
+    if (static_cast<std::size_t>(c.j) == k) {
+      N += c.normal.N.bottomRightCorner<7, 7>();
+      M += c.noise_floor.bottomRightCorner<7, 7>();
+    }
+  }
+  const Eigen::Index g = 7 * static_cast<Eigen::Index>(k);
+  Vector7d weights = problem.apriori_weights.segment<7>(g);
+  weights[SCALE] = weight;
+  return !noiseDominated(N, M, weights, problem.scaling.segment<7>(g), kStripNoiseShare)[SCALE];
+}
+
 FreedModel
-freedModel(const StripPlan& plan, const BlockState& state, const GaussMarkovProblem& problem)
+freedModel(const StripPlan& plan, const BlockState& state, const GaussMarkovProblem& problem,
+           const std::vector<OverlapContribution>& final_pass, std::string& undeterminable)
 {
   FreedModel f;
   f.weights = problem.apriori_weights;
@@ -44,10 +72,15 @@ freedModel(const StripPlan& plan, const BlockState& state, const GaussMarkovProb
     const std::size_t g = 7 * k + SCALE;
     if (plan.strips[k].reference || plan.strips[k].part < 0 || !state.fixed[g])
       continue;
+    const double weight =
+        plan.settings.soft_datum ? std::pow(state.soft_sigma_obs / plan.settings.soft_sigmas[SCALE], 2) : 0.0;
+    if (!freedScaleDeterminable(final_pass, problem, k, weight)) {
+      undeterminable += (undeterminable.empty() ? "" : ", ") + plan.strips[k].name;
+      continue;
+    }
     f.omitted.push_back(static_cast<int>(g));
     f.estimated[g] = true;
-    f.weights[static_cast<Eigen::Index>(g)] =
-        plan.settings.soft_datum ? std::pow(state.soft_sigma_obs / plan.settings.soft_sigmas[SCALE], 2) : 0.0;
+    f.weights[static_cast<Eigen::Index>(g)] = weight;
   }
   return f;
 }
@@ -113,6 +146,24 @@ notTestable(const StripPlan& plan, const BlockState& state, const std::vector<Ov
   return {};
 }
 
+// One strip's held-out parameter with its effect over the strip, its own noise and the flags.
+HeldOutParameter
+heldOutResult(const StripPlan& plan, const StripAdjustmentReport& report, const OmittedParameter& p)
+{
+  const int k = p.index / 7;
+  HeldOutParameter h;
+  h.parameter = p.index % 7;
+  h.estimate = p.estimate;
+  h.sigma = p.sigma;
+  h.sigma_formal = p.sigma_formal;
+  h.z = p.z;
+  h.effect = std::abs(p.estimate) * (h.parameter >= PHI ? plan.strips[static_cast<std::size_t>(k)].radius : 1.0);
+  h.noise = ownNoiseOf(report, k);
+  h.significant = std::abs(h.z) > plan.settings.held_out_z;
+  h.flagged = h.significant && h.effect > plan.settings.held_out_noise_factor * h.noise;
+  return h;
+}
+
 }  // namespace
 
 void
@@ -124,41 +175,36 @@ testHeldOutParameters(const StripPlan& plan, const BlockState& state,
   if (!t.note.empty())
     return;
   const GaussMarkovProblem problem = plan.problem(state.blocks(plan));
-  const FreedModel freed = freedModel(plan, state, problem);
+  std::string skipped;
+  const FreedModel freed = freedModel(plan, state, problem, final_pass, skipped);
+  if (freed.omitted.empty()) {
+    t.note = "no strip's scale is determinable from its overlaps";
+    return;
+  }
   const BlockNormalEquations ne = finalNormalEquations(plan, final_pass);
   const Eigen::MatrixXd N = ne.denseMatrix();
   const Eigen::VectorXd soft = softWeights(freed);
   // AᵀPv at the final pose with the a-priori part P_e (X − L_e), which the last solve made ~0
   // for the estimated parameters (and is 0 for the freed scales, still at m = 1).
-  const Eigen::VectorXd gradient = ne.rhs() +
-                                   soft.cwiseProduct(problem.current - problem.apriori_values);
+  const Eigen::VectorXd gradient = ne.rhs() + soft.cwiseProduct(problem.current - problem.apriori_values);
   const bool sandwich = report.precision_model.rfind("spatial sandwich", 0) == 0;
   const OmittedParameterTest test =
       testOmittedParameters(N + Eigen::MatrixXd(soft.asDiagonal()), gradient, state.qxx,
                             middleTerm(state, final_pass, N, freed, sandwich), state.sigma0, freed.omitted);
   if (!test.ok) {
-    t.note = "not tested: " + test.message;
+    t.note = test.message;
     return;
   }
   t.tested = true;
-  t.note = "the scale of each strip, score test with the " + report.precision_model + " variance";
+  t.note = "the scale of each strip, score test with the " + report.precision_model + " variance" +
+           (skipped.empty() ? "" : "; not tested, the scale undeterminable from its overlaps: " + skipped);
   t.statistic = test.statistic;
   t.dof = static_cast<int>(test.parameters.size());
   for (const OmittedParameter& p : test.parameters) {
-    const int k = p.index / 7;
-    HeldOutParameter h;
-    h.parameter = p.index % 7;
-    h.estimate = p.estimate;
-    h.sigma = p.sigma;
-    h.sigma_formal = p.sigma_formal;
-    h.z = p.z;
-    h.effect = std::abs(p.estimate) * (h.parameter >= PHI ? plan.strips[static_cast<std::size_t>(k)].radius : 1.0);
-    h.noise = ownNoiseOf(report, k);
-    h.significant = std::abs(h.z) > plan.settings.held_out_z;
-    h.flagged = h.significant && h.effect > plan.settings.held_out_noise_factor * h.noise;
+    const HeldOutParameter h = heldOutResult(plan, report, p);
     t.significant += h.significant ? 1 : 0;
     t.flagged += h.flagged ? 1 : 0;
-    report.strips[static_cast<std::size_t>(k)].held_out.push_back(h);
+    report.strips[static_cast<std::size_t>(p.index / 7)].held_out.push_back(h);
   }
 }
 
