@@ -2,10 +2,12 @@
 // Shared by the strip-adjustment benchmarks (benchmark_strip_*.cpp): generated blocks turned
 // into strips, one adjustment run with its wall time, the error of a strip's correction against
 // the generator's truth, and the process's memory (VmHWM with a resettable high-water mark).
+#include <pcl_ls3d/adjustment/similarity_jacobian.h>
 #include <pcl_ls3d/strips/strip_block_adjustment.h>
 #include <pcl_ls3d/strips/strip_io.h>
 #include <pcl_ls3d/synth/strip_block.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -96,6 +98,26 @@ displacement(const Block& b, std::size_t k, const Eigen::Matrix4d& A, const Eige
     d.norm_of_mean = (sum / static_cast<double>(n)).norm();
   }
   return d;
+}
+
+/// Mean over every `step`-th point of strip k of the σ of T_est x that the report's covariance
+/// gives, √trace(J C_k Jᵀ) with J = ∂x'/∂X at the estimate (parameters about the strip's origin):
+/// the scale of displacement().mean_norm that the estimate's own precision predicts.
+inline double
+displacementSigma(const Block& b, const strips::StripAdjustmentReport& r, std::size_t k, std::size_t step = 7)
+{
+  const strips::StripResult& res = r.strips[k];
+  const Eigen::Index first = 7 * static_cast<Eigen::Index>(k);
+  const Matrix7d C = r.covariance.block<7, 7>(first, first);
+  const SimilarityLinearization at(SimilarityTransform(res.parameters));
+  double sum = 0.0;
+  std::size_t n = 0;
+  const strips::Strip& s = b.strips[k];
+  for (std::size_t i = 0; i < s.size(); i += step, ++n) {
+    const Matrix37d J = at.jacobian(s.blockPoint(i) - (res.origin - r.block_origin));
+    sum += std::sqrt(std::max(0.0, (J * C * J.transpose()).trace()));
+  }
+  return n ? sum / static_cast<double>(n) : 0.0;
 }
 
 /// A /proc/self/status field in kB (VmHWM, VmRSS), −1 when absent.

@@ -190,6 +190,11 @@ reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, 
                   {"rejected_fraction", r.quality.rejected_fraction},
                   {"movement", r.quality.movement},
                   {"position_sigma", r.quality.position_sigma}};
+  if (r.quality.held_out_scale_tested)
+    j["quality"]["held_out_scale"] = {{"estimate", r.quality.held_out_scale},
+                                      {"sigma", r.quality.held_out_scale_sigma},
+                                      {"z", r.quality.held_out_scale_z},
+                                      {"effect", r.quality.held_out_scale_effect}};
   nlohmann::json log = nlohmann::json::array();
   for (const auto& it : r.log)
     log.push_back({{"iteration", it.iteration},

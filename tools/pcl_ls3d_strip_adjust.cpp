@@ -14,6 +14,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <set>
 #include <string>
 #include <vector>
@@ -57,6 +58,10 @@ printHelp(const char* prog)
       "  -one_way               observe each overlap one way (the first strip's points on the\n"
       "                         second's surface; default: both ways)\n"
       "  -max_iter N            iteration limit (default 30)\n"
+      "  -held_out_z Z          with -params 6: a strip's held-out scale is significant beyond Z\n"
+      "                         times its sigma (default 5; inf: no test)\n"
+      "  -held_out_noise F      ... and makes the result NOT CONFIRMED when it also moves the\n"
+      "                         strip's edge by more than F x the strip's own noise (default 1)\n"
       "  -o DIR                 write the corrected strips (LAS: every attribute and VLR kept, only\n"
       "                         x, y, z and the header bounds change); never into a folder holding an input\n"
       "  -keep_files            with -split: write each input whole under its own name\n"
@@ -73,7 +78,8 @@ printHelp(const char* prog)
       "  -h                     this help\n\n"
       "Exit status: 0 converged (or at the iteration limit); 1 bad input or options; 2 no solution\n"
       "(singular, too few observations); 3 UNRELIABLE: corrections larger than the strips' noise that\n"
-      "do not reduce the discrepancies on most overlaps (outputs written, the report says why).\n",
+      "do not reduce the discrepancies on most overlaps, or a held-out scale the overlaps ask for\n"
+      "(outputs written, the report says why).\n",
       prog, prog, prog);
 }
 
@@ -86,8 +92,8 @@ fail(const std::string& message)
 
 const std::set<std::string> kWithValue = {"-split", "-reference", "-soft", "-params", "-rule", "-estimator",
                                           "-classes", "-spacing", "-max_obs", "-max_dist", "-min_area",
-                                          "-min_obs", "-max_iter", "-o", "-json", "-maps", "-bands", "-work", "-job", "-unit",
-                                          "-map_format"};
+                                          "-min_obs", "-max_iter", "-held_out_z", "-held_out_noise", "-o", "-json", "-maps",
+                                          "-bands", "-work", "-job", "-unit", "-map_format"};
 const std::set<std::string> kSwitches = {"-keep_files", "-overwrite", "-q", "-one_way"};
 
 // Options shared by the single run and the plan stage, parsed into the plan request.
@@ -100,6 +106,20 @@ struct Options
   std::string work;
   int job = -1, unit = -1;
 };
+
+// -held_out_z: a positive number, or inf to switch the test off.
+bool
+heldOutZOption(int argc, char** argv, double& z, std::string& why)
+{
+  const char* text = tools::optionValue(argc, argv, "-held_out_z");
+  if (text && std::string(text) == "inf") {
+    z = std::numeric_limits<double>::infinity();
+    return true;
+  }
+  if (!tools::numberOption(argc, argv, "-held_out_z", z, why, 0.0))
+    return false;
+  return z > 0.0 || (why = "-held_out_z must be > 0 (inf: no test)").empty();
+}
 
 bool
 parseSettings(int argc, char** argv, Options& o, std::string& why)
@@ -144,6 +164,8 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
       !tools::numberOption(argc, argv, "-min_area", s.min_overlap_area, why, 0.0) ||
       !tools::integerOption(argc, argv, "-min_obs", min_obs, why, 1, 2147483647) ||
       !tools::integerOption(argc, argv, "-max_iter", s.max_iterations, why, 1, 1000000) ||
+      !heldOutZOption(argc, argv, s.held_out_z, why) ||
+      !tools::numberOption(argc, argv, "-held_out_noise", s.held_out_noise_factor, why, 0.0) ||
       !tools::integerOption(argc, argv, "-job", o.job, why, 0, 2147483647) ||
       !tools::integerOption(argc, argv, "-unit", o.unit, why, 0, 2147483647))
     return false;

@@ -81,6 +81,10 @@ AdjustmentReport::fullReport() const
        << format(", moved %.4g (position sigma %.3g), kept %.3g of the start's correspondences",
                  quality.movement, quality.position_sigma, quality.observations_kept) << ": "
        << (quality.trustworthy ? "trustworthy\n" : "NOT TRUSTWORTHY\n");
+  if (quality.held_out_scale_tested)
+    os << format("  held-out scale if freed: m - 1 = %+.4g ppm +- %.3g (z %+.3g)", 1e6 * quality.held_out_scale,
+                 1e6 * quality.held_out_scale_sigma, quality.held_out_scale_z)
+       << format(", moves the source's edge by %.4g\n", quality.held_out_scale_effect);
   os << format("  local origin (source) = (%.4f, %.4f, %.4f)\n", local_origin_source.x(),
                local_origin_source.y(), local_origin_source.z());
   os << format("  local origin (target) = (%.4f, %.4f, %.4f)\n", local_origin_target.x(),

@@ -111,6 +111,8 @@ AdjustmentSettings::isValid(std::string* why) const
       !(max_position_sigma_ratio > 0.0))
     return fail("min_movement_significance must be >= 0 and finite (0 switches the test off), "
                 "max_position_sigma_ratio > 0 (+inf switches it off)");
+  if (!(held_out_z > 0.0) || !(held_out_noise_factor >= 0.0) || std::isinf(held_out_noise_factor))
+    return fail("held_out_z must be > 0 (+inf switches the test off), held_out_noise_factor >= 0 and finite");
   if (!(determinability_threshold > 0.0) || determinability_threshold >= 1.0)
     return fail("determinability_threshold must be in (0, 1)");
   return true;

@@ -9,6 +9,7 @@
 #include <pcl_ls3d/adjustment/gauss_markov.h>
 #include <pcl_ls3d/adjustment/errors_in_variables.h>
 #include <pcl_ls3d/adjustment/normal_equations.h>
+#include <pcl_ls3d/adjustment/omitted_parameters.h>
 #include <pcl_ls3d/adjustment/pair_matcher.h>
 #include <pcl_ls3d/adjustment/parameter_block.h>
 #include <pcl_ls3d/rules/target_surface.h>
@@ -105,6 +106,14 @@ iterationRecord(int it, const NormalEquations& ne, std::size_t m, const GaussMar
 void
 fillCovariance(AdjustmentReport& report, const GaussMarkovSolution& sol, const SourceRows& row,
                const Eigen::VectorXd& weights, const Vector7d& apriori_weights, double cell);
+
+/// The score test of a rigid fit's held-out scale (omitted_parameters.h) from the last
+/// iteration's observations at the updated estimate, with the variance of fillCovariance()
+/// (the spatial middle term at this cell, formal at cell 0). Not ok when the scale was
+/// estimated or other parameters were held too.
+OmittedParameterTest
+heldOutScaleTest(const GaussMarkovSolution& sol, const SourceRows& row, const Eigen::VectorXd& weights,
+                 const GaussMarkovProblem& problem, double cell);
 
 /// Reliability: residuals (eq. 12) and redundancy numbers r_i = 1 − p_i a_iᵀ Qxx a_i.
 void

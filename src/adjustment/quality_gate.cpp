@@ -162,6 +162,13 @@ moveUndetermined(const QualityFigures& q, const AdjustmentSettings& s)
          q.movement > q.expected_noise && q.movement < s.min_movement_significance * q.position_sigma;
 }
 
+bool
+heldOutScaleFlagged(const QualityFigures& q, const AdjustmentSettings& s)
+{
+  return q.held_out_scale_tested && std::abs(q.held_out_scale_z) > s.held_out_z &&
+         q.held_out_scale_effect > s.held_out_noise_factor * q.expected_noise && q.expected_noise > 0.0;
+}
+
 TerminationType
 applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimated,
                  const AdjustmentSettings& s, TerminationType termination, std::string& why)
@@ -213,6 +220,20 @@ applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimate
     add(figure("the adjustment ended with %.3g of the correspondences it started with (limit %.3g): "
                "the source slid off the overlap",
                q.observations_kept, s.min_observations_kept));
+  if (heldOutScaleFlagged(q, s)) {
+    // A scale beyond any plausible one is no missing model parameter: the fit itself is wrong.
+    const bool plausible = std::abs(q.held_out_scale) <= s.max_scale_deviation;
+    char buf[400];
+    std::snprintf(buf, sizeof(buf),
+                  "the rigid fit holds out a scale the data ask for: freed, m - 1 would be %+.3g ppm, "
+                  "%.3g x its sigma (limit %.3g), moving the source's edge by %.3g, %.3g x the "
+                  "surfaces' noise (limit %.3g): %s",
+                  1e6 * q.held_out_scale, std::abs(q.held_out_scale_z), s.held_out_z, q.held_out_scale_effect,
+                  q.held_out_scale_effect / q.expected_noise, s.held_out_noise_factor,
+                  plausible ? "free the scale (-params 7)"
+                            : "no plausible scale (max_scale_deviation): the fit itself is in doubt");
+    add(buf);
+  }
   if (q.median_gradient > s.max_median_gradient)
     add(figure("most observations lie on surfaces steeper than the rule measures (median gradient "
                "%.3g, limit %.3g): use a normal-distance rule (LND)",

@@ -132,6 +132,22 @@ noiseDominatedParameters(PairRun& run, const TargetSurface& target, const Source
   return noiseDominated(ne.N, M, run.problem.apriori_weights, run.problem.scaling, kPairNoiseShare);
 }
 
+// Would the held-out scale, freed, be determinable? The noise-floor test of the solve with the
+// scale free: a scale with no more information than the normals' noise would be held by
+// -params 7 too, and testing it would read the misfit of held directions as a scale.
+bool
+freedScaleDeterminable(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights)
+{
+  if (run.normal_variance < 0.0)  // a rule whose correspondences fix every direction
+    return true;
+  const NormalEquations ne = accumulateNormalEquations(row, weights);
+  const Matrix7d M =
+      noiseFloor(row.set, weights, run.normal_variance, [&row](const Observation& o) { return row.of(o); });
+  Vector7d freed = run.problem.apriori_weights;
+  freed[SCALE] = 0.0;
+  return !noiseDominated(ne.N, M, freed, run.problem.scaling, kPairNoiseShare)[SCALE];
+}
+
 // Stage 4: solve eqs. 9–11 and apply dx; false (the report says why) when it cannot.
 bool
 solveAndUpdate(PairRun& run, const NormalEquations& ne, const std::vector<bool>& held, int it,
@@ -175,7 +191,8 @@ solveAndUpdate(PairRun& run, const NormalEquations& ne, const std::vector<bool>&
 // The quality gate on a finished adjustment (quality_gate.h).
 void
 assess(const PairRun& run, const ObservationSet& obs, const Eigen::VectorXd& weights,
-       const TargetSurface& target, const AdjustmentSettings& settings, AdjustmentReport& report)
+       const TargetSurface& target, const AdjustmentSettings& settings,
+       const OmittedParameterTest& held_out, AdjustmentReport& report)
 {
   QualityInputs in;
   in.sigma0 = run.sol.sigma0;
@@ -193,6 +210,14 @@ assess(const PairRun& run, const ObservationSet& obs, const Eigen::VectorXd& wei
   in.source_box = run.setup.source_box;
   in.covariance = report.covariance;
   report.quality = measureQuality(in, obs);
+  if (held_out.ok) {
+    QualityFigures& q = report.quality;
+    q.held_out_scale_tested = true;
+    q.held_out_scale = held_out.parameters[0].estimate;
+    q.held_out_scale_sigma = held_out.parameters[0].sigma;
+    q.held_out_scale_z = held_out.parameters[0].z;
+    q.held_out_scale_effect = std::abs(q.held_out_scale) * run.setup.radius;
+  }
   if (report.termination != TerminationType::CONVERGED &&
       report.termination != TerminationType::MAX_ITERATIONS)
     return;
@@ -218,8 +243,8 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
   report.redundancy = sol.redundancy;
   report.source_noise = run.eiv.active() ? run.eiv.sourceNoise() : 0.0;
   // Cell 0: the formal covariance of eq. 14 (the caller switched the sandwich off).
-  fillCovariance(report, sol, row, weights, settings.apriori_weights,
-                 settings.spatial_precision ? precisionCell(settings, run.setup, target_size) : 0.0);
+  const double cell = settings.spatial_precision ? precisionCell(settings, run.setup, target_size) : 0.0;
+  fillCovariance(report, sol, row, weights, settings.apriori_weights, cell);
   const std::string undetermined = fillPrecision(report, sol);
   if (!undetermined.empty())
     report.message = "undeterminable from this geometry (held at their initial values): " + undetermined;
@@ -228,7 +253,11 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
                       "iteration limit reached before the changes fell below the epsilons";
   if (settings.store_observations)
     storeObservations(report, sol, row, weights, source_indices);
-  assess(run, row.set, weights, target, settings, report);
+  const OmittedParameterTest held_out =
+      std::isinf(settings.held_out_z) || !freedScaleDeterminable(run, row, weights)
+          ? OmittedParameterTest()
+          : heldOutScaleTest(sol, row, weights, run.problem, cell);
+  assess(run, row.set, weights, target, settings, held_out, report);
 }
 
 }  // namespace

@@ -36,8 +36,19 @@ struct BlockSums
   Eigen::MatrixXd normal;
 };
 
+// A cell's score S = Σ p v a, or for residuals v + a·step the score S + N_c [step_i; step_j].
+Vector14d
+cellScore(const Entry& e, const Eigen::VectorXd* step)
+{
+  if (!step)
+    return e.cell->score;
+  Vector14d dx;
+  dx << step->segment<7>(7 * e.i), step->segment<7>(7 * e.j);
+  return e.cell->score + e.cell->normal * dx;
+}
+
 BlockSums
-sumBlock(const std::vector<const Entry*>& entries)
+sumBlock(const std::vector<const Entry*>& entries, const Eigen::VectorXd* step)
 {
   BlockSums b;
   for (const Entry* e : entries)
@@ -53,8 +64,9 @@ sumBlock(const std::vector<const Entry*>& entries)
   };
   for (const Entry* e : entries) {
     const Eigen::Index at[2] = {slot(e->i), slot(e->j)};
+    const Vector14d score = cellScore(*e, step);
     for (int u = 0; u < 2; ++u) {
-      b.score.segment<7>(at[u]) += e->cell->score.segment<7>(7 * u);
+      b.score.segment<7>(at[u]) += score.segment<7>(7 * u);
       for (int v = 0; v < 2; ++v)
         b.normal.block<7, 7>(at[u], at[v]) += e->cell->normal.block<7, 7>(7 * u, 7 * v);
     }
@@ -65,10 +77,9 @@ sumBlock(const std::vector<const Entry*>& entries)
 }  // namespace
 
 Eigen::MatrixXd
-blockSandwichCovariance(const std::vector<OverlapContribution>& contributions,
-                        const Eigen::MatrixXd& qxx, double sigma0,
-                        const Eigen::VectorXd& apriori_weights,
-                        const std::vector<bool>& determinable)
+blockMiddleTerm(const std::vector<OverlapContribution>& contributions, const Eigen::MatrixXd& qxx,
+                double sigma0, const Eigen::VectorXd& apriori_weights, const std::vector<bool>& determinable,
+                const Eigen::VectorXd* step)
 {
   const Eigen::Index u = qxx.rows();
   std::vector<Entry> entries;
@@ -82,7 +93,7 @@ blockSandwichCovariance(const std::vector<OverlapContribution>& contributions,
     for (const Entry& e : entries)
       blocks[{half(e.cell->x + sx), half(e.cell->y + sy), half(e.cell->z + sz)}].push_back(&e);
     for (const auto& kv : blocks) {
-      BlockSums b = sumBlock(kv.second);
+      BlockSums b = sumBlock(kv.second, step);
       const Eigen::Index d = b.score.size();
       Eigen::MatrixXd q(d, d);
       for (std::size_t a = 0; a < b.strips.size(); ++a)
@@ -105,6 +116,16 @@ blockSandwichCovariance(const std::vector<OverlapContribution>& contributions,
   for (Eigen::Index p = 0; p < u; ++p)
     if (determinable[static_cast<std::size_t>(p)] && apriori_weights[p] > 0.0 && std::isfinite(apriori_weights[p]))
       M(p, p) += sigma0 * sigma0 * apriori_weights[p];
+  return M;
+}
+
+Eigen::MatrixXd
+blockSandwichCovariance(const std::vector<OverlapContribution>& contributions,
+                        const Eigen::MatrixXd& qxx, double sigma0,
+                        const Eigen::VectorXd& apriori_weights,
+                        const std::vector<bool>& determinable)
+{
+  const Eigen::MatrixXd M = blockMiddleTerm(contributions, qxx, sigma0, apriori_weights, determinable);
   return notBelowFormal<Eigen::MatrixXd>(qxx * M * qxx, sigma0 * sigma0 * qxx);
 }
 

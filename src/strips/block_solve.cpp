@@ -129,7 +129,11 @@ matchInput(const StripPlan& plan, const BlockState& state, int i, int j)
   in.coarse = state.coarse && state.phase == BlockState::Phase::ITERATE;
   in.frozen = state.frozen;
   in.sigma0 = state.sigma0;
-  in.scale_free = plan.settings.model == ParameterModel::SIMILARITY_7;
+  // The final pass of a rigid block also corrects the held-out scale column: its score test
+  // (model_adequacy.h) would otherwise see the noise bias of that column as a scale.
+  in.scale_free = plan.settings.model == ParameterModel::SIMILARITY_7 ||
+                  (plan.settings.model == ParameterModel::RIGID_6 && plan.settings.test_held_out &&
+                   state.phase == BlockState::Phase::EVALUATE);
   if (state.qxx.rows() == 7 * static_cast<Eigen::Index>(plan.strips.size()) && state.iteration > 0) {
     const Eigen::Index a = 7 * i, b = 7 * j;
     in.qxx.topLeftCorner<7, 7>() = state.qxx.block<7, 7>(a, a);

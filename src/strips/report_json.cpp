@@ -44,6 +44,25 @@ stats(const DiscrepancyStatistics& s)
           {"percentiles", {{"5", s.p05}, {"16", s.p16}, {"50", s.p50}, {"84", s.p84}, {"95", s.p95}}}};
 }
 
+const char* const kParameterNames[7] = {"tx", "ty", "tz", "phi", "omega", "kappa", "m"};
+
+json
+heldOut(const std::vector<HeldOutParameter>& held_out)
+{
+  json a = json::array();
+  for (const HeldOutParameter& h : held_out)
+    a.push_back({{"parameter", kParameterNames[h.parameter]},
+                 {"estimate", number(h.estimate)},
+                 {"sigma", number(h.sigma)},
+                 {"sigma_formal", number(h.sigma_formal)},
+                 {"z", number(h.z)},
+                 {"effect", number(h.effect)},
+                 {"own_noise", number(h.noise)},
+                 {"significant", h.significant},
+                 {"flagged", h.flagged}});
+  return a;
+}
+
 json
 strip(const StripResult& s)
 {
@@ -66,7 +85,8 @@ strip(const StripResult& s)
           {"fixed", flags_fixed},
           {"determinable", flags_det},
           {"transformation", matrix(s.transformation)},
-          {"note", s.note}};
+          {"note", s.note},
+          {"held_out", heldOut(s.held_out)}};
 }
 
 json
@@ -128,6 +148,12 @@ reportJson(const StripAdjustmentReport& r, int indent, double plan_units_per_hei
   j["block_origin"] = vec(r.block_origin);
   j["footprint_cell"] = r.footprint_cell;
   j["notes"] = r.notes;
+  j["held_out_test"] = {{"tested", r.held_out.tested},
+                        {"note", r.held_out.note},
+                        {"statistic", number(r.held_out.statistic)},
+                        {"dof", r.held_out.dof},
+                        {"significant_strips", r.held_out.significant},
+                        {"flagged_strips", r.held_out.flagged}};
   j["strips"] = json::array();
   for (const StripResult& s : r.strips)
     j["strips"].push_back(strip(s));

@@ -39,6 +39,28 @@ withSigma(double v, double s, double factor, const char* fmt)
   return std::string(a) + " " + b;
 }
 
+// The held-out scale per strip (model_adequacy.h), or why it was not tested.
+std::string
+heldOutSummary(const StripAdjustmentReport& r, const std::string& u)
+{
+  std::string out;
+  const HeldOutTest& t = r.held_out;
+  if (!t.tested) {
+    if (!t.note.empty())
+      add(out, "\nheld-out parameters: not tested (%s)\n", t.note.c_str());
+    return out;
+  }
+  add(out, "\nheld-out scale if freed (%s): chi2 %.1f with %d dof; significant on %d strips, larger than the own noise on %d\n",
+      t.note.c_str(), t.statistic, t.dof, t.significant, t.flagged);
+  add(out, "strip          m-1 [ppm]   sigma [ppm]   z       edge effect [%s]   own noise [%s]\n", u.c_str(), u.c_str());
+  for (const StripResult& s : r.strips)
+    for (const HeldOutParameter& h : s.held_out)
+      add(out, "%-12s %+10.2f   %9.2f   %+7.2f   %12.4f   %14.4f   %s\n", s.name.c_str(), 1e6 * h.estimate,
+          1e6 * h.sigma, h.z, h.effect, h.noise,
+          h.flagged ? "FREE THE SCALE (-params 7)" : h.significant ? "significant, within the noise" : "");
+  return out;
+}
+
 }  // namespace
 
 std::string
@@ -69,6 +91,7 @@ reportSummary(const StripAdjustmentReport& r, const std::string& u)
     }
     add(out, "  %s\n", s.note.c_str());
   }
+  out += heldOutSummary(r, u);
   add(out, "\noverlap                 area [%s2]   obs used/rejected   sigma0    before: RMS  sigmaMAD  ->  after: RMS  sigmaMAD   own noise sigmaMAD i / j\n", u.c_str());
   for (const OverlapResult& o : r.overlaps) {
     const std::string name = r.strips[static_cast<std::size_t>(o.i)].name + "-" + r.strips[static_cast<std::size_t>(o.j)].name;

@@ -42,6 +42,8 @@ StripAdjustmentSettings::isValid(std::string* why) const
   for (int r : reference_strips)
     if (r < 0)
       return fail("reference strip indices must be >= 0");
+  if (!(held_out_z > 0.0) || !(held_out_noise_factor >= 0.0) || std::isinf(held_out_noise_factor))
+    return fail("held_out_z must be > 0 (+inf switches the test off), held_out_noise_factor >= 0 and finite");
   return true;
 }
 

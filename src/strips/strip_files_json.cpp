@@ -4,7 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <fstream>
+#include <limits>
 
 namespace pcl_ls3d {
 namespace strips {
@@ -47,7 +49,10 @@ settingsJson(const StripAdjustmentSettings& s)
           {"scale_epsilon", s.scale_epsilon}, {"freeze_sigma_fraction", s.freeze_sigma_fraction},
           {"coarse_observations", s.coarse_observations},
           {"determinability_threshold", s.determinability_threshold},
-          {"spatial_precision", s.spatial_precision}, {"precision_cell", s.precision_cell}};
+          {"spatial_precision", s.spatial_precision}, {"precision_cell", s.precision_cell},
+          {"test_held_out", s.test_held_out},
+          {"held_out_z", std::isfinite(s.held_out_z) ? json(s.held_out_z) : json(nullptr)},  // null: inf
+          {"held_out_noise_factor", s.held_out_noise_factor}};
 }
 
 StripAdjustmentSettings
@@ -80,6 +85,12 @@ settingsOf(const json& j)
   s.determinability_threshold = j.at("determinability_threshold");
   s.spatial_precision = j.at("spatial_precision");
   s.precision_cell = j.at("precision_cell");
+  // Absent in plans written before the held-out test: its defaults.
+  s.test_held_out = j.value("test_held_out", s.test_held_out);
+  if (j.contains("held_out_z"))
+    s.held_out_z = j.at("held_out_z").is_null() ? std::numeric_limits<double>::infinity()
+                                                 : j.at("held_out_z").get<double>();
+  s.held_out_noise_factor = j.value("held_out_noise_factor", s.held_out_noise_factor);
   return s;
 }
 

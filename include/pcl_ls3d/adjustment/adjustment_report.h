@@ -81,6 +81,13 @@ struct QualityFigures
   /// Correspondences at the end as a fraction of those at the initial guess: far below 1 the
   /// source slid off the overlap until what is left of it fits.
   double observations_kept = 1.0;
+  /// A rigid fit's held-out scale, as it would be if freed (omitted_parameters.h): the change
+  /// m − m0 it would take (one Gauss–Newton step), its σ with the sandwich's variance, z = Δm / σ
+  /// and how far it moves the source's edge (|Δm| × the source's radius). Not tested when the
+  /// scale was estimated or other parameters were held too.
+  bool held_out_scale_tested = false;
+  double held_out_scale = 0.0, held_out_scale_sigma = 0.0, held_out_scale_z = 0.0;
+  double held_out_scale_effect = 0.0;
   bool trustworthy = false;           ///< every figure within the settings' limits
 };
 

@@ -153,6 +153,11 @@ struct AdjustmentSettings
   /// measured: bun0 → bun4 0.63 ×, Li's surface with M-D 1.44 × (a move of 1.2 × the noise).
   double max_position_sigma_ratio = 2.0;
   double min_movement_significance = 3.0;
+  /// A rigid fit whose held-out scale (QualityFigures::held_out_scale) is beyond held_out_z × its
+  /// σ and moves the source's edge by more than held_out_noise_factor × the surfaces' noise is not
+  /// trustworthy: the data ask for a scale (free it, -params 7). +inf switches the test off.
+  double held_out_z = 5.0;  ///< as the strip adjustment's (docs/MODEL_ADEQUACY.md)
+  double held_out_noise_factor = 1.0;
 
   // --- results ----------------------------------------------------------------------------------
   /// Keep per-observation residuals, weights and redundancy numbers r_i in the report

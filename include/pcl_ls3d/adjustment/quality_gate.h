@@ -55,6 +55,11 @@ normalComponentSigma(const ObservationSet& observations, const Eigen::VectorXd& 
 bool
 moveUndetermined(const QualityFigures& q, const AdjustmentSettings& settings);
 
+/// A rigid fit's held-out scale is significant (|z| > held_out_z) and moves the source's edge by
+/// more than held_out_noise_factor × the surfaces' noise: the model is too small.
+bool
+heldOutScaleFlagged(const QualityFigures& q, const AdjustmentSettings& settings);
+
 /// Applies the settings' limits to a finished adjustment (CONVERGED or MAX_ITERATIONS):
 /// returns its termination, or STALLED / UNRELIABLE / IMPLAUSIBLE_SCALE with the reasons
 /// appended to `why`; sets q.trustworthy.

@@ -93,16 +93,18 @@ notBelowFormal(const Matrix& sandwich, const Matrix& formal)
   return out;
 }
 
-/// \brief The sandwich covariance C = Q M Q of the parameters, at least σ0² Q (notBelowFormal()).
+/// \brief The middle term M of the sandwich: the CR3-corrected spatial sum of the scores
+///        (SpatialScoreSum::meat(&qxx)) plus σ0² p_e for soft a-priori observations (finite
+///        weight p_e on a determinable parameter), which are independent of the data.
 ///        `observation(j, x, a, p, v)` fills position x, design row a, weight p and residual v
-///        of observation j < m (false: skip).
-///        Soft a-priori observations (finite weight p_e on a determinable parameter) add their
-///        own independent term σ0² p_e to M.
+///        of observation j < m (false: skip). Columns of parameters that were not estimated
+///        (zero in qxx) hold their scores corrected for the estimated ones' leverage, which a
+///        score test of held-out parameters uses (omitted_parameters.h).
 template <typename ObservationFn>
 Matrix7d
-spatialSandwichCovariance(std::size_t m, double cell, const Matrix7d& qxx, double sigma0,
-                          const Vector7d& apriori_weights, const std::array<bool, 7>& determinable,
-                          ObservationFn observation)
+spatialMiddleTerm(std::size_t m, double cell, const Matrix7d& qxx, double sigma0,
+                  const Vector7d& apriori_weights, const std::array<bool, 7>& determinable,
+                  ObservationFn observation)
 {
   SpatialScoreSum scores(cell);
   Eigen::Vector3d x;
@@ -116,6 +118,18 @@ spatialSandwichCovariance(std::size_t m, double cell, const Matrix7d& qxx, doubl
     if (determinable[static_cast<std::size_t>(i)] && apriori_weights[i] > 0.0 &&
         std::isfinite(apriori_weights[i]))
       meat(i, i) += sigma0 * sigma0 * apriori_weights[i];
+  return meat;
+}
+
+/// \brief The sandwich covariance C = Q M Q of the parameters (M: spatialMiddleTerm()), at
+///        least σ0² Q (notBelowFormal()).
+template <typename ObservationFn>
+Matrix7d
+spatialSandwichCovariance(std::size_t m, double cell, const Matrix7d& qxx, double sigma0,
+                          const Vector7d& apriori_weights, const std::array<bool, 7>& determinable,
+                          ObservationFn observation)
+{
+  const Matrix7d meat = spatialMiddleTerm(m, cell, qxx, sigma0, apriori_weights, determinable, observation);
   return notBelowFormal<Matrix7d>(qxx * meat * qxx, sigma0 * sigma0 * qxx);
 }
 

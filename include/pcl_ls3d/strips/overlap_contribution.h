@@ -35,7 +35,7 @@ struct MatchInput
   bool frozen = false;       ///< correspondences frozen (the matchers' caches are reused as is)
   double sigma0 = 0.0;       ///< σ0 of the previous solve (≤ 0 before the first)
   Matrix14d qxx = Matrix14d::Zero();  ///< Qxx block of (i, j) of the previous solve
-  bool scale_free = false;   ///< m is estimated: apply the errors-in-variables correction
+  bool scale_free = false;   ///< m is estimated (or tested): apply the errors-in-variables correction
 };
 
 /// \brief One direction's counts.

@@ -15,6 +15,31 @@
 namespace pcl_ls3d {
 namespace strips {
 
+/// \brief A parameter the model held out (the scale of a rigid model), as it would be if freed:
+///        the score test of model_adequacy.h for one strip.
+struct HeldOutParameter
+{
+  int parameter = SCALE;     ///< 0..6 (tx ty tz φ ω κ m)
+  double estimate = 0.0;     ///< the change it would take (for m: m − 1)
+  double sigma = 0.0;        ///< its σ, with the sandwich's variance (at least sigma_formal)
+  double sigma_formal = 0.0; ///< σ0 √(K⁻¹)_ii
+  double z = 0.0;            ///< estimate / sigma
+  double effect = 0.0;       ///< what it moves the strip's edge by: |estimate| × radius (angles, m)
+  double noise = 0.0;        ///< the strip's own noise: median σMAD over its evaluated overlaps
+  bool significant = false;  ///< |z| > settings.held_out_z
+  bool flagged = false;      ///< significant and effect > settings.held_out_noise_factor × noise
+};
+
+/// \brief The block's test of the held-out parameters (model_adequacy.h).
+struct HeldOutTest
+{
+  bool tested = false;
+  std::string note;          ///< why not tested, or what was tested
+  double statistic = 0.0;    ///< all strips' held-out parameters together: χ² under a right model
+  int dof = 0;               ///< its degrees of freedom
+  int significant = 0, flagged = 0;  ///< strips
+};
+
 /// \brief One strip's result. Parameters act about the strip's origin: x' = o + t + m R (x − o).
 struct StripResult
 {
@@ -31,6 +56,7 @@ struct StripResult
   std::array<bool, 7> fixed{}, determinable{};
   Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();  ///< file coordinates
   std::string note;
+  std::vector<HeldOutParameter> held_out;  ///< empty when not tested (reference, 7 parameters)
 };
 
 /// \brief One overlap's result.
@@ -76,6 +102,7 @@ struct StripAdjustmentReport
   std::vector<OverlapResult> overlaps;
   std::vector<BlockIterationRecord> log;
   std::vector<std::string> notes;
+  HeldOutTest held_out;               ///< is the model large enough?
   Eigen::MatrixXd covariance;         ///< 7N × 7N behind the σ
   std::vector<double> timings_s;      ///< plan, select, iterate, evaluate
 
