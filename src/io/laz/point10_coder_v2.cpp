@@ -115,7 +115,7 @@ Point10CoderV2::decodeChangedFields(ArithmeticDecoder& dec, std::uint32_t change
 {
   if (changed & kReturnsChanged)
     last_[kReturns] = static_cast<std::uint8_t>(dec.decodeSymbol(returns_.at(last_[kReturns])));
-  const std::uint32_t m = returnContext(numberOfReturns(last_), returnNumber(last_));
+  const std::uint32_t m = point10ReturnContext(numberOfReturns(last_), returnNumber(last_));
   if (changed & kIntensityChanged) {
     const auto v = static_cast<std::uint16_t>(
         intensity_.decompress(dec, last_intensity_[m], m < 3 ? m : 3));
@@ -160,7 +160,7 @@ Point10CoderV2::decode(ArithmeticDecoder& dec, std::uint8_t* out)
   if (changed != 0)
     decodeChangedFields(dec, changed);
   const std::uint32_t n = numberOfReturns(last_), r = returnNumber(last_);
-  decodeCoordinates(dec, n, returnContext(n, r), returnLevel(n, r));
+  decodeCoordinates(dec, n, point10ReturnContext(n, r), returnLevel(n, r));
   std::memcpy(out, last_, 20);
   return true;
 }
@@ -169,7 +169,7 @@ void
 Point10CoderV2::encode(ArithmeticEncoder& enc, const std::uint8_t* item)
 {
   const std::uint32_t n = numberOfReturns(item), r = returnNumber(item);
-  const std::uint32_t m = returnContext(n, r), l = returnLevel(n, r);
+  const std::uint32_t m = point10ReturnContext(n, r), l = returnLevel(n, r);
   const std::uint16_t intensity = las::get<std::uint16_t>(item + kIntensity);
   const std::uint16_t source = las::get<std::uint16_t>(item + kSource);
   const std::uint16_t last_source = las::get<std::uint16_t>(last_ + kSource);

@@ -29,7 +29,7 @@ StreamingMedian5::add(std::int32_t x)
 }
 
 std::uint32_t
-returnContext(std::uint32_t n, std::uint32_t r)
+point10ReturnContext(std::uint32_t n, std::uint32_t r)
 {
   // Rows: number of returns n; columns: return number r (both 3-bit fields, so 0–7).
   static const std::uint8_t kContext[8][8] = {

@@ -147,7 +147,7 @@ private:
 /// Context of a record's coordinates by its return number r and number of returns n (0–7 each):
 /// the sensible (n, r) pairs get contexts 0–14, the rest share the upper ones (LASzip's table).
 std::uint32_t
-returnContext(std::uint32_t n, std::uint32_t r);
+point10ReturnContext(std::uint32_t n, std::uint32_t r);
 
 /// Which earlier height predicts a record's z: |n − r|, the distance from the last return.
 inline std::uint32_t
