@@ -282,7 +282,7 @@ outputStemAndExtension(const fs::path& in)
 {
   std::string stem = in.stem().string();
   const std::string ext = in.extension().string();
-  if (stem.size() > 5 && io::fileExtension(stem) == "copc" && io::fileExtension(ext) == "laz")
+  if (stem.size() > 5 && io::fileExtension(stem) == "copc" && io::fileExtension(in.filename()) == "laz")
     stem.erase(stem.size() - 5);
   return {stem, ext};
 }

@@ -7,6 +7,7 @@
 
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_io.h>
+#include <pcl_ls3d/strips/strip_io.h>
 
 #include "io/io_test_utils.h"
 #include "io/laz_test_utils.h"
@@ -321,4 +322,27 @@ TEST(LazTools, EveryToolReadsLaz)
   for (const auto& e : fs::recursive_directory_iterator(dir.file("synth")))
     synth_laz += e.path().extension() == ".laz";
   EXPECT_GE(synth_laz, 2u);
+}
+
+// The strip adjustment writes a corrected COPC strip as plain LAZ, named so: "x.copc.laz" gives
+// "x.laz" (or "x_psid<ID>.laz"); other names keep their stem and extension.
+TEST(LazTools, CorrectedCopcStripsAreNamedLaz)
+{
+  strips::LoadedStrips block;
+  block.inputs.resize(3);
+  block.inputs[0].path = "in/a.copc.laz";
+  block.inputs[1].path = "in/b.laz";
+  block.inputs[2].path = "in/c.copc.las";
+  for (auto& f : block.inputs)
+    f.point_sources = {{7, 10}};
+  block.sources.resize(1);
+  std::vector<std::string> whole, split;
+  for (const auto& u : strips::outputUnits(block, "out", false))
+    whole.push_back(u.path);
+  block.sources[0].point_source_id = 7;
+  for (const auto& u : strips::outputUnits(block, "out", false))
+    split.push_back(u.path);
+  EXPECT_EQ(whole, (std::vector<std::string>{"out/a.laz", "out/b.laz", "out/c.copc.las"}));
+  EXPECT_EQ(split, (std::vector<std::string>{"out/a_psid7.laz", "out/b_psid7.laz",
+                                             "out/c.copc_psid7.las"}));
 }
