@@ -117,6 +117,51 @@ TEST(LazTools, ConvertLasLazLasIsLosslessOnGeneratedFiles)
   }
 }
 
+// -classes and -bounds on LAS/LAZ records: the output holds exactly the input's records of those
+// classes inside the box, byte for byte and in file order, whichever of LAS and LAZ goes in or
+// out; the header counts follow (the points of the file's other classes are gone).
+TEST(LazTools, ConvertSelectsRecordsLosslessly)
+{
+  pcl_ls3d_test::TempDir dir("ls3d_laz_tools_select");
+  pcl::PointCloud<PointLiDAR> cloud;
+  std::vector<Eigen::Vector3d> truth;
+  const Eigen::Vector3d base(500100.0, 5000100.0, 50.0), origin(500000.0, 5000000.0, 0.0);
+  pcl_ls3d_test::makeUtmCloud(4000, 8, base, origin, cloud, truth);
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    cloud[i].classification = static_cast<std::uint8_t>(i % 4 == 0 ? 2 : 6);
+  io::SaveOptions so;
+  so.las_point_format = 8;
+  so.las_minor_version = 4;
+  std::string error;
+  ASSERT_TRUE(io::saveCloud(dir.file("in.las"), cloud, origin, error, so)) << error;
+  ASSERT_TRUE(io::saveCloud(dir.file("in.laz"), cloud, origin, error, so)) << error;
+  const LasParts in = partsOf(dir.file("in.las"));
+  const std::size_t length = in.records.size() / cloud.size();
+  const double x0 = base.x() - 100.0, x1 = base.x() + 250.0;
+  std::vector<std::uint8_t> expected;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (cloud[i].classification == 2 && truth[i].x() >= x0 && truth[i].x() <= x1)
+      expected.insert(expected.end(), in.records.begin() + i * length,
+                      in.records.begin() + (i + 1) * length);
+  ASSERT_GT(expected.size(), 50 * length);
+  const std::string args = " -classes 2 -bounds " + std::to_string(x0) + ",0," + std::to_string(x1) + ",1e8";
+  for (const auto& [from, to] : {std::pair<const char*, const char*>{"in.las", "a.laz"},
+                                 {"in.laz", "b.las"}, {"in.laz", "c.laz"}}) {
+    SCOPED_TRACE(std::string(from) + " -> " + to);
+    const auto r = runTool("pcl_ls3d_convert", quoted(dir.file(from)) + " " + quoted(dir.file(to)) + args,
+                           dir.path.string());
+    ASSERT_EQ(r.code, 0) << r.err;
+    const LasParts out = partsOf(dir.file(to));
+    EXPECT_EQ(out.compressed, std::string(to).find(".laz") != std::string::npos);
+    EXPECT_TRUE(out.records == expected);
+    EXPECT_EQ(out.vlrs, in.vlrs);
+    pcl::PointCloud<PointLiDAR> back;
+    io::CloudInfo info;
+    ASSERT_TRUE(io::loadCloud(dir.file(to), back, info, error)) << error;
+    EXPECT_EQ(info.las.point_count, expected.size() / length);
+  }
+}
+
 // Real twins: simple.las (LAS 1.2, PF3) and 1_4_w_evlr.las (LAS 1.4 with EVLRs) round trip;
 // the LASzip-written LAZ twins convert to LAS with their twins' records, VLRs and EVLRs.
 TEST(LazTools, ConvertLasLazLasIsLosslessOnRealTwins)
