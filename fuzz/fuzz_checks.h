@@ -1,7 +1,8 @@
 #pragma once
 /// \file fuzz_checks.h
 /// \brief What every reader fuzzer asserts about one result: a failure carries a short one-line
-///        reason; a success is dense, finite and counted consistently.
+///        reason; a success is dense, finite and counted consistently (a region query's points
+///        left out counted too).
 
 #include <pcl_ls3d/io/cloud_io.h>
 
@@ -26,7 +27,8 @@ checkResult(bool ok, const std::string& error, const pcl::PointCloud<pcl_ls3d::P
     return;
   }
   if (cloud.size() != info.points_loaded ||
-      info.points_loaded + info.points_dropped_nonfinite != info.points_in_file ||
+      info.points_loaded + info.points_dropped_nonfinite + info.points_outside_region !=
+          info.points_in_file ||
       !cloud.is_dense || (!cloud.empty() && cloud.height != 1))
     fail("inconsistent counts", std::to_string(cloud.size()) + " " +
                                     std::to_string(info.points_loaded) + " " +

@@ -1,12 +1,16 @@
 /// \file pcl_ls3d_convert.cpp
-/// \brief Converts point clouds between LAS, PCD, PLY and ASCII XYZ in local coordinates with the
-///        georeferenced origin restored on output; splits by flight strip and filters by class.
+/// \brief Converts point clouds between LAS, LAZ, PCD, PLY and ASCII XYZ in local coordinates with
+///        the georeferenced origin restored on output; splits by flight strip, filters by class
+///        and crops to a box (-bounds; a COPC input decodes only the octree nodes it meets).
+///        LAS/LAZ to LAS/LAZ without a layout change is done record by record, losslessly.
 
 #include "tool_arguments.h"
 #include "tool_output.h"
 
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/las_io.h>
+#include <pcl_ls3d/io/las_records.h>
+#include <pcl_ls3d/io/las_rewrite.h>
 #include <pcl_ls3d/io/strip_tools.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 
@@ -18,6 +22,8 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <set>
 #include <sstream>
 #include <string>
@@ -32,12 +38,19 @@ namespace {
 void
 printHelp(const char* name)
 {
-  print_error("Syntax is: %s input.{las,pcd,ply,xyz,txt,csv} output.{las,pcd,ply,xyz,txt} <options>\n"
+  print_error("Syntax is: %s input.{las,laz,copc.laz,pcd,ply,xyz,txt,csv} "
+              "output.{las,laz,pcd,ply,xyz,txt} <options>\n"
               "       or: %s input.ext -split_strips DIR <options>\n", name, name);
   print_info("  where options are:\n");
+  print_info("    -bounds xmin,ymin,xmax,ymax[,zmin,zmax] : keep only the points in this box (file\n"
+             "                         coordinates, faces included); a COPC input decodes only\n"
+             "                         the octree nodes the box meets\n");
+  print_info("    -level N           : with -bounds on a COPC input: octree levels 0..N only (a\n"
+             "                         thinned, evenly spread subset)\n");
   print_info("    -split_strips DIR  : write one file per point-source id (flight strip) into DIR,\n"
              "                         named <input stem>_psid<ID>.<ext>\n");
-  print_info("    -format EXT        : output format for -split_strips (las pcd ply xyz; default: input's)\n");
+  print_info("    -format EXT        : output format for -split_strips (las laz pcd ply xyz; default:\n"
+             "                         input's)\n");
   print_info("    -classes C1,C2,... : keep only these classification codes\n");
   print_info("    -origin x,y,z      : local origin to use instead of the automatic one\n");
   print_info("    -columns x,y,z,... : column names of an ASCII XYZ input (x y z intensity\n"
@@ -51,6 +64,11 @@ printHelp(const char* name)
   print_info("    -ascii             : write PCD/PLY in ASCII instead of binary\n");
   print_info("    -overwrite         : replace existing output files (never an input)\n");
   print_info("    -h                 : this help\n");
+  print_info("LAS or LAZ (COPC too) into .las or .laz, without -las_format, -las_version or\n"
+             "-las_scale: record by record, losslessly: every point record byte, the header, the\n"
+             "VLRs and EVLRs are kept; the LASzip VLR is added or removed (a COPC input's octree\n"
+             "VLR and hierarchy EVLR are dropped: the output is no COPC file). -classes and -bounds\n"
+             "select records; the header's counts and bounds follow.\n");
   print_info("Coordinates are shifted to a local origin on reading (double precision) and restored\n"
              "on writing; the origin used is printed. A PCD recording its origin in a\n"
              "'# pcl_ls3d origin' header line (pcl_ls3d_segment's SEGMENTS.pcd) is read with it.\n"
@@ -68,7 +86,7 @@ checkOptions(int argc, char** argv, std::vector<std::string>& positional)
 {
   const std::set<std::string> with_value = {"-split_strips", "-format", "-classes", "-origin",
                                             "-columns", "-las_format", "-las_version", "-las_scale",
-                                            "-xyz_decimals"};
+                                            "-xyz_decimals", "-bounds", "-level"};
   std::string why;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, with_value, {"-ascii", "-overwrite"},
                                        positional, why)) {
@@ -212,14 +230,15 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   if (!o.classes_text.empty() &&
       !pcl_ls3d::tools::parseClassList("-classes", o.classes_text, o.classes, why))
     return false;
-  if (!parseOverrides(argc, argv, o.overrides, why))
+  if (!parseOverrides(argc, argv, o.overrides, why) ||
+      !pcl_ls3d::tools::regionOptions(argc, argv, o.load.region, why))
     return false;
   const std::string& input = o.files[0];
   if (splitting && o.format.empty())
     o.format = pcl_ls3d::io::fileExtension(input);
-  if (splitting && o.format != "las" && o.format != "pcd" && o.format != "ply" && o.format != "xyz" &&
-      o.format != "txt")
-    return (why = "-format must be las, pcd, ply, xyz or txt, got '" + o.format + "'."), false;
+  if (splitting && o.format != "las" && o.format != "laz" && o.format != "pcd" && o.format != "ply" &&
+      o.format != "xyz" && o.format != "txt")
+    return (why = "-format must be las, laz, pcd, ply, xyz or txt, got '" + o.format + "'."), false;
   if (!splitting && pcl_ls3d::io::isSameFile(input, o.files[1]))
     return (why = "Output " + o.files[1] + " is the input file; refusing to overwrite it."), false;
   return splitting ? pcl_ls3d::tools::checkOutputFolder(o.split_dir, why)
@@ -247,6 +266,9 @@ loadInput(const Options& o, Cloud::Ptr& cloud, pcl_ls3d::io::CloudInfo& info, st
   print_info(") in ");
   print_value("%g", tt.toc());
   print_info(" ms\n");
+  if (info.region.copc)
+    print_info("Decoded %zu of %zu COPC nodes (%llu points) for -bounds\n", info.region.nodes_read,
+               info.region.nodes, static_cast<unsigned long long>(info.region.points_decoded));
   if (info.xyz_unmapped_columns)
     print_info("Note: %zu column(s) of the XYZ input are not used (name them with -columns).\n",
                info.xyz_unmapped_columns);
@@ -299,6 +321,93 @@ writeStrips(const Options& o, const Cloud& cloud, const pcl_ls3d::io::CloudInfo&
   return true;
 }
 
+/// LAS or LAZ in, .las or .laz out, no layout change asked for: the records themselves are
+/// converted (lossless), not a cloud of the fields pcl_ls3d keeps.
+bool
+recordConversion(const Options& o)
+{
+  const OutputOverrides& v = o.overrides;
+  if (!o.split_dir.empty() || v.las_format >= 0 || v.las_minor >= 0 || v.las_scale > 0.0)
+    return false;
+  const std::string out = pcl_ls3d::io::fileExtension(o.files[1]);
+  if (out != "las" && out != "laz")
+    return false;
+  std::ifstream in(o.files[0], std::ios::binary);
+  char signature[4] = {};
+  return in.read(signature, 4) && std::string(signature, 4) == "LASF";
+}
+
+bool
+writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes, std::string& why)
+{
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out || !out.write(reinterpret_cast<const char*>(bytes.data()),
+                         static_cast<std::streamsize>(bytes.size())) || !out.flush())
+    return (why = "Cannot write " + path), false;
+  return true;
+}
+
+/// The whole file, compressed or decompressed as the output's name says: header, VLRs, EVLRs and
+/// every record byte kept.
+bool
+convertWholeFile(const Options& o, std::string& why)
+{
+  std::ifstream in(o.files[0], std::ios::binary);
+  const std::vector<std::uint8_t> bytes{std::istreambuf_iterator<char>(in), {}};
+  pcl_ls3d::io::LasHeaderInfo h;
+  if (!pcl_ls3d::io::readLasHeader(bytes.data(), bytes.size(), h, why))
+    return (why = "Cannot load " + o.files[0] + ": " + why), false;
+  const bool to_laz = pcl_ls3d::io::fileExtension(o.files[1]) == "laz";
+  std::vector<std::uint8_t> las, out;
+  const std::vector<std::uint8_t>* plain = &bytes;
+  if (h.laz.compressed) {
+    if (!pcl_ls3d::io::decompressLaz(bytes.data(), bytes.size(), las, why))
+      return (why = "Cannot load " + o.files[0] + ": " + why), false;
+    plain = &las;
+  }
+  if (to_laz && !pcl_ls3d::io::compressLas(plain->data(), plain->size(), out, why))
+    return (why = "Cannot write " + o.files[1] + " as LAZ: " + why), false;
+  if (!writeBytes(o.files[1], to_laz ? out : *plain, why))
+    return false;
+  print_info("Wrote ");
+  print_value("%s", o.files[1].c_str());
+  print_info(" (%s, ", to_laz ? "LAZ" : "LAS");
+  print_value("%llu", static_cast<unsigned long long>(h.point_count));
+  print_info(" points): every record byte, the header, VLRs and EVLRs kept\n");
+  return true;
+}
+
+/// -bounds and -classes on records: the records selected, written by io::rewriteLas (LAS or LAZ
+/// by the output's name) with the counts and bounds of what is kept.
+bool
+convertSelectedRecords(const Options& o, std::string& why)
+{
+  pcl_ls3d::io::LasRecordFile file;
+  const pcl_ls3d::io::Region* region = o.load.region ? &*o.load.region : nullptr;
+  if (!file.open(o.files[0], why, region))
+    return (why = "Cannot load " + why), false;
+  const pcl_ls3d::io::RegionInfo& read = file.regionInfo();
+  if (read.copc)
+    print_info("Decoded %zu of %zu COPC nodes (%llu points)\n", read.nodes_read, read.nodes,
+               static_cast<unsigned long long>(read.points_decoded));
+  std::vector<std::size_t> selection;
+  for (std::size_t i = 0; i < file.size(); ++i)
+    if (o.classes.empty() || o.classes.count(file.classification(i)))
+      selection.push_back(i);
+  if (selection.empty())
+    return (why = "No point of " + o.files[0] + " is inside -bounds and in -classes."), false;
+  pcl_ls3d::io::LasRewriteSummary summary;
+  if (!pcl_ls3d::io::rewriteLas(file, o.classes.empty() ? nullptr : &selection, nullptr, o.files[1],
+                                summary, why, o.overwrite))
+    return (why = "Cannot write " + why), false;
+  print_info("Wrote ");
+  print_value("%s", o.files[1].c_str());
+  print_info(" (");
+  print_value("%zu", summary.points);
+  print_info(" points): their record bytes, the header, VLRs and EVLRs kept\n");
+  return true;
+}
+
 }  // namespace
 
 int
@@ -315,8 +424,19 @@ main(int argc, char** argv)
   Cloud::Ptr cloud;
   pcl_ls3d::io::CloudInfo info;
   std::string why;
-  if (!parseOptions(argc, argv, o, why) || !loadInput(o, cloud, info, why) ||
-      !keepClasses(o, cloud, why)) {
+  if (!parseOptions(argc, argv, o, why)) {
+    print_error("%s\n", why.c_str());
+    return 1;
+  }
+  if (recordConversion(o)) {
+    const bool whole = o.classes.empty() && !o.load.region;
+    if (!(whole ? convertWholeFile(o, why) : convertSelectedRecords(o, why))) {
+      print_error("%s\n", why.c_str());
+      return 1;
+    }
+    return 0;
+  }
+  if (!loadInput(o, cloud, info, why) || !keepClasses(o, cloud, why)) {
     print_error("%s\n", why.c_str());
     return 1;
   }

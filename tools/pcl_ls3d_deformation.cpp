@@ -54,7 +54,7 @@ printHelp(const char* prog)
       "moved), then the residual of every epoch point, its sigma, significance and the connected\n"
       "deformed regions (Li, Xu, Chen & Tsai 2001).\n\n"
       "Usage: %s REFERENCE EPOCH [options]\n"
-      "  REFERENCE, EPOCH     .las .pcd .ply .xyz/.txt (a gridded DEM as x y z text works too;\n"
+      "  REFERENCE, EPOCH     .las .laz .copc.laz .pcd .ply .xyz/.txt (a gridded DEM as x y z text works too;\n"
       "                       the reference is loaded first, the epoch uses its local origin)\n"
       "  -estimator NAME      mm (default: LTS start + Tukey M-step, high breakdown and 95 %%\n"
       "                       efficiency), lms (Li: LMS subsets then M), md (Li's M-D), m (Tukey on\n"

@@ -35,12 +35,19 @@ namespace {
 void
 printHelp(const char* name)
 {
-  print_error("Syntax is: %s file.{las,pcd,ply,xyz,txt,csv} [more files] <options>\n", name);
+  print_error("Syntax is: %s file.{las,laz,copc.laz,pcd,ply,xyz,txt,csv} [more files] <options>\n",
+              name);
   print_info("  where options are:\n");
   print_info("    -columns x,y,z,... : column names of ASCII XYZ inputs (see pcl_ls3d_convert -h)\n");
+  print_info("    -bounds xmin,ymin,xmax,ymax[,zmin,zmax] : describe only the points in this box\n"
+             "                         (file coordinates); a COPC file decodes only the octree\n"
+             "                         nodes the box meets, and says how many\n");
+  print_info("    -level N           : with -bounds on COPC: octree levels 0..N only\n");
   print_info("    -json              : print one JSON object per file instead of text\n");
   print_info("    -h                 : this help\n");
-  print_info("  Every file is described; one error line per file that cannot be read (exit 1).\n");
+  print_info("  Every file is described; one error line per file that cannot be read (exit 1).\n"
+             "  LAZ: the compressor, chunk size and count, and the items; COPC: the octree's\n"
+             "  nodes, levels and points per level.\n");
 }
 
 // A SEGMENTS.pcd's labels are segment ids + 1 (0: in no segment), not classes; read as
@@ -63,6 +70,58 @@ describeSegments(const std::string& path)
   s["count"] = ids.size();
   s["points_in_none"] = none;
   return s;
+}
+
+const char*
+compressorName(int compressor)
+{
+  switch (compressor) {
+    case 1: return "pointwise";
+    case 2: return "pointwise-chunked";
+    case 3: return "layered-chunked";
+    default: return "none";
+  }
+}
+
+nlohmann::json
+describeLaz(const pcl_ls3d::io::LazInfo& z)
+{
+  nlohmann::json j;
+  j["compressor"] = compressorName(z.compressor);
+  // 0xFFFFFFFF: chunks of varying size (COPC: one per octree node).
+  j["chunk_size"] = z.chunk_size == 0xFFFFFFFFu ? nlohmann::json("variable") : nlohmann::json(z.chunk_size);
+  j["chunk_count"] = z.chunk_count;
+  j["chunk_table"] = z.chunk_table;
+  j["items"] = z.items;
+  return j;
+}
+
+nlohmann::json
+describeCopc(const pcl_ls3d::io::CopcHeaderInfo& c)
+{
+  nlohmann::json j;
+  j["center"] = {c.center[0], c.center[1], c.center[2]};
+  j["halfsize"] = c.halfsize;
+  j["spacing"] = c.spacing;
+  j["nodes"] = c.nodes;
+  j["levels"] = nlohmann::json::array();
+  for (const auto& l : c.levels)
+    j["levels"].push_back({{"level", l.level}, {"nodes", l.nodes}, {"points", l.points}});
+  return j;
+}
+
+nlohmann::json
+describeRegion(const pcl_ls3d::io::CloudInfo& info)
+{
+  nlohmann::json j;
+  j["copc"] = info.region.copc;
+  if (info.region.copc) {
+    j["nodes"] = info.region.nodes;
+    j["nodes_read"] = info.region.nodes_read;
+  }
+  j["points_decoded"] = info.region.points_decoded;
+  j["points_outside"] = info.points_outside_region;
+  return j;
 }
 
 nlohmann::json
@@ -115,8 +174,19 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
       vlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" +
                      std::to_string(v.data.size()) + " B)");
     l["vlrs"] = vlrs;
+    std::vector<std::string> evlrs;
+    for (const auto& v : h.evlrs)
+      evlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" +
+                      std::to_string(v.data.size()) + " B)");
+    l["evlrs"] = evlrs;
     j["las"] = l;
+    if (h.laz.compressed)
+      j["laz"] = describeLaz(h.laz);
+    if (h.copc.present)
+      j["copc"] = describeCopc(h.copc);
   }
+  if (info.region.applied)
+    j["region"] = describeRegion(info);
   const bool segments = info.segments_file;
   if (segments)
     j["segments"] = describeSegments(path);
@@ -148,6 +218,40 @@ printCrs(const nlohmann::json& j)
     print_info("  heights in %s, plan coordinates in %s (x %.7g): register, compare, deformation "
                "and the strip adjustment convert the heights to the plan unit\n",
                height.c_str(), plan.c_str(), factor);
+}
+
+/// The LAZ compression, the COPC octree and what a -bounds query read.
+void
+printLazAndCopc(const nlohmann::json& j)
+{
+  if (j.contains("laz")) {
+    const auto& z = j["laz"];
+    const std::string size = z["chunk_size"].is_string() ? "variable-size chunks"
+                             : "chunks of " + std::to_string(z["chunk_size"].get<std::uint64_t>()) + " points";
+    print_info("  LAZ %s, %s, %zu chunks (chunk table %s); items %s\n",
+               z["compressor"].get<std::string>().c_str(), size.c_str(),
+               z["chunk_count"].get<std::size_t>(), z["chunk_table"].get<bool>() ? "read" : "missing: chunks walked",
+               z["items"].get<std::string>().c_str());
+  }
+  if (j.contains("copc")) {
+    const auto& c = j["copc"];
+    std::string levels;
+    for (const auto& l : c["levels"])
+      levels += " " + std::to_string(l["level"].get<int>()) + ":" + std::to_string(l["nodes"].get<std::size_t>()) +
+                "/" + std::to_string(l["points"].get<std::uint64_t>());
+    print_info("  COPC octree: %zu nodes in %zu levels, spacing %g; per level (level:nodes/points):%s\n",
+               c["nodes"].get<std::size_t>(), c["levels"].size(), c["spacing"].get<double>(), levels.c_str());
+  }
+  if (j.contains("region")) {
+    const auto& r = j["region"];
+    if (r["copc"].get<bool>())
+      print_info("  -bounds: decoded %zu of %zu COPC nodes (%zu points), %zu points outside the box\n",
+                 r["nodes_read"].get<std::size_t>(), r["nodes"].get<std::size_t>(),
+                 r["points_decoded"].get<std::size_t>(), r["points_outside"].get<std::size_t>());
+    else
+      print_info("  -bounds: read all %zu points, %zu outside the box\n",
+                 r["points_decoded"].get<std::size_t>(), r["points_outside"].get<std::size_t>());
+  }
 }
 
 void
@@ -191,7 +295,10 @@ printText(const nlohmann::json& j)
                off[1], off[2], l["generating_software"].get<std::string>().c_str());
     for (const auto& v : l["vlrs"])
       print_info("  VLR %s\n", v.get<std::string>().c_str());
+    for (const auto& v : l["evlrs"])
+      print_info("  EVLR %s\n", v.get<std::string>().c_str());
   }
+  printLazAndCopc(j);
   if (j.contains("segments")) {
     const auto& s = j["segments"];
     if (s["count"].is_null())
@@ -232,7 +339,9 @@ main(int argc, char** argv)
   pcl_ls3d::io::LoadOptions options;
   std::vector<std::string> files;
   std::string why;
-  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, {"-columns"}, {"-json"}, files, why)) {
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, {"-columns", "-bounds", "-level"}, {"-json"},
+                                       files, why) ||
+      !pcl_ls3d::tools::regionOptions(argc, argv, options.region, why)) {
     print_error("%s\n", why.c_str());
     return 1;
   }

@@ -35,13 +35,13 @@ printHelp(const char* prog)
   print_info("Least-squares 3D surface matching (LS3D): estimates the similarity transform that maps\n"
              "SOURCE onto TARGET.\n\n"
              "Usage: %s SOURCE TARGET [options]\n"
-             "  SOURCE, TARGET       .las .pcd .ply .xyz/.txt (target loaded first; the source uses\n"
-             "                       the target's local origin)\n"
+             "  SOURCE, TARGET       .las .laz .copc.laz .pcd .ply .xyz/.txt (target loaded first;\n"
+             "                       the source uses the target's local origin)\n"
              "  -classes C1,C2       match on these LAS classes only (e.g. 2,6: ground and buildings,\n"
              "                       the stable surfaces of airborne strips; vegetation seen from two\n"
              "                       flight lines biases the shift); -o still moves every point\n"
-             "  -o ALIGNED           write the transformed source (input coordinates); a LAS source\n"
-             "                       written as .las keeps its version, point format, VLRs (CRS)\n"
+             "  -o ALIGNED           write the transformed source (input coordinates); a LAS or LAZ\n"
+             "                       source written as .las or .laz keeps its version, point format, VLRs (CRS)\n"
              "                       and every attribute: only X, Y, Z and the bounds change;\n"
              "                       other outputs declare the target's CRS (else the source's):\n"
              "                       a PCD or PLY in its header, a LAS as a WKT VLR. Heights in\n"
@@ -463,7 +463,8 @@ writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentRepor
   const std::string target_crs = pcl_ls3d::maps::crsOfFile(pair.tinfo);
   pcl_ls3d::maps::recordCrs(target_crs.empty() ? pcl_ls3d::maps::crsOfFile(pair.sinfo) : target_crs,
                             so);
-  const bool las_to_las = pair.sinfo.format == "las" && pcl_ls3d::io::fileExtension(o.out_path) == "las";
+  const std::string out_ext = pcl_ls3d::io::fileExtension(o.out_path);
+  const bool las_to_las = pair.sinfo.format == "las" && (out_ext == "las" || out_ext == "laz");
   if (!o.classes.empty() && !las_to_las)
     pcl::transformPointCloud(*pair.whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));
   if (!las_to_las)  // the target's height unit again

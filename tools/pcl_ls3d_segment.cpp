@@ -61,7 +61,7 @@ printHelp(const char* prog)
 {
   print_info("Multi-factor segmentation by improved multi-rule region growing (Wang et al. 2021).\n\n"
              "Syntax: %s INPUT [options]\n"
-             "  INPUT              .las .pcd .ply .xyz/.txt (LAS classification / PCD label = reference;\n"
+             "  INPUT              .las .laz .copc.laz .pcd .ply .xyz/.txt (LAS classification / PCD label = reference;\n"
              "                     its numbers of returns, where recorded, tell parked cars from shrubs;\n"
              "                     a CRS in feet is segmented in metres: lengths, thresholds and\n"
              "                     the options below are metres, SEGMENTS.pcd keeps the file's unit;\n"

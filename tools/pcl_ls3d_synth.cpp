@@ -59,7 +59,7 @@ printHelp(const char* name)
       "  common options:\n"
       "    -seed N            : random seed (default 1)\n"
       "    -o DIR             : output folder (created if missing)\n"
-      "    -format F          : pcd | ply | las | xyz (default pcd)\n"
+      "    -format F          : pcd | ply | las | laz | xyz (default pcd)\n"
       "    -noise S           : isotropic noise sigma per axis (pair/strips 0.05 m, scene 0.03 m,\n"
       "                         li 20 units)\n"
       "    -overwrite         : replace existing output files\n"
@@ -474,8 +474,8 @@ main(int argc, char** argv)
     return -1;
   }
   parse_argument(argc, argv, "-format", format);
-  if (format != "pcd" && format != "ply" && format != "las" && format != "xyz") {
-    print_error("-format must be pcd, ply, las or xyz, got '%s'.\n", format.c_str());
+  if (format != "pcd" && format != "ply" && format != "las" && format != "laz" && format != "xyz") {
+    print_error("-format must be pcd, ply, las, laz or xyz, got '%s'.\n", format.c_str());
     return -1;
   }
   const bool overwrite = find_switch(argc, argv, "-overwrite");

@@ -32,6 +32,7 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -166,6 +167,51 @@ parseNumberList(const std::string& text, std::vector<double>& values)
     values.push_back(v);
   }
   return !values.empty() && text.back() != ',';
+}
+
+/// \brief -bounds "xmin,ymin,xmax,ymax" (2-D) or "xmin,ymin,xmax,ymax,zmin,zmax" (3-D), in file
+///        coordinates, into a region box (io::Region); false with a one-line reason naming
+///        `option` for another count, a non-finite number or a minimum above its maximum.
+inline bool
+parseBounds(const std::string& option, const std::string& text, pcl_ls3d::io::Region& region,
+            std::string& why)
+{
+  std::vector<double> v;
+  if (!parseNumberList(text, v) || (v.size() != 4 && v.size() != 6)) {
+    why = option + " takes xmin,ymin,xmax,ymax or xmin,ymin,xmax,ymax,zmin,zmax (file coordinates), "
+                   "got '" + text + "'";
+    return false;
+  }
+  region.use_z = v.size() == 6;
+  const double zmin = region.use_z ? v[4] : 0.0, zmax = region.use_z ? v[5] : 0.0;
+  if (v[0] > v[2] || v[1] > v[3] || zmin > zmax) {
+    why = option + " '" + text + "': a minimum exceeds its maximum";
+    return false;
+  }
+  region.box = Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], zmin), Eigen::Vector3d(v[2], v[3], zmax));
+  return true;
+}
+
+/// \brief The region options of a tool that reads one cloud: -bounds (parseBounds) and -level N
+///        (COPC octree levels 0..N only; needs -bounds). `region` is left empty without -bounds.
+inline bool
+regionOptions(int argc, char** argv, std::optional<pcl_ls3d::io::Region>& region, std::string& why)
+{
+  const char* bounds = optionValue(argc, argv, "-bounds");
+  int level = -1;
+  if (!integerOption(argc, argv, "-level", level, why, 0, 40))
+    return false;
+  if (!bounds) {
+    if (level >= 0)
+      return (why = "-level needs -bounds (the box to read the octree levels of)"), false;
+    return true;
+  }
+  pcl_ls3d::io::Region r;
+  if (!parseBounds("-bounds", bounds, r, why))
+    return false;
+  r.max_level = level;
+  region = r;
+  return true;
 }
 
 /// \brief "2,6" into LAS class codes (whole numbers 0–255); false with a one-line reason naming

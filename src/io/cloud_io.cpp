@@ -7,6 +7,7 @@
 #include <pcl_ls3d/io/ply_io.h>
 #include <pcl_ls3d/io/xyz_io.h>
 
+#include "las_region.h"
 #include "mapped_file.h"
 #include "pcl_formats.h"
 #include "point_fields.h"
@@ -17,6 +18,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace pcl_ls3d {
 namespace io {
@@ -81,6 +83,35 @@ formatOf(const std::string& ext)
   return "";
 }
 
+/// A region on a file without an octree or records (PCD, PLY, XYZ): the points are read, then
+/// those outside the box are left out; the local origin stays the one of the whole file.
+void
+keepRegion(const Region& region, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info)
+{
+  const int dims = region.use_z ? 3 : 2;
+  std::size_t kept = 0;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector3d hi = -lo;
+  for (const PointLiDAR& p : cloud.points) {
+    const Eigen::Vector3d x = info.origin + p.getVector3fMap().cast<double>();
+    if (((x.head(dims).array() >= region.box.min().head(dims).array()) &&
+         (x.head(dims).array() <= region.box.max().head(dims).array())).all()) {
+      cloud.points[kept++] = p;
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+  }
+  info.region.applied = true;
+  info.region.points_decoded = cloud.size();
+  info.points_outside_region = cloud.size() - kept;
+  cloud.points.resize(kept);
+  cloud.width = static_cast<std::uint32_t>(kept);
+  cloud.height = 1;
+  info.points_loaded = kept;
+  info.min_file = kept ? lo : Eigen::Vector3d::Zero();
+  info.max_file = kept ? hi : Eigen::Vector3d::Zero();
+}
+
 bool
 loadByFormat(const std::string& format, const std::string& path,
              pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
@@ -88,19 +119,34 @@ loadByFormat(const std::string& format, const std::string& path,
 {
   if (format == "las" || format == "laz")  // a LAZ file is LAS with compressed records
     return readLasFile(path, cloud, info, error, options);
+  LoadOptions whole = options;  // the region is applied below, once the points are read
+  whole.region.reset();
+  if (options.region) {
+    if (options.region->max_level >= 0) {
+      error = "a maximum octree level needs a COPC file (.copc.laz); this one has no octree";
+      return false;
+    }
+    whole.allow_empty = true;
+  }
+  bool ok = false;
   if (format == "pcd" || format == "ply") {
     detail::MappedFile file;
     if (!file.open(path, error))
       return false;
-    return format == "pcd" ? readPcd(file.data(), file.size(), cloud, info, error, options)
-                           : readPly(file.data(), file.size(), cloud, info, error, options);
+    ok = format == "pcd" ? readPcd(file.data(), file.size(), cloud, info, error, whole)
+                         : readPly(file.data(), file.size(), cloud, info, error, whole);
   }
-  std::ifstream in(path);
-  if (!in) {
-    error = "cannot open file";
-    return false;
+  else {
+    std::ifstream in(path);
+    if (!in) {
+      error = "cannot open file";
+      return false;
+    }
+    ok = readXyz(in, cloud, info, error, whole);
   }
-  return readXyz(in, cloud, info, error, options);
+  if (ok && options.region)
+    keepRegion(*options.region, cloud, info);
+  return ok;
 }
 
 }  // namespace
@@ -131,10 +177,13 @@ loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo
   }
   if (reason.empty() && !options.origin.allFinite() && options.use_origin)
     reason = "the forced origin is not finite";
+  if (reason.empty() && options.region)
+    las::checkRegion(*options.region, reason);
   if (reason.empty() && !loadByFormat(format, path, cloud, info, reason, options))
     cloud.clear();
   else if (reason.empty() && info.points_loaded == 0 && !options.allow_empty) {
-    reason = info.points_in_file == 0
+    reason = info.points_outside_region > 0 ? std::string("no point of the file lies inside the region")
+             : info.points_in_file == 0
                  ? std::string("no points in the file")
                  : "no finite points (all " + std::to_string(info.points_in_file) +
                        " points are NaN/inf)";

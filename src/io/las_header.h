@@ -23,18 +23,35 @@ namespace las {
 bool
 parseHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error);
 
-/// The header and VLRs of a file (parsed into `h`) rebuilt without its LASzip VLR: `extra_vlr`
-/// (a whole VLR's bytes, or empty) follows the kept VLRs, then the bytes that lay between the
-/// VLRs and the points. The VLR count and offset to the points are set, the format byte's
-/// compression bits cleared.
+/// The LASzip VLR, or a COPC one (the info VLR, the hierarchy EVLR): records that describe how
+/// the point data is compressed and laid out, and so belong to one encoding of it only.
+bool
+describesCompression(const LasVlr& v);
+
+/// The header and VLRs of a file (parsed into `h`) rebuilt without the VLRs that describe its
+/// compression (describesCompression): `extra_vlr` (a whole VLR's bytes, or empty) follows the
+/// kept VLRs, then the bytes that lay between the VLRs and the points. The VLR count and offset
+/// to the points are set, the format byte's compression bits cleared.
 std::vector<std::uint8_t>
 rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h,
             const std::vector<std::uint8_t>& extra_vlr);
 
-/// Appends the file's EVLRs (as they are) to `out`, a rebuilt file whose header is at its start,
-/// and points the header's EVLR offset at them.
+/// Appends the file's EVLRs (as they are, but for a COPC hierarchy, see describesCompression) to
+/// `out`, a rebuilt file whose header is at its start, and sets the header's EVLR offset and
+/// count.
 void
 appendEvlrs(const std::uint8_t* data, const LasHeaderInfo& h, std::vector<std::uint8_t>& out);
+
+/// Sets the point counts of a rebuilt header `head` (of a file parsed into `h`): the total and
+/// per return, legacy fields left zero where `h` left them zero (formats 6–10 in LAS 1.4).
+void
+writeCounts(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::uint64_t n,
+            const std::uint64_t by_return[15]);
+
+/// Sets the header bounds of `head` from the records' integer bounds (zero when `empty`).
+void
+writeBounds(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, const IntegerBox& box,
+            bool empty);
 
 /// The PointLiDAR fields a LAS record fills.
 std::vector<std::string>
@@ -77,6 +94,10 @@ readLazPoints(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointL
 /// container is unreadable.
 bool
 describeChunks(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error);
+
+/// Fills h.copc when the file is COPC (laz/copc_reader.h); false when its hierarchy is broken.
+bool
+describeCopc(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error);
 
 }  // namespace laz_detail
 }  // namespace io

@@ -6,6 +6,7 @@
 
 #include "las_format.h"
 #include "las_header.h"
+#include "las_region.h"
 #include "laz/laszip_items.h"
 #include "laz/laz_chunk_reader.h"
 #include "local_origin.h"
@@ -322,6 +323,12 @@ parseHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::s
   return readEvlrs(data, size, h, error);
 }
 
+bool
+describesCompression(const LasVlr& v)
+{
+  return (v.user_id == kLaszipUserId && v.record_id == 22204) || v.user_id == "copc";
+}
+
 std::vector<std::uint8_t>
 rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h,
             const std::vector<std::uint8_t>& extra_vlr)
@@ -331,7 +338,7 @@ rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h,
   std::uint32_t count = 0;
   for (const LasVlr& v : h.vlrs) {
     const std::size_t bytes = kVlrHeaderSize + v.data.size();
-    if (!(v.user_id == kLaszipUserId && v.record_id == 22204)) {
+    if (!describesCompression(v)) {
       head.insert(head.end(), data + pos, data + pos + bytes);
       ++count;
     }
@@ -349,14 +356,55 @@ rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h,
 void
 appendEvlrs(const std::uint8_t* data, const LasHeaderInfo& h, std::vector<std::uint8_t>& out)
 {
+  std::uint64_t pos = h.evlrs.empty() ? 0 : get<std::uint64_t>(data + kEvlrStart);
+  std::uint32_t kept = 0;
+  const std::size_t start = out.size();
+  for (const LasVlr& v : h.evlrs) {
+    const std::uint64_t bytes = kEvlrHeaderSize + v.data.size();
+    if (!describesCompression(v)) {
+      out.insert(out.end(), data + pos, data + pos + bytes);
+      ++kept;
+    }
+    pos += bytes;
+  }
   if (h.evlrs.empty())
     return;
-  const auto start = get<std::uint64_t>(data + kEvlrStart);
-  std::uint64_t bytes = 0;
-  for (const LasVlr& v : h.evlrs)
-    bytes += kEvlrHeaderSize + v.data.size();
-  put<std::uint64_t>(out.data() + kEvlrStart, out.size());
-  out.insert(out.end(), data + start, data + start + bytes);
+  put<std::uint64_t>(out.data() + kEvlrStart, kept ? start : 0);
+  put<std::uint32_t>(out.data() + kEvlrCount, kept);
+}
+
+void
+writeCounts(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::uint64_t n,
+            const std::uint64_t by_return[15])
+{
+  // Legacy fields stay zero where the input left them zero (formats 6–10 in LAS 1.4).
+  const bool legacy = h.legacy_point_count != 0 || h.version_minor < 4;
+  const auto clip = [](std::uint64_t v) {
+    return static_cast<std::uint32_t>(std::min<std::uint64_t>(v, 0xFFFFFFFFu));
+  };
+  put<std::uint32_t>(head.data() + kLegacyCount, legacy ? clip(n) : 0u);
+  for (int r = 0; r < 5; ++r)
+    put<std::uint32_t>(head.data() + kLegacyByReturn + 4 * r, legacy ? clip(by_return[r]) : 0u);
+  if (h.version_minor >= 4 && head.size() >= kHeaderSize14) {
+    put<std::uint64_t>(head.data() + kCount64, n);
+    for (int r = 0; r < 15; ++r)
+      put<std::uint64_t>(head.data() + kByReturn64 + 8 * r, by_return[r]);
+  }
+}
+
+void
+writeBounds(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, const IntegerBox& box,
+            bool empty)
+{
+  for (int c = 0; c < 3; ++c) {
+    double a = 0.0, b = 0.0;
+    if (!empty) {
+      a = box.lo[c] * h.scale[c] + h.offset[c];
+      b = box.hi[c] * h.scale[c] + h.offset[c];
+    }
+    put<double>(head.data() + kMaxX + 16 * c, std::max(a, b));
+    put<double>(head.data() + kMaxX + 16 * c + 8, std::min(a, b));
+  }
 }
 
 std::vector<std::string>
@@ -422,8 +470,47 @@ bool
 readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
 {
   return las::parseHeader(data, size, h, error) &&
-         (!h.laz.compressed || laz_detail::describeChunks(data, size, h, error));
+         (!h.laz.compressed || (laz_detail::describeChunks(data, size, h, error) &&
+                                laz_detail::describeCopc(data, size, h, error)));
 }
+
+namespace {
+
+/// A box query: the records inside become a LAS file of their own (las_region.h), read as any
+/// other; `info` describes the whole input (its header, compression and octree) and what the
+/// query read and left out.
+bool
+readLasRegion(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
+              CloudInfo& info, std::string& error, const LoadOptions& options)
+{
+  LasHeaderInfo& h = info.las;
+  std::vector<std::uint8_t> las;
+  RegionInfo read;
+  if ((h.laz.compressed && !(laz_detail::describeChunks(data, size, h, error) &&
+                             laz_detail::describeCopc(data, size, h, error))) ||
+      !las::extractRegion(data, size, h, *options.region, las, read, error))
+    return false;
+  LoadOptions inner = options;
+  inner.region.reset();
+  inner.allow_empty = true;
+  CloudInfo part;
+  if (!readLas(las.data(), las.size(), cloud, part, error, inner))
+    return false;
+  info.origin = part.origin;
+  info.min_file = part.min_file;
+  info.max_file = part.max_file;
+  info.points_in_file = static_cast<std::size_t>(h.point_count);
+  info.points_loaded = part.points_loaded;
+  info.points_outside_region = info.points_in_file - info.points_loaded;
+  info.region = read;
+  if (cloud.empty() && !options.allow_empty) {
+    error = "no point of the file lies inside the region";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
 
 bool
 readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
@@ -436,8 +523,11 @@ readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
     return false;
   const LasHeaderInfo& h = info.las;
   info.fields = las::loadedFields(h);
+  if (options.region)
+    return readLasRegion(data, size, cloud, info, error, options);
   if (h.laz.compressed) {
-    if (!laz_detail::readLazPoints(data, size, cloud, info, error, options))
+    if (!laz_detail::readLazPoints(data, size, cloud, info, error, options) ||
+        !laz_detail::describeCopc(data, size, info.las, error))
       return false;
   } else {
     const std::size_t n = static_cast<std::size_t>(h.point_count);

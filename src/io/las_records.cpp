@@ -5,6 +5,7 @@
 #include <pcl_ls3d/io/las_records.h>
 
 #include "las_format.h"
+#include "las_region.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -25,6 +26,7 @@ struct LasRecordFile::Impl
   std::vector<std::uint8_t> buffer;
   const std::uint8_t* records = nullptr;
   bool new_layout = false;             // point formats 6–10
+  RegionInfo region;
 
   ~Impl()
   {
@@ -40,6 +42,22 @@ struct LasRecordFile::Impl
     std::vector<std::uint8_t> las;
     if (!decompressLaz(data, size, las, error))
       return false;
+    return replaceBy(las, error);
+  }
+
+  /// Only the records inside `r`, as the LAS file of their own that las::extractRegion() makes
+  /// (a COPC file decodes only the nodes the box meets).
+  bool
+  crop(const Region& r, std::string& error)
+  {
+    std::vector<std::uint8_t> las;
+    return las::extractRegion(data, size, header, r, las, region, error) &&
+           replaceBy(las, error);
+  }
+
+  bool
+  replaceBy(std::vector<std::uint8_t>& las, std::string& error)
+  {
     if (map)
       ::munmap(map, size);
     map = nullptr;
@@ -57,7 +75,7 @@ LasRecordFile&
 LasRecordFile::operator=(LasRecordFile&&) noexcept = default;
 
 bool
-LasRecordFile::open(const std::string& path, std::string& error)
+LasRecordFile::open(const std::string& path, std::string& error, const Region* region)
 {
   impl_ = std::make_unique<Impl>();
   const int fd = ::open(path.c_str(), O_RDONLY);
@@ -95,6 +113,7 @@ LasRecordFile::open(const std::string& path, std::string& error)
   }
   ::close(fd);
   if (!readLasHeader(impl_->data, impl_->size, impl_->header, error) ||
+      (region && !impl_->crop(*region, error)) ||
       (impl_->header.laz.compressed && !impl_->decompress(error))) {
     error = path + ": " + error;
     return false;
@@ -102,6 +121,12 @@ LasRecordFile::open(const std::string& path, std::string& error)
   impl_->records = impl_->data + impl_->header.offset_to_points;
   impl_->new_layout = impl_->header.point_format >= 6;
   return true;
+}
+
+const RegionInfo&
+LasRecordFile::regionInfo() const
+{
+  return impl_->region;
 }
 
 const LasHeaderInfo&

@@ -1,9 +1,11 @@
 /// \file las_rewrite.cpp
 /// \brief Record-by-record LAS rewrite with corrected coordinates (las_rewrite.h).
 
+#include <pcl_ls3d/io/las_io.h>
 #include <pcl_ls3d/io/las_rewrite.h>
 
 #include "las_format.h"
+#include "las_header.h"
 
 #include <algorithm>
 #include <cmath>
@@ -34,26 +36,6 @@ quantise(const Eigen::Vector3d& x, const LasHeaderInfo& h, std::int32_t q[3])
     q[k] = static_cast<std::int32_t>(v);
   }
   return true;
-}
-
-// Point counts (total and per return) of the records written, in the header's conventions:
-// legacy fields stay zero where the input left them zero (formats 6–10 in LAS 1.4).
-void
-writeCounts(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::size_t n,
-            const std::uint64_t by_return[15])
-{
-  using las::put;
-  const bool legacy = h.legacy_point_count != 0 || h.version_minor < 4;
-  put<std::uint32_t>(head.data() + las::kLegacyCount,
-                     legacy ? static_cast<std::uint32_t>(std::min<std::size_t>(n, 0xFFFFFFFFu)) : 0u);
-  for (int r = 0; r < 5; ++r)
-    put<std::uint32_t>(head.data() + las::kLegacyByReturn + 4 * r,
-                       legacy ? static_cast<std::uint32_t>(std::min<std::uint64_t>(by_return[r], 0xFFFFFFFFu)) : 0u);
-  if (h.version_minor >= 4 && head.size() >= las::kHeaderSize14) {
-    put<std::uint64_t>(head.data() + las::kCount64, n);
-    for (int r = 0; r < 15; ++r)
-      put<std::uint64_t>(head.data() + las::kByReturn64 + 8 * r, by_return[r]);
-  }
 }
 
 // Offsets of data after the records (1.3 waveform packets, 1.4 EVLRs) move with the record block.
@@ -92,11 +74,7 @@ rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection,
   const std::uint64_t old_end = h.offset_to_points + static_cast<std::uint64_t>(in.size()) * stride;
 
   std::vector<std::uint8_t> records(n * stride);
-  std::int32_t lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) {
-    lo[k] = std::numeric_limits<std::int32_t>::max();
-    hi[k] = std::numeric_limits<std::int32_t>::min();
-  }
+  las::IntegerBox box;
   std::uint64_t by_return[15] = {};
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = selection ? (*selection)[k] : k;
@@ -118,9 +96,7 @@ rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection,
       ++summary.moved;
     }
     for (int c = 0; c < 3; ++c) {
-      const std::int32_t v = las::get<std::int32_t>(out + 4 * c);
-      lo[c] = std::min(lo[c], v);
-      hi[c] = std::max(hi[c], v);
+      box.add(c, las::get<std::int32_t>(out + 4 * c));
     }
     const int ret = in.returnNumber(i);
     if (ret >= 1 && ret <= 15)
@@ -129,27 +105,30 @@ rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection,
 
   // Header and VLRs (and any bytes before the records) as they are, then the changed fields.
   std::vector<std::uint8_t> head(in.data(), in.data() + h.offset_to_points);
-  for (int c = 0; c < 3; ++c) {
-    double a = 0.0, b = 0.0;
-    if (n > 0) {
-      a = lo[c] * h.scale[c] + h.offset[c];
-      b = hi[c] * h.scale[c] + h.offset[c];
-    }
-    las::put<double>(head.data() + las::kMaxX + 16 * c, std::max(a, b));
-    las::put<double>(head.data() + las::kMaxX + 16 * c + 8, std::min(a, b));
-  }
+  las::writeBounds(head, h, box, n == 0);
   if (selection) {
-    writeCounts(head, h, n, by_return);
+    las::writeCounts(head, h, n, by_return);
     shiftTailOffsets(head, h, old_end,
                      static_cast<std::int64_t>(n * stride) - static_cast<std::int64_t>(in.size() * stride));
   }
 
-  std::ofstream file(path, std::ios::binary | std::ios::trunc);
   const std::uint8_t* tail = in.data() + std::min<std::uint64_t>(old_end, in.bytes());
   const std::size_t tail_size = in.bytes() > old_end ? static_cast<std::size_t>(in.bytes() - old_end) : 0;
-  if (!file || !file.write(reinterpret_cast<const char*>(head.data()), static_cast<std::streamsize>(head.size())) ||
-      !file.write(reinterpret_cast<const char*>(records.data()), static_cast<std::streamsize>(records.size())) ||
-      !file.write(reinterpret_cast<const char*>(tail), static_cast<std::streamsize>(tail_size)) || !file.flush()) {
+  std::vector<std::uint8_t> bytes = std::move(head);
+  bytes.insert(bytes.end(), records.begin(), records.end());
+  records = std::vector<std::uint8_t>();
+  bytes.insert(bytes.end(), tail, tail + tail_size);
+  if (fileExtension(path) == "laz") {  // the name asks for LAZ: the same file, compressed
+    std::vector<std::uint8_t> laz;
+    if (!compressLas(bytes.data(), bytes.size(), laz, error)) {
+      error = "cannot write " + path + " as LAZ: " + error;
+      return false;
+    }
+    bytes.swap(laz);
+  }
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  if (!file || !file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())) ||
+      !file.flush()) {
     error = "cannot write " + path;
     return false;
   }

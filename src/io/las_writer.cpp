@@ -108,8 +108,8 @@ chooseOffset(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& or
   return true;
 }
 
-/// The VLRs to write: those that describe the input's records (extra bytes, LASzip) would lie
-/// about ours and are dropped; false when one is too large for a VLR.
+/// The VLRs to write: those that describe the input's records (extra bytes, LASzip, COPC's octree)
+/// would lie about ours and are dropped; false when one is too large for a VLR.
 bool
 keptVlrs(const SaveOptions& o, std::vector<const LasVlr*>& vlrs, std::size_t& bytes,
          std::string& error)
@@ -117,7 +117,8 @@ keptVlrs(const SaveOptions& o, std::vector<const LasVlr*>& vlrs, std::size_t& by
   vlrs.clear();
   bytes = 0;
   for (const auto& v : o.las_vlrs) {
-    if ((v.user_id == "LASF_Spec" && v.record_id == 4) || v.user_id == "laszip encoded")
+    if ((v.user_id == "LASF_Spec" && v.record_id == 4) || v.user_id == "laszip encoded" ||
+        v.user_id == "copc")
       continue;
     if (v.data.size() > 65535) {
       error = "VLR " + v.user_id + "/" + std::to_string(v.record_id) + " exceeds 65535 bytes";

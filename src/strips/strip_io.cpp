@@ -273,19 +273,35 @@ loadStrip(const std::vector<InputFile>& inputs, const StripSource& source,
   return true;
 }
 
+namespace {
+
+// A corrected COPC file is written as plain LAZ (its records move, so the octree would no longer
+// hold them): "x.copc.laz" gives "x" and ".laz", any other name its stem and extension.
+std::pair<std::string, std::string>
+outputStemAndExtension(const fs::path& in)
+{
+  std::string stem = in.stem().string();
+  const std::string ext = in.extension().string();
+  if (stem.size() > 5 && io::fileExtension(stem) == "copc" && io::fileExtension(in.filename()) == "laz")
+    stem.erase(stem.size() - 5);
+  return {stem, ext};
+}
+
+}  // namespace
+
 std::vector<OutputUnit>
 outputUnits(const LoadedStrips& block, const std::string& dir, bool keep_files)
 {
   std::vector<OutputUnit> units;
   const bool split = !block.sources.empty() && block.sources[0].point_source_id >= 0;
   for (std::size_t f = 0; f < block.inputs.size(); ++f) {
-    const fs::path in(block.inputs[f].path);
+    const auto [stem, ext] = outputStemAndExtension(block.inputs[f].path);
     if (!split || keep_files) {
-      units.push_back({static_cast<int>(f), -1, (fs::path(dir) / in.filename()).string()});
+      units.push_back({static_cast<int>(f), -1, (fs::path(dir) / (stem + ext)).string()});
       continue;
     }
     for (const auto& kv : block.inputs[f].point_sources) {
-      const std::string name = in.stem().string() + "_psid" + std::to_string(kv.first) + in.extension().string();
+      const std::string name = stem + "_psid" + std::to_string(kv.first) + ext;
       units.push_back({static_cast<int>(f), kv.first, (fs::path(dir) / name).string()});
     }
   }

@@ -70,16 +70,24 @@ laszipPayload(const std::vector<std::uint8_t>& b)
   return offsetToPoints(b) - (34 + 6 * 3);  // PF3: POINT10, GPSTIME11, RGB12
 }
 
-/// readLas() must refuse with one line containing `expected`.
+/// readLas() on the bytes, and loadCloud() on them written to a .laz file (what every tool
+/// calls), must refuse with one line containing `expected`.
 void
-expectError(const std::vector<std::uint8_t>& bytes, const std::string& expected)
+expectError(const std::vector<std::uint8_t>& bytes, const std::string& expected,
+            const io::LoadOptions& options = {})
 {
   pcl::PointCloud<PointLiDAR> cloud;
   io::CloudInfo info;
   std::string error;
-  EXPECT_FALSE(io::readLas(bytes.data(), bytes.size(), cloud, info, error)) << expected;
+  EXPECT_FALSE(io::readLas(bytes.data(), bytes.size(), cloud, info, error, options)) << expected;
   EXPECT_NE(error.find(expected), std::string::npos) << "got: " << error;
   EXPECT_EQ(error.find('\n'), std::string::npos) << "one line: " << error;
+  pcl_ls3d_test::TempDir dir("ls3d_laz_hostile_load");
+  const std::string path = dir.file("hostile.laz");
+  pcl_ls3d_test::writeBytes(path, bytes);
+  std::string load_error;
+  EXPECT_FALSE(io::loadCloud(path, cloud, info, load_error, options)) << expected;
+  EXPECT_EQ(load_error, path + ": " + error);
 }
 
 /// decompressLaz() must give back exactly `las` (the chunks found without the table).
@@ -283,5 +291,118 @@ TEST(LazHostile, MemoryStaysBounded)
     const auto r = pcl_ls3d_test::probeLoad(dir.file(f.first), 512);
     ASSERT_TRUE(r.child_ok) << "the load crashed or hit the allocation cap";
     EXPECT_LT(r.peak_growth_kb, 32768) << "peak RSS growth " << r.peak_growth_kb << " KiB";
+  }
+}
+
+namespace {
+
+/// simple.copc.laz (laspy) with its hierarchy patched: the root page's place, and entry `e` of
+/// the root page (32 bytes: key, offset, byte size, point count).
+struct CopcFile
+{
+  std::vector<std::uint8_t> bytes;
+  std::size_t info = 0;  // the COPC info VLR's payload
+
+  bool
+  load()
+  {
+    bytes = pcl_ls3d_test::readBytes(pcl_ls3d_test::sharedData("laz/laspy/simple.copc.laz"));
+    if (bytes.size() < 400)
+      return false;
+    std::uint16_t header;
+    std::memcpy(&header, bytes.data() + 94, 2);
+    info = header + 54u;  // COPC requires its info VLR first
+    return std::string(reinterpret_cast<const char*>(bytes.data()) + header + 2, 4) == "copc";
+  }
+  std::uint64_t
+  rootOffset() const
+  {
+    std::uint64_t v;
+    std::memcpy(&v, bytes.data() + info + 40, 8);
+    return v;
+  }
+  std::uint64_t
+  rootSize() const
+  {
+    std::uint64_t v;
+    std::memcpy(&v, bytes.data() + info + 48, 8);
+    return v;
+  }
+  std::size_t
+  entry(std::size_t e) const
+  {
+    return static_cast<std::size_t>(rootOffset()) + 32 * e;
+  }
+};
+
+}  // namespace
+
+// COPC hierarchies that point outside the file or into a loop, keys outside the octree, counts
+// beyond the header, and nodes whose bytes or counts are wrong: one line through loadCloud, a
+// full load and a box query alike, with memory bounded.
+TEST(LazHostile, CopcHierarchiesAreRefusedThroughLoadCloud)
+{
+  CopcFile f;
+  if (!f.load())
+    GTEST_SKIP() << "shared data not found: laz/laspy/simple.copc.laz";
+  io::LoadOptions query;
+  io::Region box;
+  box.box = Eigen::AlignedBox3d(Eigen::Vector3d::Constant(-1e9), Eigen::Vector3d::Constant(1e9));
+  query.region = box;
+  {  // the intact file loads, both ways
+    pcl::PointCloud<PointLiDAR> cloud;
+    io::CloudInfo info;
+    std::string error;
+    ASSERT_TRUE(io::readLas(f.bytes.data(), f.bytes.size(), cloud, info, error, query)) << error;
+    ASSERT_TRUE(info.region.copc);
+    ASSERT_EQ(cloud.size(), info.las.point_count);
+  }
+  const std::size_t e0 = f.entry(0);
+  std::int32_t size0, count0;
+  std::memcpy(&size0, f.bytes.data() + e0 + 24, 4);
+  std::memcpy(&count0, f.bytes.data() + e0 + 28, 4);
+  std::uint64_t offset0;
+  std::memcpy(&offset0, f.bytes.data() + e0 + 16, 8);
+  ASSERT_GT(count0, 0) << "the root page's first entry is a node with points";
+  pcl_ls3d_test::TempDir dir("ls3d_copc_hostile");
+  struct Case
+  {
+    const char* name;
+    std::vector<std::uint8_t> bytes;
+    const char* expect;
+    bool query_only;  // the hierarchy is sound; only decoding the node shows the damage
+  };
+  std::vector<std::uint8_t> loop = patched<std::int32_t>(f.bytes, e0 + 28, -1);
+  loop = patched<std::uint64_t>(loop, e0 + 16, f.rootOffset());
+  loop = patched<std::int32_t>(loop, e0 + 24, static_cast<std::int32_t>(f.rootSize()));
+  const std::vector<Case> cases = {
+      {"root page beyond the file", patched<std::uint64_t>(f.bytes, f.info + 40, f.bytes.size() + 64),
+       "lies outside the file", false},
+      {"root page of a partial entry", patched<std::uint64_t>(f.bytes, f.info + 48, f.rootSize() + 5),
+       "not whole entries", false},
+      {"a loop", loop, "referenced twice (a loop", false},
+      {"a node beyond the file", patched<std::uint64_t>(f.bytes, e0 + 16, 1ull << 40),
+       "points at bytes outside the file", false},
+      {"a key outside the octree", patched<std::int32_t>(f.bytes, e0 + 4, 5), "outside the octree",
+       false},
+      {"more points than the header", patched<std::int32_t>(f.bytes, e0 + 28, 2000000000),
+       "more points than the header", false},
+      {"a node one byte short", patched<std::int32_t>(f.bytes, e0 + 24, size0 - 1), "COPC node 0-0-0-0",
+       true},
+      {"a node one byte late", patched<std::uint64_t>(f.bytes, e0 + 16, offset0 + 1), "COPC node 0-0-0-0",
+       true},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    expectError(c.bytes, c.expect, query);
+    if (!c.query_only) {
+      expectError(c.bytes, c.expect);
+      const std::string path = dir.file(std::string(c.name) + ".copc.laz");
+      pcl_ls3d_test::writeBytes(path, c.bytes);
+      const auto r = pcl_ls3d_test::probeLoad(path, 256);
+      ASSERT_TRUE(r.child_ok) << "the load crashed or hit the allocation cap";
+      EXPECT_FALSE(r.loaded);
+      EXPECT_LT(r.peak_growth_kb, 32768) << "peak RSS growth " << r.peak_growth_kb << " KiB";
+    }
   }
 }

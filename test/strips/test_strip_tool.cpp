@@ -178,6 +178,36 @@ TEST_F(StripTool, CorrectedLasKeepsEveryByteButXyzAndBounds)
   EXPECT_NE(again.code, 0);
 }
 
+// A LAZ block comes back as LAZ: the corrected strips of strips.laz (pcl_ls3d_convert's lossless
+// LAZ of strips.las) decode to exactly the records of the LAS run's corrected strips, header and
+// VLRs included (the LASzip VLR aside).
+TEST_F(StripTool, LazBlockComesBackAsLazWithTheLasRunsRecords)
+{
+  auto r = runTool("pcl_ls3d_convert", in("strips.las") + " " + in("strips.laz"), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* ext : {"las", "laz"}) {
+    r = runTool("pcl_ls3d_strip_adjust", in(std::string("strips.") + ext) + " -split psid -reference 1 -q -o '" +
+                                             dir + "/out_" + ext + "'",
+                dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  std::size_t compared = 0;
+  for (const auto& entry : fs::directory_iterator(dir + "/out_las")) {
+    const std::string las_path = entry.path().string();
+    const std::string laz_path = dir + "/out_laz/" + entry.path().stem().string() + ".laz";
+    ASSERT_TRUE(fs::exists(laz_path)) << laz_path;
+    const std::string laz = slurp(laz_path);
+    ASSERT_NE(static_cast<std::uint8_t>(laz[104]) & 0x80, 0) << "not compressed: " << laz_path;
+    // Decompressed by pcl_ls3d_convert: the LAS run's file byte for byte.
+    const std::string back = dir + "/back_" + entry.path().filename().string();
+    r = runTool("pcl_ls3d_convert", "'" + laz_path + "' '" + back + "'", dir);
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(slurp(back) == slurp(las_path)) << laz_path;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 3u);
+}
+
 TEST_F(StripTool, BadInputGivesOneErrorLine)
 {
   // A LAZ file: the compression bit of the point-format byte set.

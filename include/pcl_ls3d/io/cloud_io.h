@@ -27,10 +27,12 @@
 #include <pcl/point_cloud.h>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,6 +61,26 @@ struct LazInfo
   std::string items;                ///< the item list, e.g. "POINT10 v2, GPSTIME11 v2"
 };
 
+/// \brief Nodes and points of one level of a COPC octree (level 0: the root).
+struct CopcLevel
+{
+  int level = 0;
+  std::size_t nodes = 0;      ///< nodes of this level that hold points
+  std::uint64_t points = 0;
+};
+
+/// \brief The octree of a COPC file (a `.copc.laz`: LAZ whose variable-size chunks are the nodes
+///        of an octree, listed in its hierarchy EVLR); `present` is false for any other file.
+struct CopcHeaderInfo
+{
+  bool present = false;
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< root cube's centre (file units)
+  double halfsize = 0.0;                             ///< half the root cube's edge
+  double spacing = 0.0;                              ///< point spacing at the root level
+  std::size_t nodes = 0;                             ///< nodes holding points
+  std::vector<CopcLevel> levels;                     ///< per level, from the root down
+};
+
 /// \brief LAS public-header summary (filled when CloudInfo::format == "las", LAZ included).
 struct LasHeaderInfo
 {
@@ -82,6 +104,31 @@ struct LasHeaderInfo
   std::vector<LasVlr> vlrs;                 ///< the VLRs between header and points
   std::vector<LasVlr> evlrs;                ///< LAS 1.4 extended VLRs after the points
   LazInfo laz;                              ///< compression of the records (LAZ)
+  CopcHeaderInfo copc;                      ///< the COPC octree, when the file is COPC
+};
+
+/// \brief A box query: loadCloud() keeps only the points inside `box` (file coordinates, the
+///        faces included). A COPC file decodes only the octree nodes whose cube meets the box
+///        (in parallel); any other file is read through and filtered (LAS and LAZ chunk by
+///        chunk, keeping only the records inside).
+struct Region
+{
+  Eigen::AlignedBox3d box;  ///< file coordinates; only x and y are compared unless use_z
+  bool use_z = false;
+  /// COPC only: read nodes down to this octree level (0: the root only), a coarser but evenly
+  /// spread subset of the points in the box. < 0: every level. Other files are refused with
+  /// a level, as they have no octree to thin by.
+  int max_level = -1;
+};
+
+/// \brief What a region query read (CloudInfo::region).
+struct RegionInfo
+{
+  bool applied = false;            ///< LoadOptions::region was given
+  bool copc = false;               ///< answered from the COPC octree
+  std::size_t nodes = 0;           ///< COPC: nodes holding points
+  std::size_t nodes_read = 0;      ///< COPC: nodes decoded (their cube meets the box)
+  std::uint64_t points_decoded = 0;  ///< records decoded (COPC: of the nodes read)
 };
 
 /// \brief How loadCloud() reads a file.
@@ -93,6 +140,8 @@ struct LoadOptions
   /// ASCII XYZ column names, comma separated, e.g. "x,y,z,intensity,classification". Empty: use a
   /// header line if the file has one (see xyz_io.h), else x y z in columns 1–3, the rest ignored.
   std::string xyz_columns;
+  /// Keep only the points inside this box (see Region); CloudInfo::region says what was read.
+  std::optional<Region> region;
 };
 
 /// \brief How saveCloud() writes a file.
@@ -136,6 +185,10 @@ struct CloudInfo
   /// its label field holds segment ids and is not read as the classification.
   bool segments_file = false;
   std::size_t points_in_file = 0, points_loaded = 0, points_dropped_nonfinite = 0;
+  /// Points left out by LoadOptions::region (outside the box, or in nodes below its level):
+  /// points_loaded + points_dropped_nonfinite + points_outside_region == points_in_file.
+  std::size_t points_outside_region = 0;
+  RegionInfo region;                                 ///< what a region query read
   std::vector<std::size_t> nonfinite_indices;        ///< file indices of the dropped points, ascending
   Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units
   Eigen::Vector3d max_file = Eigen::Vector3d::Zero();
@@ -151,9 +204,11 @@ struct CloudInfo
   }
 };
 
-/// Loads PCD, PLY, LAS (1.0–1.4, formats 0–10), LAZ (LASzip-compressed LAS, see las_io.h) or
-/// ASCII XYZ (by extension and/or signature) into local coordinates x_local = x_file - origin.
-/// Returns false with a one-line reason.
+/// Loads PCD, PLY, LAS (1.0–1.4, formats 0–10), LAZ (LASzip-compressed LAS, COPC included, see
+/// las_io.h) or ASCII XYZ (by extension and/or signature) into local coordinates
+/// x_local = x_file - origin. With LoadOptions::region only the points inside its box are kept
+/// (and the auto origin is chosen from them); a region holding none is an error unless
+/// allow_empty. Returns false with a one-line reason.
 bool
 loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
           std::string& error, const LoadOptions& options = {});

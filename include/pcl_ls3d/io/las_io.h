@@ -19,6 +19,9 @@
 /// order). Written: point formats 0–3 pointwise-chunked and 6–8 layered-chunked (items version 2
 /// resp. 3), 50 000 points per chunk, with a chunk table, the LASzip VLR last and bit 0x80 set, so
 /// any LASzip reader opens the file. Waveform formats (4, 5, 9, 10) are refused with one line.
+/// COPC (`.copc.laz`) is LAZ whose variable-size chunks are the nodes of an octree: read whole
+/// as any LAZ file (LasHeaderInfo::copc then describes the octree), or through a box query
+/// (LoadOptions::region, cloud_io.h), which decodes only the nodes the box meets.
 ///
 /// The reader is lenient about version/format pairs (any of formats 0–10 in any 1.0–1.4 file) but
 /// strict about sizes: every offset and count is checked against the buffer before use, so a bad
@@ -90,14 +93,16 @@ writeLazFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
 
 /// Compresses an in-memory LAS file into LAZ, losslessly: every record byte, the header, the VLRs
 /// (a LASzip VLR is added last, the format byte gets bit 0x80) and the EVLRs are kept; only the
-/// offsets that move with them change. `chunk_size` points per chunk. Waveform formats (4, 5, 9,
+/// offsets that move with them change. COPC's info VLR and hierarchy EVLR, which would describe
+/// chunks this file does not have, are left out. `chunk_size` points per chunk. Waveform formats (4, 5, 9,
 /// 10) are refused.
 bool
 compressLas(const std::uint8_t* las, std::size_t size, std::vector<std::uint8_t>& laz,
             std::string& error, std::uint32_t chunk_size = 50000);
 
 /// Decompresses an in-memory LAZ file into LAS: the records decoded, the LASzip VLR removed and
-/// the compression bits cleared; the header, the other VLRs and the EVLRs are kept.
+/// the compression bits cleared; the header, the other VLRs and the EVLRs are kept (a COPC
+/// file's info VLR and hierarchy EVLR are removed too: they locate compressed chunks).
 bool
 decompressLaz(const std::uint8_t* laz, std::size_t size, std::vector<std::uint8_t>& las,
               std::string& error);

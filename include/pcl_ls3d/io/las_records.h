@@ -37,9 +37,16 @@ public:
 
   /// Maps and validates the file (damaged files are refused with a one-line reason). A LAZ file
   /// is decompressed into memory whole: header(), data() and the records are then those of the
-  /// LAS file it compresses (no LASzip VLR, no compression bits).
+  /// LAS file it compresses (no LASzip VLR, no COPC VLR or hierarchy, no compression bits).
+  /// With a `region`, only the records inside its box are kept (a COPC file decodes only the
+  /// octree nodes the box meets): the file is then the LAS file of those records, with the
+  /// input's header, VLRs and EVLRs and their counts and bounds (see regionInfo()).
   bool
-  open(const std::string& path, std::string& error);
+  open(const std::string& path, std::string& error, const Region* region = nullptr);
+
+  /// What a region given to open() read (nodes, points decoded); not applied without one.
+  const RegionInfo&
+  regionInfo() const;
 
   const LasHeaderInfo&
   header() const;

@@ -6,7 +6,8 @@
 ///        when a subset of the records is written, the point counts and the offsets of what
 ///        follows the records). The strip adjustment writes its corrected strips this way, so
 ///        intensity, returns, flags, classification, GPS time, RGB/NIR, extra bytes and the CRS
-///        survive byte for byte, whatever the point format.
+///        survive byte for byte, whatever the point format. A LAZ input (opened by LasRecordFile)
+///        can be written back as LAZ: the name of the output decides.
 
 #include <pcl_ls3d/io/las_records.h>
 
@@ -33,8 +34,10 @@ struct LasRewriteSummary
 
 /// Writes the records `selection` (indices into `in`, in the order given; null = all, in file
 /// order) to `path`, moved by `move`. New coordinates are quantised with the input's scale and
-/// offset; a coordinate outside the int32 range is an error. Refuses an existing `path`
-/// unless `overwrite`. False with a one-line reason.
+/// offset; a coordinate outside the int32 range is an error. A `path` ending in .laz gets the
+/// same file compressed (compressLas(): header, VLRs, EVLRs and every record byte kept, the
+/// LASzip VLR added), any other name LAS. Refuses an existing `path` unless `overwrite`. False
+/// with a one-line reason.
 bool
 rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection,
            const RecordMover& move, const std::string& path, LasRewriteSummary& summary,

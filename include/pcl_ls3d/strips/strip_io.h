@@ -91,7 +91,9 @@ struct OutputUnit
 
 /// The outputs for `dir`: each input under its own name, or with a split one file per input and
 /// point-source id, NAME_psid<ID>.EXT (ids without a strip, e.g. 0, are written unchanged);
-/// `keep_files` writes each split input whole under its own name instead.
+/// `keep_files` writes each split input whole under its own name instead. The format is the
+/// input's (LAS, LAZ, PCD, ...); a COPC input "NAME.copc.laz" gives "NAME.laz" (plain LAZ: its
+/// moved records no longer fit the octree).
 std::vector<OutputUnit>
 outputUnits(const LoadedStrips& block, const std::string& dir, bool keep_files);
 

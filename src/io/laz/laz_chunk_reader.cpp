@@ -9,6 +9,7 @@
 #include "../las_format.h"
 
 #include <algorithm>
+#include <new>
 #include <sstream>
 
 #ifdef _OPENMP
@@ -55,12 +56,13 @@ struct RecordBuffer
   std::unique_ptr<std::uint8_t[]> bytes;
   std::size_t capacity = 0;
 
+  /// Null when the memory cannot be had (a hostile count): the caller refuses the chunk.
   std::uint8_t*
   reserve(std::size_t n)
   {
     if (n > capacity) {
-      bytes.reset(new std::uint8_t[n]);
-      capacity = n;
+      bytes.reset(new (std::nothrow) std::uint8_t[n]);
+      capacity = bytes ? n : 0;
     }
     return bytes.get();
   }
@@ -333,8 +335,13 @@ LazChunkReader::forEachChunk(int threads, const std::function<void(std::uint64_t
 #ifdef _OPENMP
       worker = static_cast<std::size_t>(omp_get_thread_num());
 #endif
-      std::uint8_t* out = buffers[t].reserve(static_cast<std::size_t>(points_[b + t]) * record_length_);
-      ok[t] = decodeChunk(b + t, *decoders[worker], out, errors[t]);
+      const std::size_t bytes = static_cast<std::size_t>(points_[b + t]) * record_length_;
+      std::uint8_t* out = buffers[t].reserve(bytes);
+      ok[t] = out ? decodeChunk(b + t, *decoders[worker], out, errors[t])
+                  : (errors[t] = "chunk " + std::to_string(b + t + 1) + ": no memory for the " +
+                                 std::to_string(bytes) + " bytes of its " +
+                                 std::to_string(points_[b + t]) + " points",
+                     false);
     }
     if (firstFailure(m))
       return false;

@@ -4,6 +4,7 @@
 
 #include <pcl_ls3d/io/las_io.h>
 
+#include "copc_reader.h"
 #include "laz_chunk_reader.h"
 
 #include "../las_format.h"
@@ -85,6 +86,18 @@ describeChunks(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std
   if (!reader.open(data, size, h, error))
     return false;
   describe(reader, h);
+  return true;
+}
+
+bool
+describeCopc(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::string& error)
+{
+  if (!laz::isCopc(h))
+    return true;
+  laz::CopcFile copc;
+  if (!laz::openCopc(data, size, h, copc, error))
+    return false;
+  h.copc = laz::summariseCopc(copc);
   return true;
 }
 
