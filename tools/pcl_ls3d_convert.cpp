@@ -2,7 +2,7 @@
 /// \brief Converts point clouds between LAS, PCD, PLY and ASCII XYZ in local coordinates with the
 ///        georeferenced origin restored on output; splits by flight strip and filters by class.
 
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
 #include <pcl_ls3d/io/cloud_io.h>

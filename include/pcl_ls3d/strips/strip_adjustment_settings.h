@@ -3,7 +3,9 @@
 /// \brief Every knob of the strip block adjustment in one plain struct with in-class defaults
 ///        and isValid() (the AdjustmentSettings style). Lengths are in the unit of the data.
 
+#include <pcl_ls3d/adjustment/adjustment_settings.h>
 #include <pcl_ls3d/adjustment/parameter_block.h>
+#include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
 #include <cstddef>
@@ -45,7 +47,7 @@ struct StripAdjustmentSettings
   // --- model -------------------------------------------------------------------------------------
   ParameterModel model = ParameterModel::RIGID_6;  ///< per strip: 7, 6, 3 or height only
   ConjugateRuleType rule = ConjugateRuleType::LND;
-  std::string estimator = "zuo";                   ///< parseRobustEstimator() text
+  RobustEstimatorChoice estimator;                 ///< Zuo's 0/1 weight at 6 σ0 by default
   /// Conjugate points farther than this are none (also the reach of the overlap culling).
   double max_distance = 10.0;
 
@@ -59,31 +61,25 @@ struct StripAdjustmentSettings
   bool soft_datum = false;
   Vector7d soft_sigmas = (Vector7d() << 0.5, 0.5, 0.5, 1e-3, 1e-3, 1e-3, 1e-4).finished();
 
-  // --- iterations (Zuo §4) ---------------------------------------------------------------------------
-  int max_iterations = 30;
-  double angle_epsilon = 1e-6;        ///< [rad]
-  double translation_epsilon = 1e-4;  ///< [length]
-  double scale_epsilon = 1e-8;
-  /// Correspondences are frozen once every change is below this fraction of its σ.
-  double freeze_sigma_fraction = 0.1;
-  /// While far from the solution, each overlap direction observes about this many points.
-  std::size_t coarse_observations = 15000;
-  double determinability_threshold = 1e-7;
+  // --- iterations, determinability, precision: the pair engine's settings ------------------------
+  /// The block iterates as a pair does (advancePhase(), iteration_control.h) and reads these
+  /// fields of the engine's settings: max_iterations, angle_epsilon, translation_epsilon,
+  /// scale_epsilon, freeze_sigma_fraction, coarse_observations, determinability_threshold,
+  /// spatial_precision and precision_cell (0 = 8 × the observation spacing). The rest is the
+  /// pair engine's alone. Two defaults differ from a pair's: see blockAdjustmentDefaults().
+  AdjustmentSettings adjustment = blockAdjustmentDefaults();
 
-  // --- precision ------------------------------------------------------------------------------------
-  bool spatial_precision = true;  ///< spatial sandwich (spatial_precision.h) instead of eq. 14
-  double precision_cell = 0.0;    ///< 0 = 8 × the observation spacing
+  /// The engine's defaults with the two a block changes:
+  ///  - translation_epsilon 1e-4 (a pair: 1e-5): a block stops only when every strip's change
+  ///    is below it, and a tenth of a millimetre is far below airborne strips' noise;
+  ///  - coarse_observations 15 000 (a pair: 200 000): a block counts them per overlap direction,
+  ///    and a block has many overlaps, each of which needs only a settled estimate from them.
+  static AdjustmentSettings
+  blockAdjustmentDefaults();
 
   bool
   isValid(std::string* why = nullptr) const;
 };
-
-/// "7", "6", "3", "z" (or "1") → model; false when unknown.
-bool
-parseParameterModel(const std::string& text, ParameterModel& model);
-/// "7", "6", "3", "z".
-std::string
-parameterModelName(ParameterModel model);
 
 }  // namespace strips
 }  // namespace pcl_ls3d
