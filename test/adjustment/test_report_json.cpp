@@ -1,5 +1,6 @@
 // report_json.h: the -json document of an AdjustmentReport, checked field by field against the
 // report it was written from (a user of the C++ API gets what pcl_ls3d_register writes).
+#include <pcl_ls3d/adjustment/parameter_block.h>
 #include <pcl_ls3d/adjustment/report_json.h>
 
 #include <nlohmann/json.hpp>

@@ -96,7 +96,7 @@ class SegmentTool : public ::testing::Test
   ToolResult
   run(const std::string& args)
   {
-    return pcl_ls3d_test::runTool("pcl_ls3d_segment", args, dir_.string());
+    return pcl_ls3d_test::runTool(tool_.filename().string(), args, dir_.string());  // tool_ is in the tool dir
   }
 
   fs::path dir_, tool_, input_;
