@@ -5,6 +5,8 @@
 //   - align peak:   VmHWM after align() with the high-water mark reset (clear_refs = 5) just
 //                   before it, i.e. input clouds held + everything LS3D allocates.
 // Target (issue): 5 M-point strips registered in <= 30 s on 2 cores with <= 4 GB peak.
+#include "process_memory.h"
+
 #include <pcl_ls3d/evaluation/ls3d_method.h>
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 #include <pcl_ls3d/rules/lnd_rule.h>
@@ -15,10 +17,6 @@
 #include <pcl/console/print.h>
 #include <pcl/console/time.h>
 
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -28,27 +26,6 @@
 using namespace pcl_ls3d;
 
 namespace {
-
-/// A "Vm...:" line of /proc/self/status in kB (-1 when unavailable).
-long
-procStatusKb(const std::string& key)
-{
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(key + ":", 0) == 0)
-      return std::stol(line.substr(key.size() + 1));
-  return -1;
-}
-
-/// Resets VmHWM to the current RSS (Linux >= 4.0); false when not permitted.
-bool
-resetPeak()
-{
-  std::ofstream out("/proc/self/clear_refs");
-  out << "5";
-  return static_cast<bool>(out);
-}
 
 /// Child: generate, register strip 2 onto strip 1, print one RESULT line.
 /// LS3D-LND with Zuo's TIN facet as the local surface (LndRule::Surface::TRIANGLE), same
@@ -109,13 +86,13 @@ runChild(long points_per_strip, unsigned int seed, bool parallel, double thin, b
   }  // the block and its copies are freed here
   const double gen_s = tt.toc() / 1000.0;
 
-  const bool reset = resetPeak();
-  const long rss_before = procStatusKb("VmRSS");
+  const bool reset = bench_process::resetPeak();
+  const long rss_before = bench_process::statusKb("VmRSS");
   evaluation::Ls3dMethodSettings ls;
   ls.source_thinning = thin;
   const auto run = triangle ? runTriangleLnd(source, target, ls)
                             : evaluation::runLs3d(ConjugateRuleType::LND, source, target, ls);
-  const long hwm = procStatusKb("VmHWM");
+  const long hwm = bench_process::statusKb("VmHWM");
   const auto err =
       evaluation::computeTransformError(run.transformation, truth, evaluation::cloudToMatrix(*source));
   std::printf("RESULT %zu %zu %.3f %.3f %.3f %d %d %.6f %.6f %.5f %ld %ld %d %s\n", source->size(),
@@ -128,49 +105,13 @@ runChild(long points_per_strip, unsigned int seed, bool parallel, double thin, b
 /// Accuracy sanity bound on the mean displacement error [m] (not an issue target).
 constexpr double kMaxMeanError = 0.05;
 
-struct ChildResult
-{
-  bool ok = false;
-  std::string line;
-  long maxrss_kb = 0;
-};
-
 /// Re-executes this program with -child N and collects its RESULT line and rusage.
-ChildResult
+bench_process::ChildResult
 spawnChild(long n, unsigned int seed, bool parallel, double thin, bool triangle)
 {
-  ChildResult r;
-  int fd[2];
-  if (pipe(fd) != 0)
-    return r;
-  const pid_t pid = fork();
-  if (pid == 0) {
-    dup2(fd[1], STDOUT_FILENO);
-    close(fd[0]);
-    close(fd[1]);
-    const std::string ns = std::to_string(n), ss = std::to_string(seed), ts = std::to_string(thin);
-    execl("/proc/self/exe", "benchmark_scaling", "-child", ns.c_str(), "-seed", ss.c_str(),
-          parallel ? "-parallel" : "-zigzag", "-thin", ts.c_str(), triangle ? "-triangle" : "-quadric",
-          static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  close(fd[1]);
-  std::string out;
-  char buf[4096];
-  ssize_t k;
-  while ((k = read(fd[0], buf, sizeof(buf))) > 0)
-    out.append(buf, static_cast<std::size_t>(k));
-  close(fd[0]);
-  int status = 0;
-  struct rusage ru {};
-  wait4(pid, &status, 0, &ru);
-  r.maxrss_kb = ru.ru_maxrss;
-  const auto pos = out.find("RESULT ");
-  if (pos != std::string::npos) {
-    r.line = out.substr(pos + 7, out.find('\n', pos) - pos - 7);
-    r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  }
-  return r;
+  return bench_process::runChild({"benchmark_scaling", "-child", std::to_string(n), "-seed", std::to_string(seed),
+                                  parallel ? "-parallel" : "-zigzag", "-thin", std::to_string(thin),
+                                  triangle ? "-triangle" : "-quadric"});
 }
 
 }  // namespace
@@ -212,7 +153,7 @@ main(int argc, char** argv)
   bool pass = true, ran_target_size = false, accurate = true;
   for (double m : sizes) {
     const long n = static_cast<long>(m * 1e6);
-    const ChildResult r = spawnChild(n, static_cast<unsigned int>(seed), parallel, thin, triangle);
+    const bench_process::ChildResult r = spawnChild(n, static_cast<unsigned int>(seed), parallel, thin, triangle);
     if (r.line.empty()) {
       std::printf("%10ld  child failed\n", n);
       pass = false;

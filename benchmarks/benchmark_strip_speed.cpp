@@ -9,19 +9,17 @@
 //   -block 5,10,20,40: N parallel strips of P M points (default 1), 20 % side overlap, 2 pts/m²,
 //          swath 200 m, plus 2 cross strips; growth per strip and per overlap printed.
 //          Target: 20 strips ≤ 90 s, ≤ 6 GB; growth linear in points and overlaps.
+#include "process_memory.h"
 #include "strip_bench_common.h"
 
 #include <pcl/console/parse.h>
-
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <cstdio>
 #include <sstream>
 
 using namespace pcl_ls3d;
 using namespace strip_bench;
+using namespace bench_process;
 
 namespace {
 
@@ -73,51 +71,6 @@ child(int strips, int cross, double mpts, double swath, double density, double o
   return r.ok ? 0 : 2;
 }
 
-struct ChildResult
-{
-  bool ok = false;
-  std::string line;
-  long maxrss_kb = 0;
-};
-
-ChildResult
-spawn(const std::vector<std::string>& args)
-{
-  ChildResult r;
-  int fd[2];
-  if (pipe(fd) != 0)
-    return r;
-  const pid_t pid = fork();
-  if (pid == 0) {
-    dup2(fd[1], STDOUT_FILENO);
-    close(fd[0]);
-    close(fd[1]);
-    std::vector<char*> argv;
-    for (const auto& a : args)
-      argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    execv("/proc/self/exe", argv.data());
-    _exit(127);
-  }
-  close(fd[1]);
-  std::string out;
-  char buf[4096];
-  ssize_t k;
-  while ((k = read(fd[0], buf, sizeof(buf))) > 0)
-    out.append(buf, static_cast<std::size_t>(k));
-  close(fd[0]);
-  int status = 0;
-  struct rusage ru {};
-  wait4(pid, &status, 0, &ru);
-  r.maxrss_kb = ru.ru_maxrss;
-  const auto pos = out.find("RESULT ");
-  if (pos != std::string::npos) {
-    r.line = out.substr(pos + 7, out.find('\n', pos) - pos - 7);
-    r.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  }
-  return r;
-}
-
 double
 field(const std::string& line, const std::string& key)
 {
@@ -164,7 +117,7 @@ main(int argc, char** argv)
   std::printf("benchmark_strip_speed: load %.2f\n", loadAverage());
   if (pair) {
     const double m = mpts > 0.0 ? mpts : 5.0;
-    const ChildResult r = spawn({"benchmark_strip_speed", "-child", "2", "-cross", "0", "-mpts", std::to_string(m),
+    const ChildResult r = runChild({"benchmark_strip_speed", "-child", "2", "-cross", "0", "-mpts", std::to_string(m),
                                  "-swath", "500", "-density", "4"});
     std::printf("pair 2 x %.1f M points, 20 %% overlap: %s\n  process peak %.0f MB, load %.2f\n", m,
                 r.ok ? r.line.c_str() : "FAILED", r.maxrss_kb / 1024.0, loadAverage());
@@ -175,7 +128,7 @@ main(int argc, char** argv)
   double prev_t = NAN, prev_n = NAN;
   for (int n : parseList(block_sizes)) {
     const double m = mpts > 0.0 ? mpts : 1.0;
-    const ChildResult r = spawn({"benchmark_strip_speed", "-child", std::to_string(n), "-cross", std::to_string(cross),
+    const ChildResult r = runChild({"benchmark_strip_speed", "-child", std::to_string(n), "-cross", std::to_string(cross),
                                  "-mpts", std::to_string(m), "-swath", "200", "-density", "2"});
     const double t = field(r.line, "adjust_s");
     std::printf("block %d x %.1f M + %d cross: %s\n  process peak %.0f MB, load %.2f; time per strip %.2f s",

@@ -23,7 +23,7 @@
 ///   -plain the picture alone, without margin (pixel for pixel the map's picture area)
 /// Not run by CTest: a viewing aid for docs/BENCHMARKS.md.
 
-#include "../tools/tool_arguments.h"
+#include "../tools/tool_options.h"
 
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>

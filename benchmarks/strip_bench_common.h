@@ -1,7 +1,7 @@
 #pragma once
 // Shared by the strip-adjustment benchmarks (benchmark_strip_*.cpp): generated blocks turned
 // into strips, one adjustment run with its wall time, the error of a strip's correction against
-// the generator's truth, and the process's memory (VmHWM with a resettable high-water mark).
+// the generator's truth and the machine's load (memory figures: process_memory.h).
 #include <pcl_ls3d/adjustment/similarity_jacobian.h>
 #include <pcl_ls3d/strips/strip_block_adjustment.h>
 #include <pcl_ls3d/strips/strip_io.h>
@@ -118,27 +118,6 @@ displacementSigma(const Block& b, const strips::StripAdjustmentReport& r, std::s
     sum += std::sqrt(std::max(0.0, (J * C * J.transpose()).trace()));
   }
   return n ? sum / static_cast<double>(n) : 0.0;
-}
-
-/// A /proc/self/status field in kB (VmHWM, VmRSS), −1 when absent.
-inline long
-statusKb(const std::string& key)
-{
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.compare(0, key.size() + 1, key + ":") == 0)
-      return std::stol(line.substr(key.size() + 1));
-  return -1;
-}
-
-/// Resets VmHWM to the current RSS (Linux >= 4.0); false when not permitted.
-inline bool
-resetPeak()
-{
-  std::ofstream out("/proc/self/clear_refs");
-  out << "5";
-  return static_cast<bool>(out);
 }
 
 inline double

@@ -4,7 +4,7 @@
 ///        σ0, converged; with -truth the displacement and parameter errors). -json writes the same.
 ///        On request also the robust estimators of issue 9 (-methods robust).
 
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
 #include <pcl_ls3d/evaluation/comparison_report.h>
@@ -12,6 +12,7 @@
 #include <pcl_ls3d/evaluation/pcl_methods.h>
 #include <pcl_ls3d/evaluation/robust_method.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/cloud_pair.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 
 #include <pcl/console/parse.h>
@@ -276,20 +277,16 @@ loadClouds(const Options& o, Clouds& c, std::string& why)
 {
   TicToc tt;
   tt.tic();
-  pcl::PointCloud<pcl_ls3d::PointLiDAR> target_lidar, source_lidar;
-  if (!pcl_ls3d::io::loadCloud(o.target_path, target_lidar, c.target_info, why))
+  pcl_ls3d::io::CloudPair pair;
+  if (!pcl_ls3d::io::loadCloudPair(o.target_path, o.source_path, pair, why))
     return false;
-  pcl_ls3d::io::LoadOptions with_origin;
-  with_origin.use_origin = true;
-  with_origin.origin = c.target_info.origin;
-  if (!pcl_ls3d::io::loadCloud(o.source_path, source_lidar, c.source_info, why, with_origin))
-    return false;
-  if (!pcl_ls3d::tools::checkInputCrs(
-          {{o.target_path, &c.target_info}, {o.source_path, &c.source_info}}, why, &c.heights))
-    return false;
-  c.source = toXYZ(source_lidar);
-  c.target = toXYZ(target_lidar);
-  c.working_origin = pcl_ls3d::pairToWorking(c.heights, c.target_info.origin, *c.target, *c.source);
+  pcl_ls3d::tools::printPairNotes(pair);
+  c.source = toXYZ(*pair.source);
+  c.target = toXYZ(*pair.target);
+  c.source_info = pair.source_info;
+  c.target_info = pair.target_info;
+  c.heights = pair.heights;
+  c.working_origin = pair.working_origin;
   print_info("Loaded source %s (%zu points) and target %s (%zu points), local origin "
              "(%.3f, %.3f, %.3f), in %.0f ms\n",
              o.source_path.c_str(), c.source->size(), o.target_path.c_str(), c.target->size(),

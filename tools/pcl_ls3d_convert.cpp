@@ -4,7 +4,7 @@
 ///        and crops to a box (-bounds; a COPC input decodes only the octree nodes it meets).
 ///        LAS/LAZ to LAS/LAZ without a layout change is done record by record, losslessly.
 
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
 #include <pcl_ls3d/io/cloud_io.h>

@@ -1,6 +1,6 @@
 // pcl_ls3d_deformation: robust matching of EPOCH onto REFERENCE and the map of what moved
 // (Li et al. 2001; issue 9).
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
 #include <pcl_ls3d/common/similarity_transform.h>
@@ -8,6 +8,7 @@
 #include <pcl_ls3d/deformation/deformation_map.h>
 #include <pcl_ls3d/deformation/point_residual.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/cloud_pair.h>
 #include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/io/pcd_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
@@ -297,7 +298,7 @@ bool
 parseSettings(int argc, char** argv, Options& o, std::string& why)
 {
   std::string estimator_text = "mm";
-  int params = 6, subsets = 0, min_region = 10, refine = 10, max_iter = 30;
+  int subsets = 0, min_region = 10, refine = 10, max_iter = 30;
   long long matching_points = 50000;
   double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, grow_k = 2.0;
   parse_argument(argc, argv, "-estimator", estimator_text);
@@ -305,9 +306,9 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   using pcl_ls3d::tools::integerOption;
   using pcl_ls3d::tools::numberOption;
   using pcl_ls3d::tools::optionValue;
-  if (!integerOption(argc, argv, "-params", params, why, 3, 7) || (params != 3 && params != 6 && params != 7))
-    return (why = std::string("-params expects 6, 7 or 3, got '") + optionValue(argc, argv, "-params") + "'"),
-           false;
+  pcl_ls3d::ParameterModel model = pcl_ls3d::ParameterModel::RIGID_6;
+  if (!pcl_ls3d::tools::parameterModelOption(argc, argv, {"6", "7", "3"}, model, why))
+    return false;
   if (!integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
       !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
       !integerOption(argc, argv, "-refine", refine, why, 0, 100) ||
@@ -334,17 +335,13 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   if (!pcl_ls3d::parseConjugateRuleType(o.rule_text, settings.rule) ||
       settings.rule == pcl_ls3d::ConjugateRuleType::ICP)
     return (why = "unknown -rule " + o.rule_text + " (lzd or lnd)"), false;
-  switch (params) {
-  case 7: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7); break;
-  case 6: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6); break;
-  case 3: m.adjustment.setParameterModel(pcl_ls3d::ParameterModel::TRANSLATION_3); break;
-  }
+  m.adjustment.setParameterModel(model);
   m.subsets = subsets;
   m.contamination = contamination;
   m.seed = static_cast<std::uint32_t>(seed);
-  if (params == 7)
+  if (model == pcl_ls3d::ParameterModel::SIMILARITY_7)
     m.sample_size = 8;
-  else if (params == 3)
+  else if (model == pcl_ls3d::ParameterModel::TRANSLATION_3)
     m.sample_size = 4;
   if (max_dist > 0.0)
     m.adjustment.max_correspondence_distance = max_dist;
@@ -405,16 +402,12 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   return true;
 }
 
-/// The two epochs: the reference first, the epoch in the reference's local origin.
-struct Epochs
+/// The two epochs (io::loadCloudPair): the reference is the pair's target, loaded first; the
+/// epoch its source, in the reference's local origin; heights in the plan unit around
+/// working_origin.
+struct Epochs : pcl_ls3d::io::CloudPair
 {
-  Cloud::Ptr reference{new Cloud}, epoch{new Cloud};
-  pcl_ls3d::io::CloudInfo rinfo, einfo;
   std::vector<Eigen::Vector3d> points;  ///< the epoch's points, local, in double
-  /// Heights in another unit than the plan are matched in the plan unit (working coordinates,
-  /// around working_origin; the clouds and points above); the files' origin is rinfo.origin.
-  pcl_ls3d::HeightUnits heights;
-  Eigen::Vector3d working_origin = Eigen::Vector3d::Zero();
   double load_ms = 0.0;
 };
 
@@ -423,26 +416,18 @@ loadEpochs(const Options& o, Epochs& e, std::string& error)
 {
   TicToc tt;
   tt.tic();
-  if (!pcl_ls3d::io::loadCloud(o.reference_path, *e.reference, e.rinfo, error))
+  if (!pcl_ls3d::io::loadCloudPair(o.reference_path, o.epoch_path, e, error, o.crs_wkt))
     return false;
-  pcl_ls3d::io::LoadOptions eopt;
-  eopt.use_origin = true;
-  eopt.origin = e.rinfo.origin;
-  if (!pcl_ls3d::io::loadCloud(o.epoch_path, *e.epoch, e.einfo, error, eopt))
-    return false;
-  if (!pcl_ls3d::tools::checkInputCrs({{o.reference_path, &e.rinfo}, {o.epoch_path, &e.einfo}},
-                                       error, &e.heights, o.crs_wkt))
-    return false;
-  e.working_origin = pcl_ls3d::pairToWorking(e.heights, e.rinfo.origin, *e.reference, *e.epoch);
+  pcl_ls3d::tools::printPairNotes(e);
   e.load_ms = tt.toc();
   print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
-             o.reference_path.c_str(), e.reference->size(), o.epoch_path.c_str(), e.epoch->size(),
-             e.rinfo.origin.x(), e.rinfo.origin.y(), e.rinfo.origin.z(), e.load_ms);
-  if (e.reference->size() < 3)
+             o.reference_path.c_str(), e.target->size(), o.epoch_path.c_str(), e.source->size(),
+             e.target_info.origin.x(), e.target_info.origin.y(), e.target_info.origin.z(), e.load_ms);
+  if (e.target->size() < 3)
     return (error = "the reference has fewer than 3 points"), false;
-  e.points.resize(e.epoch->size());
-  for (std::size_t i = 0; i < e.epoch->size(); ++i)
-    e.points[i] = (*e.epoch)[i].getVector3fMap().cast<double>();
+  e.points.resize(e.source->size());
+  for (std::size_t i = 0; i < e.source->size(); ++i)
+    e.points[i] = (*e.source)[i].getVector3fMap().cast<double>();
   return true;
 }
 
@@ -455,8 +440,8 @@ analyse(const Options& o, const Epochs& e, def::DeformationResult& result, doubl
   tt.tic();
   pcl::search::KdTree<pcl_ls3d::PointLiDAR>::Ptr tree(
       new pcl_ls3d::search::FlannKdTree<pcl_ls3d::PointLiDAR>);
-  tree->setInputCloud(e.reference);
-  const pcl_ls3d::PclTargetSurface<pcl_ls3d::PointLiDAR> surface(e.reference, tree);
+  tree->setInputCloud(e.target);
+  const pcl_ls3d::PclTargetSurface<pcl_ls3d::PointLiDAR> surface(e.target, tree);
   const pcl_ls3d::ConjugateRule::Ptr rule = pcl_ls3d::makeConjugateRule(o.settings.rule);
   if (!rule->prepare(surface, &why))
     return (why = "the reference cannot be used with rule " + o.rule_text + ": " + why), false;
@@ -534,7 +519,7 @@ printResult(const Epochs& e, const def::DeformationResult& result, const Centroi
   const def::RegionAnalysis& reg = result.regions;
   print_info("Robust scale %.4g; %zu of %zu epoch points observed, %zu significant; %zu regions, %zu noise "
              "clusters; %.2f %% of the area deformed\n",
-             mr.scale, result.field.observed, e.epoch->size(), result.field.significant_count,
+             mr.scale, result.field.observed, e.source->size(), result.field.significant_count,
              reg.regions.size(), reg.noise.size(), reg.percent_deformed);
   // A robust estimator takes the larger part to be stable; near half, the data cannot say which.
   if (reg.percent_deformed > kNearHalfPercent)
@@ -547,6 +532,29 @@ printResult(const Epochs& e, const def::DeformationResult& result, const Centroi
                r.id, r.sign > 0 ? "up/out" : "down/in", r.points, r.area, r.mean, r.min, r.max, r.volume);
   }
   print_info("Timings: load %.0f ms, matching and residuals %.0f ms\n", e.load_ms, run_ms);
+}
+
+/// The fits that competed for the start (deformation/start_choice.h) and the one chosen.
+nlohmann::json
+startChoiceJson(const def::StartChoice& choice, double block_support)
+{
+  nlohmann::json scores = nlohmann::json::object(), usable = nlohmann::json::object();
+  for (const auto& candidate : choice.candidates) {
+    scores[candidate.name] = finiteOrNull(candidate.scatter);  // null: refused, or its regions are the majority
+    usable[candidate.name] = candidate.usable;
+  }
+  return {{"chosen", choice.chosen}, {"stable_part_scatter", scores}, {"usable", usable},
+          {"block_support", block_support}};
+}
+
+nlohmann::json
+regionsJson(const std::vector<def::DeformationRegion>& regions, const Eigen::Vector3d& origin,
+            const pcl_ls3d::HeightUnits& heights)
+{
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& r : regions)
+    out.push_back(regionJson(r, origin, heights));
+  return out;
 }
 
 /// The -json report.
@@ -594,24 +602,15 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
   j["subsets"] = mr.subsets_drawn;
   j["rounds"] = mr.rounds;
   j["iterations"] = mr.iterations;
-  if (!result.start_choice.candidates.empty()) {
-    nlohmann::json scores = nlohmann::json::object(), usable = nlohmann::json::object();
-    for (const auto& candidate : result.start_choice.candidates) {
-      scores[candidate.name] = finiteOrNull(candidate.scatter);  // null: refused, or its regions are the majority
-      usable[candidate.name] = candidate.usable;
-    }
-    j["start_choice"] = {{"chosen", result.start_choice.chosen},
-                         {"stable_part_scatter", scores},
-                         {"usable", usable},
-                         {"block_support", mr.block_support}};
-  }
+  if (!result.start_choice.candidates.empty())
+    j["start_choice"] = startChoiceJson(result.start_choice, mr.block_support);
   j["stable_refinement"] = {{"rounds", result.refinement.rounds},
                             {"points_left_out", result.refinement.left_out},
                             {"stopped", result.refinement.stopped}};
   j["sigma0"] = a.sigma0;
   j["significance"] = def::toString(o.settings.residuals.rule);
   j["k"] = o.settings.residuals.k;
-  j["points"] = e.epoch->size();
+  j["points"] = e.source->size();
   j["points_observed"] = result.field.observed;
   j["points_significant"] = result.field.significant_count;
   j["epoch_centroid"] = {c.centroid.x(), c.centroid.y(), c.centroid.z()};
@@ -623,14 +622,9 @@ reportJson(const Options& o, const Epochs& e, const def::DeformationResult& resu
   j["area_observed"] = reg.area_observed;
   j["area_deformed"] = reg.area_deformed;
   j["spacing"] = reg.spacing;
-  nlohmann::json regions = nlohmann::json::array(), noise = nlohmann::json::array();
-  for (const auto& r : reg.regions)
-    regions.push_back(regionJson(r, origin, e.heights));
-  for (const auto& r : reg.noise)
-    noise.push_back(regionJson(r, origin, e.heights));
-  j["regions"] = regions;
-  j["noise"] = noise;
-  j["local_origin"] = {e.rinfo.origin.x(), e.rinfo.origin.y(), e.rinfo.origin.z()};
+  j["regions"] = regionsJson(reg.regions, origin, e.heights);
+  j["noise"] = regionsJson(reg.noise, origin, e.heights);
+  j["local_origin"] = {e.target_info.origin.x(), e.target_info.origin.y(), e.target_info.origin.z()};
   j["timings_ms"] = {{"load", e.load_ms}, {"deformation", run_ms}};
   return j;
 }
@@ -658,12 +652,12 @@ main(int argc, char** argv)
   printResult(e, result, centroid, run_ms);
 
   // -crs, else the CRS the reference declares: the map's and the residual file's.
-  const std::string crs_wkt = o.crs_wkt.empty() ? pcl_ls3d::maps::crsOfFile(e.rinfo) : o.crs_wkt;
+  const std::string crs_wkt = o.crs_wkt.empty() ? pcl_ls3d::maps::crsOfFile(e.target_info) : o.crs_wkt;
   if (!o.out_path.empty()) {
-    Cloud epoch_in_file_units = *e.epoch;  // in the reference's height unit, as its CRS
+    Cloud epoch_in_file_units = *e.source;  // in the reference's height unit, as its CRS
     pcl_ls3d::heightsToFile(epoch_in_file_units, e.heights.target, e.heights.target,
-                            e.rinfo.origin.z());
-    if (!writeResiduals(o.out_path, epoch_in_file_units, result, e.rinfo.origin, crs_wkt, error))
+                            e.target_info.origin.z());
+    if (!writeResiduals(o.out_path, epoch_in_file_units, result, e.target_info.origin, crs_wkt, error))
       return fail(error), 1;
     print_info("Wrote %s\n", o.out_path.c_str());
   }

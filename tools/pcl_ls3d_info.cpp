@@ -5,7 +5,7 @@
 ///        Bounds are in the file's global frame: a PCD whose header records a pcl_ls3d origin
 ///        (a SEGMENTS.pcd holds local floats) is read in it by io::loadCloud, and the text says so.
 
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
 #include <pcl_ls3d/io/cloud_io.h>

@@ -1,11 +1,14 @@
 // pcl_ls3d_register: least-squares 3-D surface matching of SOURCE onto TARGET (Zuo et al. 2012).
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
+#include <pcl_ls3d/adjustment/report_json.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/cloud_pair.h>
 #include <pcl_ls3d/io/las_rewrite.h>
 #include <pcl_ls3d/io/strip_tools.h>
+#include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 
@@ -117,107 +120,6 @@ readTruth(const std::string& path, Eigen::Matrix4d& T, std::string& error)
   return true;
 }
 
-nlohmann::json
-matrixJson(const Eigen::Matrix4d& T)
-{
-  nlohmann::json rows = nlohmann::json::array();
-  for (int r = 0; r < 4; ++r)
-    rows.push_back({T(r, 0), T(r, 1), T(r, 2), T(r, 3)});
-  return rows;
-}
-
-using pcl_ls3d::tools::finiteOrNull;
-
-nlohmann::json
-reportJson(const pcl_ls3d::AdjustmentReport& r, const Eigen::Matrix4d& T_input, bool converged,
-           const Eigen::Vector3d& origin, const Eigen::Vector3d& cloud_origin)
-{
-  const auto& names = pcl_ls3d::similarityParameterNames();
-  nlohmann::json j;
-  j["transformation"] = matrixJson(T_input);
-  j["converged"] = converged;
-  j["termination"] = pcl_ls3d::terminationTypeToString(r.termination);
-  j["message"] = r.message;
-  j["iterations"] = r.iterations;
-  j["sigma0"] = r.sigma0;
-  j["rule"] = r.rule_name;
-  j["estimator"] = r.estimator_name;
-  nlohmann::json params, sigmas, determinable, fixed;
-  for (std::size_t i = 0; i < 7; ++i) {
-    params[names[i]] = r.parameters[static_cast<int>(i)];
-    sigmas[names[i]] = finiteOrNull(r.sigmas[static_cast<int>(i)]);
-    determinable[names[i]] = r.determinable[i];
-    fixed[names[i]] = r.fixed[i];
-  }
-  j["parameters"] = params;
-  j["parameters_note"] = "reduced frame: x_t - local_origin = t + m R (x_s - local_origin_source)";
-  j["sigmas"] = sigmas;
-  j["determinable"] = determinable;
-  j["fixed"] = fixed;
-  nlohmann::json corr = nlohmann::json::array();
-  for (int a = 0; a < 7; ++a) {
-    nlohmann::json row = nlohmann::json::array();
-    for (int b = 0; b < 7; ++b)
-      row.push_back(r.correlation(a, b));
-    corr.push_back(row);
-  }
-  j["correlation"] = corr;
-  auto matrix7 = [](const pcl_ls3d::Matrix7d& M) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (int a = 0; a < 7; ++a) {
-      nlohmann::json row = nlohmann::json::array();
-      for (int b = 0; b < 7; ++b)
-        row.push_back(M(a, b));
-      rows.push_back(row);
-    }
-    return rows;
-  };
-  j["qxx"] = matrix7(r.qxx);
-  j["covariance"] = matrix7(r.covariance);
-  j["precision_model"] = r.precision_model;
-  nlohmann::json formal;
-  for (std::size_t i = 0; i < 7; ++i)
-    formal[names[i]] = finiteOrNull(r.sigmas_formal[static_cast<int>(i)]);
-  j["sigmas_formal"] = formal;
-  j["source_noise"] = r.source_noise;
-  j["quality"] = {{"trustworthy", r.quality.trustworthy},
-                  {"expected_noise", r.quality.expected_noise},
-                  {"noise_yardstick", r.quality.noise_yardstick},
-                  {"source_noise", r.quality.source_noise},
-                  {"target_noise", r.quality.target_noise},
-                  {"sigma0_ratio", r.quality.sigma0_ratio},
-                  {"coverage", r.quality.coverage},
-                  {"rejected_fraction", r.quality.rejected_fraction},
-                  {"movement", r.quality.movement},
-                  {"position_sigma", r.quality.position_sigma}};
-  if (r.quality.held_out_scale_tested)
-    j["quality"]["held_out_scale"] = {{"estimate", r.quality.held_out_scale},
-                                      {"sigma", r.quality.held_out_scale_sigma},
-                                      {"z", r.quality.held_out_scale_z},
-                                      {"effect", r.quality.held_out_scale_effect}};
-  nlohmann::json log = nlohmann::json::array();
-  for (const auto& it : r.log)
-    log.push_back({{"iteration", it.iteration},
-                   {"sigma0", it.sigma0},
-                   {"observations_used", it.observations_used},
-                   {"observations_rejected", it.observations_rejected},
-                   {"max_angle_change", it.max_angle_change},
-                   {"translation_change", it.translation_change},
-                   {"scale_change", it.scale_change},
-                   {"extrapolated", it.extrapolated}});
-  j["log"] = log;
-  j["observations_used"] = r.observations_used;
-  j["observations_rejected"] = r.observations_rejected;
-  j["correspondences"] = r.correspondences;
-  j["source_points_used"] = r.source_points;
-  j["redundancy"] = r.redundancy;
-  const Eigen::Vector3d o_t = r.local_origin_target + origin, o_s = r.local_origin_source + origin;
-  j["local_origin"] = {o_t.x(), o_t.y(), o_t.z()};
-  j["local_origin_source"] = {o_s.x(), o_s.y(), o_s.z()};
-  j["cloud_origin"] = {cloud_origin.x(), cloud_origin.y(), cloud_origin.z()};  // of -o's coordinates
-  return j;
-}
-
 /// Keeps the points of `classes` (all when empty); false when none is left.
 bool
 keepClasses(Cloud::Ptr& cloud, const std::set<std::uint8_t>& classes, const std::string& path, std::string& error)
@@ -270,13 +172,14 @@ bool
 parseSettings(int argc, char** argv, Options& o, std::string& why)
 {
   std::string fix_text;
-  int params = 6, max_iter = 30;
+  int max_iter = 30;
   double thin = 0.0, max_dist = -1.0, guess = 0.0;
   parse_argument(argc, argv, "-rule", o.rule_text);
   parse_argument(argc, argv, "-fix", fix_text);
   using pcl_ls3d::tools::integerOption;
   using pcl_ls3d::tools::numberOption;
-  if (!integerOption(argc, argv, "-params", params, why, 1, 7) ||
+  pcl_ls3d::ParameterModel model = pcl_ls3d::ParameterModel::RIGID_6;
+  if (!pcl_ls3d::tools::parameterModelOption(argc, argv, {"7", "6", "3", "1"}, model, why) ||
       !integerOption(argc, argv, "-max_iter", max_iter, why, 1, 1000000) ||
       !numberOption(argc, argv, "-K", o.K, why) || !numberOption(argc, argv, "-thin", thin, why) ||
       !numberOption(argc, argv, "-max_dist", max_dist, why) ||
@@ -292,13 +195,7 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   if (!pcl_ls3d::parseConjugateRuleType(o.rule_text, o.rule))
     return (why = "unknown -rule " + o.rule_text + " (lnd, lzd or icp)"), false;
   pcl_ls3d::AdjustmentSettings& settings = o.settings;
-  switch (params) {
-  case 7: settings.setParameterModel(pcl_ls3d::ParameterModel::SIMILARITY_7); break;
-  case 6: settings.setParameterModel(pcl_ls3d::ParameterModel::RIGID_6); break;
-  case 3: settings.setParameterModel(pcl_ls3d::ParameterModel::TRANSLATION_3); break;
-  case 1: settings.setParameterModel(pcl_ls3d::ParameterModel::HEIGHT_1); break;
-  default: return (why = "-params must be 7, 6, 3 or 1"), false;
-  }
+  settings.setParameterModel(model);
   std::vector<int> fixes;
   if (pcl_ls3d::tools::optionValue(argc, argv, "-fix") && fix_text.empty())
     return (why = "-fix needs a comma list of tx,ty,tz,phi,omega,kappa,m (leave it out to fix none)"), false;
@@ -352,16 +249,12 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   return o.truth_path.empty() || readTruth(o.truth_path, o.truth, why);
 }
 
-/// The two clouds: the target first, the source in the target's local origin; with -classes,
-/// the points matched (whole_source: every point -o moves).
-struct Pair
+/// The two clouds (io::loadCloudPair: the target first, the source in the target's local origin,
+/// heights in the plan unit around working_origin); with -classes, the points matched
+/// (whole_source: every point -o moves).
+struct Pair : pcl_ls3d::io::CloudPair
 {
-  Cloud::Ptr target{new Cloud}, source{new Cloud}, whole_source;
-  pcl_ls3d::io::CloudInfo tinfo, sinfo;
-  /// Heights in another unit than the plan are matched in the plan unit (working coordinates,
-  /// around working_origin); the files' origin is tinfo.origin.
-  pcl_ls3d::HeightUnits heights;
-  Eigen::Vector3d working_origin = Eigen::Vector3d::Zero();
+  Cloud::Ptr whole_source;
   double load_ms = 0.0;
 };
 
@@ -370,18 +263,9 @@ loadPair(const Options& o, Pair& pair, std::string& error)
 {
   TicToc tt;
   tt.tic();
-  if (!pcl_ls3d::io::loadCloud(o.target_path, *pair.target, pair.tinfo, error))
+  if (!pcl_ls3d::io::loadCloudPair(o.target_path, o.source_path, pair, error))
     return false;
-  pcl_ls3d::io::LoadOptions sopt;
-  sopt.use_origin = true;
-  sopt.origin = pair.tinfo.origin;
-  if (!pcl_ls3d::io::loadCloud(o.source_path, *pair.source, pair.sinfo, error, sopt))
-    return false;
-  if (!pcl_ls3d::tools::checkInputCrs({{o.target_path, &pair.tinfo}, {o.source_path, &pair.sinfo}},
-                                       error, &pair.heights))
-    return false;
-  pair.working_origin =
-      pcl_ls3d::pairToWorking(pair.heights, pair.tinfo.origin, *pair.target, *pair.source);
+  pcl_ls3d::tools::printPairNotes(pair);
   pair.whole_source = pair.source;
   const std::size_t target_points = pair.target->size();
   if (!keepClasses(pair.target, o.classes, o.target_path, error) ||
@@ -394,7 +278,7 @@ loadPair(const Options& o, Pair& pair, std::string& error)
   pair.load_ms = tt.toc();
   print_info("Loaded target %s (%zu points) and source %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
              o.target_path.c_str(), pair.target->size(), o.source_path.c_str(), pair.source->size(),
-             pair.tinfo.origin.x(), pair.tinfo.origin.y(), pair.tinfo.origin.z(), pair.load_ms);
+             pair.target_info.origin.x(), pair.target_info.origin.y(), pair.target_info.origin.z(), pair.load_ms);
   return true;
 }
 
@@ -460,19 +344,19 @@ writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentRepor
   pcl_ls3d::io::SaveOptions so;
   so.overwrite = o.overwrite;
   // The aligned source lies in the target's frame: the target's CRS, else the source's.
-  const std::string target_crs = pcl_ls3d::maps::crsOfFile(pair.tinfo);
-  pcl_ls3d::maps::recordCrs(target_crs.empty() ? pcl_ls3d::maps::crsOfFile(pair.sinfo) : target_crs,
+  const std::string target_crs = pcl_ls3d::maps::crsOfFile(pair.target_info);
+  pcl_ls3d::maps::recordCrs(target_crs.empty() ? pcl_ls3d::maps::crsOfFile(pair.source_info) : target_crs,
                             so);
   const std::string out_ext = pcl_ls3d::io::fileExtension(o.out_path);
-  const bool las_to_las = pair.sinfo.format == "las" && (out_ext == "las" || out_ext == "laz");
+  const bool las_to_las = pair.source_info.format == "las" && (out_ext == "las" || out_ext == "laz");
   if (!o.classes.empty() && !las_to_las)
     pcl::transformPointCloud(*pair.whole_source, aligned, Eigen::Matrix4f(r.transformation.cast<float>()));
   if (!las_to_las)  // the target's height unit again
-    pcl_ls3d::heightsToFile(aligned, pair.heights.target, pair.heights.target, pair.tinfo.origin.z());
+    pcl_ls3d::heightsToFile(aligned, pair.heights.target, pair.heights.target, pair.target_info.origin.z());
   const pcl_ls3d::HeightUnits in_source_units = pcl_ls3d::HeightUnits::ofOneFile(pair.heights.source);
   if (las_to_las ? !writeMovedLas(o.source_path, in_source_units.toFiles(T_working), o.out_path,
                                   o.overwrite, error)
-                 : !pcl_ls3d::io::saveCloud(o.out_path, aligned, pair.tinfo.origin, error, so))
+                 : !pcl_ls3d::io::saveCloud(o.out_path, aligned, pair.target_info.origin, error, so))
     return false;
   print_info("Wrote %s in %.0f ms\n", o.out_path.c_str(), tt.toc());
   return true;
@@ -513,7 +397,11 @@ main(int argc, char** argv)
   print_info("%s", r.fullReport().c_str());
   pcl_ls3d::tools::printTransformation("Transformation (SOURCE -> TARGET, input coordinates):", T_input);
   print_info("Timings: load %.0f ms, adjustment %.0f ms\n", pair.load_ms, t_align);
-  nlohmann::json j = reportJson(r, T_input, ls3d.hasConverged(), origin, pair.tinfo.origin);
+  pcl_ls3d::ReportFrame frame;
+  frame.transformation = T_input;
+  frame.origin = origin;
+  frame.cloud_origin = pair.target_info.origin;
+  nlohmann::json j = nlohmann::json::parse(pcl_ls3d::adjustmentReportJson(r, ls3d.hasConverged(), frame));
   if (pair.heights.converts())
     j["heights"] = pcl_ls3d::heightUnitsJson(pair.heights);
   j["timings_ms"] = {{"load", pair.load_ms}, {"adjust", t_align}};

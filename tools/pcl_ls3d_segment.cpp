@@ -9,7 +9,7 @@
 
 #include "segment_report.h"
 #include "segment_warnings.h"
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
 #include <pcl_ls3d/evaluation/object_metrics.h>
@@ -117,7 +117,7 @@ checkArguments(int argc, char** argv, std::string& input, std::string& error)
   return error.empty();
 }
 
-/// Strict number (tool_arguments.h): the whole string must parse and be finite.
+/// Strict number (tool_options.h): the whole string must parse and be finite.
 bool
 parseNumber(int argc, char** argv, const char* name, double& value, std::string& error)
 {
@@ -193,7 +193,7 @@ parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string
 }
 
 /// Refuses an output equal to the input, an existing one without -overwrite, or one that cannot
-/// be written (tool_arguments.h), before any work.
+/// be written (tool_options.h), before any work.
 bool
 checkOutput(const std::string& out, const std::string& input, bool overwrite, std::string& error)
 {

@@ -5,7 +5,7 @@
 #include <pcl_ls3d/strips/report_output.h>
 #include <pcl_ls3d/strips/strip_stages.h>
 
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
 #include <pcl/console/parse.h>
@@ -145,11 +145,14 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
     s.soft_datum = true;
     s.soft_sigmas << v[0], v[0], v[0], v[1], v[1], v[1], v[2];
   }
-  if (parse_argument(argc, argv, "-params", text) >= 0 && !strips::parseParameterModel(text, s.model))
-    return (why = "-params takes 7, 6, 3 or z").empty();
+  if (!tools::parameterModelOption(argc, argv, {"7", "6", "3", "z", "1"}, s.model, why))
+    return false;
   if (parse_argument(argc, argv, "-rule", text) >= 0 && !parseConjugateRuleType(text, s.rule))
     return (why = "-rule takes lnd, lzd or icp").empty();
-  parse_argument(argc, argv, "-estimator", s.estimator);
+  std::string estimator_why;
+  if (parse_argument(argc, argv, "-estimator", text) >= 0 &&
+      !parseRobustEstimatorChoice(text, s.estimator, &estimator_why))
+    return (why = "estimator: " + estimator_why).empty();
   if (parse_argument(argc, argv, "-classes", text) >= 0) {
     if (!tools::parseNumberList(text, v))
       return (why = "-classes takes class codes, e.g. 2,6").empty();
@@ -157,7 +160,7 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
     for (double c : v)
       s.stable_classes.insert(static_cast<std::uint8_t>(c));
   }
-  // Numbers parsed strictly (tool_arguments.h): "6x" or "abc" is an error, not 6 or 0.
+  // Numbers parsed strictly (tool_options.h): "6x" or "abc" is an error, not 6 or 0.
   long long count = -1, min_obs = -1;
   // Ranges stated here, in the options' own names (the settings' isValid() speaks of fields).
   if (!tools::numberOption(argc, argv, "-spacing", s.observation_spacing, why, 0.0) ||
@@ -165,9 +168,9 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
       !tools::numberOption(argc, argv, "-max_dist", s.max_distance, why) ||
       !tools::numberOption(argc, argv, "-min_area", s.min_overlap_area, why, 0.0) ||
       !tools::integerOption(argc, argv, "-min_obs", min_obs, why, 1, 2147483647) ||
-      !tools::integerOption(argc, argv, "-max_iter", s.max_iterations, why, 1, 1000000) ||
-      !heldOutZOption(argc, argv, s.held_out_z, why) ||
-      !tools::numberOption(argc, argv, "-held_out_noise", s.held_out_noise_factor, why, 0.0) ||
+      !tools::integerOption(argc, argv, "-max_iter", s.adjustment.max_iterations, why, 1, 1000000) ||
+      !heldOutZOption(argc, argv, s.adjustment.held_out_z, why) ||
+      !tools::numberOption(argc, argv, "-held_out_noise", s.adjustment.held_out_noise_factor, why, 0.0) ||
       !tools::integerOption(argc, argv, "-job", o.job, why, 0, 2147483647) ||
       !tools::integerOption(argc, argv, "-unit", o.unit, why, 0, 2147483647))
     return false;

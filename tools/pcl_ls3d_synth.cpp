@@ -2,7 +2,7 @@
 /// \brief Writes synthetic clouds with known truth: a registration pair, a labelled scene,
 ///        a block of flight strips, or Li et al.'s deformation surface, plus truth.json.
 
-#include "tool_arguments.h"
+#include "tool_options.h"
 #include "tool_output.h"
 
 #include <pcl_ls3d/io/cloud_io.h>

@@ -2,6 +2,7 @@
 /// \file tool_output.h
 /// \brief Console output shared by the pcl_ls3d_* tools.
 
+#include <pcl_ls3d/io/cloud_pair.h>
 #include <pcl_ls3d/io/json_text.h>
 
 #include <pcl/console/print.h>
@@ -42,6 +43,17 @@ writeJsonFile(const std::string& path, const Json& json)
 {
   std::ofstream out(path);
   return static_cast<bool>(out << io::toJsonText(json, 2) << "\n");
+}
+
+/// \brief What loading a pair found (io::loadCloudPair): one warning line per CRS that differs,
+///        then one line per file whose heights were converted to the plan unit.
+inline void
+printPairNotes(const io::CloudPair& pair)
+{
+  for (const std::string& warning : pair.warnings)
+    pcl::console::print_warn("Warning: %s\n", warning.c_str());
+  for (const std::string& note : pair.notes)
+    pcl::console::print_info("%s\n", note.c_str());
 }
 
 /// \brief Prints a 4x4 transformation of input coordinates under `title`. The coordinates may be

@@ -7,10 +7,15 @@
 namespace pcl_ls3d {
 
 bool
-converged(const Vector7d& dx, const AdjustmentSettings& s)
+converged(const Eigen::VectorXd& dx, const AdjustmentSettings& s)
 {
-  return dx.segment<3>(PHI).cwiseAbs().maxCoeff() < s.angle_epsilon &&
-         dx.head<3>().norm() < s.translation_epsilon && std::abs(dx[SCALE]) < s.scale_epsilon;
+  for (Eigen::Index k = 0; k + 7 <= dx.size(); k += 7) {
+    const auto d = dx.segment<7>(k);
+    if (!(d.segment<3>(PHI).cwiseAbs().maxCoeff() < s.angle_epsilon &&
+          d.head<3>().norm() < s.translation_epsilon && std::abs(d[SCALE]) < s.scale_epsilon))
+      return false;
+  }
+  return true;
 }
 
 bool
@@ -32,13 +37,13 @@ IterationControl::IterationControl(const AdjustmentSettings& settings, std::size
   // Coarse phase: every stride-th point only, until the estimate has settled to ~1 σ_i.
   const std::size_t wanted = settings.coarse_observations;
   coarse_stride_ = wanted > 0 && n > 2 * wanted ? (n + wanted - 1) / wanted : 1;
-  coarse_ = coarse_stride_ > 1;
+  phase_.coarse = coarse_stride_ > 1;
 }
 
 bool
 IterationControl::skipMissed(int it) const
 {
-  return !culling_ && !frozen_ && !coarse_ && settings_.recheck_interval > 1 &&
+  return !culling_ && !phase_.frozen && !phase_.coarse && settings_.recheck_interval > 1 &&
          it % settings_.recheck_interval != 0;
 }
 
@@ -51,30 +56,39 @@ IterationControl::reach(double sigma0, double spacing) const
   return std::max(4.0 * spacing, 6.0 * sigma0 + 2.0 * spacing);
 }
 
+PhaseStep
+advancePhase(IterationPhase& phase, const GaussMarkovSolution& sol, const AdjustmentSettings& s, int it)
+{
+  PhaseStep step;
+  if (phase.coarse) {
+    phase.coarse = !(3 * it >= s.max_iterations || changesBelow(sol, 1.0));
+    return step;
+  }
+  // Zuo §4: every angle change below ε (and the translation and scale epsilons).
+  if (converged(sol.dx, s)) {
+    step.converged = true;
+    return step;
+  }
+  step.afresh = !phase.frozen;
+  if (!phase.frozen && (3 * it >= 2 * s.max_iterations || changesBelow(sol, s.freeze_sigma_fraction))) {
+    phase.frozen = true;
+    step.froze = true;
+  }
+  return step;
+}
+
 IterationControl::Decision
 IterationControl::next(const GaussMarkovSolution& sol, const Vector7d& scaling, int it)
 {
+  const PhaseStep step = advancePhase(phase_, sol, settings_, it);
   Decision d;
-  const Vector7d dx = sol.dx;
-  // Coarse: switch to all points once the changes are below 1 σ_i (or after a third).
-  if (coarse_) {
-    coarse_ = !(3 * it >= settings_.max_iterations || changesBelow(sol, 1.0));
-    return d;
-  }
-  // Zuo §4: every angle change below ε (and the translation and scale epsilons).
-  if (converged(dx, settings_)) {
-    d.converged = true;
-    return d;
-  }
+  d.converged = step.converged;
+  d.freeze = step.froze;
   // While correspondences are searched afresh, extrapolate a creeping iteration (steps
   // compared as displacements at the data's edge).
-  if (settings_.accelerate && !frozen_)
+  if (settings_.accelerate && step.afresh) {
+    const Vector7d dx = sol.dx;
     d.extrapolation = extrapolator_.next(dx.cwiseQuotient(scaling), it);
-  // Freeze once the changes are tiny (or after two thirds of the iterations).
-  if (!frozen_ && (3 * it >= 2 * settings_.max_iterations ||
-                   changesBelow(sol, settings_.freeze_sigma_fraction))) {
-    frozen_ = true;
-    d.freeze = true;
   }
   return d;
 }

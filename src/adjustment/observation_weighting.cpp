@@ -1,4 +1,5 @@
 #include <pcl_ls3d/adjustment/observation_weighting.h>
+#include <pcl_ls3d/stats/descriptive.h>
 
 #include <vector>
 
@@ -12,9 +13,7 @@ robustScale(const Eigen::VectorXd& l)
   std::vector<double> a(static_cast<std::size_t>(l.size()));
   for (Eigen::Index i = 0; i < l.size(); ++i)
     a[static_cast<std::size_t>(i)] = std::abs(l[i]);
-  const std::size_t mid = a.size() / 2;
-  std::nth_element(a.begin(), a.begin() + static_cast<std::ptrdiff_t>(mid), a.end());
-  return 1.4826 * a[mid];
+  return stats::kMadToSigma * stats::medianHigh(std::move(a));
 }
 
 }  // namespace pcl_ls3d

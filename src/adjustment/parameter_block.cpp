@@ -5,6 +5,38 @@
 
 namespace pcl_ls3d {
 
+bool
+parseParameterModel(const std::string& text, ParameterModel& model)
+{
+  if (text == "7")
+    model = ParameterModel::SIMILARITY_7;
+  else if (text == "6")
+    model = ParameterModel::RIGID_6;
+  else if (text == "3")
+    model = ParameterModel::TRANSLATION_3;
+  else if (text == "z" || text == "1")
+    model = ParameterModel::HEIGHT_1;
+  else
+    return false;
+  return true;
+}
+
+std::string
+parameterModelName(ParameterModel model)
+{
+  switch (model) {
+  case ParameterModel::SIMILARITY_7:
+    return "7";
+  case ParameterModel::RIGID_6:
+    return "6";
+  case ParameterModel::TRANSLATION_3:
+    return "3";
+  case ParameterModel::HEIGHT_1:
+    return "z";
+  }
+  return "?";
+}
+
 Vector7d
 parameterModelWeights(ParameterModel model)
 {

@@ -143,12 +143,15 @@ RegionSettings::isValid(std::string* why) const
   return true;
 }
 
-RegionAnalysis
-analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& field, const RegionSettings& s)
+namespace {
+
+// The observed points' spacing, plane and cell, and the observed area (cells holding a residual).
+// False when no cell size follows from the data.
+bool
+measureObserved(const std::vector<Eigen::Vector3d>& points, const ResidualField& field, const RegionSettings& s,
+                RegionAnalysis& out)
 {
-  RegionAnalysis out;
   const std::size_t n = points.size();
-  out.region.assign(n, 0);
   std::vector<Eigen::Vector3d> observed(n, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (std::size_t i = 0; i < n; ++i)
     if (std::isfinite(field.residual[i]))
@@ -159,26 +162,31 @@ analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& 
   out.adjacency = s.adjacency > 0.0 ? s.adjacency : 2.5 * sp.spacing;
   out.cell = s.cell > 0.0 ? s.cell : sp.spacing;
   if (!(out.cell > 0.0))
-    return out;
+    return false;
   std::unordered_set<std::int64_t> cells;
   for (std::size_t i = 0; i < n; ++i)
     if (std::isfinite(field.residual[i]))
       cells.insert(cellKey(points[i], sp.normal_axis, out.cell));
   out.area_observed = static_cast<double>(cells.size()) * out.cell * out.cell;
+  return true;
+}
 
-  // Significant points of each sign, linked within the adjacency distance.
-  const std::vector<Eigen::Vector3d> link = linkPositions(points, s.plane_axis);
+// Significant points of each sign, linked within the adjacency distance: the groups by their root.
+std::unordered_map<int, std::vector<int>>
+linkSignificant(const std::vector<Eigen::Vector3d>& link, const ResidualField& field, double adjacency)
+{
+  const std::size_t n = link.size();
   std::vector<Eigen::Vector3d> flagged(n, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (std::size_t i = 0; i < n; ++i)
     if (field.significant[i] && std::isfinite(field.residual[i]))
       flagged[i] = link[i];
-  const VoxelIndex index(flagged, std::max(out.adjacency, 1e-9));
+  const VoxelIndex index(flagged, std::max(adjacency, 1e-9));
   DisjointSets sets(n);
   std::vector<int> near;
   for (std::size_t i = 0; i < n; ++i) {
     if (!flagged[i].allFinite())
       continue;
-    index.radiusSearch(flagged[i], out.adjacency, near);
+    index.radiusSearch(flagged[i], adjacency, near);
     for (const int j : near)
       if ((field.residual[i] > 0.0) == (field.residual[static_cast<std::size_t>(j)] > 0.0))
         sets.unite(static_cast<int>(i), j);
@@ -187,23 +195,15 @@ analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& 
   for (std::size_t i = 0; i < n; ++i)
     if (flagged[i].allFinite())
       groups[sets.find(static_cast<int>(i))].push_back(static_cast<int>(i));
-  std::vector<std::vector<int>> kept;
-  for (auto& g : groups) {
-    if (g.second.size() >= s.min_points)
-      kept.push_back(std::move(g.second));
-    else {
-      DeformationRegion r = describe(g.second, points, field, sp.normal_axis, out.cell);
-      r.id = -1;
-      for (const int i : g.second)
-        out.region[static_cast<std::size_t>(i)] = -1;
-      out.noise.push_back(r);
-    }
-  }
-  if (s.grow_k > 0.0)
-    growRegions(kept, link, field, out.adjacency, s.grow_k);
-  for (const auto& members : kept)
-    out.regions.push_back(describe(members, points, field, sp.normal_axis, out.cell));
-  // Ids by decreasing area (ties: more points, then the smallest first index) — deterministic.
+  return groups;
+}
+
+// Ids by decreasing area (ties: more points, then the smallest first index), deterministic; the
+// deformed area is that of the cells the regions' points fall in.
+void
+numberRegions(const std::vector<std::vector<int>>& kept, const std::vector<Eigen::Vector3d>& points,
+              RegionAnalysis& out)
+{
   std::vector<std::size_t> order(kept.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
@@ -222,14 +222,44 @@ analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& 
     r.id = static_cast<int>(k) + 1;
     for (const int i : kept[order[k]]) {
       out.region[static_cast<std::size_t>(i)] = r.id;
-      deformed_cells.insert(cellKey(points[static_cast<std::size_t>(i)], sp.normal_axis, out.cell));
+      deformed_cells.insert(cellKey(points[static_cast<std::size_t>(i)], out.plane_normal_axis, out.cell));
     }
     sorted.push_back(r);
   }
   out.regions = std::move(sorted);
+  out.area_deformed = static_cast<double>(deformed_cells.size()) * out.cell * out.cell;
+}
+
+}  // namespace
+
+RegionAnalysis
+analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& field, const RegionSettings& s)
+{
+  RegionAnalysis out;
+  out.region.assign(points.size(), 0);
+  if (!measureObserved(points, field, s, out))
+    return out;
+  const std::vector<Eigen::Vector3d> link = linkPositions(points, s.plane_axis);
+  // Groups of at least min_points are regions; smaller ones are noise.
+  std::vector<std::vector<int>> kept;
+  for (auto& g : linkSignificant(link, field, out.adjacency)) {
+    if (g.second.size() >= s.min_points)
+      kept.push_back(std::move(g.second));
+    else {
+      DeformationRegion r = describe(g.second, points, field, out.plane_normal_axis, out.cell);
+      r.id = -1;
+      for (const int i : g.second)
+        out.region[static_cast<std::size_t>(i)] = -1;
+      out.noise.push_back(r);
+    }
+  }
+  if (s.grow_k > 0.0)
+    growRegions(kept, link, field, out.adjacency, s.grow_k);
+  for (const auto& members : kept)
+    out.regions.push_back(describe(members, points, field, out.plane_normal_axis, out.cell));
+  numberRegions(kept, points, out);
   std::sort(out.noise.begin(), out.noise.end(),
             [](const DeformationRegion& a, const DeformationRegion& b) { return a.points > b.points; });
-  out.area_deformed = static_cast<double>(deformed_cells.size()) * out.cell * out.cell;
   out.percent_deformed = out.area_observed > 0.0 ? 100.0 * out.area_deformed / out.area_observed : 0.0;
   return out;
 }

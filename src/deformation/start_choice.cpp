@@ -130,8 +130,7 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
     RobustMatchingReport fit = refinedFrom(start.second, points, point_indices, reference, rule, matching, residuals,
                                            regions, settings, unrefined, noise, r, first_matching);
     // A fit whose refinement did not settle (MAX_ITERATIONS: the stable part flips between
-    // rounds) is a snapshot of an oscillation, not a fit to prefer: Toronto's all-point pair
-    // chose such a fit by 1.3 % of scatter and ended unconverged.
+    // rounds) is a snapshot of an oscillation, not a fit to prefer (docs/DECISIONS.md).
     StartCandidate c{start.first, kInf, 0,
                      fit.isSolutionUsable() && fit.termination == TerminationType::CONVERGED};
     if (c.usable)

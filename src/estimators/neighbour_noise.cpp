@@ -1,5 +1,6 @@
 #include <pcl_ls3d/estimators/neighbour_noise.h>
 #include <pcl_ls3d/common/voxel_index.h>
+#include <pcl_ls3d/stats/descriptive.h>
 
 #include <algorithm>
 #include <cmath>
@@ -40,9 +41,7 @@ neighbourDifferenceScale(const std::vector<Eigen::Vector3d>& points, const std::
   }
   if (differences.empty())
     return 0.0;
-  const auto mid = differences.begin() + static_cast<std::ptrdiff_t>(differences.size() / 2);
-  std::nth_element(differences.begin(), mid, differences.end());
-  return 1.4826 * *mid / std::sqrt(2.0);
+  return stats::kMadToSigma * stats::medianHigh(std::move(differences)) / std::sqrt(2.0);
 }
 
 }  // namespace pcl_ls3d

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <iterator>
 #include <utility>
@@ -25,25 +26,37 @@ makeRobustEstimator(RobustEstimatorType type, double constant)
 }
 
 RobustEstimator::Ptr
-parseRobustEstimator(const std::string& text, std::string* why)
+makeRobustEstimator(const RobustEstimatorChoice& choice)
 {
-  auto fail = [why](const std::string& reason) -> RobustEstimator::Ptr {
+  return makeRobustEstimator(choice.type, choice.constant);
+}
+
+namespace {
+
+// Every spelling, the first of each type being the one toString() writes.
+const std::pair<const char*, RobustEstimatorType> kNames[] = {
+    {"ls", RobustEstimatorType::LEAST_SQUARES}, {"least-squares", RobustEstimatorType::LEAST_SQUARES},
+    {"zuo", RobustEstimatorType::ZUO},          {"huber", RobustEstimatorType::HUBER},
+    {"tukey", RobustEstimatorType::TUKEY},      {"m", RobustEstimatorType::TUKEY},
+    {"md", RobustEstimatorType::MD},            {"m-d", RobustEstimatorType::MD},
+    {"gm", RobustEstimatorType::MD}};
+
+}  // namespace
+
+bool
+parseRobustEstimatorChoice(const std::string& text, RobustEstimatorChoice& choice, std::string* why)
+{
+  auto fail = [why](const std::string& reason) {
     if (why)
       *why = reason;
-    return nullptr;
+    return false;
   };
   std::string name = text.substr(0, text.find(':'));
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  static const std::pair<const char*, RobustEstimatorType> names[] = {
-      {"ls", RobustEstimatorType::LEAST_SQUARES}, {"least-squares", RobustEstimatorType::LEAST_SQUARES},
-      {"zuo", RobustEstimatorType::ZUO},          {"huber", RobustEstimatorType::HUBER},
-      {"tukey", RobustEstimatorType::TUKEY},      {"m", RobustEstimatorType::TUKEY},
-      {"md", RobustEstimatorType::MD},            {"m-d", RobustEstimatorType::MD},
-      {"gm", RobustEstimatorType::MD}};
-  const auto* found = std::find_if(std::begin(names), std::end(names),
+  const auto* found = std::find_if(std::begin(kNames), std::end(kNames),
                                    [&](const auto& entry) { return name == entry.first; });
-  if (found == std::end(names))
+  if (found == std::end(kNames))
     return fail("unknown estimator '" + name + "' (ls, zuo, huber, tukey/m, md)");
   double constant = std::numeric_limits<double>::quiet_NaN();
   const std::size_t colon = text.find(':');
@@ -57,7 +70,30 @@ parseRobustEstimator(const std::string& text, std::string* why)
     if (found->second == RobustEstimatorType::LEAST_SQUARES)
       return fail("least squares has no tuning constant");
   }
-  return makeRobustEstimator(found->second, constant);
+  choice.type = found->second;
+  choice.constant = constant;
+  return true;
+}
+
+std::string
+toString(const RobustEstimatorChoice& choice)
+{
+  const auto* found = std::find_if(std::begin(kNames), std::end(kNames),
+                                   [&](const auto& entry) { return entry.second == choice.type; });
+  std::string text = found == std::end(kNames) ? "?" : found->first;
+  if (std::isfinite(choice.constant)) {
+    char number[32];
+    std::snprintf(number, sizeof number, ":%.17g", choice.constant);
+    text += number;
+  }
+  return text;
+}
+
+RobustEstimator::Ptr
+parseRobustEstimator(const std::string& text, std::string* why)
+{
+  RobustEstimatorChoice choice;
+  return parseRobustEstimatorChoice(text, choice, why) ? makeRobustEstimator(choice) : nullptr;
 }
 
 }  // namespace pcl_ls3d

@@ -1,5 +1,6 @@
 #include <pcl_ls3d/estimators/robust_scale.h>
 #include <pcl_ls3d/stats/data_snooping.h>
+#include <pcl_ls3d/stats/descriptive.h>
 
 #include <algorithm>
 #include <cmath>
@@ -8,8 +9,6 @@
 namespace pcl_ls3d {
 
 namespace {
-constexpr double kMad = 1.4826;
-
 std::vector<double>
 finiteValues(const Eigen::Ref<const Eigen::VectorXd>& v)
 {
@@ -19,15 +18,6 @@ finiteValues(const Eigen::Ref<const Eigen::VectorXd>& v)
     if (std::isfinite(v[i]))
       a.push_back(v[i]);
   return a;
-}
-
-// Lower median (the n/2-th order statistic), reordering `a`.
-double
-lowerMedian(std::vector<double>& a)
-{
-  auto mid = a.begin() + static_cast<std::ptrdiff_t>(a.size() / 2);
-  std::nth_element(a.begin(), mid, a.end());
-  return *mid;
 }
 }  // namespace
 
@@ -48,10 +38,10 @@ madScale(const Eigen::Ref<const Eigen::VectorXd>& v)
   std::vector<double> a = finiteValues(v);
   if (a.size() < 2)
     return 0.0;
-  const double med = lowerMedian(a);
+  const double med = stats::medianHigh(a);
   for (double& x : a)
     x = std::abs(x - med);
-  return kMad * lowerMedian(a);
+  return stats::kMadToSigma * stats::medianHigh(std::move(a));
 }
 
 double
@@ -100,7 +90,7 @@ lmsScale(double median_squared, std::size_t n, int p)
 {
   const double dof = static_cast<double>(n) - static_cast<double>(p);
   const double correction = dof > 0.0 ? 1.0 + 5.0 / dof : 1.0;
-  return kMad * correction * std::sqrt(std::max(0.0, median_squared));
+  return stats::kMadToSigma * correction * std::sqrt(std::max(0.0, median_squared));
 }
 
 double

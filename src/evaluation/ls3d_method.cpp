@@ -1,10 +1,7 @@
 #include <pcl_ls3d/evaluation/ls3d_method.h>
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 
-#include <pcl/common/time.h>
-
 #include <cstdio>
-#include <exception>
 #include <limits>
 
 namespace pcl_ls3d {
@@ -56,20 +53,39 @@ Ls3dMethodSettings::inUnit(double metres_per_unit) const
   return s;
 }
 
+namespace {
+
+/// The run as LS3D's report states it; a refused estimate is a row without a transformation.
+void
+collectReport(LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ>& ls3d, RegistrationRun& run)
+{
+  const AdjustmentReport& report = ls3d.getReport();
+  run.ran = true;
+  run.iterations = report.iterations;
+  run.pcl_converged = ls3d.hasConverged();
+  run.quality_checked = true;
+  run.converged = report.termination == TerminationType::CONVERGED;
+  run.hit_limit = report.termination == TerminationType::MAX_ITERATIONS;
+  run.stop = terminationTypeToString(report.termination);
+  run.sigma0 = report.isSolutionUsable() ? report.sigma0 : std::numeric_limits<double>::quiet_NaN();
+  // No estimate (e.g. TOO_FEW_OBSERVATIONS): no transformation either, so the RMS and the
+  // errors vs truth read "-" rather than those of the identity (a perfect run for no motion).
+  run.transformation = !report.hasEstimate()      ? kNoTransformation
+                       : report.isSolutionUsable() ? report.transformation
+                                                   : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
+  run.message = terminationTypeToString(report.termination);
+  if (!report.message.empty())
+    run.message += ": " + report.message;
+}
+
+}  // namespace
+
 RegistrationRun
 runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
         const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
         const Ls3dMethodSettings& settings)
 {
-  RegistrationRun run;
-  run.name = ls3dMethodName(rule);
-  if (!source || !target || source->empty() || target->empty()) {
-    run.message = "empty source or target";
-    return run;
-  }
-  try {
-    pcl::StopWatch watch;
-    const double cpu0 = processCpuSeconds();
+  return timedRun(ls3dMethodName(rule), source, target, [&](RegistrationRun& run) {
     LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ> ls3d;
     ls3d.setConjugateRule(rule);
     ls3d.setParameterModel(settings.model);
@@ -86,32 +102,8 @@ runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& 
     ls3d.setInputTarget(target);
     pcl::PointCloud<pcl::PointXYZ> output;
     ls3d.align(output);
-    run.time_s = watch.getTimeSeconds();
-    run.cpu_s = processCpuSeconds() - cpu0;
-
-    const AdjustmentReport& report = ls3d.getReport();
-    run.ran = true;
-    run.iterations = report.iterations;
-    run.pcl_converged = ls3d.hasConverged();
-    run.quality_checked = true;
-    run.converged = report.termination == TerminationType::CONVERGED;
-    run.hit_limit = report.termination == TerminationType::MAX_ITERATIONS;
-    run.stop = terminationTypeToString(report.termination);
-    run.sigma0 = report.isSolutionUsable() ? report.sigma0 : std::numeric_limits<double>::quiet_NaN();
-    // No estimate (e.g. TOO_FEW_OBSERVATIONS): no transformation either, so the RMS and the
-    // errors vs truth read "-" rather than those of the identity (a perfect run for no motion).
-    run.transformation = !report.hasEstimate()      ? kNoTransformation
-                         : report.isSolutionUsable() ? report.transformation
-                                                     : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
-    run.message = terminationTypeToString(report.termination);
-    if (!report.message.empty())
-      run.message += ": " + report.message;
-  }
-  catch (const std::exception& e) {
-    run.ran = false;
-    run.message = std::string("exception: ") + e.what();
-  }
-  return run;
+    collectReport(ls3d, run);
+  });
 }
 
 }  // namespace evaluation

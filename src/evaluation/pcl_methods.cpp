@@ -8,7 +8,7 @@
 #include <pcl/registration/transformation_estimation_svd_scale.h>
 
 #include <cstdio>
-#include <exception>
+#include <type_traits>
 
 namespace pcl_ls3d {
 namespace evaluation {
@@ -30,11 +30,16 @@ public:
   }
 };
 
-/// Common tail: align from the identity, fill the run.
-template <typename Reg, typename CloudT>
+/// Aligns from the identity and fills the run from PCL's own state.
+template <typename Reg, typename CloudPtr>
 void
-alignAndCollect(Reg& reg, CloudT& output, const PclMethodSettings& s, RegistrationRun& run)
+alignAndCollect(Reg& reg, const CloudPtr& source, const CloudPtr& target, const PclMethodSettings& s,
+                RegistrationRun& run)
 {
+  reg.setMaximumIterations(s.max_iterations);
+  reg.setInputSource(source);
+  reg.setInputTarget(target);
+  std::remove_const_t<typename CloudPtr::element_type> output;
   reg.align(output);
   run.iterations = reg.iterations();
   run.pcl_converged = reg.hasConverged();
@@ -54,27 +59,36 @@ alignAndCollect(Reg& reg, CloudT& output, const PclMethodSettings& s, Registrati
   }
 }
 
+/// The stopping rule ICP and ICP-N share (PCL's DefaultConvergenceCriteria).
+template <typename Icp>
+void
+setIcpCriteria(Icp& icp, const PclMethodSettings& s)
+{
+  icp.setMaxCorrespondenceDistance(s.max_correspondence_distance);
+  icp.setTransformationEpsilon(s.transformation_epsilon);
+  icp.setTransformationRotationEpsilon(s.rotation_epsilon);
+}
+
 void
 runIcp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
        const PclMethodSettings& s, bool with_scale, RegistrationRun& run)
 {
-  pcl::StopWatch watch;
-  const double cpu0 = processCpuSeconds();
   Counted<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> icp;
   if (with_scale)
     icp.setTransformationEstimation(
         pcl::make_shared<pcl::registration::TransformationEstimationSVDScale<pcl::PointXYZ,
                                                                             pcl::PointXYZ>>());
-  icp.setMaxCorrespondenceDistance(s.max_correspondence_distance);
-  icp.setMaximumIterations(s.max_iterations);
-  icp.setTransformationEpsilon(s.transformation_epsilon);
-  icp.setTransformationRotationEpsilon(s.rotation_epsilon);
-  icp.setInputSource(source);
-  icp.setInputTarget(target);
-  CloudXYZ output;
-  alignAndCollect(icp, output, s, run);
-  run.time_s = watch.getTimeSeconds();
-  run.cpu_s = processCpuSeconds() - cpu0;
+  setIcpCriteria(icp, s);
+  alignAndCollect(icp, source, target, s, run);
+}
+
+/// x, y, z of `cloud` into a cloud with normals (normals left as they are).
+void
+copyPositions(const CloudXYZ& cloud, CloudNormal& with_normals)
+{
+  with_normals.resize(cloud.size());
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    with_normals.points[i].getVector3fMap() = cloud[i].getVector3fMap();
 }
 
 void
@@ -82,7 +96,6 @@ runIcpNormals(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target
               const PclMethodSettings& s, RegistrationRun& run)
 {
   pcl::StopWatch watch;
-  const double cpu0 = processCpuSeconds();
   // Target normals only: PCL's point-to-plane objective (TransformationEstimationPointToPlaneLLS)
   // reads the target's normals and ignores the source's, so estimating both would only add time.
   pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::PointNormal> ne(s.threads);
@@ -90,67 +103,40 @@ runIcpNormals(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target
   ne.setKSearch(s.normal_k);
   CloudNormal::Ptr target_n(new CloudNormal);
   ne.compute(*target_n);
-  for (std::size_t i = 0; i < target->size(); ++i)  // compute() fills only the normal fields
-    target_n->points[i].getVector3fMap() = (*target)[i].getVector3fMap();
+  copyPositions(*target, *target_n);  // compute() fills only the normal fields
   CloudNormal::Ptr source_n(new CloudNormal);
-  source_n->resize(source->size());
-  for (std::size_t i = 0; i < source->size(); ++i)
-    source_n->points[i].getVector3fMap() = (*source)[i].getVector3fMap();
+  copyPositions(*source, *source_n);
   run.normals_time_s = watch.getTimeSeconds();
 
   Counted<pcl::IterativeClosestPointWithNormals<pcl::PointNormal, pcl::PointNormal>> icp;
-  icp.setMaxCorrespondenceDistance(s.max_correspondence_distance);
-  icp.setMaximumIterations(s.max_iterations);
-  icp.setTransformationEpsilon(s.transformation_epsilon);
-  icp.setTransformationRotationEpsilon(s.rotation_epsilon);
-  icp.setInputSource(source_n);
-  icp.setInputTarget(target_n);
-  CloudNormal output;
-  alignAndCollect(icp, output, s, run);
-  run.time_s = watch.getTimeSeconds();
-  run.cpu_s = processCpuSeconds() - cpu0;
+  setIcpCriteria(icp, s);
+  alignAndCollect(icp, CloudNormal::ConstPtr(source_n), CloudNormal::ConstPtr(target_n), s, run);
 }
 
 void
 runGicp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
         const PclMethodSettings& s, RegistrationRun& run)
 {
-  pcl::StopWatch watch;
-  const double cpu0 = processCpuSeconds();
   Counted<pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> gicp;
   gicp.setMaxCorrespondenceDistance(s.max_correspondence_distance);
-  gicp.setMaximumIterations(s.max_iterations);
   gicp.setTransformationEpsilon(s.gicp_translation_epsilon);
   gicp.setRotationEpsilon(s.gicp_rotation_epsilon);
   gicp.setCorrespondenceRandomness(s.gicp_k_correspondences);
   gicp.setTranslationGradientTolerance(s.gicp_gradient_tolerance);
   gicp.setRotationGradientTolerance(s.gicp_gradient_tolerance);
-  gicp.setInputSource(source);
-  gicp.setInputTarget(target);
-  CloudXYZ output;
-  alignAndCollect(gicp, output, s, run);
-  run.time_s = watch.getTimeSeconds();
-  run.cpu_s = processCpuSeconds() - cpu0;
+  alignAndCollect(gicp, source, target, s, run);
 }
 
 void
 runNdt(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
        const PclMethodSettings& s, RegistrationRun& run)
 {
-  pcl::StopWatch watch;
-  const double cpu0 = processCpuSeconds();
   Counted<pcl::NormalDistributionsTransform<pcl::PointXYZ, pcl::PointXYZ>> ndt;
   ndt.setResolution(static_cast<float>(s.ndt_resolution));
   ndt.setStepSize(s.ndt_step_size);
   ndt.setOulierRatio(s.ndt_outlier_ratio);
-  ndt.setMaximumIterations(s.max_iterations);
   ndt.setTransformationEpsilon(s.transformation_epsilon);
-  ndt.setInputSource(source);
-  ndt.setInputTarget(target);
-  CloudXYZ output;
-  alignAndCollect(ndt, output, s, run);
-  run.time_s = watch.getTimeSeconds();
-  run.cpu_s = processCpuSeconds() - cpu0;
+  alignAndCollect(ndt, source, target, s, run);
 }
 
 }  // namespace
@@ -210,13 +196,7 @@ runPclMethod(PclMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& s
              const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
              const PclMethodSettings& settings)
 {
-  RegistrationRun run;
-  run.name = pclMethodName(method);
-  if (!source || !target || source->empty() || target->empty()) {
-    run.message = "empty source or target";
-    return run;
-  }
-  try {
+  return timedRun(pclMethodName(method), source, target, [&](RegistrationRun& run) {
     switch (method) {
     case PclMethod::ICP: runIcp(source, target, settings, false, run); break;
     case PclMethod::ICP_SCALE: runIcp(source, target, settings, true, run); break;
@@ -224,12 +204,7 @@ runPclMethod(PclMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& s
     case PclMethod::GICP: runGicp(source, target, settings, run); break;
     case PclMethod::NDT: runNdt(source, target, settings, run); break;
     }
-  }
-  catch (const std::exception& e) {
-    run.ran = false;
-    run.message = std::string("exception: ") + e.what();
-  }
-  return run;
+  });
 }
 
 }  // namespace evaluation

@@ -1,7 +1,10 @@
 #include <pcl_ls3d/evaluation/registration_run.h>
 
+#include <pcl/common/time.h>
+
 #include <cmath>
 #include <ctime>
+#include <exception>
 
 namespace pcl_ls3d {
 namespace evaluation {
@@ -12,6 +15,31 @@ processCpuSeconds()
   timespec ts{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+RegistrationRun
+timedRun(const std::string& name, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
+         const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
+         const std::function<void(RegistrationRun&)>& method)
+{
+  RegistrationRun run;
+  run.name = name;
+  if (!source || !target || source->empty() || target->empty()) {
+    run.message = "empty source or target";
+    return run;
+  }
+  try {
+    pcl::StopWatch watch;
+    const double cpu0 = processCpuSeconds();
+    method(run);
+    run.time_s = watch.getTimeSeconds();
+    run.cpu_s = processCpuSeconds() - cpu0;
+  }
+  catch (const std::exception& e) {
+    run.ran = false;
+    run.message = std::string("exception: ") + e.what();
+  }
+  return run;
 }
 
 RunEvaluation::RunEvaluation(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,

@@ -3,12 +3,11 @@
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 #include <pcl_ls3d/search/flann_kd_tree.h>
 
-#include <pcl/common/time.h>
 #include <pcl/search/kdtree.h>
 
 #include <algorithm>
 #include <cctype>
-#include <exception>
+#include <limits>
 
 namespace pcl_ls3d {
 namespace evaluation {
@@ -21,19 +20,33 @@ robustMethodName(RobustMethod method)
   return "ROBUST-" + name;
 }
 
+namespace {
+
+/// The run as the robust matching's report states it; no usable estimate, no transformation.
+void
+collectReport(const RobustMatchingReport& r, RegistrationRun& run)
+{
+  run.ran = true;
+  run.iterations = r.adjustment.iterations;
+  run.converged = r.termination == TerminationType::CONVERGED;
+  run.pcl_converged = run.converged;
+  run.quality_checked = true;
+  run.hit_limit = r.termination == TerminationType::MAX_ITERATIONS;
+  run.stop = terminationTypeToString(r.termination);
+  run.sigma0 = r.isSolutionUsable() ? r.scale : std::numeric_limits<double>::quiet_NaN();
+  run.transformation = r.isSolutionUsable() ? r.adjustment.transformation : kNoTransformation;
+  run.message = r.estimator + ": " + terminationTypeToString(r.termination);
+  if (!r.message.empty())
+    run.message += ": " + r.message;
+}
+
+}  // namespace
+
 RegistrationRun
 runRobust(RobustMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
           const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target)
 {
-  RegistrationRun run;
-  run.name = robustMethodName(method);
-  if (!source || !target || source->empty() || target->empty()) {
-    run.message = "empty source or target";
-    return run;
-  }
-  try {
-    pcl::StopWatch watch;
-    const double cpu0 = processCpuSeconds();
+  return timedRun(robustMethodName(method), source, target, [&](RegistrationRun& run) {
     pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl_ls3d::search::FlannKdTree<pcl::PointXYZ>);
     tree->setInputCloud(target);
     const PclTargetSurface<pcl::PointXYZ> surface(target, tree);
@@ -41,7 +54,7 @@ runRobust(RobustMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& s
     std::string why;
     if (!rule->prepare(surface, &why)) {
       run.message = "LZD rule: " + why;
-      return run;
+      return;
     }
     std::vector<Eigen::Vector3d> points;
     points.reserve(source->size());
@@ -49,28 +62,8 @@ runRobust(RobustMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& s
       points.push_back(p.getVector3fMap().cast<double>());
     RobustMatchingSettings settings;
     settings.method = method;
-    const RobustMatchingReport r = robustMatching(points, {}, surface, *rule, settings, Eigen::Matrix4d::Identity());
-    run.time_s = watch.getTimeSeconds();
-    run.cpu_s = processCpuSeconds() - cpu0;
-    run.ran = true;
-    run.iterations = r.adjustment.iterations;
-    run.converged = r.termination == TerminationType::CONVERGED;
-    run.pcl_converged = run.converged;
-    run.quality_checked = true;
-    run.hit_limit = r.termination == TerminationType::MAX_ITERATIONS;
-    run.stop = terminationTypeToString(r.termination);
-    // Without a usable estimate there is no transformation to evaluate (not the identity).
-    run.sigma0 = r.isSolutionUsable() ? r.scale : std::numeric_limits<double>::quiet_NaN();
-    run.transformation = r.isSolutionUsable() ? r.adjustment.transformation : kNoTransformation;
-    run.message = r.estimator + ": " + terminationTypeToString(r.termination);
-    if (!r.message.empty())
-      run.message += ": " + r.message;
-  }
-  catch (const std::exception& e) {
-    run.ran = false;
-    run.message = std::string("exception: ") + e.what();
-  }
-  return run;
+    collectReport(robustMatching(points, {}, surface, *rule, settings, Eigen::Matrix4d::Identity()), run);
+  });
 }
 
 }  // namespace evaluation

@@ -1,4 +1,5 @@
 #include <pcl_ls3d/evaluation/surface_discrepancy.h>
+#include <pcl_ls3d/stats/descriptive.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -7,20 +8,6 @@
 
 namespace pcl_ls3d {
 namespace evaluation {
-
-namespace {
-
-double
-median(std::vector<double> v)
-{
-  if (v.empty())
-    return std::numeric_limits<double>::quiet_NaN();
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
-}  // namespace
 
 SurfaceDiscrepancy::SurfaceDiscrepancy(const CloudXYZ::ConstPtr& target,
                                        const DiscrepancySettings& settings)
@@ -108,10 +95,10 @@ SurfaceDiscrepancy::evaluate(const Eigen::Matrix3Xd& source_points, const Eigen:
   out.points = v.size();
   if (v.empty())
     return out;
-  out.median = median(v);
+  out.median = stats::medianHigh(v);
   for (double& x : v)
     x = std::abs(x - out.median);
-  out.sigma_mad = 1.4826 * median(v);
+  out.sigma_mad = stats::kMadToSigma * stats::medianHigh(std::move(v));
   out.rms = std::sqrt(sum_sq / static_cast<double>(out.points));
   return out;
 }

@@ -41,6 +41,16 @@ median(std::vector<double> values)
 }
 
 double
+medianHigh(std::vector<double> values)
+{
+  if (values.empty())
+    return kNaN;
+  const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+  std::nth_element(values.begin(), mid, values.end());
+  return *mid;
+}
+
+double
 mad(const std::vector<double>& values, bool scaled)
 {
   if (values.empty())

@@ -29,19 +29,6 @@ robustScaleOf(const std::vector<OverlapContribution>& contributions)
   return n ? std::sqrt(s2 / static_cast<double>(n)) : 1.0;
 }
 
-// Zuo's criterion for every strip: all angle changes below ε, translations and scale too.
-bool
-allConverged(const Eigen::VectorXd& dx, const StripAdjustmentSettings& s)
-{
-  for (Eigen::Index k = 0; k + 7 <= dx.size(); k += 7) {
-    const auto d = dx.segment<7>(k);
-    if (d.segment<3>(PHI).cwiseAbs().maxCoeff() >= s.angle_epsilon ||
-        d.head<3>().norm() >= s.translation_epsilon || std::abs(d[SCALE]) >= s.scale_epsilon)
-      return false;
-  }
-  return true;
-}
-
 BlockIterationRecord
 record(const BlockState& state, const GaussMarkovSolution& sol,
        const std::vector<OverlapContribution>& contributions)
@@ -89,6 +76,21 @@ noiseFloorUndeterminable(const StripPlan& plan, const std::vector<OverlapContrib
   return flagged;
 }
 
+// Parameters under the noise floor are held at their start values: fixed for this solve and
+// reported undeterminable. Returns their flags (7N).
+std::vector<bool>
+holdWeakParameters(const StripPlan& plan, const std::vector<OverlapContribution>& contributions,
+                   BlockState& state, GaussMarkovProblem& problem)
+{
+  const std::vector<bool> weak = noiseFloorUndeterminable(plan, contributions, problem);
+  const Eigen::VectorXd start = identityParameters().replicate(static_cast<Eigen::Index>(plan.strips.size()), 1);
+  for (std::size_t g = 0; g < weak.size(); ++g)
+    if (weak[g])
+      state.values[g / 7][static_cast<Eigen::Index>(g % 7)] = start[static_cast<Eigen::Index>(g)];
+  holdAtStart(weak, start, problem);
+  return weak;
+}
+
 void
 stop(BlockState& state, TerminationType type, const std::string& message)
 {
@@ -117,7 +119,7 @@ initialState(const StripPlan& plan)
   s.qxx = Eigen::MatrixXd::Zero(u, u);
   s.fixed.assign(static_cast<std::size_t>(u), false);
   s.determinable.assign(static_cast<std::size_t>(u), false);
-  s.coarse = plan.settings.coarse_observations > 0;
+  s.coarse = plan.settings.adjustment.coarse_observations > 0;
   return s;
 }
 
@@ -165,15 +167,8 @@ solveIteration(const StripPlan& plan, const std::vector<OverlapContribution>& co
                     " observed points (-min_obs), or none of the observed classes (-classes) has a "
                     "conjugate point on the other strip within -max_dist");
   }
-  std::vector<ParameterBlock> blocks = state.blocks(plan);
-  GaussMarkovProblem problem = plan.problem(blocks);
-  // Held at their start values: fixed for this solve, reported undeterminable.
-  const std::vector<bool> weak = noiseFloorUndeterminable(plan, sorted, problem);
-  const Eigen::VectorXd start = identityParameters().replicate(static_cast<Eigen::Index>(plan.strips.size()), 1);
-  for (std::size_t g = 0; g < weak.size(); ++g)
-    if (weak[g])
-      state.values[g / 7][static_cast<Eigen::Index>(g % 7)] = start[static_cast<Eigen::Index>(g)];
-  holdAtStart(weak, start, problem);
+  GaussMarkovProblem problem = plan.problem(state.blocks(plan));
+  const std::vector<bool> weak = holdWeakParameters(plan, sorted, state, problem);
   GaussMarkovSolution sol = solveGaussMarkov(ne, problem);
   if (sol.ok)
     reportHeldUndeterminable(weak, sol);
@@ -196,20 +191,17 @@ solveIteration(const StripPlan& plan, const std::vector<OverlapContribution>& co
   state.log.push_back(record(state, sol, sorted));
   state.termination = TerminationType::MAX_ITERATIONS;
 
-  // Iteration control (iteration_control.h, for a block): coarse until the changes are below
-  // 1 σ; converged when every strip's changes are below the epsilons; frozen once they are
-  // below freeze_sigma_fraction σ (or after two thirds of the iterations).
-  const int it = state.iteration;
-  if (state.coarse)
-    state.coarse = !(3 * it >= s.max_iterations || changesBelow(sol, 1.0));
-  else if (allConverged(sol.dx, s)) {
+  // The engine's iteration policy for all strips at once (advancePhase, iteration_control.h).
+  IterationPhase phase{state.coarse, state.frozen};
+  const bool converged = advancePhase(phase, sol, s.adjustment, state.iteration).converged;
+  state.coarse = phase.coarse;
+  state.frozen = phase.frozen;
+  if (converged) {
     state.termination = TerminationType::CONVERGED;
     state.phase = BlockState::Phase::EVALUATE;
     return;
   }
-  else if (!state.frozen && (3 * it >= 2 * s.max_iterations || changesBelow(sol, s.freeze_sigma_fraction)))
-    state.frozen = true;
-  if (it >= s.max_iterations) {
+  if (state.iteration >= s.adjustment.max_iterations) {
     state.phase = BlockState::Phase::EVALUATE;
     state.message = "iteration limit reached before the changes fell below the epsilons";
   }

@@ -135,7 +135,7 @@ ownNoiseOf(const StripAdjustmentReport& report, int k)
 std::string
 notTestable(const StripPlan& plan, const BlockState& state, const std::vector<OverlapContribution>& final_pass)
 {
-  if (!plan.settings.test_held_out || std::isinf(plan.settings.held_out_z))
+  if (!plan.settings.test_held_out || std::isinf(plan.settings.adjustment.held_out_z))
     return "switched off";
   if (plan.settings.model != ParameterModel::RIGID_6)
     return plan.settings.model == ParameterModel::SIMILARITY_7
@@ -159,8 +159,8 @@ heldOutResult(const StripPlan& plan, const StripAdjustmentReport& report, const 
   h.z = p.z;
   h.effect = std::abs(p.estimate) * (h.parameter >= PHI ? plan.strips[static_cast<std::size_t>(k)].radius : 1.0);
   h.noise = ownNoiseOf(report, k);
-  h.significant = std::abs(h.z) > plan.settings.held_out_z;
-  h.flagged = h.significant && h.effect > plan.settings.held_out_noise_factor * h.noise;
+  h.significant = std::abs(h.z) > plan.settings.adjustment.held_out_z;
+  h.flagged = h.significant && h.effect > plan.settings.adjustment.held_out_noise_factor * h.noise;
   return h;
 }
 

@@ -16,6 +16,7 @@ namespace strips {
 namespace {
 
 using Row14 = Eigen::Matrix<double, 1, 14>;
+using CellMap = std::map<std::tuple<int, int, int>, PrecisionCell>;
 // Observations per accumulation chunk: chunks are summed in order, so the normal equations do
 // not depend on the number of threads (a distributed job reproduces them bit for bit).
 constexpr std::size_t kChunk = 4096;
@@ -55,7 +56,111 @@ struct OverlapMatcher::Direction
   }
   double source_scale = 1.0, target_scale = 1.0;
   double spacing = 1.0;  // thinning cell edge of the overlap
+
+  const ObservationSet&
+  match(const ParameterBlock& src, const ParameterBlock& tgt, const MatchInput& in, std::size_t coarse_observations);
+  void
+  addNormalEquations(const ObservationSet& set, const Eigen::VectorXd& p, PairNormalEquations& sum) const;
+  void
+  addPrecisionCells(const ObservationSet& set, const Eigen::VectorXd& p, double cell, CellMap& cells) const;
 };
+
+// Matches at the poses (every k-th point while coarse, about coarse_observations of them) and
+// sets the errors-in-variables correction of the scale column for them.
+const ObservationSet&
+OverlapMatcher::Direction::match(const ParameterBlock& src, const ParameterBlock& tgt, const MatchInput& in,
+                                 std::size_t coarse_observations)
+{
+  if (in.frozen)
+    matcher.freeze();
+  const std::size_t n = selection.points.size();
+  PairMatcher::Sampling sampling;
+  if (in.coarse && coarse_observations > 0 && n > 2 * coarse_observations)
+    sampling.every = (n + coarse_observations - 1) / coarse_observations;
+  const ObservationSet& set = matcher.match(BlockLinearization(src), BlockLinearization(tgt), sampling);
+  if (set.empty())
+    return set;
+  source_scale = src.values[SCALE];
+  target_scale = tgt.values[SCALE];
+  double mean_u2 = 0.0;
+  for (const Observation& o : set)
+    mean_u2 += o.direction.squaredNorm();
+  if (in.scale_free)
+    eiv.update(src.values[SCALE], in.sigma0, mean_u2 / static_cast<double>(set.size()));
+  else
+    eiv.update(1.0, 0.0, 1.0);  // inactive
+  return set;
+}
+
+// Eq. 8 per chunk, added to `sum` in chunk order.
+void
+OverlapMatcher::Direction::addNormalEquations(const ObservationSet& set, const Eigen::VectorXd& p,
+                                              PairNormalEquations& sum) const
+{
+  const std::size_t chunks = (set.size() + kChunk - 1) / kChunk;
+  std::vector<PairNormalEquations> part(chunks);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
+    const std::size_t end = std::min(set.size(), static_cast<std::size_t>(c + 1) * kChunk);
+    for (std::size_t k = static_cast<std::size_t>(c) * kChunk; k < end; ++k)
+      part[static_cast<std::size_t>(c)].add(row(set[k]), set[k].distance, p[static_cast<Eigen::Index>(k)]);
+  }
+  for (const PairNormalEquations& ne : part)
+    sum += ne;
+}
+
+// Precision cells (spatial_precision.h): scores p v a with v = l at the adjusted poses.
+void
+OverlapMatcher::Direction::addPrecisionCells(const ObservationSet& set, const Eigen::VectorXd& p, double cell,
+                                             CellMap& cells) const
+{
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    const double w = p[static_cast<Eigen::Index>(k)];
+    if (!(w > 0.0))
+      continue;
+    const Eigen::Vector3d x = matcher.position(set[k]);
+    const std::tuple<int, int, int> key(static_cast<int>(std::floor(x.x() / cell)),
+                                        static_cast<int>(std::floor(x.y() / cell)),
+                                        static_cast<int>(std::floor(x.z() / cell)));
+    PrecisionCell& pc = cells[key];
+    const Row14 a = row(set[k]);
+    pc.score += (w * set[k].distance) * a.transpose();
+    pc.normal.selfadjointView<Eigen::Upper>().rankUpdate(a.transpose(), w);
+  }
+}
+
+namespace {
+
+// How many observations kept a weight, with their Σ p v² and Σ p σ²_surface.
+void
+countUsed(const ObservationSet& set, const Eigen::VectorXd& p, DirectionCounts& counts)
+{
+  counts.used = 0;
+  for (Eigen::Index k = 0; k < p.size(); ++k)
+    if (p[k] > 0.0) {
+      ++counts.used;
+      const Observation& o = set[static_cast<std::size_t>(k)];
+      counts.vtpv += p[k] * o.distance * o.distance;
+      if (std::isfinite(o.surface_variance))
+        counts.surface_variance += p[k] * o.surface_variance;
+    }
+}
+
+// The cells in key order, their normal matrices completed from the upper triangle.
+std::vector<PrecisionCell>
+completedCells(const CellMap& cells)
+{
+  std::vector<PrecisionCell> out;
+  for (const auto& kv : cells) {
+    PrecisionCell pc = kv.second;
+    std::tie(pc.x, pc.y, pc.z) = kv.first;
+    pc.normal.triangularView<Eigen::StrictlyLower>() = pc.normal.transpose();
+    out.push_back(pc);
+  }
+  return out;
+}
+
+}  // namespace
 
 bool
 directionWanted(const DirectionSelection& selection, bool forward, const StripAdjustmentSettings& settings)
@@ -122,81 +227,28 @@ OverlapMatcher::run(const ParameterBlock& block_i, const ParameterBlock& block_j
   out.i = dir_[0]->selection.source;
   out.j = dir_[0]->selection.target;
   out.iteration = in.iteration;
-  std::map<std::tuple<int, int, int>, PrecisionCell> cells;
+  CellMap cells;
   for (int d = 0; d < 2; ++d) {
     Direction& D = *dir_[d];
     DirectionCounts& counts = d == 0 ? out.forward : out.backward;
     if (!D.ready)
       continue;
-    const ParameterBlock& src = D.forward ? block_i : block_j;
-    const ParameterBlock& tgt = D.forward ? block_j : block_i;
-    if (in.frozen)
-      D.matcher.freeze();
-    const std::size_t n = D.selection.points.size();
-    PairMatcher::Sampling sampling;
-    if (in.coarse && settings_.coarse_observations > 0 && n > 2 * settings_.coarse_observations)
-      sampling.every = (n + settings_.coarse_observations - 1) / settings_.coarse_observations;
-    const ObservationSet& set = D.matcher.match(BlockLinearization(src), BlockLinearization(tgt), sampling);
+    const ObservationSet& set = D.forward ? D.match(block_i, block_j, in, settings_.adjustment.coarse_observations)
+                                          : D.match(block_j, block_i, in, settings_.adjustment.coarse_observations);
     counts.observations = set.size();
     if (set.empty())
       continue;
-    D.source_scale = src.values[SCALE];
-    D.target_scale = tgt.values[SCALE];
-    double mean_u2 = 0.0;
-    for (const Observation& o : set)
-      mean_u2 += o.direction.squaredNorm();
-    if (in.scale_free)
-      D.eiv.update(src.values[SCALE], in.sigma0, mean_u2 / static_cast<double>(set.size()));
-    else
-      D.eiv.update(1.0, 0.0, 1.0);  // inactive
     const auto row = [&D, &set](std::size_t k) { return D.row(set[k]); };
     const Eigen::VectorXd& p = D.weighting.compute(estimator_, set, row, in.sigma0, in.qxx, in.iteration);
     counts.robust_scale = robustScale(set.distances());
-    // Eq. 8 per chunk, summed in chunk order.
-    const std::size_t chunks = (set.size() + kChunk - 1) / kChunk;
-    std::vector<PairNormalEquations> part(chunks);
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
-      const std::size_t end = std::min(set.size(), static_cast<std::size_t>(c + 1) * kChunk);
-      for (std::size_t k = static_cast<std::size_t>(c) * kChunk; k < end; ++k)
-        part[static_cast<std::size_t>(c)].add(row(k), set[k].distance, p[static_cast<Eigen::Index>(k)]);
-    }
-    for (const PairNormalEquations& ne : part)
-      out.normal += ne;
+    D.addNormalEquations(set, p, out.normal);
     out.noise_floor += noiseFloor(D, set, p);
-    counts.used = 0;
-    for (Eigen::Index k = 0; k < p.size(); ++k)
-      if (p[k] > 0.0) {
-        ++counts.used;
-        const Observation& o = set[static_cast<std::size_t>(k)];
-        counts.vtpv += p[k] * o.distance * o.distance;
-        if (std::isfinite(o.surface_variance))
-          counts.surface_variance += p[k] * o.surface_variance;
-      }
-    if (!(cell > 0.0))
-      continue;
-    // Precision cells (spatial_precision.h): scores p v a with v = l at the adjusted poses.
-    for (std::size_t k = 0; k < set.size(); ++k) {
-      const double w = p[static_cast<Eigen::Index>(k)];
-      if (!(w > 0.0))
-        continue;
-      const Eigen::Vector3d x = D.matcher.position(set[k]);
-      const std::tuple<int, int, int> key(static_cast<int>(std::floor(x.x() / cell)),
-                                          static_cast<int>(std::floor(x.y() / cell)),
-                                          static_cast<int>(std::floor(x.z() / cell)));
-      PrecisionCell& pc = cells[key];
-      const Row14 a = row(k);
-      pc.score += (w * set[k].distance) * a.transpose();
-      pc.normal.selfadjointView<Eigen::Upper>().rankUpdate(a.transpose(), w);
-    }
+    countUsed(set, p, counts);
+    if (cell > 0.0)
+      D.addPrecisionCells(set, p, cell, cells);
   }
   out.normal.symmetrize();
-  for (auto& kv : cells) {
-    PrecisionCell pc = kv.second;
-    std::tie(pc.x, pc.y, pc.z) = kv.first;
-    pc.normal.triangularView<Eigen::StrictlyLower>() = pc.normal.transpose();
-    out.cells.push_back(pc);
-  }
+  out.cells = completedCells(cells);
   return out;
 }
 

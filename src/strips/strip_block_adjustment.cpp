@@ -172,7 +172,7 @@ StripBlockAdjustment::run(const std::vector<Strip>& strips, StripAdjustmentRepor
   if (!makePlan(strips, settings_, plan_, error, &footprints))
     return false;
   plan_.block_origin = block_origin_;
-  const RobustEstimator::Ptr estimator = parseRobustEstimator(settings_.estimator, &error);
+  const RobustEstimator::Ptr estimator = makeRobustEstimator(settings_.estimator);
   const ConjugateRule::Ptr rule = makeConjugateRule(settings_.rule);
   const std::vector<int> jobs = plan_.jobs();
   say(format("plan: %zu strips, %zu overlaps used of %zu, footprint cell %.3g", strips.size(),

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <stdexcept>
 
 namespace pcl_ls3d {
 namespace strips {
@@ -42,17 +43,17 @@ settingsJson(const StripAdjustmentSettings& s)
           {"roughness_factor", s.roughness_factor}, {"observation_spacing", s.observation_spacing},
           {"max_observations", s.max_observations}, {"both_directions", s.both_directions},
           {"model", parameterModelName(s.model)}, {"rule", static_cast<int>(s.rule)},
-          {"estimator", s.estimator}, {"max_distance", s.max_distance},
+          {"estimator", toString(s.estimator)}, {"max_distance", s.max_distance},
           {"reference_strips", s.reference_strips}, {"soft_datum", s.soft_datum},
-          {"soft_sigmas", vec(s.soft_sigmas)}, {"max_iterations", s.max_iterations},
-          {"angle_epsilon", s.angle_epsilon}, {"translation_epsilon", s.translation_epsilon},
-          {"scale_epsilon", s.scale_epsilon}, {"freeze_sigma_fraction", s.freeze_sigma_fraction},
-          {"coarse_observations", s.coarse_observations},
-          {"determinability_threshold", s.determinability_threshold},
-          {"spatial_precision", s.spatial_precision}, {"precision_cell", s.precision_cell},
+          {"soft_sigmas", vec(s.soft_sigmas)}, {"max_iterations", s.adjustment.max_iterations},
+          {"angle_epsilon", s.adjustment.angle_epsilon}, {"translation_epsilon", s.adjustment.translation_epsilon},
+          {"scale_epsilon", s.adjustment.scale_epsilon}, {"freeze_sigma_fraction", s.adjustment.freeze_sigma_fraction},
+          {"coarse_observations", s.adjustment.coarse_observations},
+          {"determinability_threshold", s.adjustment.determinability_threshold},
+          {"spatial_precision", s.adjustment.spatial_precision}, {"precision_cell", s.adjustment.precision_cell},
           {"test_held_out", s.test_held_out},
-          {"held_out_z", std::isfinite(s.held_out_z) ? json(s.held_out_z) : json(nullptr)},  // null: inf
-          {"held_out_noise_factor", s.held_out_noise_factor}};
+          {"held_out_z", std::isfinite(s.adjustment.held_out_z) ? json(s.adjustment.held_out_z) : json(nullptr)},  // null: inf
+          {"held_out_noise_factor", s.adjustment.held_out_noise_factor}};
 }
 
 StripAdjustmentSettings
@@ -71,26 +72,27 @@ settingsOf(const json& j)
   s.both_directions = j.at("both_directions");
   parseParameterModel(j.at("model").get<std::string>(), s.model);
   s.rule = static_cast<ConjugateRuleType>(j.at("rule").get<int>());
-  s.estimator = j.at("estimator");
+  if (!parseRobustEstimatorChoice(j.at("estimator").get<std::string>(), s.estimator))
+    throw std::runtime_error("unknown estimator " + j.at("estimator").get<std::string>());
   s.max_distance = j.at("max_distance");
   s.reference_strips = j.at("reference_strips").get<std::vector<int>>();
   s.soft_datum = j.at("soft_datum");
   s.soft_sigmas = fixed<7>(j.at("soft_sigmas"));
-  s.max_iterations = j.at("max_iterations");
-  s.angle_epsilon = j.at("angle_epsilon");
-  s.translation_epsilon = j.at("translation_epsilon");
-  s.scale_epsilon = j.at("scale_epsilon");
-  s.freeze_sigma_fraction = j.at("freeze_sigma_fraction");
-  s.coarse_observations = j.at("coarse_observations");
-  s.determinability_threshold = j.at("determinability_threshold");
-  s.spatial_precision = j.at("spatial_precision");
-  s.precision_cell = j.at("precision_cell");
+  s.adjustment.max_iterations = j.at("max_iterations");
+  s.adjustment.angle_epsilon = j.at("angle_epsilon");
+  s.adjustment.translation_epsilon = j.at("translation_epsilon");
+  s.adjustment.scale_epsilon = j.at("scale_epsilon");
+  s.adjustment.freeze_sigma_fraction = j.at("freeze_sigma_fraction");
+  s.adjustment.coarse_observations = j.at("coarse_observations");
+  s.adjustment.determinability_threshold = j.at("determinability_threshold");
+  s.adjustment.spatial_precision = j.at("spatial_precision");
+  s.adjustment.precision_cell = j.at("precision_cell");
   // Absent in plans written before the held-out test: its defaults.
   s.test_held_out = j.value("test_held_out", s.test_held_out);
   if (j.contains("held_out_z"))
-    s.held_out_z = j.at("held_out_z").is_null() ? std::numeric_limits<double>::infinity()
+    s.adjustment.held_out_z = j.at("held_out_z").is_null() ? std::numeric_limits<double>::infinity()
                                                  : j.at("held_out_z").get<double>();
-  s.held_out_noise_factor = j.value("held_out_noise_factor", s.held_out_noise_factor);
+  s.adjustment.held_out_noise_factor = j.value("held_out_noise_factor", s.adjustment.held_out_noise_factor);
   return s;
 }
 

@@ -149,12 +149,13 @@ stem(const std::string& path)
 
 }  // namespace
 
+namespace {
+
+// Opens every input; the block's CRS is the first declared one, the others noted where they differ.
 bool
-loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& options,
-           LoadedStrips& out, std::string& error)
+openInputs(const std::vector<std::string>& paths, std::vector<OpenInput>& open, LoadedStrips& out,
+           std::string& error)
 {
-  out = LoadedStrips();
-  std::vector<OpenInput> open(paths.size());
   std::vector<std::pair<std::string, std::string>> crs_of_file;
   for (std::size_t f = 0; f < paths.size(); ++f) {
     InputFile info;
@@ -167,6 +168,13 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
   }
   for (std::string& note : maps::crsNotes(crs_of_file))
     out.notes.push_back(std::move(note));
+  return true;
+}
+
+// Each input's heights into the plan unit, with one note per input converted.
+void
+setHeightFactors(const std::vector<std::string>& paths, std::vector<OpenInput>& open, LoadedStrips& out)
+{
   for (std::size_t f = 0; f < paths.size(); ++f) {
     open[f].height_factor = heightFactor(out.inputs, f);
     const bool declared = maps::crsLinearUnit(out.inputs[f].crs_wkt) > 0.0;
@@ -175,35 +183,42 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
         !note.empty())
       out.notes.push_back(std::move(note));
   }
-  // The strips: one per input, or one per non-zero point-source id over all inputs.
-  if (options.split_by_point_source) {
-    std::map<int, std::vector<int>> ids;
-    for (std::size_t f = 0; f < out.inputs.size(); ++f)
-      for (const auto& kv : out.inputs[f].point_sources) {
-        if (kv.first == 0)
-          out.unassigned += kv.second;
-        else
-          ids[kv.first].push_back(static_cast<int>(f));
-      }
-    if (ids.size() < 2) {
-      error = ids.empty() ? "the split by point-source id finds no strip (every point has id 0)"
-                          : "the split by point-source id finds one strip only (id " +
-                                std::to_string(ids.begin()->first) + ")";
-      return false;
+}
+
+// One strip per non-zero point-source id over all inputs (id 0: no strip, written unchanged).
+bool
+splitByPointSource(LoadedStrips& out, std::string& error)
+{
+  std::map<int, std::vector<int>> ids;
+  for (std::size_t f = 0; f < out.inputs.size(); ++f)
+    for (const auto& kv : out.inputs[f].point_sources) {
+      if (kv.first == 0)
+        out.unassigned += kv.second;
+      else
+        ids[kv.first].push_back(static_cast<int>(f));
     }
-    for (const auto& kv : ids)
-      out.sources.push_back({"psid" + std::to_string(kv.first), kv.first, kv.second, {}});
-    if (out.unassigned > 0)
-      out.notes.push_back(std::to_string(out.unassigned) +
-                          " points with point-source id 0 belong to no strip: not observed, written unchanged");
-    for (const InputFile& f : out.inputs)
-      if (f.points == 0)
-        out.notes.push_back(f.path + " has no points: no strip from it");
+  if (ids.size() < 2) {
+    error = ids.empty() ? "the split by point-source id finds no strip (every point has id 0)"
+                        : "the split by point-source id finds one strip only (id " +
+                              std::to_string(ids.begin()->first) + ")";
+    return false;
   }
-  else
-    for (std::size_t f = 0; f < out.inputs.size(); ++f)
-      out.sources.push_back({stem(paths[f]), -1, {static_cast<int>(f)}, {}});
-  // Pass 1: each strip's origin F_k (rounded XY box centre, rounded mean height) and the box.
+  for (const auto& kv : ids)
+    out.sources.push_back({"psid" + std::to_string(kv.first), kv.first, kv.second, {}});
+  if (out.unassigned > 0)
+    out.notes.push_back(std::to_string(out.unassigned) +
+                        " points with point-source id 0 belong to no strip: not observed, written unchanged");
+  for (const InputFile& f : out.inputs)
+    if (f.points == 0)
+      out.notes.push_back(f.path + " has no points: no strip from it");
+  return true;
+}
+
+// Pass 1: each strip's origin F_k (rounded XY box centre, rounded mean height) and the block's
+// origin (rounded centre of all boxes, height 0).
+bool
+placeOrigins(const std::vector<OpenInput>& open, LoadedStrips& out, std::string& error)
+{
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (StripSource& src : out.sources) {
     Eigen::Vector2d slo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), shi = -slo;
@@ -226,7 +241,13 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
   }
   const Eigen::Vector2d c = 0.5 * (lo + hi);
   out.block_origin = Eigen::Vector3d(std::round(c.x()), std::round(c.y()), 0.0);
-  // Pass 2: local coordinates, classes, exclusions.
+  return true;
+}
+
+// Pass 2: local coordinates, classes and exclusions of every strip, with a note on the excluded.
+void
+buildStrips(const std::vector<OpenInput>& open, const StripLoadOptions& options, LoadedStrips& out)
+{
   for (const StripSource& src : out.sources)
     out.strips.push_back(buildStrip(open, src, out.block_origin, options));
   std::size_t withheld = 0, synthetic = 0;
@@ -237,6 +258,29 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
   if (withheld + synthetic > 0)
     out.notes.push_back(std::to_string(withheld) + " withheld and " + std::to_string(synthetic) +
                         " synthetic points are not observed (they are corrected and written)");
+}
+
+}  // namespace
+
+bool
+loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& options,
+           LoadedStrips& out, std::string& error)
+{
+  out = LoadedStrips();
+  std::vector<OpenInput> open(paths.size());
+  if (!openInputs(paths, open, out, error))
+    return false;
+  setHeightFactors(paths, open, out);
+  if (options.split_by_point_source) {
+    if (!splitByPointSource(out, error))
+      return false;
+  }
+  else
+    for (std::size_t f = 0; f < out.inputs.size(); ++f)
+      out.sources.push_back({stem(paths[f]), -1, {static_cast<int>(f)}, {}});
+  if (!placeOrigins(open, out, error))
+    return false;
+  buildStrips(open, options, out);
   return true;
 }
 

@@ -110,7 +110,7 @@ StripPlan::problem(const std::vector<ParameterBlock>& blocks) const
     // Rank test in "displacement at the strip's edge": angles and scale times 1 / radius.
     p.scaling.segment<4>(o + 3).setConstant(1.0 / std::max(1.0, strips[k].radius));
   }
-  p.determinability_threshold = settings.determinability_threshold;
+  p.determinability_threshold = settings.adjustment.determinability_threshold;
   return p;
 }
 
@@ -161,7 +161,7 @@ makePlan(const std::vector<Strip>& strips, const StripAdjustmentSettings& settin
   for (const PlannedStrip& p : plan.strips)
     if (p.part < 0)
       plan.notes.push_back("strip " + p.name + " has no usable overlap: left unchanged");
-  plan.precision_cell = settings.precision_cell > 0.0 ? settings.precision_cell
+  plan.precision_cell = settings.adjustment.precision_cell > 0.0 ? settings.adjustment.precision_cell
                                                       : 8.0 / std::sqrt(std::max(1e-12, sparsest));
   if (!chooseDatum(plan, error))
     return false;

@@ -41,7 +41,7 @@ covarianceOf(const StripPlan& plan, const BlockState& state, const std::vector<O
   bool cells = false;
   for (const OverlapContribution& c : final_pass)
     cells = cells || !c.cells.empty();
-  if (!plan.settings.spatial_precision || !cells || state.redundancy <= 0)
+  if (!plan.settings.adjustment.spatial_precision || !cells || state.redundancy <= 0)
     return C;
   const GaussMarkovProblem problem = plan.problem(state.blocks(plan));
   C = blockSandwichCovariance(final_pass, state.qxx, state.sigma0, problem.apriori_weights, state.determinable);
@@ -273,8 +273,7 @@ makeReport(const StripPlan& plan, const BlockState& state,
   report.observations = state.observations;
   report.unknowns = static_cast<int>(std::count(state.determinable.begin(), state.determinable.end(), true));
   report.rule = ruleName(s.rule);
-  const RobustEstimator::Ptr estimator = parseRobustEstimator(s.estimator);
-  report.estimator = estimator ? estimator->name() : s.estimator;
+  report.estimator = makeRobustEstimator(s.estimator)->name();
   report.model = parameterModelName(s.model);
   report.block_origin = plan.block_origin;
   report.footprint_cell = plan.grid.cell;

@@ -117,7 +117,7 @@ stageMatch(const WorkDir& work, int job, std::string& error)
     return false;
   const StripAdjustmentSettings& s = f.plan.settings;
   const OverlapSelection selection = selectObservations(pair.strips, pair.overlap, pair.footprints, s);
-  const RobustEstimator::Ptr estimator = parseRobustEstimator(s.estimator, &error);
+  const RobustEstimator::Ptr estimator = makeRobustEstimator(s.estimator);
   const ConjugateRule::Ptr rule = makeConjugateRule(s.rule);
   OverlapMatcher matcher(selection, *rule, *estimator, s, stripNoise(*selection.backward.surface, pair.footprints.density(0)),
                          stripNoise(*selection.forward.surface, pair.footprints.density(1)));

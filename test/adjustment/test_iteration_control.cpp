@@ -84,4 +84,36 @@ TEST(IterationControl, MissedPointsAreSearchedAgainEveryRecheckInterval)
   EXPECT_FALSE(culling.skipMissed(1));
 }
 
+// The policy for N parameter blocks (the strip block): converged only when every block's
+// changes are below the epsilons; the phase is a plain value the caller keeps.
+TEST(IterationControl, AdvancePhaseJudgesEveryBlock)
+{
+  AdjustmentSettings settings;
+  settings.max_iterations = 30;
+  Eigen::VectorXd dx = Eigen::VectorXd::Constant(14, 1e-9);
+  EXPECT_TRUE(converged(dx, settings));
+  dx[7 + 2] = 2.0 * settings.translation_epsilon;  // the second block's tz
+  EXPECT_FALSE(converged(dx, settings));
+
+  GaussMarkovSolution sol;
+  sol.ok = true;
+  sol.sigma0 = 1.0;
+  sol.qxx = Eigen::MatrixXd::Identity(14, 14);
+  sol.determinable.assign(14, true);
+  sol.fixed.assign(14, false);
+  sol.dx = Eigen::VectorXd::Constant(14, 0.5);  // below 1 σ: the coarse phase ends
+  IterationPhase phase{true, false};
+  PhaseStep s = advancePhase(phase, sol, settings, 1);
+  EXPECT_FALSE(phase.coarse);
+  EXPECT_FALSE(s.converged || s.froze || s.afresh);
+  sol.dx = Eigen::VectorXd::Constant(14, 0.05);  // below freeze_sigma_fraction σ
+  s = advancePhase(phase, sol, settings, 2);
+  EXPECT_TRUE(s.froze && s.afresh && phase.frozen);
+  sol.dx = dx;  // one block still above its ε
+  s = advancePhase(phase, sol, settings, 3);
+  EXPECT_FALSE(s.converged || s.froze || s.afresh);
+  sol.dx.setConstant(1e-9);
+  EXPECT_TRUE(advancePhase(phase, sol, settings, 4).converged);
+}
+
 }  // namespace

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 using namespace pcl_ls3d;
@@ -77,6 +79,26 @@ TEST(RobustEstimatorFactory, ParsesNamesAndConstants)
     EXPECT_FALSE(parseRobustEstimator(bad, &why)) << bad;
     EXPECT_FALSE(why.empty()) << bad;
   }
+}
+
+// A choice is a value: its text reads back to the same type and constant, bit for bit.
+TEST(RobustEstimatorFactory, ChoiceTextRoundTrips)
+{
+  for (const std::string text : {"zuo", "zuo:7", "huber:1.5", "tukey", "M", "md:0.1", "ls", "gm:3.3333333333333335"}) {
+    RobustEstimatorChoice choice, again;
+    ASSERT_TRUE(parseRobustEstimatorChoice(text, choice)) << text;
+    ASSERT_TRUE(parseRobustEstimatorChoice(toString(choice), again)) << toString(choice);
+    EXPECT_EQ(again.type, choice.type) << text;
+    EXPECT_TRUE(std::isnan(choice.constant) ? std::isnan(again.constant) : again.constant == choice.constant) << text;
+    EXPECT_EQ(makeRobustEstimator(choice)->name(), parseRobustEstimator(text)->name()) << text;
+  }
+  EXPECT_EQ(toString(RobustEstimatorChoice{}), "zuo");
+  RobustEstimatorChoice kept{RobustEstimatorType::HUBER, 2.0};
+  std::string why;
+  EXPECT_FALSE(parseRobustEstimatorChoice("zuo:-1", kept, &why));
+  EXPECT_NE(why.find("positive"), std::string::npos) << why;
+  EXPECT_EQ(kept.type, RobustEstimatorType::HUBER);  // untouched on failure
+  EXPECT_FALSE(parseRobustEstimatorChoice("ls:2", kept, &why));
 }
 
 TEST(RobustEstimatorFactory, MakesEveryShippedEstimator)

@@ -1,6 +1,8 @@
 // pcl_ls3d_compare's robust rows (issue 9) on Li's surface with 20 % of it raised by N(10 σ, σ):
 // the rows are there in table order after the LS3D row, and the high-breakdown estimators (LMS,
 // MM) recover the known transform, every point within 0.5 σ, with their robust scale ≈ σ.
+#include "io/tool_run.h"
+
 #include <pcl_ls3d/synth/li_surface.h>
 
 #include <pcl/io/pcd_io.h>
@@ -20,7 +22,6 @@ using namespace pcl_ls3d;
 
 namespace {
 
-const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_compare";
 constexpr double kSigma = 20.0;
 
 }  // namespace
@@ -46,10 +47,10 @@ TEST(CompareRobust, RobustRowsRecoverTheStablePart)
   std::ofstream((dir / "truth.json").string()) << truth.dump();
 
   const std::string out = (dir / "cmp.json").string();
-  const std::string cmd = kTool + " " + (dir / "mate.pcd").string() + " " + (dir / "ref.pcd").string() +
-                          " -methods ls3d-lzd,robust -max_corr 1000 -truth " + (dir / "truth.json").string() +
-                          " -json " + out + " > /dev/null 2>&1";
-  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const std::string args = (dir / "mate.pcd").string() + " " + (dir / "ref.pcd").string() +
+                           " -methods ls3d-lzd,robust -max_corr 1000 -truth " + (dir / "truth.json").string() +
+                           " -json " + out;
+  ASSERT_EQ(pcl_ls3d_test::runToolMerged("pcl_ls3d_compare", args, dir.string()).code, 0);
   std::ifstream in(out);
   const auto j = nlohmann::json::parse(in);
   ASSERT_EQ(j["methods"].size(), 5u);

@@ -1,5 +1,7 @@
 // Runs pcl_ls3d_compare on a tiny generated, georeferenced pair: every method reports finite
 // numbers, LS3D-LND recovers the known truth, and bad input exits non-zero without writing.
+#include "io/tool_run.h"
+
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/synth/registration_pair.h>
@@ -25,23 +27,26 @@ namespace {
 
 const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_compare";
 
-int
-run(const std::string& args)
-{
-  const std::string cmd = kTool + " " + args + " > /dev/null 2>&1";
-  return std::system(cmd.c_str());
-}
-
-/// Runs the tool; returns the exit code and fills `output` (stdout + stderr).
+/// Runs the tool; returns the exit code and fills `output` (stdout + stderr), written beside `log`.
 int
 run(const std::string& args, const fs::path& log, std::string& output)
 {
-  const int status = std::system((kTool + " " + args + " > " + log.string() + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream s;
-  s << in.rdbuf();
-  output = s.str();
-  return status;
+  const pcl_ls3d_test::ToolRun r = pcl_ls3d_test::runToolMerged("pcl_ls3d_compare", args, log.parent_path().string());
+  output = r.out;
+  return r.code;
+}
+
+/// Runs the tool for its exit code alone.
+int
+run(const std::string& args)
+{
+  const fs::path scratch = fs::temp_directory_path() / ("pcl_ls3d_compare_run_" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  std::string ignored;
+  const int code = run(args, scratch / "log", ignored);
+  std::error_code ec;
+  fs::remove_all(scratch, ec);
+  return code;
 }
 
 /// The text table's row of `method` ("" if absent).

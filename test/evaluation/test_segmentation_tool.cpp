@@ -2,6 +2,7 @@
 // match the JSON report, -evaluate prints the table, and bad input exits non-zero with exactly
 // one error line. Runs the built tool (PCL_LS3D_TOOL_DIR) on a small generated PCD.
 #include "evaluation/segmentation_test_scene.h"
+#include "io/tool_run.h"
 
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
@@ -16,7 +17,6 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -34,11 +34,7 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct ToolResult
-{
-  int code = -1;
-  std::string out, err;
-};
+using ToolResult = pcl_ls3d_test::ToolRun;
 
 std::string
 slurp(const fs::path& p)
@@ -100,14 +96,7 @@ class SegmentTool : public ::testing::Test
   ToolResult
   run(const std::string& args)
   {
-    ToolResult r;
-    const std::string cmd = tool_.string() + " " + args + " > " + (dir_ / "out.txt").string() +
-                            " 2> " + (dir_ / "err.txt").string();
-    const int status = std::system(cmd.c_str());
-    r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(dir_ / "out.txt");
-    r.err = slurp(dir_ / "err.txt");
-    return r;
+    return pcl_ls3d_test::runTool(tool_.filename().string(), args, dir_.string());  // tool_ is in the tool dir
   }
 
   fs::path dir_, tool_, input_;

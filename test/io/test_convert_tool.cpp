@@ -11,12 +11,12 @@
 #include <pcl/point_types.h>
 
 #include "io/io_test_utils.h"
+#include "io/tool_run.h"
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <set>
@@ -55,13 +55,9 @@ int
 runProgram(const std::string& tool, const std::string& args, std::string& output,
            const pcl_ls3d_test::TempDir& dir)
 {
-  const std::string log = dir.file("log.txt");
-  const int status = std::system((tool + " " + args + " > " + log + " 2>&1").c_str());
-  std::ifstream in(log);
-  std::stringstream s;
-  s << in.rdbuf();
-  output = s.str();
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  const pcl_ls3d_test::ToolRun r = pcl_ls3d_test::runToolMerged(tool, args, dir.path.string());
+  output = r.out;
+  return r.code;
 }
 
 /// A LAS file's point coordinates read from its bytes (public header fields and the first 12
@@ -104,14 +100,14 @@ recordedOrigin(const std::string& path, Eigen::Vector3d& origin)
 int
 run(const std::string& args, std::string& output, const pcl_ls3d_test::TempDir& dir)
 {
-  return runProgram(kTool, args, output, dir);
+  return runProgram("pcl_ls3d_convert", args, output, dir);
 }
 
 /// pcl_ls3d_info with `args`.
 int
 runInfo(const std::string& args, std::string& output, const pcl_ls3d_test::TempDir& dir)
 {
-  return runProgram(kInfoTool, args, output, dir);
+  return runProgram("pcl_ls3d_info", args, output, dir);
 }
 
 class ConvertTool : public ::testing::Test
@@ -142,7 +138,7 @@ protected:
     if (!fs::exists(kSegmentTool))
       ADD_FAILURE() << kSegmentTool << " is not built";
     else
-      EXPECT_EQ(runProgram(kSegmentTool, dir_.file("in.las") + " -o " + seg, out, dir_), 0) << out;
+      EXPECT_EQ(runProgram("pcl_ls3d_segment", dir_.file("in.las") + " -o " + seg, out, dir_), 0) << out;
     return seg;
   }
 
@@ -245,14 +241,8 @@ TEST_F(ConvertTool, InfoToolReportsCountsStripsAndErrors)
   const std::string info_tool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_info";
   if (!fs::exists(info_tool))
     FAIL() << info_tool << " is not built";
-  const std::string log = dir_.file("info.txt");
   const auto runInfo = [&](const std::string& args, std::string& out) {
-    const int status = std::system((info_tool + " " + args + " > " + log + " 2>&1").c_str());
-    std::ifstream in(log);
-    std::stringstream s;
-    s << in.rdbuf();
-    out = s.str();
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return runProgram("pcl_ls3d_info", args, out, dir_);
   };
   std::string out;
   ASSERT_EQ(runInfo("-json " + dir_.file("in.las"), out), 0) << out;
@@ -424,7 +414,7 @@ TEST_F(ConvertTool, SegmentsFileGivesObjectClassesNeverSegmentIds)
   const std::string seg = segmentsFile(), mrg = dir_.file("MRG.pcd");
   ASSERT_FALSE(HasFailure());
   std::string out;
-  ASSERT_EQ(runProgram(kSegmentTool, dir_.file("in.las") + " -mode mrg -o " + mrg, out, dir_), 0) << out;
+  ASSERT_EQ(runProgram("pcl_ls3d_segment", dir_.file("in.las") + " -mode mrg -o " + mrg, out, dir_), 0) << out;
   const std::set<int> object_codes = {1, 2, 5, 6, 14, 15, 64};
   for (const auto& [file, expect_classes] : {std::pair{seg, true}, std::pair{mrg, false}}) {
     const std::string las = file + ".las";

@@ -1,7 +1,8 @@
 #pragma once
 /// \file tool_run.h
 /// \brief Runs a built pcl_ls3d_* tool (PCL_LS3D_TOOL_DIR) with a shell command line and keeps
-///        its exit code, stdout and stderr apart, for the tests of the tools' shared behaviour.
+///        its exit code, stdout and stderr (apart, or interleaved as in a log): the one runner of
+///        every tool test.
 
 #include <sys/wait.h>
 
@@ -45,6 +46,19 @@ runTool(const std::string& tool, const std::string& args, const std::string& scr
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = slurp(out);
   r.err = slurp(err);
+  return r;
+}
+
+/// `tool args > scratch/out 2>&1`: stdout and stderr interleaved in r.out as a log shows them
+/// (r.err stays empty).
+inline ToolRun
+runToolMerged(const std::string& tool, const std::string& args, const std::string& scratch)
+{
+  const std::string out = scratch + "/tool_output.txt";
+  const int status = std::system((toolPath(tool) + " " + args + " > '" + out + "' 2>&1").c_str());
+  ToolRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
   return r;
 }
 

@@ -1,5 +1,6 @@
 // pcl_ls3d_register end to end: a good run writes a JSON report with the documented keys and a
 // transformation close to the truth; every bad input gives a non-zero exit and one error line.
+#include "io/tool_run.h"
 #include "ls3d_test_utils.h"
 
 #include <pcl_ls3d/io/cloud_io.h>
@@ -11,11 +12,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <sys/wait.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -32,18 +31,14 @@ struct ToolRun
 ToolRun
 runTool(const std::string& args, bool stderr_only = false)
 {
-  const std::string cmd = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_register " + args +
-                          (stderr_only ? " 2>&1 >/dev/null" : " 2>&1");
-  ToolRun r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p)
-    return {-1, ""};
-  char buf[512];
-  while (fgets(buf, sizeof(buf), p))
-    r.output += buf;
-  const int status = pclose(p);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  const fs::path scratch = fs::temp_directory_path() / ("ls3d_register_run_" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  const pcl_ls3d_test::ToolRun r =
+      stderr_only ? pcl_ls3d_test::runTool("pcl_ls3d_register", args, scratch.string())
+                  : pcl_ls3d_test::runToolMerged("pcl_ls3d_register", args, scratch.string());
+  std::error_code ec;
+  fs::remove_all(scratch, ec);
+  return {r.code, stderr_only ? r.err : r.out};
 }
 
 int

@@ -2,6 +2,8 @@
 // through classifyObjects(), and IMRG on a generated scene scored point by point against the
 // generator's labels (seed 4: the thresholds were looked at on seeds 1-3 and the IGN tuning
 // tiles only).
+#include "io/tool_run.h"
+
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 #include <pcl_ls3d/segmentation/object_classes.h>
@@ -526,10 +528,7 @@ TEST(ObjectClasses, WoodedRavineIsNoBuilding)
     building += classes[o] == ObjectClass::Building ? objects[o].indices.size() : 0;
   EXPECT_LT(building, run.las.size() / 10) << "points called building";
 
-  const std::string tool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_segment";
-  const std::string log = ::testing::TempDir() + "ravine.log";
-  ASSERT_EQ(std::system((tool + " " + path + " > " + log + " 2>&1").c_str()), 0);
-  std::stringstream text;
-  text << std::ifstream(log).rdbuf();
-  EXPECT_NE(text.str().find("no structure was found"), std::string::npos) << text.str();
+  const pcl_ls3d_test::ToolRun r = pcl_ls3d_test::runToolMerged("pcl_ls3d_segment", path, ::testing::TempDir());
+  ASSERT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("no structure was found"), std::string::npos) << r.out;
 }

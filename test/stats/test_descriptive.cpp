@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace pcl_ls3d::stats;
 
@@ -13,6 +15,23 @@ TEST(Descriptive, MedianOddEvenAndUnsorted)
   EXPECT_DOUBLE_EQ(median({3.0, 1.0, 2.0}), 2.0);
   EXPECT_DOUBLE_EQ(median({4.0, 1.0, 3.0, 2.0}), 2.5);
   EXPECT_DOUBLE_EQ(median({7.0, -1.0, 100.0, 2.0, 2.0}), 2.0);
+}
+
+// The high median is a sample value: the upper of the two middle ones for an even count.
+TEST(Descriptive, MedianHighPicksTheUpperMiddleValue)
+{
+  EXPECT_DOUBLE_EQ(medianHigh({4.0, 1.0, 3.0, 2.0}), 3.0);
+  EXPECT_DOUBLE_EQ(medianHigh({3.0, 1.0, 2.0}), median({3.0, 1.0, 2.0}));
+  EXPECT_DOUBLE_EQ(medianHigh({-5.0}), -5.0);
+  EXPECT_TRUE(std::isnan(medianHigh({})));
+  // Against sorting: element n/2 of the sorted sample, for every length up to 9.
+  std::vector<double> x;
+  for (int n = 1; n <= 9; ++n) {
+    x.push_back(static_cast<double>((n * 37) % 11) - 4.5);
+    std::vector<double> sorted = x;
+    std::sort(sorted.begin(), sorted.end());
+    EXPECT_DOUBLE_EQ(medianHigh(x), sorted[sorted.size() / 2]) << "n = " << n;
+  }
 }
 
 TEST(Descriptive, MadByHand)

@@ -22,7 +22,7 @@ adjust(const std::vector<strips::Strip>& s, int reference)
   // On this rigid-truth block of 200 m strips the observations carry a scale-like systematic
   // (freed scales -1300 to -1450 ppm, z -5.1 to -5.7: docs/MODEL_ADEQUACY.md, "Open"); the test
   // compares block and chain, not the model.
-  settings.held_out_z = std::numeric_limits<double>::infinity();
+  settings.adjustment.held_out_z = std::numeric_limits<double>::infinity();
   strips::StripBlockAdjustment adjustment;
   adjustment.setSettings(settings);
   strips::StripAdjustmentReport r;

@@ -126,17 +126,17 @@ TEST(StripHeldOut, TheTestCanBeSwitchedOffAndNeedsValidThresholds)
   strips::StripAdjustmentSettings s;
   std::string why;
   EXPECT_TRUE(s.isValid(&why)) << why;
-  s.held_out_z = 0.0;
+  s.adjustment.held_out_z = 0.0;
   EXPECT_FALSE(s.isValid(&why));
-  s.held_out_z = std::numeric_limits<double>::infinity();
+  s.adjustment.held_out_z = std::numeric_limits<double>::infinity();
   EXPECT_TRUE(s.isValid(&why)) << why;
-  s.held_out_noise_factor = -1.0;
+  s.adjustment.held_out_noise_factor = -1.0;
   EXPECT_FALSE(s.isValid(&why));
 
   const Block b = makeBlock(longStrips(250e-6, -200e-6));
   strips::StripAdjustmentSettings off;
   off.reference_strips = {0};
-  off.held_out_z = std::numeric_limits<double>::infinity();
+  off.adjustment.held_out_z = std::numeric_limits<double>::infinity();
   strips::StripBlockAdjustment adjustment;
   adjustment.setSettings(off);
   strips::StripAdjustmentReport r;

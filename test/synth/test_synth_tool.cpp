@@ -1,4 +1,6 @@
 // Runs the pcl_ls3d_synth tool: files written, truth.json consistent, refusals and bad options.
+#include "io/tool_run.h"
+
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/synth/registration_pair.h>
 
@@ -10,6 +12,8 @@
 #include <fstream>
 #include <string>
 
+#include <unistd.h>
+
 namespace fs = std::filesystem;
 using namespace pcl_ls3d;
 
@@ -20,8 +24,12 @@ const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_synth";
 int
 run(const std::string& args)
 {
-  const std::string cmd = kTool + " " + args + " > /dev/null 2>&1";
-  return std::system(cmd.c_str());
+  const fs::path scratch = fs::temp_directory_path() / ("pcl_ls3d_synth_run_" + std::to_string(::getpid()));
+  fs::create_directories(scratch);
+  const int code = pcl_ls3d_test::runToolMerged("pcl_ls3d_synth", args, scratch.string()).code;
+  std::error_code ec;
+  fs::remove_all(scratch, ec);
+  return code;
 }
 
 fs::path

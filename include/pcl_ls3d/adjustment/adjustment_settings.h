@@ -121,8 +121,7 @@ struct AdjustmentSettings
   /// 0.5 % = 5 mm per metre: scans and strips differ by ppm, a collapsing scale by far more.
   double max_scale_deviation = 0.005;
   /// σ0 beyond this multiple of the noise both surfaces carry (their own local roughness)
-  /// marks the result not trustworthy; good fits end at 0.2–2.6 on the real pairs measured
-  /// (docs/ARCHITECTURE.md, "Quality gate").
+  /// marks the result not trustworthy: good fits end well below it (docs/DECISIONS.md).
   double max_sigma0_ratio = 3.0;
   /// Fewer source points over the target's extent with an observation than this fraction of
   /// them marks the result not trustworthy (a fit held by a small part of the overlap).
@@ -131,26 +130,22 @@ struct AdjustmentSettings
   /// result not trustworthy (good fits reject a few per cent; a collapsed σ0 far more).
   double max_rejected_fraction = 0.25;
   /// A median observation gradient |u| above this marks the rule unsuitable for the surface
-  /// (LZD, a vertical difference, on mostly steep surfaces). Off by default: LHD on a steep
-  /// height field is valid (Li's surface: median 1.7, exact), while LZD on a closed object
-  /// (bun0 → bun4: median 1.38) fails; the slope does not tell them apart. Set e.g. 1.3 when
-  /// LZD is used on objects rather than terrain.
+  /// (LZD, a vertical difference, on mostly steep surfaces). Off by default, because the slope
+  /// does not tell a valid LZD on a steep height field from a failing one on a closed object
+  /// (docs/DECISIONS.md); set e.g. 1.3 when LZD is used on objects rather than terrain.
   double max_median_gradient = std::numeric_limits<double>::infinity();
   /// The robust scale of the residuals (1.4826 · median |l|) at the end above this multiple of
   /// the one at the initial guess, or of the surfaces' own noise when that is larger: the
   /// adjustment moved away from the data.
   double max_scale_growth = 1.25;
   /// Fewer correspondences at the end than this fraction of those at the initial guess: the
-  /// source slid off the overlap until what is left of it fits (a small, nearly flat pair with
-  /// 38 % raised: 846 → 120, a 26 m slide with σ0 at the noise; right fits on the real pairs
-  /// keep 0.91–1.16). 0: off.
+  /// source slid off the overlap until what is left of it fits, which σ0 alone does not show
+  /// (docs/DECISIONS.md). 0: off.
   double min_observations_kept = 0.5;
   /// A fit whose position σ (QualityFigures::position_sigma) exceeds max_position_sigma_ratio ×
   /// the surfaces' noise and that moved the source by more than the noise but by less than
   /// min_movement_significance × that σ made a move the data do not support: a sparse or narrow
-  /// overlap lets the estimate wander metres with σ of metres (PDAL's Autzen thin-1 → thin-2:
-  /// 120 ft, σ 46 ft = 2.9 × the noise; two Warsaw strips: 5.9 m, σ 6.6 m = 10 ×). Right fits
-  /// measured: bun0 → bun4 0.63 ×, Li's surface with M-D 1.44 × (a move of 1.2 × the noise).
+  /// overlap lets the estimate wander metres with σ of metres (docs/DECISIONS.md).
   double max_position_sigma_ratio = 2.0;
   double min_movement_significance = 3.0;
   /// A rigid fit whose held-out scale (QualityFigures::held_out_scale) is beyond held_out_z × its

@@ -9,17 +9,44 @@
 #include <pcl_ls3d/adjustment/gauss_markov.h>
 #include <pcl_ls3d/adjustment/step_extrapolation.h>
 
+#include <Eigen/Core>
+
 #include <cstddef>
 
 namespace pcl_ls3d {
 
-/// Zuo's criterion (every angle change below ε) plus translation and scale epsilons.
+/// Zuo's criterion (every angle change below ε) plus translation and scale epsilons, for every
+/// block of 7 parameters in \a dx (one for a pair, one per strip for a block).
 bool
-converged(const Vector7d& dx, const AdjustmentSettings& settings);
+converged(const Eigen::VectorXd& dx, const AdjustmentSettings& settings);
 
 /// Every estimated parameter changed by less than `fraction` of its formal σ_i.
 bool
 changesBelow(const GaussMarkovSolution& sol, double fraction);
+
+/// \brief The phase of an adjustment's iterations, a plain value (a distributed strip block
+///        keeps it in its state file between iterations).
+struct IterationPhase
+{
+  bool coarse = false;  ///< every k-th point only, until the estimate has settled to ~1 σ_i
+  bool frozen = false;  ///< correspondences fixed, converging to the epsilons
+};
+
+/// \brief What advancePhase() decided after one solve.
+struct PhaseStep
+{
+  bool converged = false;  ///< stop: the changes fell below the epsilons
+  bool froze = false;      ///< the correspondences are frozen from the next iteration on
+  bool afresh = false;     ///< this iteration searched its correspondences afresh on all points
+};
+
+/// \brief The one iteration policy of the pair engine and the strip block, for any number of
+///        parameter blocks: coarse until every change is below 1 σ_i (or a third of the
+///        iterations is spent), then converged once the changes are below the epsilons, and
+///        frozen once they are below freeze_sigma_fraction σ_i (or after two thirds).
+/// \param[in] it the number of solves done, this one included
+PhaseStep
+advancePhase(IterationPhase& phase, const GaussMarkovSolution& sol, const AdjustmentSettings& settings, int it);
 
 /// \brief The state machine of one adjustment's iterations:
 ///          coarse (every k-th point) → fine (all points, fresh correspondences, extrapolation)
@@ -38,7 +65,7 @@ public:
   std::size_t
   stride() const
   {
-    return coarse_ ? coarse_stride_ : 1;
+    return phase_.coarse ? coarse_stride_ : 1;
   }
   /// Whether the matcher culls points outside the overlap (it may start to once the reach is finite).
   void
@@ -72,19 +99,18 @@ public:
   bool
   frozen() const
   {
-    return frozen_;
+    return phase_.frozen;
   }
   bool
   coarse() const
   {
-    return coarse_;
+    return phase_.coarse;
   }
 
 private:
   const AdjustmentSettings& settings_;
   std::size_t coarse_stride_ = 1;
-  bool coarse_ = false;
-  bool frozen_ = false;
+  IterationPhase phase_;
   bool culling_ = false;
   StepExtrapolator extrapolator_;
 };

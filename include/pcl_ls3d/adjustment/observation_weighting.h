@@ -17,7 +17,8 @@
 
 namespace pcl_ls3d {
 
-/// Robust stand-in for σ0 before the first solve: 1.4826 · median |l|.
+/// Robust stand-in for σ0 before the first solve: the MAD about zero, kMadToSigma · median |l|
+/// (the residuals' centre is zero by construction, so it is not estimated); 0 when empty.
 double
 robustScale(const Eigen::VectorXd& l);
 

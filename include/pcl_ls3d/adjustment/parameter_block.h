@@ -12,6 +12,7 @@
 #include <pcl_ls3d/adjustment/similarity_jacobian.h>
 
 #include <array>
+#include <string>
 
 namespace pcl_ls3d {
 
@@ -22,6 +23,13 @@ enum class ParameterModel {
   TRANSLATION_3,     ///< tx, ty, tz free; rotations and scale fixed
   HEIGHT_1           ///< only tz free (classic strip height offset)
 };
+
+/// "7", "6", "3", "z" (or "1") → model, the one spelling of -params; false when unknown.
+bool
+parseParameterModel(const std::string& text, ParameterModel& model);
+/// "7", "6", "3", "z".
+std::string
+parameterModelName(ParameterModel model);
 
 /// The a-priori weights of a preset: 0 for the model's parameters, +inf for the others.
 Vector7d

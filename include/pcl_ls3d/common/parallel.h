@@ -7,8 +7,7 @@
 namespace pcl_ls3d {
 
 /// \brief Loops over fewer items than this run on one thread: starting the team and its
-///        barrier cost more than the work. (PCL's bun0 → bun4, 305 observations: 0.41 s per
-///        alignment on 2 threads of a busy machine, 0.13 s on one.)
+///        barrier cost more than the work (docs/DECISIONS.md).
 constexpr std::size_t kMinParallelItems = 4096;
 
 /// \brief True when a loop over `items` is worth a thread team (for `#pragma omp ... if(...)`).

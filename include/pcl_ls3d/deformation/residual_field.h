@@ -1,7 +1,8 @@
 #pragma once
 /// \file residual_field.h
 /// \brief Per-point residuals of an epoch against the reference after robust matching, with
-///        their σ and a significance flag (DESIGN.md "Deformation detection"). PCL-free.
+///        their σ and a significance flag (Li et al. 2001: deformed parts are the outliers of the
+///        matching). PCL-free.
 ///
 /// Every epoch point is matched once more at the final transformation with the matching's rule:
 ///   r_i = uᵀ(T(p_i) − q_i)       signed distance along the rule's direction (LZD: the height

@@ -6,23 +6,21 @@
 ///        (sample_consensus/block_trimmed_squares.h), each matched on the observed points
 ///        outside its own deformed regions (on all points when the regions' significant points
 ///        are half of the observed or more) and refined the same way. Each fails where
-///        another holds: at 42 % deformed by 5 σ the M-step walks from a start 0.1–0.3 σ off
-///        to a compromise 3–6 σ off (the patch's low tail comes back within Tukey's support, and
-///        with it the rest); at 36 % by 3.5 σ the point-wise LTS optimum itself is a tilted
-///        compromise, and the block start is not.
+///        another holds (docs/DECISIONS.md): a large, strong patch walks the M-step from a good
+///        start to a compromise, and on a weaker one the point-wise LTS optimum itself is a
+///        compromise that the block start is not.
 ///
 /// The score is the same for every fit, and none of the fits' own scales (a compromise
 /// inflates its own): the residuals at the fit are tested at σ_d, the noise of neighbouring
 /// residuals (estimators/neighbour_noise.h), the deformed regions found as the user's are, and
 /// the score is 1.4826 · med |r| of the observed points outside them — infinite when the
 /// regions' significant points are half of the observed or more (the points the hysteresis
-/// grew in are not counted: at 49 % deformed the patch's rim would tip a right fit over half).
+/// grew in are not counted: near half deformed the patch's rim would tip a right fit over half).
 /// The estimator's own fit also competes when the quality gate refused it (it scores
-/// infinite): at 49 % deformed LMS's M-step rejects the patch and the stable part's noise tail. A compromise keeps part of the patch and a tilted
-/// stable part outside its regions and scores 22–40 on Li's surface (σ = 20); the stable part's
-/// own fit scores ≈ σ. A fit replaces the one kept so far only when it scores smaller by more
-/// than the standard error of a MAD scale from n points, 1.166 / √n (Hampel et al. 1986): on
-/// Toronto's ground the three fits agree to 0.05 % and MM's is kept. PCL-free.
+/// infinite), and a compromise scores well above the noise where the stable part's own fit
+/// scores about σ. A fit replaces the one kept so far only when it scores smaller by more than
+/// the standard error of a MAD scale from n points, 1.166 / √n (Hampel et al. 1986), so that
+/// fits which agree keep the estimator's own. PCL-free.
 
 #include <pcl_ls3d/deformation/deformation_regions.h>
 #include <pcl_ls3d/deformation/residual_field.h>

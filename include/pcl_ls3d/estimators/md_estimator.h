@@ -8,7 +8,7 @@
 
 namespace pcl_ls3d {
 
-/// \brief u_i = v_i / σ_vi with σ_vi = σ̂ √r_i (Baarda's statistic; DESIGN.md: σ_vi = σ0 √(r_i/p_i)
+/// \brief u_i = v_i / σ_vi with σ_vi = σ̂ √r_i (Baarda's statistic: σ_vi = σ0 √(r_i/p_i)
 ///        with unit a-priori weight p_i), r_i = 1 − a_iᵀ Qxx a_i the redundancy number of the
 ///        previous solve, then Tukey's weight w(u) = (1 − u²/c²)² for |u| ≤ c (eq. 6), c = 4.685.
 ///        Observations of low redundancy (far from the centre, high leverage) are judged by their

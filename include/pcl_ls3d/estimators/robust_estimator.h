@@ -41,9 +41,30 @@ enum class RobustEstimatorType {
 RobustEstimator::Ptr
 makeRobustEstimator(RobustEstimatorType type, double constant = std::numeric_limits<double>::quiet_NaN());
 
+/// \brief One of the shipped estimators with its tuning constant: a plain value that settings can
+///        hold, copy and write to a file (the estimator object itself is made when it is used).
+struct RobustEstimatorChoice
+{
+  RobustEstimatorType type = RobustEstimatorType::ZUO;
+  double constant = std::numeric_limits<double>::quiet_NaN();  ///< NaN: the type's default
+};
+
+/// The estimator a choice names.
+RobustEstimator::Ptr
+makeRobustEstimator(const RobustEstimatorChoice& choice);
+
 /// Parses "ls", "zuo", "huber", "tukey" (or "m", Li's name), "md" (or "m-d", "gm"),
 /// case-insensitive, optionally with a tuning constant after a colon ("zuo:7", "huber:1.5").
-/// Returns null and says why when the text is not one.
+/// False with the reason when the text is not one (\a choice untouched).
+bool
+parseRobustEstimatorChoice(const std::string& text, RobustEstimatorChoice& choice, std::string* why = nullptr);
+
+/// "zuo", "huber:1.5": the text parseRobustEstimatorChoice() reads back to the same choice.
+std::string
+toString(const RobustEstimatorChoice& choice);
+
+/// parseRobustEstimatorChoice() and makeRobustEstimator() in one: null, with the reason, when the
+/// text names no estimator.
 RobustEstimator::Ptr
 parseRobustEstimator(const std::string& text, std::string* why = nullptr);
 

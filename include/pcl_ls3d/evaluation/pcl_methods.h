@@ -1,7 +1,7 @@
 #pragma once
 /// \file pcl_methods.h
-/// \brief Runs PCL's own registration methods (the yardstick of DESIGN.md "How results are
-///        judged") on one input with stated settings, each timed with pcl::StopWatch.
+/// \brief Runs PCL's own registration methods, the yardstick LS3D is compared with, on one input
+///        with stated settings, each timed with pcl::StopWatch.
 ///
 /// PCL 1.13 facts the settings below account for:
 ///  - ICP/ICP-N: transformation_epsilon is a SQUARED translation step; the rotation test is on the

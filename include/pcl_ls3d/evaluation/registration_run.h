@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -81,6 +82,14 @@ struct RunEvaluation
 /// CPU time of this process so far [s], all threads (CLOCK_PROCESS_CPUTIME_ID).
 double
 processCpuSeconds();
+
+/// \brief One method's run named `name`, the way every row of a comparison is run: refused on an
+///        empty source or target, timed (wall and process CPU time over `method`), and an
+///        exception becomes a run that did not run, with the reason in its message.
+RegistrationRun
+timedRun(const std::string& name, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
+         const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
+         const std::function<void(RegistrationRun&)>& method);
 
 /// x, y, z of a cloud in double, one column per point.
 template <typename PointT>

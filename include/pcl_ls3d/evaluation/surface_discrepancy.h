@@ -11,6 +11,10 @@
 /// plane is flat (variation <= max_variation, so vegetation and edges are left out):
 /// d = n_j · (y − c_j). Normals point up (n_z >= 0) or, with `outward`, away from the target's
 /// centroid (closed objects).
+///
+/// Not strips/discrepancies.h on purpose: that one measures with LS3D's own LND quadric (the
+/// adjustment's observation), while a yardstick that compares LS3D with PCL's methods must not
+/// share the surface model of one of the methods it judges.
 
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>

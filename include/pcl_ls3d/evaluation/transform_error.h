@@ -1,6 +1,6 @@
 #pragma once
 /// \file transform_error.h
-/// \brief How far an estimated transform is from the truth (DESIGN.md "How results are judged"):
+/// \brief How far an estimated transform is from the truth, judged by what it does to the data:
 ///        the displacement |T_est x − T_true x| it causes over the source points and over the
 ///        corners of the source bounding box, and the error of each of the 7 parameters.
 ///        PCL-free, double precision.

@@ -1,7 +1,7 @@
 #pragma once
 /// \file sac_model_surface_matching.h
-/// \brief Surface matching as a PCL sample-consensus model (Li et al. 2001; DESIGN.md "LMS as a
-///        pcl::SampleConsensusModel"), so that pcl::LeastMedianSquares, pcl::RandomSampleConsensus
+/// \brief Surface matching as a PCL sample-consensus model (Li et al. 2001: LMS is a search over
+///        minimal subsets, not a weight function), so that pcl::LeastMedianSquares, pcl::RandomSampleConsensus
 ///        and pcl::MEstimatorSampleConsensus drive it unchanged:
 /// \code
 ///   using Model = pcl_ls3d::SampleConsensusModelSurfaceMatching<pcl::PointXYZ>;

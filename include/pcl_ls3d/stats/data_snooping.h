@@ -69,7 +69,7 @@ struct BaardaTestResult
   double max_abs_w = 0.0;       ///< largest |w_i| among tested observations
 };
 
-/// \brief Baarda's w-test statistic for every residual (Zuo 2012 / DESIGN: σ_vi = σ0 √(r_i/p_i)).
+/// \brief Baarda's w-test statistic for every residual (Baarda 1968: σ_vi = σ0 √(r_i/p_i)).
 /// \param[in] v residuals v_i
 /// \param[in] r redundancy numbers r_i = 1 − p_i a_iᵀ Qxx a_i, in [0, 1]
 /// \param[in] p weights p_i (> 0); an empty vector means all 1

@@ -15,6 +15,12 @@ constexpr double kMadToSigma = 1.4826;
 double
 median(std::vector<double> values);
 
+/// \brief The high median: the order statistic x_(⌊n/2⌋) counted from 0 (Python's
+///        statistics.median_high), always one of the values and found in O(n) without averaging.
+///        The engine's robust scales use it; NaN when empty.
+double
+medianHigh(std::vector<double> values);
+
 /// \brief Median absolute deviation from the median, median |x_i − med(x)|.
 /// \param[in] scaled multiply by kMadToSigma (1.4826) to estimate σ of normal data
 /// \return NaN when empty; 0 for a single value or all-equal values

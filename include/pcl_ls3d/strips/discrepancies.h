@@ -6,6 +6,7 @@
 ///        with the sign "strip i above strip j" in both directions. And the strips' own noise on
 ///        the same surfaces (each observed point against its own strip's surface, the point
 ///        itself left out), the floor the discrepancies can reach after adjustment.
+///        (evaluation/surface_discrepancy.h is the rule-free yardstick of the method comparison.)
 
 #include <pcl_ls3d/adjustment/parameter_block.h>
 #include <pcl_ls3d/strips/overlap_selection.h>

@@ -1,8 +1,9 @@
 #pragma once
 /// \file overlap_contribution.h
 /// \brief What a match job sends back for one overlap (i, j) in one iteration: the normal
-///        equations of its observations in both directions with rows [a_i | a_j] (DESIGN.md,
-///        "Strip block adjustment"), and the counts the report and the solver need. In the
+///        equations of its observations in both directions with rows [a_i | a_j] (strip i's
+///        pose against strip j's: each observation ties two strips), and the counts the report
+///        and the solver need. In the
 ///        final evaluation pass also the spatial score cells of the precision estimate.
 
 #include <pcl_ls3d/adjustment/normal_equations.h>

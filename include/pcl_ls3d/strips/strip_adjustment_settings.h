@@ -3,7 +3,9 @@
 /// \brief Every knob of the strip block adjustment in one plain struct with in-class defaults
 ///        and isValid() (the AdjustmentSettings style). Lengths are in the unit of the data.
 
+#include <pcl_ls3d/adjustment/adjustment_settings.h>
 #include <pcl_ls3d/adjustment/parameter_block.h>
+#include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/rules/conjugate_rule.h>
 
 #include <cstddef>
@@ -45,7 +47,7 @@ struct StripAdjustmentSettings
   // --- model -------------------------------------------------------------------------------------
   ParameterModel model = ParameterModel::RIGID_6;  ///< per strip: 7, 6, 3 or height only
   ConjugateRuleType rule = ConjugateRuleType::LND;
-  std::string estimator = "zuo";                   ///< parseRobustEstimator() text
+  RobustEstimatorChoice estimator;                 ///< Zuo's 0/1 weight at 6 σ0 by default
   /// Conjugate points farther than this are none (also the reach of the overlap culling).
   double max_distance = 10.0;
 
@@ -59,43 +61,35 @@ struct StripAdjustmentSettings
   bool soft_datum = false;
   Vector7d soft_sigmas = (Vector7d() << 0.5, 0.5, 0.5, 1e-3, 1e-3, 1e-3, 1e-4).finished();
 
-  // --- iterations (Zuo §4) ---------------------------------------------------------------------------
-  int max_iterations = 30;
-  double angle_epsilon = 1e-6;        ///< [rad]
-  double translation_epsilon = 1e-4;  ///< [length]
-  double scale_epsilon = 1e-8;
-  /// Correspondences are frozen once every change is below this fraction of its σ.
-  double freeze_sigma_fraction = 0.1;
-  /// While far from the solution, each overlap direction observes about this many points.
-  std::size_t coarse_observations = 15000;
-  double determinability_threshold = 1e-7;
+  // --- iterations, determinability, precision: the pair engine's settings ------------------------
+  /// The block iterates as a pair does (advancePhase(), iteration_control.h) and reads these
+  /// fields of the engine's settings: max_iterations, angle_epsilon, translation_epsilon,
+  /// scale_epsilon, freeze_sigma_fraction, coarse_observations, determinability_threshold,
+  /// spatial_precision, precision_cell (0 = 8 × the observation spacing), held_out_z and
+  /// held_out_noise_factor (the model adequacy test below). The rest is the pair engine's
+  /// alone. Two defaults differ from a pair's: see blockAdjustmentDefaults().
+  AdjustmentSettings adjustment = blockAdjustmentDefaults();
 
-  // --- precision ------------------------------------------------------------------------------------
-  bool spatial_precision = true;  ///< spatial sandwich (spatial_precision.h) instead of eq. 14
-  double precision_cell = 0.0;    ///< 0 = 8 × the observation spacing
+  /// The engine's defaults with the two a block changes:
+  ///  - translation_epsilon 1e-4 (a pair: 1e-5): a block stops only when every strip's change
+  ///    is below it, and a tenth of a millimetre is far below airborne strips' noise;
+  ///  - coarse_observations 15 000 (a pair: 200 000): a block counts them per overlap direction,
+  ///    and a block has many overlaps, each of which needs only a settled estimate from them.
+  static AdjustmentSettings
+  blockAdjustmentDefaults();
 
   // --- model adequacy (model_adequacy.h) -------------------------------------------------------
   /// After a rigid adjustment (-params 6), test each strip's held-out scale: a score test from
   /// the overlaps' normal equations at the final pose, with the sandwich's variance.
   bool test_held_out = true;
-  /// A held-out parameter is significant when |estimate| > held_out_z × its σ. 5, not 3: on
-  /// some generated rigid blocks the observations carry a scale-like systematic of 3–5 σ (chosen
-  /// on seeds 1–10 of benchmark_strip_block -honesty, docs/MODEL_ADEQUACY.md).
-  double held_out_z = 5.0;
-  /// ... and it makes the result NOT CONFIRMED when its effect over the strip's extent
-  /// (|m − 1| × the strip's radius) also exceeds this multiple of the strip's own noise.
-  double held_out_noise_factor = 1.0;
+  /// Its thresholds are the engine's (adjustment.held_out_z, default 5, and
+  /// adjustment.held_out_noise_factor, default 1, applied to each strip's own noise and its
+  /// effect |m − 1| × the strip's radius). 5, not 3: on some generated rigid blocks the
+  /// observations carry a scale-like systematic of 3–5 σ (docs/MODEL_ADEQUACY.md).
 
   bool
   isValid(std::string* why = nullptr) const;
 };
-
-/// "7", "6", "3", "z" (or "1") → model; false when unknown.
-bool
-parseParameterModel(const std::string& text, ParameterModel& model);
-/// "7", "6", "3", "z".
-std::string
-parameterModelName(ParameterModel model);
 
 }  // namespace strips
 }  // namespace pcl_ls3d

@@ -442,8 +442,7 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransforma
     warnIgnoredStrategies();
     core_.setHooks(pclHooks(index_of, surface));
     Eigen::Matrix4d start = guess.template cast<double>();
-    // Unlimited: pcl::Registration's default √DBL_MAX or more.
-    if (!(settings.max_correspondence_distance < 1.3407807929942596e154) &&
+    if (isUnlimitedDistance(settings.max_correspondence_distance) &&
         !overlapsTarget(points, start)) {
       // The source lies beside the target (e.g. moved beyond its own size): ICP would still pair
       // every point; LS3D starts with the centroids made to coincide instead of no observation.

@@ -1,6 +1,7 @@
 #pragma once
-/// \file tool_arguments.h
-/// \brief Command-line checks shared by the pcl_ls3d_* tools.
+/// \file tool_options.h
+/// \brief Command-line checks shared by the pcl_ls3d_* tools (the CRS policy of the inputs is the
+///        library's: io/cloud_pair.h).
 ///
 /// - splitArguments(): pcl::console's parse_argument() silently ignores options it is not asked
 ///   about, so a typo (-max_iters for -max_iter) would run with defaults; every tool first
@@ -11,20 +12,15 @@
 /// - checkOutputFile() / checkOutputFolder(): an output that cannot be written is refused before
 ///   any input is read, not after a long run (tried with a probe file, not read from permission
 ///   bits, which root and /proc make meaningless).
-/// - checkInputCrs(): inputs in degrees (or earth-centred) are refused after loading, before any
-///   work: distances and heights in degrees give a wrong answer that still converges; inputs
-///   declaring different horizontal CRSs are said so in a warning (the run goes on); heights in
-///   another unit than the plan are converted to it (pairHeightUnits(), HeightUnits).
+/// - parameterModelOption(): -params, one parser for every tool (each names the models it takes).
 
-#include <pcl_ls3d/common/height_units.h>
+#include <pcl_ls3d/adjustment/parameter_block.h>
 #include <pcl_ls3d/io/cloud_io.h>
-#include <pcl_ls3d/maps/coordinate_reference.h>
-
-#include <pcl/console/print.h>
 
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -315,49 +311,23 @@ checkOutputFolder(const std::string& dir, std::string& why)
   return why.empty();
 }
 
-/// \brief Fills \a heights for a pair (target first): each file's plan units per height unit
-///        (maps::planUnitsPerHeightUnit()), one line per file converted
-///        (maps::heightConversionNote()). A file that declares no CRS (a PCD or XYZ exported
-///        from the other, an old PLY) is taken in the units of \a fallback_wkt when given, else
-///        of its partner.
-inline void
-pairHeightUnits(const std::vector<std::pair<std::string, std::string>>& files,
-                const std::string& fallback_wkt, HeightUnits& heights)
-{
-  double factor[2] = {1.0, 1.0};
-  for (std::size_t i = 0; i < 2; ++i) {
-    const bool declared = maps::crsLinearUnit(files[i].second) > 0.0;
-    const std::string& wkt =
-        declared ? files[i].second : (fallback_wkt.empty() ? files[1 - i].second : fallback_wkt);
-    factor[i] = maps::planUnitsPerHeightUnit(wkt);
-    if (const std::string note =
-            maps::heightConversionNote(files[i].first, wkt, declared, "the matching");
-        !note.empty())
-      pcl::console::print_info("%s\n", note.c_str());
-  }
-  heights.target = factor[0];
-  heights.source = factor[1];
-}
-
-/// \brief The loaded inputs' CRSs: false with one error line for the first input whose CRS is
-///        not in lengths (a geographic CRS in degrees, a geocentric one); else true, after one
-///        warning line per maps::crsNotes() note (different horizontal CRSs). With \a heights
-///        (a pair tool: target first, source second), pairHeightUnits() fills them.
+/// \brief -params, parsed the one way every tool parses it: one of \a accepted (texts that
+///        parseParameterModel() knows, in the order the tool's help lists them). \a model is
+///        untouched when the option is absent; false with a one-line reason otherwise.
 inline bool
-checkInputCrs(const std::vector<std::pair<std::string, const io::CloudInfo*>>& inputs,
-              std::string& why, HeightUnits* heights = nullptr, const std::string& fallback_wkt = "")
+parameterModelOption(int argc, char** argv, const std::vector<std::string>& accepted, ParameterModel& model,
+                     std::string& why)
 {
-  std::vector<std::pair<std::string, std::string>> files;
-  for (const auto& [path, info] : inputs) {
-    files.emplace_back(path, maps::crsOfFile(*info));
-    if (!(why = maps::notInLengths(path, files.back().second)).empty())
-      return false;
-  }
-  for (const std::string& note : maps::crsNotes(files))
-    pcl::console::print_warn("Warning: %s\n", note.c_str());
-  if (heights && files.size() == 2)
-    pairHeightUnits(files, fallback_wkt, *heights);
-  return true;
+  const char* text = optionValue(argc, argv, "-params");
+  if (!text)
+    return true;
+  if (std::find(accepted.begin(), accepted.end(), text) != accepted.end() && parseParameterModel(text, model))
+    return true;
+  why = "-params expects ";
+  for (std::size_t i = 0; i < accepted.size(); ++i)
+    why += (i == 0 ? "" : i + 1 == accepted.size() ? " or " : ", ") + accepted[i];
+  why += std::string(", got '") + text + "'";
+  return false;
 }
 
 }  // namespace tools
