@@ -46,10 +46,10 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
-#include <tuple>
-#include <utility>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 using namespace pcl_ls3d;
@@ -60,9 +60,10 @@ constexpr double kSigma = 20.0;
 double g_grow_k = 0.0;  ///< hysteresis of the second detection score (-grow_k; default: none)
 int g_refine = -1;      ///< stable-part refinement rounds (-refine; -1: the library's default)
 int g_cap = -1;         ///< cap the M-step scale by the neighbour noise (-cap 0|1; -1: the library's default)
-int g_block_start = -1; ///< LMS, MM: the block start and the choice between starts (-block_start 0|1; -1: default)
-int g_hold_out = -1;    ///< MM: points beyond 2.5 s of the start out of the M-step (-hold_out 0|1; -1: default)
-bool g_verbose = false; ///< one line per trial (-v)
+int g_block_start =
+    -1;  ///< LMS, MM: the block start and the choice between starts (-block_start 0|1; -1: default)
+int g_hold_out = -1;  ///< MM: points beyond 2.5 s of the start out of the M-step (-hold_out 0|1; -1: default)
+bool g_verbose = false;        ///< one line per trial (-v)
 double g_scatter_gate = -1.0;  ///< the analysis' stable-scatter gate (-scatter_gate R; 0 off; < 0: default)
 
 /// Precision and recall of a region labelling against the planted patch, over observed nodes.
@@ -106,7 +107,7 @@ numberList(const std::string& text)
 struct Trial
 {
   bool usable = false;
-  double error_sigma = 0.0;  ///< worst grid-node displacement against the truth [σ]
+  double error_sigma = 0.0;        ///< worst grid-node displacement against the truth [σ]
   double start_error_sigma = 0.0;  ///< the same for the high-breakdown start (LMS, MM; else 0)
   double precision = 1.0, recall = 1.0;
   double grown_precision = 1.0, grown_recall = 1.0;  ///< the same with the regions grown at -grow_k
@@ -212,9 +213,13 @@ runTrial(const synth::LiSurface& li, const Method& method)
   t.scale = t.result.matching.scale;
   if (t.result.matching.subsets_drawn > 0)
     t.start_error_sigma = evaluation::computeTransformError(t.result.matching.high_breakdown_transformation,
-                                                            li.truth.matrix(), eval).max / kSigma;
-  t.error_sigma = evaluation::computeTransformError(t.result.matching.adjustment.transformation,
-                                                    li.truth.matrix(), eval).max / kSigma;
+                                                            li.truth.matrix(), eval)
+                              .max /
+                          kSigma;
+  t.error_sigma =
+      evaluation::computeTransformError(t.result.matching.adjustment.transformation, li.truth.matrix(), eval)
+          .max /
+      kSigma;
   std::tie(t.precision, t.recall) = detection(li, t.result.field, t.result.regions.region);
   measureFinalFit(pts, t);
   deformation::RegionSettings grown = s.regions;
@@ -241,8 +246,8 @@ tableCase(int table, const std::vector<std::string>& methods)
   std::printf("Table %d analogue: 9 %% (achieved %.1f %%) deformed by N(200, 20) at upper_left, sigma 20\n",
               table, li.percent);
   const Vector7d truth = li.truth.vector();
-  std::printf("%-6s %9s %9s %9s %10s %10s %10s %8s %8s %7s\n", "", "tx", "ty", "tz", "phi[deg]",
-              "omega[deg]", "kappa[deg]", "max[sig]", "scale", "ms");
+  std::printf("%-6s %9s %9s %9s %10s %10s %10s %8s %8s %7s\n", "", "tx", "ty", "tz", "phi[deg]", "omega[deg]",
+              "kappa[deg]", "max[sig]", "scale", "ms");
   const double d = 180.0 / M_PI;
   std::printf("%-6s %9.2f %9.2f %9.2f %10.5f %10.5f %10.5f\n", "truth", truth[0], truth[1], truth[2],
               truth[3] * d, truth[4] * d, truth[5] * d);
@@ -258,11 +263,12 @@ tableCase(int table, const std::vector<std::string>& methods)
       continue;
     }
     // Parameters of the recovered transform in the truth's convention (cloud coordinates).
-    const SimilarityTransform est = SimilarityTransform::fromMatrix(t.result.matching.adjustment.transformation);
+    const SimilarityTransform est =
+        SimilarityTransform::fromMatrix(t.result.matching.adjustment.transformation);
     const Vector7d p = est.vector();
-    std::printf("%-6s %9.2f %9.2f %9.2f %10.5f %10.5f %10.5f %8.2f %8.2f %7.0f  P %.3f R %.3f\n", name.c_str(),
-                p[0], p[1], p[2], p[3] * d, p[4] * d, p[5] * d, t.error_sigma, t.scale, t.ms, t.precision,
-                t.recall);
+    std::printf("%-6s %9.2f %9.2f %9.2f %10.5f %10.5f %10.5f %8.2f %8.2f %7.0f  P %.3f R %.3f\n",
+                name.c_str(), p[0], p[1], p[2], p[3] * d, p[4] * d, p[5] * d, t.error_sigma, t.scale, t.ms,
+                t.precision, t.recall);
   }
   return 0;
 }
@@ -272,8 +278,9 @@ grid(const std::vector<std::string>& methods, const std::vector<double>& percent
      const std::vector<double>& mags, const std::vector<synth::DeformationPosition>& positions, int seeds,
      int first_seed, bool full)
 {
-  std::printf("Grid: %zu positions x %d seeds (from %d) per cell; success = max grid-node error <= 0.5 sigma\n",
-              positions.size(), seeds, first_seed);
+  std::printf(
+      "Grid: %zu positions x %d seeds (from %d) per cell; success = max grid-node error <= 0.5 sigma\n",
+      positions.size(), seeds, first_seed);
   for (const auto& name : methods) {
     Method m;
     if (!parseMethod(name, m)) {
@@ -307,13 +314,14 @@ grid(const std::vector<std::string>& methods, const std::vector<double>& percent
               for (const auto& c : t.result.start_choice.candidates)
                 std::printf("      %s: scatter %.2f on %zu points%s\n", c.name.c_str(), c.scatter, c.outside,
                             c.usable ? "" : " (no usable fit)");
-              std::printf("   %s seed %d err %.3f (start %.3f) sigma_d %.2f stable %.2f wrms %.2f kmad %.2f hb %.2f chosen %s refine %d left %zu (%s) %s\n",
+              std::printf("   %s seed %d err %.3f (start %.3f) sigma_d %.2f stable %.2f wrms %.2f kmad %.2f "
+                          "hb %.2f chosen %s refine %d left %zu (%s) %s\n",
                           synth::toString(positions[pi]), seed, t.error_sigma, t.start_error_sigma,
                           t.field_noise / kSigma, t.stable_scatter / kSigma, t.weighted_rms / kSigma,
-                          t.kept_mad / kSigma,
-                          t.result.matching.high_breakdown_scale / kSigma,
-                          t.result.start_choice.chosen.c_str(), t.result.refinement.rounds, t.result.refinement.left_out,
-                          t.result.refinement.stopped.c_str(), (t.result.matching.brief() + " / " + t.result.matching.message).c_str());
+                          t.kept_mad / kSigma, t.result.matching.high_breakdown_scale / kSigma,
+                          t.result.start_choice.chosen.c_str(), t.result.refinement.rounds,
+                          t.result.refinement.left_out, t.result.refinement.stopped.c_str(),
+                          (t.result.matching.brief() + " / " + t.result.matching.message).c_str());
             }
             ++n;
             if (t.usable && t.error_sigma <= 0.5) {
@@ -327,8 +335,9 @@ grid(const std::vector<std::string>& methods, const std::vector<double>& percent
             }
           }
         const double rate = static_cast<double>(ok) / n;
-        std::printf("%5.0f %6.1f %6.2f %6.3f %6.3f %6.3f %6.3f ", percent, c, rate, det_n ? prec / det_n : NAN,
-                    det_n ? rec / det_n : NAN, det_n ? gprec / det_n : NAN, det_n ? grec / det_n : NAN);
+        std::printf("%5.0f %6.1f %6.2f %6.3f %6.3f %6.3f %6.3f ", percent, c, rate,
+                    det_n ? prec / det_n : NAN, det_n ? rec / det_n : NAN, det_n ? gprec / det_n : NAN,
+                    det_n ? grec / det_n : NAN);
         for (std::size_t pi = 0; pi < positions.size(); ++pi)
           std::printf(" %s %d/%d", synth::toString(positions[pi]), pos_ok[pi], seeds);
         std::printf("\n");
@@ -369,7 +378,8 @@ lmsSpeed()
   rule->prepare(surface, &why);
   RobustMatchingSettings ls_settings;
   ls_settings.method = RobustMethod::LEAST_SQUARES;
-  const RobustMatchingReport start = robustMatching(pts, {}, surface, *rule, ls_settings, Eigen::Matrix4d::Identity());
+  const RobustMatchingReport start =
+      robustMatching(pts, {}, surface, *rule, ls_settings, Eigen::Matrix4d::Identity());
   LinearizedMatching lin;
   if (!lin.reset(pts, surface, *rule, AdjustmentSettings::rigid6(), start.adjustment.transformation, &why)) {
     std::fprintf(stderr, "%s\n", why.c_str());
@@ -387,7 +397,8 @@ lmsSpeed()
       r = leastMedianOfSquares(lin, s);
       best = std::min(best, tt.toc());
     }
-    std::printf("LMS 3000 subsets of 7 on %zu observations, early exit %s: best of 5 %.1f ms (med v^2 %.1f, valid %d)\n",
+    std::printf("LMS 3000 subsets of 7 on %zu observations, early exit %s: best of 5 %.1f ms (med v^2 %.1f, "
+                "valid %d)\n",
                 lin.size(), early ? "on " : "off", best, r.criterion, r.valid);
   }
   return 0;
@@ -426,12 +437,15 @@ pipeline(int n)
   for (std::size_t i = 0; i < pts.size(); ++i)
     eval.col(static_cast<Eigen::Index>(i)) = pts[i];
   const double err = r.ok() ? evaluation::computeTransformError(r.matching.adjustment.transformation,
-                                                                li.truth.matrix(), eval).max / kSigma
+                                                                li.truth.matrix(), eval)
+                                      .max /
+                                  kSigma
                             : NAN;
-  std::printf("%d x %d = %zu points per epoch: %.2f s (kd-tree, matching, residuals, regions), peak RSS %.0f MB, "
-              "max error %.2f sigma, %.1f %% deformed (planted %.1f %%), %s\n",
-              n, n, pts.size(), ms / 1000.0, ru.ru_maxrss / 1024.0, err, r.regions.percent_deformed, li.percent,
-              r.matching.brief().c_str());
+  std::printf(
+      "%d x %d = %zu points per epoch: %.2f s (kd-tree, matching, residuals, regions), peak RSS %.0f MB, "
+      "max error %.2f sigma, %.1f %% deformed (planted %.1f %%), %s\n",
+      n, n, pts.size(), ms / 1000.0, ru.ru_maxrss / 1024.0, err, r.regions.percent_deformed, li.percent,
+      r.matching.brief().c_str());
   if (!r.ok()) {
     std::printf("no usable estimate: %s\n", r.matching.message.c_str());
     return 1;
@@ -443,9 +457,11 @@ pipeline(int n)
     (li.deformed[i] ? in : out) += 1;
     (li.deformed[i] ? in_observed : out_observed) += observed;
   }
-  std::printf("observed: %zu of %zu deformed nodes (%.1f %%), %zu of %zu stable nodes (%.1f %%)\n", in_observed, in,
+  std::printf("observed: %zu of %zu deformed nodes (%.1f %%), %zu of %zu stable nodes (%.1f %%)\n",
+              in_observed, in,
               100.0 * static_cast<double>(in_observed) / static_cast<double>(std::max<std::size_t>(in, 1)),
-              out_observed, out, 100.0 * static_cast<double>(out_observed) / static_cast<double>(std::max<std::size_t>(out, 1)));
+              out_observed, out,
+              100.0 * static_cast<double>(out_observed) / static_cast<double>(std::max<std::size_t>(out, 1)));
   return 0;
 }
 
@@ -477,7 +493,8 @@ main(int argc, char** argv)
   if (pcl::console::find_switch(argc, argv, "-lms_speed"))
     return lmsSpeed();
   if (pipeline_n > 5000) {  // N is the grid's side: N × N points per epoch
-    std::fprintf(stderr, "-pipeline N is the grid's side (N x N points per epoch), at most 5000; got %d\n", pipeline_n);
+    std::fprintf(stderr, "-pipeline N is the grid's side (N x N points per epoch), at most 5000; got %d\n",
+                 pipeline_n);
     return 1;
   }
   if (pipeline_n > 0)
@@ -499,8 +516,9 @@ main(int argc, char** argv)
     return grid(splitList(methods), numberList(percents), numberList(mags), pos, seeds, first_seed,
                 pcl::console::find_switch(argc, argv, "-full"));
   }
-  std::fprintf(stderr, "usage: %s -table 2|4 [-methods ...] | -grid [-methods ...] [-percents ...] "
-                       "[-mags ...] [-positions ...|all] [-seeds N] [-full]\n",
+  std::fprintf(stderr,
+               "usage: %s -table 2|4 [-methods ...] | -grid [-methods ...] [-percents ...] "
+               "[-mags ...] [-positions ...|all] [-seeds N] [-full]\n",
                argv[0]);
   return 1;
 }

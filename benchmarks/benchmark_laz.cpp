@@ -28,11 +28,11 @@
 #include <chrono>
 #include <cstdio>
 #include <ctime>
-#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <unistd.h>
 #include <vector>
 
 using namespace pcl_ls3d;
@@ -100,11 +100,11 @@ benchmarkFile(const std::string& path, int runs)
   setThreads(2);
   timeBest(runs, dec2, decode);
   setThreads(1);
-  const bool encoded = timeBest(runs, enc, [&] {
-    return io::compressLas(las.data(), las.size(), again, error);
-  });
-  const std::string twin = (std::filesystem::temp_directory_path() /
-                            ("benchmark_laz_twin_" + std::to_string(::getpid()) + ".las")).string();
+  const bool encoded =
+      timeBest(runs, enc, [&] { return io::compressLas(las.data(), las.size(), again, error); });
+  const std::string twin =
+      (std::filesystem::temp_directory_path() / ("benchmark_laz_twin_" + std::to_string(::getpid()) + ".las"))
+          .string();
   std::ofstream(twin, std::ios::binary)
       .write(reinterpret_cast<const char*>(las.data()), static_cast<std::streamsize>(las.size()));
   setThreads(1);  // one thread: the CPU time is then comparable
@@ -115,12 +115,13 @@ benchmarkFile(const std::string& path, int runs)
   std::filesystem::remove(twin);
 
   const double n = static_cast<double>(h.point_count) / 1e6;
-  std::printf("%s\n  PF%d, %.0f points, %s, compressor %d, %llu chunks\n", path.c_str(),
-              h.point_format, n * 1e6, h.laz.items.c_str(), h.laz.compressor,
+  std::printf("%s\n  PF%d, %.0f points, %s, compressor %d, %llu chunks\n", path.c_str(), h.point_format,
+              n * 1e6, h.laz.items.c_str(), h.laz.compressor,
               static_cast<unsigned long long>(h.laz.chunk_count));
   std::printf("  decode 1 thread : %6.2f M pts/s wall  (%6.2f M pts/s CPU)\n", n / dec1.wall, n / dec1.cpu);
   std::printf("  decode 2 threads: %6.2f M pts/s wall  (x%.2f of 1 thread; CPU of both %.3f s, one "
-              "thread's %.3f s)\n", n / dec2.wall, dec1.wall / dec2.wall, dec2.cpu, dec1.cpu);
+              "thread's %.3f s)\n",
+              n / dec2.wall, dec1.wall / dec2.wall, dec2.cpu, dec1.cpu);
   if (encoded)
     std::printf("  encode 1 thread : %6.2f M pts/s wall  (%6.2f M pts/s CPU), %zu bytes (original %zu)\n",
                 n / enc.wall, n / enc.cpu, again.size(), laz.size());
@@ -129,8 +130,9 @@ benchmarkFile(const std::string& path, int runs)
   std::printf("  ratio LAS/LAZ   : %6.2f (%zu / %zu bytes)\n",
               static_cast<double>(las.size()) / static_cast<double>(laz.size()), las.size(), laz.size());
   std::printf("  loadCloud 1 thread: LAZ %.3f s wall (%.3f s CPU), LAS twin %.3f s wall (%.3f s CPU): "
-              "x%.1f wall, x%.1f CPU\n", load_laz.wall, load_laz.cpu, load_las.wall, load_las.cpu,
-              load_laz.wall / load_las.wall, load_laz.cpu / std::max(load_las.cpu, 1e-6));
+              "x%.1f wall, x%.1f CPU\n",
+              load_laz.wall, load_laz.cpu, load_las.wall, load_las.cpu, load_laz.wall / load_las.wall,
+              load_laz.cpu / std::max(load_las.cpu, 1e-6));
   return true;
 }
 

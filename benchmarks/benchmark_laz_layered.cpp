@@ -45,8 +45,7 @@ bestOf(int reps, Run run)
 /// Points of the chunk starting at `p`: the fixed chunk size (the last chunk partial) or, for
 /// variable chunks, the count stored after the chunk's first record.
 std::size_t
-chunkPoints(const laz_test::LasFile& f, const laz::LaszipVlr& vlr, const std::uint8_t* p,
-            std::uint64_t done)
+chunkPoints(const laz_test::LasFile& f, const laz::LaszipVlr& vlr, const std::uint8_t* p, std::uint64_t done)
 {
   std::uint64_t n = vlr.chunk_size;
   if (n == laz::kVariableChunkSize)
@@ -75,17 +74,17 @@ benchmarkFile(const std::string& path, int reps)
     const std::uint8_t* p = f.bytes.data() + f.offset_to_points + 8;
     for (std::uint64_t done = 0; done < f.point_count;) {
       const std::size_t n = chunkPoints(f, r.vlr, p, done);
-      p += decoder->decode(p, f.bytes.data() + f.bytes.size(), n,
-                           records.data() + done * f.record_length, error);
+      p += decoder->decode(p, f.bytes.data() + f.bytes.size(), n, records.data() + done * f.record_length,
+                           error);
       done += n;
     }
   };
   const auto encode = [&]() {
     bytes.clear();
     for (std::uint64_t done = 0; done < f.point_count; done += r.vlr.chunk_size)
-      encoder->encode(r.records.data() + done * f.record_length,
-                      static_cast<std::size_t>(std::min<std::uint64_t>(r.vlr.chunk_size, f.point_count - done)),
-                      bytes);
+      encoder->encode(
+          r.records.data() + done * f.record_length,
+          static_cast<std::size_t>(std::min<std::uint64_t>(r.vlr.chunk_size, f.point_count - done)), bytes);
   };
   const auto dec = bestOf(reps, decode);
   const bool fixed = r.vlr.chunk_size != laz::kVariableChunkSize;
@@ -123,8 +122,7 @@ main(int argc, char** argv)
   }
   if (files.empty()) {
     const std::string ign = std::string(PCL_LS3D_SHARED_DATA_DIR) + "/laz/ign/";
-    files = {ign + "test_semis_2023_0292_6833_LA93_IGN69.laz",
-             ign + "test_data_77050_627755_LA93_IGN69.laz",
+    files = {ign + "test_semis_2023_0292_6833_LA93_IGN69.laz", ign + "test_data_77050_627755_LA93_IGN69.laz",
              ign + "las_with_several_extra_byte_bloc.laz"};
   }
   if (reps < 1) {

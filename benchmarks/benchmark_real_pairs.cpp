@@ -16,9 +16,9 @@
 #include <pcl_ls3d/io/strip_tools.h>
 #include <pcl_ls3d/synth/spinning_scan.h>
 
+#include <pcl/common/io.h>
 #include <pcl/console/parse.h>
 #include <pcl/console/print.h>
-#include <pcl/common/io.h>
 #include <pcl/kdtree/kdtree_flann.h>
 
 #include <algorithm>
@@ -68,7 +68,7 @@ struct Case
   bool has_truth = false;
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
   PclMethodSettings pcl;
-  std::string pcl_choice;        ///< why these PCL settings (printed)
+  std::string pcl_choice;  ///< why these PCL settings (printed)
   DiscrepancySettings discrepancy;
   bool check_targets = false;
 };
@@ -271,8 +271,7 @@ runCase(Case& c, std::vector<std::string>& summary)
                 r.run.ran ? r.run.stop.c_str() : "FAILED", r.run.pcl_converged ? "yes" : "no");
     if (c.has_truth) {
       const bool ok = r.run.ran && r.run.error.valid;
-      std::printf(" %s %s %s %s", num(r.rot_deg, "%9.4f", 9).c_str(),
-                  num(r.trans, "%10.3e", 10).c_str(),
+      std::printf(" %s %s %s %s", num(r.rot_deg, "%9.4f", 9).c_str(), num(r.trans, "%10.3e", 10).c_str(),
                   num(ok ? r.run.error.mean : kNaN, "%10.3e", 10).c_str(),
                   num(ok ? r.run.error.max : kNaN, "%10.3e", 10).c_str());
     }
@@ -284,16 +283,14 @@ runCase(Case& c, std::vector<std::string>& summary)
   }
   std::printf("before (identity): sMAD %s, median %s over %zu points; discrepancies: signed "
               "distance to the target's flat local plane (k %d, variation <= %.2f) within %.3g\n",
-              num(before.sigma_mad, "%.3e", 1).c_str(), num(before.median, "%.3e", 1).c_str(),
-              before.points, c.discrepancy.k, c.discrepancy.max_variation,
-              c.discrepancy.max_distance);
+              num(before.sigma_mad, "%.3e", 1).c_str(), num(before.median, "%.3e", 1).c_str(), before.points,
+              c.discrepancy.k, c.discrepancy.max_variation, c.discrepancy.max_distance);
 
   const Row& lnd = rows.front();
   char line[512];
   if (!c.has_truth || !c.check_targets) {
-    std::snprintf(line, sizeof(line),
-                  "%-28s sMAD before %.3e, LND after %.3e (%s), LND wall/GICP %.2f", c.name.c_str(),
-                  before.sigma_mad, lnd.after.sigma_mad, lnd.run.stop.c_str(),
+    std::snprintf(line, sizeof(line), "%-28s sMAD before %.3e, LND after %.3e (%s), LND wall/GICP %.2f",
+                  c.name.c_str(), before.sigma_mad, lnd.after.sigma_mad, lnd.run.stop.c_str(),
                   lnd.run.time_s / gicp_time);
     summary.push_back(line);
     return -1;
@@ -301,8 +298,7 @@ runCase(Case& c, std::vector<std::string>& summary)
   double best = std::numeric_limits<double>::infinity();
   std::string best_name = "none";
   for (const auto& r : rows)
-    if (r.run.name.rfind("PCL-", 0) == 0 && r.run.ran && r.run.error.valid &&
-        r.run.error.mean < best) {
+    if (r.run.name.rfind("PCL-", 0) == 0 && r.run.ran && r.run.error.valid && r.run.error.mean < best) {
       best = r.run.error.mean;
       best_name = r.run.name;
     }
@@ -313,12 +309,10 @@ runCase(Case& c, std::vector<std::string>& summary)
   const bool pass_time = std::isfinite(time) && time <= 1.0;
   std::printf("targets: best PCL mean error (%s %.3e) / LS3D-LND mean error (%.3e) = %.3f (>= 1) "
               "%s; LS3D-LND wall / PCL-GICP wall = %.3f (<= 1) %s; LS3D-LND trusted: %s\n",
-              best_name.c_str(), best, lnd_ok ? lnd.run.error.mean : kNaN, acc,
-              pass_acc ? "PASS" : "FAIL", time, pass_time ? "PASS" : "FAIL",
-              lnd.run.pcl_converged ? "yes" : "NO");
-  std::snprintf(line, sizeof(line),
-                "%-28s accuracy x%.3f (LND %.3e vs %s %.3e) %s; time ratio %.3f %s", c.name.c_str(),
-                acc, lnd_ok ? lnd.run.error.mean : kNaN, best_name.c_str(), best,
+              best_name.c_str(), best, lnd_ok ? lnd.run.error.mean : kNaN, acc, pass_acc ? "PASS" : "FAIL",
+              time, pass_time ? "PASS" : "FAIL", lnd.run.pcl_converged ? "yes" : "NO");
+  std::snprintf(line, sizeof(line), "%-28s accuracy x%.3f (LND %.3e vs %s %.3e) %s; time ratio %.3f %s",
+                c.name.c_str(), acc, lnd_ok ? lnd.run.error.mean : kNaN, best_name.c_str(), best,
                 pass_acc ? "PASS" : "FAIL", time, pass_time ? "PASS" : "FAIL");
   summary.push_back(line);
   return pass_acc && pass_time ? 1 : 0;
@@ -338,8 +332,7 @@ ignCase(const std::string& path, Case& c)
     bySize.emplace_back(s.second.size(), s.first);
   std::sort(bySize.rbegin(), bySize.rend());
   if (bySize.size() < 2 || bySize[1].first < 1000) {
-    pcl::console::print_warn("%s: fewer than two strips with 1000 points; skipped\n",
-                             path.c_str());
+    pcl::console::print_warn("%s: fewer than two strips with 1000 points; skipped\n", path.c_str());
     return false;
   }
   const std::uint16_t a = std::min(bySize[0].second, bySize[1].second);
@@ -350,8 +343,8 @@ ignCase(const std::string& path, Case& c)
   c.target = toXYZ(target);
   c.source = toXYZ(source);
   const auto slash = path.find_last_of('/');
-  c.name = "IGN " + path.substr(slash + 1, path.size() - slash - 5) + " strip " +
-           std::to_string(b) + "->" + std::to_string(a);
+  c.name = "IGN " + path.substr(slash + 1, path.size() - slash - 5) + " strip " + std::to_string(b) + "->" +
+           std::to_string(a);
   return true;
 }
 
@@ -400,8 +393,7 @@ main(int argc, char** argv)
     if (loadPair(reg + "/pcl/bun0.pcd", reg + "/pcl/bun4.pcd", c)) {
       c.has_truth = c.check_targets = true;
       // PCL master test/registration/test_registration.cpp, TEST(PCL, PPFRegistration).
-      c.truth << 0.825336, 0, -0.564642, 0.037267, 0, 1, 0, 0, 0.564642, 0, 0.825336, 0.038325, 0,
-          0, 0, 1;
+      c.truth << 0.825336, 0, -0.564642, 0.037267, 0, 1, 0, 0, 0.564642, 0, 0.825336, 0.038325, 0, 0, 0, 1;
       objectSettings(c, pcl_iter);
       account(runCase(c, summary));
     }
@@ -416,8 +408,8 @@ main(int argc, char** argv)
     for (int k : {2, 3}) {
       Case c;
       c.name = "simpleICP dragon1->dragon" + std::to_string(k);
-      if (!loadPair(reg + "/simpleicp/dragon1.xyz",
-                    reg + "/simpleicp/dragon" + std::to_string(k) + ".xyz", c))
+      if (!loadPair(reg + "/simpleicp/dragon1.xyz", reg + "/simpleicp/dragon" + std::to_string(k) + ".xyz",
+                    c))
         continue;
       c.has_truth = c.check_targets = true;
       c.truth = T;
@@ -436,11 +428,10 @@ main(int argc, char** argv)
     }
   }
   if (wanted("ign")) {
-    for (const char* tile :
-         {"test_data_77050_627755_LA93_IGN69", "test_data_77055_627755_LA93_IGN69",
-          "test_data_77050_627760_LA93_IGN69", "test_data_77055_627760_LA93_IGN69",
-          "test_data_77060_627760_LA93_IGN69", "las_with_origin_dsmMarker",
-          "sample_lareunion_epsg2975", "target_cloud_crop"}) {
+    for (const char* tile : {"test_data_77050_627755_LA93_IGN69", "test_data_77055_627755_LA93_IGN69",
+                             "test_data_77050_627760_LA93_IGN69", "test_data_77055_627760_LA93_IGN69",
+                             "test_data_77060_627760_LA93_IGN69", "las_with_origin_dsmMarker",
+                             "sample_lareunion_epsg2975", "target_cloud_crop"}) {
       Case c;
       if (!ignCase(reg + "/ign_lidarhd/" + tile + ".las", c))
         continue;
@@ -471,7 +462,6 @@ main(int argc, char** argv)
               "wall time <= PCL-GICP):\n");
   for (const auto& s : summary)
     std::printf("  %s\n", s.c_str());
-  std::printf("pairs with targets: %d, failed: %d -> %s\n", checked, failed,
-              failed == 0 ? "PASS" : "FAIL");
+  std::printf("pairs with targets: %d, failed: %d -> %s\n", checked, failed, failed == 0 ? "PASS" : "FAIL");
   return failed == 0 ? 0 : 2;
 }

@@ -83,8 +83,8 @@ makePair(const synth::RegistrationPairSettings& ps, const char* label)
               "pts/m2, overlap %.0f %%, noise %.3f m, seed %u, truth m - 1 = %.1f ppm (generated "
               "in %.1f s)\n",
               label, p.source->size(), p.target->size(), ps.size_x, ps.size_y, ps.source_density,
-              ps.target_density, ps.overlap * 100.0, ps.noise_sigma, ps.seed,
-              (ps.truth.m - 1.0) * 1e6, tt.toc() / 1000.0);
+              ps.target_density, ps.overlap * 100.0, ps.noise_sigma, ps.seed, (ps.truth.m - 1.0) * 1e6,
+              tt.toc() / 1000.0);
   return p;
 }
 
@@ -96,8 +96,7 @@ printRuns(std::vector<RegistrationRun>& runs, const Pair& p, double rms_cut)
   for (auto& r : runs) {
     evaluation.evaluate(r, &truth);
     if (r.normals_time_s > 0)
-      std::printf("%s: normal estimation %.3f s of %.3f s\n", r.name.c_str(), r.normals_time_s,
-                  r.time_s);
+      std::printf("%s: normal estimation %.3f s of %.3f s\n", r.name.c_str(), r.normals_time_s, r.time_s);
   }
   std::printf("\n%s", formatComparisonTable(runs, true).c_str());
   std::printf("(conv: stopped by its own criterion; stop LIMIT / MAX_ITERATIONS: hit the "
@@ -173,16 +172,14 @@ main(int argc, char** argv)
   const bool lnd_ok = lnd && lnd->ran && lnd->error.valid;
   std::printf("targets (rigid pair, LS3D-LND rigid):\n");
   char what[128];
-  std::snprintf(what, sizeof(what), "best PCL mean error (%s) / LS3D-LND mean error",
-                best_name.c_str());
+  std::snprintf(what, sizeof(what), "best PCL mean error (%s) / LS3D-LND mean error", best_name.c_str());
   bool all = checkTarget(what, lnd_ok ? best_pcl / lnd->error.mean : nan, 3.0, false);
   all &= checkTarget("LS3D-LND wall time / PCL-GICP wall time",
                      lnd_ok && gicp && gicp->ran ? lnd->time_s / gicp->time_s : nan, 1.0, true);
   if (lnd_ok && gicp && gicp->cpu_s > 0)
     std::printf("  (info) LS3D-LND CPU time / PCL-GICP CPU time: %.3f; LS3D-LND wall / CPU: %.2f / "
                 "%.2f s; LS3D-LND trusted: %s\n",
-                lnd->cpu_s / gicp->cpu_s, lnd->time_s, lnd->cpu_s,
-                lnd->pcl_converged ? "yes" : "NO");
+                lnd->cpu_s / gicp->cpu_s, lnd->time_s, lnd->cpu_s, lnd->pcl_converged ? "yes" : "NO");
 
   if (!json_path.empty()) {
     ComparisonContext c;

@@ -8,9 +8,9 @@
 #include "process_memory.h"
 
 #include <pcl_ls3d/evaluation/ls3d_method.h>
+#include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 #include <pcl_ls3d/rules/lnd_rule.h>
-#include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/synth/strip_block.h>
 
 #include <pcl/console/parse.h>
@@ -96,9 +96,8 @@ runChild(long points_per_strip, unsigned int seed, bool parallel, double thin, b
   const auto err =
       evaluation::computeTransformError(run.transformation, truth, evaluation::cloudToMatrix(*source));
   std::printf("RESULT %zu %zu %.3f %.3f %.3f %d %d %.6f %.6f %.5f %ld %ld %d %s\n", source->size(),
-              target->size(), gen_s, run.time_s, run.cpu_s, run.iterations, run.converged ? 1 : 0,
-              err.mean, err.max, run.sigma0, rss_before, hwm, reset ? 1 : 0,
-              run.message.substr(0, 60).c_str());
+              target->size(), gen_s, run.time_s, run.cpu_s, run.iterations, run.converged ? 1 : 0, err.mean,
+              err.max, run.sigma0, rss_before, hwm, reset ? 1 : 0, run.message.substr(0, 60).c_str());
   return run.ran ? 0 : 1;
 }
 
@@ -109,9 +108,9 @@ constexpr double kMaxMeanError = 0.05;
 bench_process::ChildResult
 spawnChild(long n, unsigned int seed, bool parallel, double thin, bool triangle)
 {
-  return bench_process::runChild({"benchmark_scaling", "-child", std::to_string(n), "-seed", std::to_string(seed),
-                                  parallel ? "-parallel" : "-zigzag", "-thin", std::to_string(thin),
-                                  triangle ? "-triangle" : "-quadric"});
+  return bench_process::runChild({"benchmark_scaling", "-child", std::to_string(n), "-seed",
+                                  std::to_string(seed), parallel ? "-parallel" : "-zigzag", "-thin",
+                                  std::to_string(thin), triangle ? "-triangle" : "-quadric"});
 }
 
 }  // namespace
@@ -120,12 +119,13 @@ int
 main(int argc, char** argv)
 {
   if (pcl::console::find_switch(argc, argv, "-h")) {
-    pcl::console::print_info("Usage: %s [-sizes 0.5,1,2,5] [-seed S] [-parallel] [-thin STEP] [-triangle]\n"
-                             "  -sizes     points per strip in millions (default 0.5,1,2,5)\n"
-                             "  -parallel  rotating-polygon scan lines instead of zig-zag\n"
-                             "  -thin      one source observation per voxel of this edge [m] (default 0: all)\n"
-                             "  -triangle  LND on Zuo's TIN facet instead of the local quadric\n",
-                             argv[0]);
+    pcl::console::print_info(
+        "Usage: %s [-sizes 0.5,1,2,5] [-seed S] [-parallel] [-thin STEP] [-triangle]\n"
+        "  -sizes     points per strip in millions (default 0.5,1,2,5)\n"
+        "  -parallel  rotating-polygon scan lines instead of zig-zag\n"
+        "  -thin      one source observation per voxel of this edge [m] (default 0: all)\n"
+        "  -triangle  LND on Zuo's TIN facet instead of the local quadric\n",
+        argv[0]);
     return 0;
   }
   int seed = 1;
@@ -146,14 +146,16 @@ main(int argc, char** argv)
   pcl::console::parse_x_arguments(argc, argv, "-sizes", sizes);
   std::printf("LS3D-LND (%s), 2 strips, 300 m swath, 20 %% side overlap, 4 pts/m2, %s scan, sigma 5 cm, "
               "seed %d, source thinning %g m; %ld threads; one fresh process per size\n\n",
-              triangle ? "TIN facet" : "local quadric", parallel ? "parallel" : "zig-zag", seed, thin, sysconf(_SC_NPROCESSORS_ONLN));
-  std::printf("%10s %10s %7s %8s %8s %5s %5s %9s %9s %8s %10s %10s  %s\n", "src_pts", "tgt_pts",
-              "gen[s]", "reg[s]", "cpu[s]", "iter", "conv", "mean[mm]", "max[mm]", "s0[m]", "align_MB",
-              "proc_MB", "status");
+              triangle ? "TIN facet" : "local quadric", parallel ? "parallel" : "zig-zag", seed, thin,
+              sysconf(_SC_NPROCESSORS_ONLN));
+  std::printf("%10s %10s %7s %8s %8s %5s %5s %9s %9s %8s %10s %10s  %s\n", "src_pts", "tgt_pts", "gen[s]",
+              "reg[s]", "cpu[s]", "iter", "conv", "mean[mm]", "max[mm]", "s0[m]", "align_MB", "proc_MB",
+              "status");
   bool pass = true, ran_target_size = false, accurate = true;
   for (double m : sizes) {
     const long n = static_cast<long>(m * 1e6);
-    const bench_process::ChildResult r = spawnChild(n, static_cast<unsigned int>(seed), parallel, thin, triangle);
+    const bench_process::ChildResult r =
+        spawnChild(n, static_cast<unsigned int>(seed), parallel, thin, triangle);
     if (r.line.empty()) {
       std::printf("%10ld  child failed\n", n);
       pass = false;
@@ -167,8 +169,8 @@ main(int argc, char** argv)
     std::string status;
     in >> ns >> nt >> gen >> reg >> cpu >> iter >> conv >> mean >> max >> s0 >> rss_before >> hwm >> reset;
     std::getline(in, status);
-    std::printf("%10zu %10zu %7.1f %8.2f %8.2f %5d %5s %9.2f %9.2f %8.4f %10.0f %10.0f %s%s\n", ns,
-                nt, gen, reg, cpu, iter, conv ? "yes" : "no", mean * 1e3, max * 1e3, s0, hwm / 1024.0,
+    std::printf("%10zu %10zu %7.1f %8.2f %8.2f %5d %5s %9.2f %9.2f %8.4f %10.0f %10.0f %s%s\n", ns, nt, gen,
+                reg, cpu, iter, conv ? "yes" : "no", mean * 1e3, max * 1e3, s0, hwm / 1024.0,
                 r.maxrss_kb / 1024.0, reset ? "" : "(HWM not reset) ", status.c_str());
     std::fflush(stdout);
     ran_target_size |= m >= 5.0;

@@ -143,8 +143,8 @@ printFragmentDimensionality(const ev::SegmentationRun& run)
 
 /// Runs IMRG, MRG, pcl_rg on one cloud; prints the table, the IMRG thresholds and confusions.
 std::vector<ev::SegmentationEvaluation>
-evaluateAll(const std::string& title, const Labelled& data,
-            const ev::SegmentationEvaluationSettings& classes, int threads)
+evaluateAll(const std::string& title, const Labelled& data, const ev::SegmentationEvaluationSettings& classes,
+            int threads)
 {
   std::printf("\n=== %s: %zu points ===\n", title.c_str(), data.cloud->size());
   std::vector<ev::SegmentationEvaluation> evals, fragments;
@@ -176,10 +176,9 @@ evaluateAll(const std::string& title, const Labelled& data,
     if (m != ev::SegmentationMethod::PclRegionGrowing)
       std::printf("  %s: v_t %.4f m, d_t %.4f m (|D| %zu), s_t %.4f m, V_t %.3f (|dV| %zu); "
                   "linear/planar/volumetric %zu/%zu/%zu; segments %zu -> %zu; spacing %.3f m\n",
-                  e.method.c_str(), run.residual_threshold, run.distance_threshold,
-                  run.distance_samples, run.similarity_threshold, run.volume_threshold,
-                  run.volume_samples, run.linear, run.planar, run.volumetric,
-                  run.segments_before_merge, run.segments.size(), run.spacing);
+                  e.method.c_str(), run.residual_threshold, run.distance_threshold, run.distance_samples,
+                  run.similarity_threshold, run.volume_threshold, run.volume_samples, run.linear, run.planar,
+                  run.volumetric, run.segments_before_merge, run.segments.size(), run.spacing);
     if (m == ev::SegmentationMethod::IMRG) {
       printDimensionalityByClass(data.labels, run.dimensionality, classes);
       printFragmentDimensionality(run);
@@ -217,8 +216,8 @@ struct ObjectComparison
 };
 
 ObjectComparison
-compareObjects(const std::string& title, const Labelled& data,
-               const ev::ReferenceObjects& reference, int threads)
+compareObjects(const std::string& title, const Labelled& data, const ev::ReferenceObjects& reference,
+               int threads)
 {
   std::printf("\n=== %s: %zu points, %zu reference objects (radius %.2f) ===\n", title.c_str(),
               data.cloud->size(), reference.objects(), reference.radius);
@@ -297,8 +296,7 @@ printCarObjects(const std::string& title, const ev::SegmentationRun& imrg, const
   std::size_t c1_car = 0, c1_vegetation = 0, vegetation_car = 0;
   for (std::size_t o = 0; o < imrg.segments.size(); ++o) {
     const ObjectClass c = imrg.classes[o];
-    if (imrg.segments[o].indices.size() < 20 ||
-        (c != ObjectClass::Car && c != ObjectClass::Vegetation))
+    if (imrg.segments[o].indices.size() < 20 || (c != ObjectClass::Car && c != ObjectClass::Vegetation))
       continue;
     std::size_t c1 = 0, vegetation = 0, other = 0;
     for (const auto i : imrg.segments[o].indices) {
@@ -312,8 +310,7 @@ printCarObjects(const std::string& title, const ev::SegmentationRun& imrg, const
   }
   std::printf("  parked cars %s (IMRG objects >= 20 points, %s returns): class 1 -> car %zu, "
               "class 1 -> vegetation %zu; vegetation -> car %zu\n",
-              title.c_str(), use_returns ? "with" : "without", c1_car, c1_vegetation,
-              vegetation_car);
+              title.c_str(), use_returns ? "with" : "without", c1_car, c1_vegetation, vegetation_car);
 }
 
 const ev::ObjectClassScores*
@@ -346,11 +343,11 @@ objectTargets(const std::string& tile, const ObjectComparison& cmp)
   const auto* b = classOf(imrg, "building");
   if (!b || b->large_objects == 0)
     return;
-  std::snprintf(buf, sizeof(buf), "%s IMRG building median largest share %.2f >= 0.8",
-                tile.c_str(), b->median_largest_share);
+  std::snprintf(buf, sizeof(buf), "%s IMRG building median largest share %.2f >= 0.8", tile.c_str(),
+                b->median_largest_share);
   verdict(b->median_largest_share >= 0.8, buf);
-  std::snprintf(buf, sizeof(buf), "%s IMRG building median valid segments %.1f <= 3",
-                tile.c_str(), b->median_valid_segments);
+  std::snprintf(buf, sizeof(buf), "%s IMRG building median valid segments %.1f <= 3", tile.c_str(),
+                b->median_valid_segments);
   verdict(b->median_valid_segments <= 3.0, buf);
   const auto* vb = voxel.failure.empty() ? classOf(voxel, "building") : nullptr;
   const double v = vb ? vb->median_largest_share : 0.0;
@@ -362,8 +359,7 @@ objectTargets(const std::string& tile, const ObjectComparison& cmp)
 /// Object-level comparison on one classified LAS tile; reference objects = connected components
 /// per class group (automatic radius).
 void
-benchmarkObjectsOnTile(const fs::path& file, const std::string& name, int threads,
-                       bool with_targets)
+benchmarkObjectsOnTile(const fs::path& file, const std::string& name, int threads, bool with_targets)
 {
   pcl::PointCloud<PointLiDAR> cloud;
   io::CloudInfo info;
@@ -403,8 +399,7 @@ benchmarkIgn(const fs::path& data_dir, int threads)
   }
   ev::SegmentationEvaluationSettings classes;
   classes.groups = {{"ground", {2}}, {"building", {6}}, {"vegetation", {3, 4, 5}}};
-  const auto evals = evaluateAll("IGN tile 77055_627760 (origin " +
-                                     std::to_string(info.origin.x()) + ", " +
+  const auto evals = evaluateAll("IGN tile 77055_627760 (origin " + std::to_string(info.origin.x()) + ", " +
                                      std::to_string(info.origin.y()) + ")",
                                  fromLiDAR(cloud), classes, threads);
   for (const char* c : {"ground", "building", "vegetation"}) {
@@ -447,8 +442,8 @@ sceneReference(const synth::LabelledScene& scene, const Labelled& data,
                const std::vector<ev::ClassGroup>& groups, ev::ReferenceObjects& reference,
                std::vector<synth::ObjectType>& type_of, std::string& error)
 {
-  if (!ev::referenceObjectsFromIds(scene.object_id, data.labels, groups,
-                                   ev::defaultExcludedCodes(), reference, error))
+  if (!ev::referenceObjectsFromIds(scene.object_id, data.labels, groups, ev::defaultExcludedCodes(),
+                                   reference, error))
     return false;
   type_of.clear();
   std::map<int, std::size_t> seen;
@@ -489,13 +484,13 @@ objectTypeVerdicts(std::uint32_t seed, const ev::ObjectEvaluation& imrg,
     if (n + small == 0)
       continue;
     std::sort(shares.begin(), shares.end());
-    std::printf("    %-8s %3zu / %3zu  (min share %.2f; %zu objects under 50 points)\n",
-                synth::toString(t), whole, n, shares.empty() ? 0.0 : shares.front(), small);
-    if (t == synth::ObjectType::BUILDING || t == synth::ObjectType::TREE ||
-        t == synth::ObjectType::CAR || t == synth::ObjectType::WIRE) {
+    std::printf("    %-8s %3zu / %3zu  (min share %.2f; %zu objects under 50 points)\n", synth::toString(t),
+                whole, n, shares.empty() ? 0.0 : shares.front(), small);
+    if (t == synth::ObjectType::BUILDING || t == synth::ObjectType::TREE || t == synth::ObjectType::CAR ||
+        t == synth::ObjectType::WIRE) {
       char buf[160];
-      std::snprintf(buf, sizeof(buf), "scene %u IMRG every %s whole: %zu / %zu", seed,
-                    synth::toString(t), whole, n);
+      std::snprintf(buf, sizeof(buf), "scene %u IMRG every %s whole: %zu / %zu", seed, synth::toString(t),
+                    whole, n);
       verdict(whole == n, buf);
     }
   }
@@ -505,8 +500,7 @@ objectTypeVerdicts(std::uint32_t seed, const ev::ObjectEvaluation& imrg,
 /// "other" (impure segments are not valid), so a plane segment that runs into a wall or the
 /// ground is not counted for the roof. Roof planes F1 >= 0.95 and every gable in its two planes.
 void
-planeLevelVerdicts(std::uint32_t seed, const synth::LabelledScene& scene,
-                   const ev::SegmentationRun& run)
+planeLevelVerdicts(std::uint32_t seed, const synth::LabelledScene& scene, const ev::SegmentationRun& run)
 {
   const int n_planes = static_cast<int>(scene.planes.size());
   std::vector<int> ids(scene.plane_id.size()), labels(scene.plane_id.size());
@@ -555,11 +549,10 @@ planeLevelVerdicts(std::uint32_t seed, const synth::LabelledScene& scene,
       ++gables;
       gables_split += recognised_per_building[rp_b.object] == 2;
     }
-  std::printf("  roof planes recognised %zu / %zu; gable roofs split into both planes %zu / %zu\n",
-              planes_ok, planes_n, gables_split, gables);
+  std::printf("  roof planes recognised %zu / %zu; gable roofs split into both planes %zu / %zu\n", planes_ok,
+              planes_n, gables_split, gables);
   char buf[160];
-  std::snprintf(buf, sizeof(buf), "scene %u IMRG roof planes F1 %.3f >= 0.95", seed,
-                rp ? rp->f1 : 0.0);
+  std::snprintf(buf, sizeof(buf), "scene %u IMRG roof planes F1 %.3f >= 0.95", seed, rp ? rp->f1 : 0.0);
   verdict(rp && rp->f1 >= 0.95, buf);
   std::snprintf(buf, sizeof(buf), "scene %u every gable roof in its two planes: %zu / %zu", seed,
                 gables_split, gables);
@@ -580,8 +573,7 @@ benchmarkObjectsOnScene(std::uint32_t seed, double size, int threads)
   const Labelled data = fromLiDAR(*scene.cloud);
   std::vector<ev::ClassGroup> groups;
   std::string error;
-  ev::parseClassGroups("ground=2,building=6,vegetation=3-5,wire=14,tower=15,car=64", groups,
-                       error);
+  ev::parseClassGroups("ground=2,building=6,vegetation=3-5,wire=14,tower=15,car=64", groups, error);
   ev::ReferenceObjects reference;
   std::vector<synth::ObjectType> type_of;
   if (!sceneReference(scene, data, groups, reference, type_of, error)) {
@@ -589,8 +581,8 @@ benchmarkObjectsOnScene(std::uint32_t seed, double size, int threads)
     ++failures;
     return;
   }
-  const auto cmp = compareObjects("generated scene seed " + std::to_string(seed) + " (objects)",
-                                  data, reference, threads);
+  const auto cmp =
+      compareObjects("generated scene seed " + std::to_string(seed) + " (objects)", data, reference, threads);
   const ev::ObjectEvaluation& imrg = cmp.evals[0];
   if (!imrg.failure.empty()) {
     verdict(false, "scene IMRG failed: " + imrg.failure);
@@ -606,8 +598,7 @@ benchmarkScenes(int scenes, double size, int threads)
 {
   ev::SegmentationEvaluationSettings classes;
   std::string error;
-  ev::parseClassGroups("ground=2,building=6,vegetation=3-5,wire=14,tower=15,car=64",
-                       classes.groups, error);
+  ev::parseClassGroups("ground=2,building=6,vegetation=3-5,wire=14,tower=15,car=64", classes.groups, error);
   for (int i = 0; i < scenes; ++i) {
     const auto seed = static_cast<std::uint32_t>(i + 1);
     const synth::LabelledScene scene = synth::makeScene(sceneSettings(seed, size));
@@ -621,13 +612,11 @@ benchmarkScenes(int scenes, double size, int threads)
                                    fromLiDAR(*scene.cloud), classes, threads);
     for (const char* c : {"ground", "building", "vegetation"}) {
       char buf[128];
-      std::snprintf(buf, sizeof(buf), "scene %u IMRG %s F1 %.3f >= 0.95", seed, c,
-                    f1Of(evals[0], c));
+      std::snprintf(buf, sizeof(buf), "scene %u IMRG %s F1 %.3f >= 0.95", seed, c, f1Of(evals[0], c));
       verdict(f1Of(evals[0], c) >= 0.95, buf);
     }
     char buf[128];
-    std::snprintf(buf, sizeof(buf), "scene %u IMRG wire F1 %.3f >= 0.80", seed,
-                  f1Of(evals[0], "wire"));
+    std::snprintf(buf, sizeof(buf), "scene %u IMRG wire F1 %.3f >= 0.80", seed, f1Of(evals[0], "wire"));
     verdict(f1Of(evals[0], "wire") >= 0.80, buf);
   }
 }
@@ -638,12 +627,11 @@ benchmarkSpeed(std::size_t max_points, int threads)
   // Points per m² of the default scene, from a small sample, to size the scenes.
   const auto probe = synth::makeScene(sceneSettings(11, 100.0));
   const double per_m2 = static_cast<double>(probe.cloud->size()) / 1e4;
-  std::printf("\n=== Speed (generated scenes, %.2f points/m2; threads %d, 0 = all) ===\n", per_m2,
-              threads);
+  std::printf("\n=== Speed (generated scenes, %.2f points/m2; threads %d, 0 = all) ===\n", per_m2, threads);
   std::printf("  %9s | %7s | %6s | %8s | %7s | %7s | %6s | %7s | %6s | %7s | %6s | %5s | %8s | "
               "%8s | %6s\n",
-              "points", "IMRG s", "search", "features", "growing", "merging", "absorb", "normals",
-              "RG s", "norm+RG", "ratio", "segs", "IMRG cpu", "n+RG cpu", "cpu r.");
+              "points", "IMRG s", "search", "features", "growing", "merging", "absorb", "normals", "RG s",
+              "norm+RG", "ratio", "segs", "IMRG cpu", "n+RG cpu", "cpu r.");
   std::printf("  (wall seconds; IMRG stages from MultiRuleRegionGrowing::getStageTimes(); cpu = "
               "process CPU seconds over all threads)\n");
   double t_1m = 0.0, ratio_1m = 0.0, t_first = 0.0, rg_first = 0.0, rg_last = 0.0;
@@ -675,10 +663,9 @@ benchmarkSpeed(std::size_t max_points, int threads)
     const double ratio = imrg.seconds_total / rg.seconds_total;
     std::printf("  %9zu | %7.2f | %6.2f | %8.2f | %7.2f | %7.2f | %6.2f | %7.2f | %6.2f | %7.2f | "
                 "%6.2f | %5zu | %8.1f | %8.1f | %6.2f\n",
-                data.cloud->size(), imrg.seconds_total, imrg.seconds_search,
-                imrg.seconds_features, imrg.seconds_growing, imrg.seconds_merging,
-                imrg.seconds_absorbing, rg.seconds_normals, rg.seconds_segmentation,
-                rg.seconds_total, ratio, imrg.segments.size(), cpu_imrg, cpu_rg,
+                data.cloud->size(), imrg.seconds_total, imrg.seconds_search, imrg.seconds_features,
+                imrg.seconds_growing, imrg.seconds_merging, imrg.seconds_absorbing, rg.seconds_normals,
+                rg.seconds_segmentation, rg.seconds_total, ratio, imrg.segments.size(), cpu_imrg, cpu_rg,
                 cpu_imrg / cpu_rg);
     std::fflush(stdout);
     if (n_first == 0) {
@@ -692,13 +679,13 @@ benchmarkSpeed(std::size_t max_points, int threads)
     n_last = data.cloud->size();
   }
   if (n_last > n_first)
-    std::printf("  growth %zu -> %zu points (x %.2f): IMRG x %.2f, normals + RG x %.2f\n", n_first,
-                n_last, static_cast<double>(n_last) / n_first, t_1m / t_first, rg_last / rg_first);
+    std::printf("  growth %zu -> %zu points (x %.2f): IMRG x %.2f, normals + RG x %.2f\n", n_first, n_last,
+                static_cast<double>(n_last) / n_first, t_1m / t_first, rg_last / rg_first);
   char buf[160];
   std::snprintf(buf, sizeof(buf), "%zu points: IMRG %.2f s <= 60 s", n_last, t_1m);
   verdict(n_last >= 900000 && t_1m <= 60.0, buf);
-  std::snprintf(buf, sizeof(buf), "%zu points: IMRG / (normals + RegionGrowing) = %.2f <= 3",
-                n_last, ratio_1m);
+  std::snprintf(buf, sizeof(buf), "%zu points: IMRG / (normals + RegionGrowing) = %.2f <= 3", n_last,
+                ratio_1m);
   verdict(n_last >= 900000 && ratio_1m <= 3.0, buf);
 }
 
@@ -713,9 +700,8 @@ main(int argc, char** argv)
                 argv[0]);
     return 0;
   }
-  std::string data = (fs::path(__FILE__).parent_path().parent_path() / ".." / "shared" / "data")
-                         .lexically_normal()
-                         .string();
+  std::string data =
+      (fs::path(__FILE__).parent_path().parent_path() / ".." / "shared" / "data").lexically_normal().string();
   int scenes = 3, threads = 0;
   double scene_size = 100.0, max_points = 1e6;
   pcl::console::parse_argument(argc, argv, "-data", data);
@@ -736,13 +722,11 @@ main(int argc, char** argv)
     const fs::path d(data);
     benchmarkObjectsOnTile(d / "segmentation" / "ctview__test_data_77055_627760_LA93_IGN69.las",
                            "IGN ctview 77055_627760", threads, true);
-    for (const char* t : {"77050_627755", "77050_627760", "77055_627755", "77055_627760",
-                          "77060_627760"})
+    for (const char* t : {"77050_627755", "77050_627760", "77055_627755", "77055_627760", "77060_627760"})
       benchmarkObjectsOnTile(d / "registration" / "ign_lidarhd" /
                                  ("test_data_" + std::string(t) + "_LA93_IGN69.las"),
                              std::string("IGN ") + t, threads, true);
-    benchmarkObjectsOnTile(d / "segmentation" / "pdal__sample_c.las", "PDAL sample_c", threads,
-                           false);
+    benchmarkObjectsOnTile(d / "segmentation" / "pdal__sample_c.las", "PDAL sample_c", threads, false);
     for (int i = 0; i < scenes; ++i)
       benchmarkObjectsOnScene(static_cast<std::uint32_t>(i + 1), scene_size, threads);
   }

@@ -69,7 +69,8 @@ chainPairwise(const Block& b, int n, double& seconds)
   std::vector<Eigen::Matrix4d> T(static_cast<std::size_t>(n), Eigen::Matrix4d::Identity());
   seconds = 0.0;
   for (int k = 1; k < n; ++k) {
-    const std::vector<strips::Strip> pair = {b.strips[static_cast<std::size_t>(k - 1)], b.strips[static_cast<std::size_t>(k)]};
+    const std::vector<strips::Strip> pair = {b.strips[static_cast<std::size_t>(k - 1)],
+                                             b.strips[static_cast<std::size_t>(k)]};
     const Run r = adjust(pair, rigidWithReference(0));
     seconds += r.seconds;
     if (!r.ok) {
@@ -103,17 +104,20 @@ runChain(int cross, double length, double swath, double density, std::uint32_t s
   ChainResult r;
   for (int k = 1; k < n; ++k) {
     const std::size_t s = static_cast<std::size_t>(k);
-    const double eb = block.ok ? displacement(b, s, block.report.strips[s].transformation, trueMatrix(b, s)).mean_norm : NAN;
+    const double eb =
+        block.ok ? displacement(b, s, block.report.strips[s].transformation, trueMatrix(b, s)).mean_norm
+                 : NAN;
     const double ec = displacement(b, s, chain[s], trueMatrix(b, s)).mean_norm;
     r.worst_block = std::max(r.worst_block, eb);
     r.worst_chain = std::max(r.worst_chain, ec);
     if (per_strip)
       std::printf("  strip %d: block mean|delta| %.4f m, chain %.4f m\n", k + 1, eb, ec);
   }
-  std::printf("  seed %2u (%zu points): block %s, %d iterations, %.1f s; chain of %d pairs %.1f s; worst strip block "
-              "%.4f m, chain %.4f m, ratio %.2f\n", seed, b.strips.size() * b.strips[0].size(),
-              terminationTypeToString(block.report.termination), block.report.iterations, block.seconds, n - 1, chain_s,
-              r.worst_block, r.worst_chain, r.ratio());
+  std::printf(
+      "  seed %2u (%zu points): block %s, %d iterations, %.1f s; chain of %d pairs %.1f s; worst strip block "
+      "%.4f m, chain %.4f m, ratio %.2f\n",
+      seed, b.strips.size() * b.strips[0].size(), terminationTypeToString(block.report.termination),
+      block.report.iterations, block.seconds, n - 1, chain_s, r.worst_block, r.worst_chain, r.ratio());
   return r;
 }
 
@@ -122,19 +126,23 @@ runChain(int cross, double length, double swath, double density, std::uint32_t s
 void
 runChains(int cross, double length, double swath, double density, int first, int seeds)
 {
-  std::printf("\n=== chain: 8 strips %.0f x %.0f m, 30 %% side overlap, %.1f pts/m2, noise 0.05 m, %d cross strips, "
-              "seeds %d..%d (load %.2f)\n", length, swath, density, cross, first, first + seeds - 1, loadAverage());
+  std::printf(
+      "\n=== chain: 8 strips %.0f x %.0f m, 30 %% side overlap, %.1f pts/m2, noise 0.05 m, %d cross strips, "
+      "seeds %d..%d (load %.2f)\n",
+      length, swath, density, cross, first, first + seeds - 1, loadAverage());
   std::vector<double> ratios;
   for (int k = 0; k < seeds; ++k) {
-    ratios.push_back(runChain(cross, length, swath, density, static_cast<std::uint32_t>(first + k), seeds == 1).ratio());
+    ratios.push_back(
+        runChain(cross, length, swath, density, static_cast<std::uint32_t>(first + k), seeds == 1).ratio());
   }
   const std::size_t at_least_two = static_cast<std::size_t>(
       std::count_if(ratios.begin(), ratios.end(), [](double q) { return q >= 2.0; }));
   const double median = stats::median(ratios);
   const auto range = std::minmax_element(ratios.begin(), ratios.end());
   std::printf("  worst-strip ratio chain/block: median %.2f over %d seeds (range %.2f .. %.2f), >= 2 on %zu; "
-              "target median >= 2: %s (load %.2f)\n", median, seeds, *range.first, *range.second, at_least_two,
-              median >= 2.0 ? "PASS" : "FAIL", loadAverage());
+              "target median >= 2: %s (load %.2f)\n",
+              median, seeds, *range.first, *range.second, at_least_two, median >= 2.0 ? "PASS" : "FAIL",
+              loadAverage());
 }
 
 struct Coverage
@@ -176,22 +184,24 @@ runCoverage(int seeds, double length, double swath, double density)
     for (std::size_t k = 1; k < 3; ++k)
       addStrip(b, r.report.strips[k], k, c);
   }
-  std::printf("\n=== coverage: %d seeds, 3 strips %.0f x %.0f m, 30 %% overlap, %.1f pts/m2, noise 0.05 m, rigid, "
-              "strip 1 fixed; %d runs not converged; %.0f s (load %.2f)\n", seeds, length, swath, density, failed,
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), loadAverage());
+  std::printf(
+      "\n=== coverage: %d seeds, 3 strips %.0f x %.0f m, 30 %% overlap, %.1f pts/m2, noise 0.05 m, rigid, "
+      "strip 1 fixed; %d runs not converged; %.0f s (load %.2f)\n",
+      seeds, length, swath, density, failed,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), loadAverage());
   const char* names[6] = {"tx", "ty", "tz", "phi", "omega", "kappa"};
   std::printf("  param  n    |e|<=sigma  |e|<=2sigma   (formal sigma0 sqrt(q): <=1, <=2)\n");
   int n = 0, a = 0, b2 = 0;
   for (std::size_t p = 0; p < 6; ++p) {
     const double k = c.n[p] > 0 ? 100.0 / c.n[p] : 0.0;
-    std::printf("  %-6s %-4d %6.1f %%    %6.1f %%       (%5.1f %%, %5.1f %%)\n", names[p], c.n[p], k * c.in1[p],
-                k * c.in2[p], k * c.formal1[p], k * c.formal2[p]);
+    std::printf("  %-6s %-4d %6.1f %%    %6.1f %%       (%5.1f %%, %5.1f %%)\n", names[p], c.n[p],
+                k * c.in1[p], k * c.in2[p], k * c.formal1[p], k * c.formal2[p]);
     n += c.n[p];
     a += c.in1[p];
     b2 += c.in2[p];
   }
-  std::printf("  all    %-4d %6.1f %%    %6.1f %%    (expected 68.3 %% / 95.4 %%)\n", n, 100.0 * a / std::max(n, 1),
-              100.0 * b2 / std::max(n, 1));
+  std::printf("  all    %-4d %6.1f %%    %6.1f %%    (expected 68.3 %% / 95.4 %%)\n", n,
+              100.0 * a / std::max(n, 1), 100.0 * b2 / std::max(n, 1));
 }
 
 // --- honesty ---------------------------------------------------------------------------------
@@ -223,7 +233,9 @@ tallyRun(const Block& b, const Run& run, bool rigid, std::uint32_t seed, Honesty
   }
   const strips::StripAdjustmentReport& r = run.report;
   const TerminationType term = r.termination;
-  (term == TerminationType::CONVERGED ? t.converged : term == TerminationType::UNRELIABLE ? t.not_confirmed : t.other)++;
+  (term == TerminationType::CONVERGED    ? t.converged
+   : term == TerminationType::UNRELIABLE ? t.not_confirmed
+                                         : t.other)++;
   std::string line;
   for (std::size_t k = 1; k < r.strips.size(); ++k) {
     const double error = displacement(b, k, r.strips[k].transformation, trueMatrix(b, k)).mean_norm;
@@ -242,8 +254,8 @@ tallyRun(const Block& b, const Run& run, bool rigid, std::uint32_t seed, Honesty
       line += buf;
     }
   }
-  std::printf("    seed %2u %s %-11s %.0f s:%s\n", seed, rigid ? "rigid" : "7par ", terminationTypeToString(term),
-              run.seconds, line.c_str());
+  std::printf("    seed %2u %s %-11s %.0f s:%s\n", seed, rigid ? "rigid" : "7par ",
+              terminationTypeToString(term), run.seconds, line.c_str());
 }
 
 void
@@ -257,30 +269,34 @@ printTally(const char* truth, const char* model, const HonestyTally& t)
     mean += q;
   mean /= static_cast<double>(t.ratios.size());
   std::printf("  %s truth, %s: error/sigma mean %.2f, median %.2f, range %.2f .. %.2f over %zu strips; "
-              "CONVERGED %d, NOT CONFIRMED %d, other %d\n", truth, model, mean, stats::median(t.ratios), *range.first,
-              *range.second, t.ratios.size(), t.converged, t.not_confirmed, t.other);
+              "CONVERGED %d, NOT CONFIRMED %d, other %d\n",
+              truth, model, mean, stats::median(t.ratios), *range.first, *range.second, t.ratios.size(),
+              t.converged, t.not_confirmed, t.other);
   if (t.z.empty())
     return;
   std::string fires;
   for (double thr : {2.0, 2.5, 3.0, 3.5, 4.0}) {
     const auto n = std::count_if(t.z.begin(), t.z.end(), [thr](double z) { return std::abs(z) > thr; });
     char buf[64];
-    std::snprintf(buf, sizeof(buf), " |z|>%.1f: %.1f %%", thr, 100.0 * static_cast<double>(n) / static_cast<double>(t.z.size()));
+    std::snprintf(buf, sizeof(buf), " |z|>%.1f: %.1f %%", thr,
+                  100.0 * static_cast<double>(n) / static_cast<double>(t.z.size()));
     fires += buf;
   }
   std::vector<double> absz;
   for (double z : t.z)
     absz.push_back(std::abs(z));
-  std::printf("    held-out scale over %d strips: median |z| %.2f;%s; flagged (default) %d = %.1f %%\n", t.strips,
-              stats::median(absz), fires.c_str(), t.flagged, 100.0 * t.flagged / std::max(1, t.strips));
+  std::printf("    held-out scale over %d strips: median |z| %.2f;%s; flagged (default) %d = %.1f %%\n",
+              t.strips, stats::median(absz), fires.c_str(), t.flagged,
+              100.0 * t.flagged / std::max(1, t.strips));
 }
 
 void
 runHonesty(const HonestySettings& h)
 {
-  std::printf("\n=== honesty: %d strips %.0f x %.0f m, 30 %% side overlap, %.2f pts/m2, noise 0.05 m, shifts 0.15 m, "
-              "angles 3e-4, scale sigma %.1e (scaled truth), strip 1 fixed, seeds %d..%d (load %.2f)\n", h.strips,
-              h.length, h.swath, h.density, h.scale_sigma, h.first, h.first + h.seeds - 1, loadAverage());
+  std::printf(
+      "\n=== honesty: %d strips %.0f x %.0f m, 30 %% side overlap, %.2f pts/m2, noise 0.05 m, shifts 0.15 m, "
+      "angles 3e-4, scale sigma %.1e (scaled truth), strip 1 fixed, seeds %d..%d (load %.2f)\n",
+      h.strips, h.length, h.swath, h.density, h.scale_sigma, h.first, h.first + h.seeds - 1, loadAverage());
   const auto t0 = std::chrono::steady_clock::now();
   for (int scaled = 0; scaled < 2; ++scaled) {
     if ((scaled && !h.scaled_truth) || (!scaled && !h.rigid_truth))
@@ -307,8 +323,8 @@ runHonesty(const HonestySettings& h)
     printTally(scaled ? "scaled" : "rigid", "rigid model", rigid);
     printTally(scaled ? "scaled" : "rigid", "-params 7", freed);
   }
-  std::printf("  %.0f s (load %.2f)\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-              loadAverage());
+  std::printf("  %.0f s (load %.2f)\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), loadAverage());
 }
 
 bool

@@ -66,8 +66,9 @@ child(int strips, int cross, double mpts, double swath, double density, double o
     used += o.used ? 1 : 0;
   std::printf("RESULT points %zu overlaps %zu generate_s %.1f adjust_s %.1f iterations %d termination %s "
               "adjust_peak_mb %.0f reset %d sigma0 %.4f stages %s\n",
-              points, used, gen_s, r.seconds, r.report.iterations, terminationTypeToString(r.report.termination),
-              static_cast<double>(hwm) / 1024.0, reset ? 1 : 0, r.report.sigma0, stageTimes(r.report).c_str());
+              points, used, gen_s, r.seconds, r.report.iterations,
+              terminationTypeToString(r.report.termination), static_cast<double>(hwm) / 1024.0, reset ? 1 : 0,
+              r.report.sigma0, stageTimes(r.report).c_str());
   return r.ok ? 0 : 2;
 }
 
@@ -117,8 +118,8 @@ main(int argc, char** argv)
   std::printf("benchmark_strip_speed: load %.2f\n", loadAverage());
   if (pair) {
     const double m = mpts > 0.0 ? mpts : 5.0;
-    const ChildResult r = runChild({"benchmark_strip_speed", "-child", "2", "-cross", "0", "-mpts", std::to_string(m),
-                                 "-swath", "500", "-density", "4"});
+    const ChildResult r = runChild({"benchmark_strip_speed", "-child", "2", "-cross", "0", "-mpts",
+                                    std::to_string(m), "-swath", "500", "-density", "4"});
     std::printf("pair 2 x %.1f M points, 20 %% overlap: %s\n  process peak %.0f MB, load %.2f\n", m,
                 r.ok ? r.line.c_str() : "FAILED", r.maxrss_kb / 1024.0, loadAverage());
     if (r.ok)
@@ -128,8 +129,9 @@ main(int argc, char** argv)
   double prev_t = NAN, prev_n = NAN;
   for (int n : parseList(block_sizes)) {
     const double m = mpts > 0.0 ? mpts : 1.0;
-    const ChildResult r = runChild({"benchmark_strip_speed", "-child", std::to_string(n), "-cross", std::to_string(cross),
-                                 "-mpts", std::to_string(m), "-swath", "200", "-density", "2"});
+    const ChildResult r =
+        runChild({"benchmark_strip_speed", "-child", std::to_string(n), "-cross", std::to_string(cross),
+                  "-mpts", std::to_string(m), "-swath", "200", "-density", "2"});
     const double t = field(r.line, "adjust_s");
     std::printf("block %d x %.1f M + %d cross: %s\n  process peak %.0f MB, load %.2f; time per strip %.2f s",
                 n, m, cross, r.ok ? r.line.c_str() : "FAILED", r.maxrss_kb / 1024.0, loadAverage(), t / n);

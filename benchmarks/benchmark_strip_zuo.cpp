@@ -50,8 +50,8 @@ printBlock(const char* scene, const synth::StripSettings& s, const Block& b)
 void
 printParameters(const char* label, const Vector7d& p)
 {
-  std::printf("   %-6s tx %8.4f ty %8.4f tz %8.4f | phi %9.5f omega %9.5f kappa %9.5f deg | m %.7f\n",
-              label, p[TX], p[TY], p[TZ], p[PHI] * kDeg, p[OMEGA] * kDeg, p[KAPPA] * kDeg, p[SCALE]);
+  std::printf("   %-6s tx %8.4f ty %8.4f tz %8.4f | phi %9.5f omega %9.5f kappa %9.5f deg | m %.7f\n", label,
+              p[TX], p[TY], p[TZ], p[PHI] * kDeg, p[OMEGA] * kDeg, p[KAPPA] * kDeg, p[SCALE]);
 }
 
 // Table 2 and 3 rows of strip k (overlap k&2) and its error against the truth.
@@ -65,12 +65,12 @@ printStrip(const Block& b, const Run& run, std::size_t k, double noise, double& 
     if ((ov.i == static_cast<int>(k) && ov.j == 1) || (ov.j == static_cast<int>(k) && ov.i == 1))
       o = &ov;
   const Vector7d truth = trueParameters(b, k);
-  std::printf(" strips %zu&2: observations %zu used of %zu, spacing %.2f m, sigma0 %.4f m, sigma_surface %.4f m, "
-              "expected sigma0 %.4f m (ratio %.3f)\n",
-              k + 1, o ? o->used_observations : 0, o ? o->observations : 0, o ? o->spacing : 0.0,
-              o ? o->sigma0 : 0.0, o ? o->sigma_surface : 0.0,
-              o ? std::hypot(noise, o->sigma_surface) : 0.0,
-              o ? o->sigma0 / std::hypot(noise, o->sigma_surface) : 0.0);
+  std::printf(
+      " strips %zu&2: observations %zu used of %zu, spacing %.2f m, sigma0 %.4f m, sigma_surface %.4f m, "
+      "expected sigma0 %.4f m (ratio %.3f)\n",
+      k + 1, o ? o->used_observations : 0, o ? o->observations : 0, o ? o->spacing : 0.0, o ? o->sigma0 : 0.0,
+      o ? o->sigma_surface : 0.0, o ? std::hypot(noise, o->sigma_surface) : 0.0,
+      o ? o->sigma0 / std::hypot(noise, o->sigma_surface) : 0.0);
   printParameters("est", sr.parameters);
   printParameters("true", truth);
   const Vector7d& s = sr.sigmas;
@@ -86,10 +86,11 @@ printStrip(const Block& b, const Run& run, std::size_t k, double noise, double& 
   }
   const Displacement d = displacement(b, k, sr.transformation, trueMatrix(b, k));
   error = d.mean_norm;
-  std::printf("  -> %s 3 sigma\n   error: mean |delta| %.4f m, |mean delta| %.4f m, max %.4f m over the strip "
-              "(target <= %.4f = 0.2 sigma_noise: %s)\n",
-              ok ? "all within" : "NOT all within", d.mean_norm, d.norm_of_mean, d.max_norm, 0.2 * noise,
-              d.mean_norm <= 0.2 * noise ? "PASS" : "FAIL");
+  std::printf(
+      "  -> %s 3 sigma\n   error: mean |delta| %.4f m, |mean delta| %.4f m, max %.4f m over the strip "
+      "(target <= %.4f = 0.2 sigma_noise: %s)\n",
+      ok ? "all within" : "NOT all within", d.mean_norm, d.norm_of_mean, d.max_norm, 0.2 * noise,
+      d.mean_norm <= 0.2 * noise ? "PASS" : "FAIL");
   return ok;
 }
 
@@ -101,12 +102,15 @@ runRule(const Block& b, const std::string& rule, double noise)
   strips::StripAdjustmentSettings settings;
   settings.model = ParameterModel::SIMILARITY_7;
   settings.reference_strips = {1};
-  settings.rule = rule == "lzd" ? ConjugateRuleType::LZD : rule == "icp" ? ConjugateRuleType::ICP : ConjugateRuleType::LND;
+  settings.rule = rule == "lzd"   ? ConjugateRuleType::LZD
+                  : rule == "icp" ? ConjugateRuleType::ICP
+                                  : ConjugateRuleType::LND;
   out.run = adjust(b.strips, settings);
   const strips::StripAdjustmentReport& r = out.run.report;
-  std::printf("\n -- rule %s: %s, %s after %d iterations, %.1f s (load %.2f), sigma0 %.4f m, %zu observations\n",
-              rule.c_str(), out.run.ok ? "ran" : out.run.error.c_str(), terminationTypeToString(r.termination),
-              r.iterations, out.run.seconds, loadAverage(), r.sigma0, r.observations);
+  std::printf(
+      "\n -- rule %s: %s, %s after %d iterations, %.1f s (load %.2f), sigma0 %.4f m, %zu observations\n",
+      rule.c_str(), out.run.ok ? "ran" : out.run.error.c_str(), terminationTypeToString(r.termination),
+      r.iterations, out.run.seconds, loadAverage(), r.sigma0, r.observations);
   if (!out.run.ok)
     return out;
   for (std::size_t k : {0u, 2u}) {
@@ -126,12 +130,14 @@ runScene(synth::LandscapeType type, double scale, std::uint32_t seed, const std:
     s.pattern = synth::ScanPattern::PARALLEL;
   const auto t0 = std::chrono::steady_clock::now();
   const Block b = makeBlock(s);
-  std::printf("generated in %.1f s\n", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  std::printf("generated in %.1f s\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   printBlock(synth::toString(type), s, b);
   std::map<std::string, RuleResult> results;
   for (const std::string& rule : rules)
     results[rule] = runRule(b, rule, s.noise_sigma);
-  std::printf("\n summary %s:\n   rule  sigma0 [m]  worst mean|delta| [m]  all within 3 sigma\n", synth::toString(type));
+  std::printf("\n summary %s:\n   rule  sigma0 [m]  worst mean|delta| [m]  all within 3 sigma\n",
+              synth::toString(type));
   for (const auto& kv : results)
     std::printf("   %-4s  %.4f      %.4f                 %s\n", kv.first.c_str(), kv.second.run.report.sigma0,
                 kv.second.worst_error, kv.second.within_3sigma ? "yes" : "no");
@@ -168,7 +174,8 @@ main(int argc, char** argv)
       rules.push_back(rules_text.substr(a, e - a));
     a = e + 1;
   }
-  std::printf("benchmark_strip_zuo: scale %.2f of Zuo Table 1, seed %d, load %.2f\n", scale, seed, loadAverage());
+  std::printf("benchmark_strip_zuo: scale %.2f of Zuo Table 1, seed %d, load %.2f\n", scale, seed,
+              loadAverage());
   if (scene == "urban" || scene == "both")
     runScene(synth::LandscapeType::URBAN, scale, static_cast<std::uint32_t>(seed), rules, parallel);
   if (scene == "mountain" || scene == "both")

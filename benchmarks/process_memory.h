@@ -69,7 +69,8 @@ runChild(const std::vector<std::string>& args)
     out.append(buf, static_cast<std::size_t>(k));
   close(fd[0]);
   int status = 0;
-  struct rusage ru {};
+  struct rusage ru
+  {};
   wait4(pid, &status, 0, &ru);
   r.maxrss_kb = ru.ru_maxrss;
   const auto pos = out.find("RESULT ");

@@ -27,13 +27,13 @@
 
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
-#include <pcl_ls3d/segmentation/object_classes.h>
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/maps/map_format.h>
 #include <pcl_ls3d/maps/map_rendering.h>
 #include <pcl_ls3d/maps/png_io.h>
+#include <pcl_ls3d/segmentation/object_classes.h>
 
 #include <pcl/console/parse.h>
 #include <pcl/io/pcd_io.h>
@@ -62,15 +62,24 @@ std::uint32_t
 classColour(std::uint32_t c)
 {
   switch (c) {
-    case 2: return 0xa0785a;
-    case 3: return 0x9ad07a;
-    case 4: return 0x4caf50;
-    case 5: return 0x1b5e20;
-    case 6: return 0xd03030;
-    case 14: return 0xffe000;
-    case 15: return 0xff8c00;
-    case 9: return 0x3070ff;
-    default: return c >= 64 ? 0x2040c0 : 0x909090;
+  case 2:
+    return 0xa0785a;
+  case 3:
+    return 0x9ad07a;
+  case 4:
+    return 0x4caf50;
+  case 5:
+    return 0x1b5e20;
+  case 6:
+    return 0xd03030;
+  case 14:
+    return 0xffe000;
+  case 15:
+    return 0xff8c00;
+  case 9:
+    return 0x3070ff;
+  default:
+    return c >= 64 ? 0x2040c0 : 0x909090;
   }
 }
 
@@ -92,11 +101,11 @@ pcdHasField(const std::string& path, const std::string& field)
 /// What the picture's colours, labels and coordinates mean, for the margin.
 struct Meaning
 {
-  bool class_palette = false;       ///< colours are classColour(label): legend of the classes
-  std::string labels = "classes";   ///< a label is one of the "segments", "labels" or "classes"
-  std::string unit = "m";           ///< of x and y; empty: geographic (no scale bar)
-  std::string crs;                  ///< name of the file's CRS, empty when it declares none
-  bool object_classes = false;      ///< classes are pcl_ls3d_segment's object classes
+  bool class_palette = false;      ///< colours are classColour(label): legend of the classes
+  std::string labels = "classes";  ///< a label is one of the "segments", "labels" or "classes"
+  std::string unit = "m";          ///< of x and y; empty: geographic (no scale bar)
+  std::string crs;                 ///< name of the file's CRS, empty when it declares none
+  bool object_classes = false;     ///< classes are pcl_ls3d_segment's object classes
 };
 
 bool
@@ -121,9 +130,11 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
   if (by == "class" && info.segments_file) {
     // Its classification field holds the object classes; without one, the labels are ids.
     if (!info.hasField("classification")) {
-      std::fprintf(stderr, "render_top_view: %s holds segment ids but no object classes (made with "
-                           "-mode mrg or pcl_rg, or by an older pcl_ls3d_segment): use "
-                           "-by rgb or -by label\n", path.c_str());
+      std::fprintf(stderr,
+                   "render_top_view: %s holds segment ids but no object classes (made with "
+                   "-mode mrg or pcl_rg, or by an older pcl_ls3d_segment): use "
+                   "-by rgb or -by label\n",
+                   path.c_str());
       return false;
     }
     meaning.object_classes = true;
@@ -143,10 +154,10 @@ loadSamples(const std::string& path, const std::string& by, std::vector<Sample>&
       return false;
     for (const auto& p : coloured.points)
       if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))
-        out.push_back({p.x, p.y, p.z,
-                       by == "label" || !has_rgb ? pcl_ls3d::evaluation::segmentColour(p.label)
-                                                 : (p.rgba & 0xffffffu),
-                       p.label});
+        out.push_back(
+            {p.x, p.y, p.z,
+             by == "label" || !has_rgb ? pcl_ls3d::evaluation::segmentColour(p.label) : (p.rgba & 0xffffffu),
+             p.label});
     return true;
   }
   // LAS, PLY, XYZ: the classification is the label.
@@ -165,9 +176,11 @@ crop(const std::vector<float>& box, std::vector<Sample>& pts)
 {
   if (box.size() != 4)
     return;
-  pts.erase(std::remove_if(pts.begin(), pts.end(), [&box](const Sample& p) {
-              return p.x < box[0] || p.x > box[1] || p.y < box[2] || p.y > box[3];
-            }), pts.end());
+  pts.erase(std::remove_if(pts.begin(), pts.end(),
+                           [&box](const Sample& p) {
+                             return p.x < box[0] || p.x > box[1] || p.y < box[2] || p.y > box[3];
+                           }),
+            pts.end());
 }
 
 /// Turns a side view into the top view the renderer draws: image x to the viewer's right,
@@ -203,7 +216,8 @@ struct Options
 constexpr const char* kUsage =
     "Usage: %s INPUT OUT.png|pdf|svg [-pixel m] [-splat n] [-by rgb|label|class]\n"
     "       [-crop x0,x1,y0,y1] [-view top|north|east|south|west] [-plain] [-overwrite]\n"
-    "  A map (PNG, PDF or SVG) of the highest point per pixel (side views: the nearest), segment borders darkened,\n"
+    "  A map (PNG, PDF or SVG) of the highest point per pixel (side views: the nearest), segment borders "
+    "darkened,\n"
     "  in a margin with a scale bar in the cloud's unit (metres unless its CRS says otherwise),\n"
     "  a north arrow (top view) or the side view's direction, a legend of the classes shown\n"
     "  (class colours) and a caption: segments (or classes), points, view and pixel size.\n"
@@ -261,7 +275,8 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
       (!tools::parseNumberList(crop_text, o.crop) || o.crop.size() != 4 || !(o.crop[0] < o.crop[1]) ||
        !(o.crop[2] < o.crop[3])))
     return (why = "-crop takes x0,x1,y0,y1 with x0 < x1 and y0 < y1, got '" + crop_text + "'").empty();
-  return tools::checkOutputFile(o.output, {o.input}, pcl::console::find_switch(argc, argv, "-overwrite"), why);
+  return tools::checkOutputFile(o.output, {o.input}, pcl::console::find_switch(argc, argv, "-overwrite"),
+                                why);
 }
 
 /// The picture: highest point per pixel over [x0, x0 + w·pixel] × [y0, y0 + h·pixel], borders
@@ -394,8 +409,7 @@ drawPanel(pcl_ls3d::maps::Drawing& img, int x, int y, const Margin& m)
   if (m.view_lines.empty()) {
     pcl_ls3d::maps::drawNorthArrow(img, x + 10, y);
     y += kArrowHeight;
-  }
-  else {
+  } else {
     img.text(x, y + Image::ascent(FontStyle::BOLD), m.view_lines[0], kInk, FontStyle::BOLD);
     y += Image::lineHeight(FontStyle::BOLD);
     img.text(x, y + Image::ascent(), m.view_lines[1], kInk);
@@ -424,8 +438,8 @@ drawPanel(pcl_ls3d::maps::Drawing& img, int x, int y, const Margin& m)
 /// The picture at (kMargin, kMargin), framed, with the margin around it; `bar` and `bar_y` say
 /// what scale bar was drawn where (printed, so that scripts and tests can find it).
 pcl_ls3d::maps::Drawing
-decorate(const pcl_ls3d::maps::Image& picture, double pixel, const Margin& m,
-         pcl_ls3d::maps::ScaleBar& bar, int& bar_y)
+decorate(const pcl_ls3d::maps::Image& picture, double pixel, const Margin& m, pcl_ls3d::maps::ScaleBar& bar,
+         int& bar_y)
 {
   using Image = pcl_ls3d::maps::Drawing;  // its font metrics
   const int w = picture.width(), h = picture.height();
@@ -464,12 +478,12 @@ caption(const std::vector<Sample>& pts, const Meaning& meaning, const std::strin
   char text[256];
   const std::string where = view == "top" ? "top view" : "side view looking " + view;
   // "1 segment", "1 class", "1 label": the names are plurals ending in s.
-  const std::string name = labels.size() == 1 ? meaning.labels.substr(0, meaning.labels.size() -
-                                                  (meaning.labels == "classes" ? 2 : 1))
-                                              : meaning.labels;
-  std::snprintf(text, sizeof(text), "%zu %s, %zu points, %s, pixel %g%s%s", labels.size(),
-                name.c_str(), pts.size(), where.c_str(), pixel,
-                meaning.unit.empty() ? "" : " ", meaning.unit.c_str());
+  const std::string name =
+      labels.size() == 1
+          ? meaning.labels.substr(0, meaning.labels.size() - (meaning.labels == "classes" ? 2 : 1))
+          : meaning.labels;
+  std::snprintf(text, sizeof(text), "%zu %s, %zu points, %s, pixel %g%s%s", labels.size(), name.c_str(),
+                pts.size(), where.c_str(), pixel, meaning.unit.empty() ? "" : " ", meaning.unit.c_str());
   return text;
 }
 
@@ -524,7 +538,8 @@ main(int argc, char** argv)
   pcl_ls3d::maps::ScaleBar bar;
   int bar_y = 0;
   std::string error;
-  const pcl_ls3d::maps::Drawing map = o.plain ? pcl_ls3d::maps::Drawing() : decorate(picture, pixel, m, bar, bar_y);
+  const pcl_ls3d::maps::Drawing map =
+      o.plain ? pcl_ls3d::maps::Drawing() : decorate(picture, pixel, m, bar, bar_y);
   const bool written = o.plain ? pcl_ls3d::maps::writePng(o.output, picture, error)
                                : map.write(o.output, formatOf(o.output), error, true);
   if (!written) {
@@ -538,8 +553,8 @@ main(int argc, char** argv)
   }
   std::printf("Wrote %s (%d x %d pixels; picture %d x %d pixels of %.3g at %d,%d, %zu points, "
               "x %.1f..%.1f, y %.1f..%.1f)\n",
-              o.output.c_str(), map.width(), map.height(), w, h, pixel, kMargin, kMargin,
-              pts.size(), x0, x1, y0, y1);
+              o.output.c_str(), map.width(), map.height(), w, h, pixel, kMargin, kMargin, pts.size(), x0, x1,
+              y0, y1);
   std::printf("Caption: %s\n", m.caption.c_str());
   if (bar.pixels > 0)
     std::printf("Scale bar %g %s = %d px at %d,%d\n", bar.length, m.unit.c_str(), bar.pixels, kMargin, bar_y);

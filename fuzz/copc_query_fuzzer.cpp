@@ -37,8 +37,8 @@ queries(const pcl_ls3d::io::LasHeaderInfo& h, int level)
 }
 
 void
-checkInside(const pcl::PointCloud<pcl_ls3d::PointLiDAR>& cloud,
-            const pcl_ls3d::io::CloudInfo& info, const pcl_ls3d::io::Region& r)
+checkInside(const pcl::PointCloud<pcl_ls3d::PointLiDAR>& cloud, const pcl_ls3d::io::CloudInfo& info,
+            const pcl_ls3d::io::Region& r)
 {
   const int dims = r.use_z ? 3 : 2;
   for (const auto& p : cloud) {

@@ -30,16 +30,15 @@ checkResult(bool ok, const std::string& error, const pcl::PointCloud<pcl_ls3d::P
       info.points_loaded + info.points_dropped_nonfinite + info.points_outside_region !=
           info.points_in_file ||
       !cloud.is_dense || (!cloud.empty() && cloud.height != 1))
-    fail("inconsistent counts", std::to_string(cloud.size()) + " " +
-                                    std::to_string(info.points_loaded) + " " +
-                                    std::to_string(info.points_dropped_nonfinite) + " " +
+    fail("inconsistent counts", std::to_string(cloud.size()) + " " + std::to_string(info.points_loaded) +
+                                    " " + std::to_string(info.points_dropped_nonfinite) + " " +
                                     std::to_string(info.points_in_file));
   if (!info.origin.allFinite())
     fail("origin not finite", "");
   for (const auto& p : cloud)
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      fail("a loaded point is not finite:", std::to_string(p.x) + " " + std::to_string(p.y) +
-                                                " " + std::to_string(p.z));
+      fail("a loaded point is not finite:",
+           std::to_string(p.x) + " " + std::to_string(p.y) + " " + std::to_string(p.z));
 }
 
 }  // namespace pcl_ls3d_fuzz

@@ -29,9 +29,8 @@ LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
     std::abort();
   pcl_ls3d::io::SaveOptions save;
   save.las_point_format = info.las.point_format;
-  save.las_minor_version = info.las.version_minor < 4 && info.las.point_format >= 6
-                               ? 4
-                               : info.las.version_minor;
+  save.las_minor_version =
+      info.las.version_minor < 4 && info.las.point_format >= 6 ? 4 : info.las.version_minor;
   save.las_scale = info.las.scale.cwiseAbs();
   save.las_vlrs = info.las.vlrs;
   std::vector<std::uint8_t> bytes;

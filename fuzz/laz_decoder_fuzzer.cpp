@@ -66,8 +66,7 @@ LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
     return 0;
   }
   if (!pcl_ls3d::io::decompressLaz(laz.data(), laz.size(), back, error) || back != las) {
-    std::fprintf(stderr, "fuzz check failed: re-compressed file does not decode back: %s\n",
-                 error.c_str());
+    std::fprintf(stderr, "fuzz check failed: re-compressed file does not decode back: %s\n", error.c_str());
     std::abort();
   }
   return 0;

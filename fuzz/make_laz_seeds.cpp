@@ -44,16 +44,15 @@ randomCloud(std::size_t n, std::mt19937& rng)
 /// A LAS file of `n` points in `format`, with `extra` bytes per record appended (set to a
 /// pattern), compressed in chunks of `chunk` points.
 bool
-writeSeed(const std::string& path, int format, std::size_t n, std::size_t extra,
-          std::uint32_t chunk, std::mt19937& rng)
+writeSeed(const std::string& path, int format, std::size_t n, std::size_t extra, std::uint32_t chunk,
+          std::mt19937& rng)
 {
   pcl_ls3d::io::SaveOptions so;
   so.las_point_format = static_cast<std::uint8_t>(format);
   so.las_minor_version = format >= 6 ? 4 : 2;
   std::vector<std::uint8_t> las, laz;
   std::string error;
-  if (!pcl_ls3d::io::writeLas(randomCloud(n, rng), Eigen::Vector3d(500000, 5000000, 0), las,
-                              error, so))
+  if (!pcl_ls3d::io::writeLas(randomCloud(n, rng), Eigen::Vector3d(500000, 5000000, 0), las, error, so))
     return std::fprintf(stderr, "%s: %s\n", path.c_str(), error.c_str()), false;
   if (extra > 0) {  // widen every record by `extra` bytes
     std::uint32_t offset;
@@ -93,10 +92,9 @@ main(int argc, char** argv)
   int written = 0;
   for (int format : {0, 1, 2, 3, 6, 7, 8})
     for (std::size_t extra : {0, 5})
-      for (const auto& [n, chunk] : {std::pair<std::size_t, std::uint32_t>{1, 1}, {20, 7},
-                                     {300, 50}}) {
-        const std::string name = "gen_pf" + std::to_string(format) + "_eb" +
-                                 std::to_string(extra) + "_n" + std::to_string(n) + ".laz";
+      for (const auto& [n, chunk] : {std::pair<std::size_t, std::uint32_t>{1, 1}, {20, 7}, {300, 50}}) {
+        const std::string name = "gen_pf" + std::to_string(format) + "_eb" + std::to_string(extra) + "_n" +
+                                 std::to_string(n) + ".laz";
         written += writeSeed((dir / name).string(), format, n, extra, chunk, rng);
       }
   for (int i = 2; i < argc; ++i) {

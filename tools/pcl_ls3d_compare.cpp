@@ -36,9 +36,8 @@ using namespace pcl_ls3d::evaluation;
 
 namespace {
 
-const std::set<std::string> kValueOptions = {"-truth", "-json",    "-methods", "-max_corr",
-                                             "-iter",  "-ndt_res", "-rms_dist", "-thinning",
-                                             "-gicp_grad"};
+const std::set<std::string> kValueOptions = {"-truth",   "-json",     "-methods",  "-max_corr", "-iter",
+                                             "-ndt_res", "-rms_dist", "-thinning", "-gicp_grad"};
 const std::set<std::string> kSwitches = {"-overwrite", "-h", "--help"};
 const std::vector<std::string> kAllMethods = {"ls3d-lnd", "ls3d-lzd", "ls3d-icp", "icp",
                                               "icpn",     "gicp",     "ndt"};
@@ -49,43 +48,41 @@ void
 printHelp(const char* name)
 {
   print_error("Syntax is: %s SOURCE TARGET [options]\n", name);
-  print_info(
-      "  Registers SOURCE to TARGET (PCD, PLY, LAS, XYZ; both shifted to TARGET's local origin)\n"
-      "  from the identity with every method and prints one comparison table. Columns: conv =\n"
-      "  stopped by its own criterion before the iteration limit with a finite result; trust =\n"
-      "  LS3D's quality gate (- for PCL's methods: their hasConverged() is no such check).\n"
-      "  Exits 1 when no method converged. Lengths are in the data's unit: that of the CRS an\n"
-      "  input declares (LAS, or a PCD / PLY header: m, ft), else \"units\"; heights in\n"
-      "  another unit than the plan are matched in the plan unit. A run without an\n"
-      "  estimate shows \"-\" (JSON null).\n"
-      "  -truth FILE   : truth JSON with \"transformation\": 4x4 row-major source->target in file\n"
-      "                  coordinates (as written by pcl_ls3d_synth); adds displacement errors\n"
-      "                  (mean/max over the source points, max over its bbox corners) and the\n"
-      "                  7 parameter errors (in the common local frame)\n"
-      "  -json FILE    : also write the results as JSON\n"
-      "  -methods LIST : comma-separated subset of ls3d-lnd,ls3d-lzd,ls3d-icp,icp,icpn,gicp,ndt\n"
-      "                  (also: all, ls3d, pcl; default all), and the robust estimators of\n"
-      "                  pcl_ls3d_deformation robust-m,robust-md,robust-lms,robust-mm (also:\n"
-      "                  robust; LZD rule, 6 parameters, their own defaults: -max_corr and\n"
-      "                  -iter do not apply; the sigma0 column is their robust scale)\n"
-      "  -max_corr D   : max correspondence distance for every method (default 2 m). Default\n"
-      "                  lengths are metres, converted when an input's CRS declares another\n"
-      "                  unit (feet); without a CRS they are taken as they are (2 units).\n"
-      "                  Lengths given here are in the data's unit.\n"
-      "  -iter N       : max iterations: LS3D (default 30) and PCL (default 50) both set to N\n"
-      "  -ndt_res R    : NDT voxel edge (default 2 m)\n"
-      "  -thinning S   : LS3D source thinning voxel (default 0 = all points)\n"
-      "  -gicp_grad G  : GICP inner BFGS gradient tolerance (see pcl_methods.h)\n"
-      "  -rms_dist D   : NN distance cut-off of the RMS column (default 1 m)\n"
-      "  -overwrite    : replace an existing -json file (never an input)\n"
-      "  -h            : this help\n");
+  print_info("  Registers SOURCE to TARGET (PCD, PLY, LAS, XYZ; both shifted to TARGET's local origin)\n"
+             "  from the identity with every method and prints one comparison table. Columns: conv =\n"
+             "  stopped by its own criterion before the iteration limit with a finite result; trust =\n"
+             "  LS3D's quality gate (- for PCL's methods: their hasConverged() is no such check).\n"
+             "  Exits 1 when no method converged. Lengths are in the data's unit: that of the CRS an\n"
+             "  input declares (LAS, or a PCD / PLY header: m, ft), else \"units\"; heights in\n"
+             "  another unit than the plan are matched in the plan unit. A run without an\n"
+             "  estimate shows \"-\" (JSON null).\n"
+             "  -truth FILE   : truth JSON with \"transformation\": 4x4 row-major source->target in file\n"
+             "                  coordinates (as written by pcl_ls3d_synth); adds displacement errors\n"
+             "                  (mean/max over the source points, max over its bbox corners) and the\n"
+             "                  7 parameter errors (in the common local frame)\n"
+             "  -json FILE    : also write the results as JSON\n"
+             "  -methods LIST : comma-separated subset of ls3d-lnd,ls3d-lzd,ls3d-icp,icp,icpn,gicp,ndt\n"
+             "                  (also: all, ls3d, pcl; default all), and the robust estimators of\n"
+             "                  pcl_ls3d_deformation robust-m,robust-md,robust-lms,robust-mm (also:\n"
+             "                  robust; LZD rule, 6 parameters, their own defaults: -max_corr and\n"
+             "                  -iter do not apply; the sigma0 column is their robust scale)\n"
+             "  -max_corr D   : max correspondence distance for every method (default 2 m). Default\n"
+             "                  lengths are metres, converted when an input's CRS declares another\n"
+             "                  unit (feet); without a CRS they are taken as they are (2 units).\n"
+             "                  Lengths given here are in the data's unit.\n"
+             "  -iter N       : max iterations: LS3D (default 30) and PCL (default 50) both set to N\n"
+             "  -ndt_res R    : NDT voxel edge (default 2 m)\n"
+             "  -thinning S   : LS3D source thinning voxel (default 0 = all points)\n"
+             "  -gicp_grad G  : GICP inner BFGS gradient tolerance (see pcl_methods.h)\n"
+             "  -rms_dist D   : NN distance cut-off of the RMS column (default 1 m)\n"
+             "  -overwrite    : replace an existing -json file (never an input)\n"
+             "  -h            : this help\n");
 }
 
 /// A length or tolerance option: a finite number > 0 (>= 0 with `zero_ok`), said plainly when it
 /// is not.
 bool
-positiveOption(int argc, char** argv, const std::string& name, double& value, bool zero_ok,
-               std::string& why)
+positiveOption(int argc, char** argv, const std::string& name, double& value, bool zero_ok, std::string& why)
 {
   if (!pcl_ls3d::tools::numberOption(argc, argv, name, value, why))
     return false;
@@ -101,8 +98,7 @@ std::string
 lengthCrs(const pcl_ls3d::io::CloudInfo& target, const pcl_ls3d::io::CloudInfo& source)
 {
   for (const pcl_ls3d::io::CloudInfo* info : {&target, &source})
-    if (std::string wkt = pcl_ls3d::maps::crsOfFile(*info);
-        pcl_ls3d::maps::crsLinearUnit(wkt) > 0.0)
+    if (std::string wkt = pcl_ls3d::maps::crsOfFile(*info); pcl_ls3d::maps::crsLinearUnit(wkt) > 0.0)
       return wkt;
   return "";
 }
@@ -161,8 +157,7 @@ loadTruth(const std::string& path, Eigen::Matrix4d& T, std::string& why)
       for (int c = 0; c < 4; ++c)
         T(r, c) = row.at(static_cast<std::size_t>(c)).get<double>();
     }
-  }
-  catch (const std::exception& e) {
+  } catch (const std::exception& e) {
     why = "bad truth file " + path + ": " + e.what();
     return false;
   }
@@ -175,8 +170,8 @@ loadTruth(const std::string& path, Eigen::Matrix4d& T, std::string& why)
 
 RegistrationRun
 runMethod(const std::string& m, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
-          const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
-          const PclMethodSettings& ps, const Ls3dMethodSettings& ls)
+          const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target, const PclMethodSettings& ps,
+          const Ls3dMethodSettings& ls)
 {
   using pcl_ls3d::ConjugateRuleType;
   if (m == "ls3d-lnd")
@@ -212,7 +207,7 @@ struct Options
   bool overwrite = false;
   PclMethodSettings ps;
   Ls3dMethodSettings ls;
-  double rms_dist = 1.0;  ///< RMS over nearest-neighbour distances within this
+  double rms_dist = 1.0;                ///< RMS over nearest-neighbour distances within this
   std::set<std::string> given_lengths;  ///< length options on the command line (data's unit)
   bool has_truth = false;
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();  ///< input coordinates
@@ -225,8 +220,7 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, kValueOptions, kSwitches, files, why))
     return false;
   if (files.size() != 2)
-    return (why = "expected exactly two input files (SOURCE TARGET), got " +
-                  std::to_string(files.size())),
+    return (why = "expected exactly two input files (SOURCE TARGET), got " + std::to_string(files.size())),
            false;
   o.source_path = files[0];
   o.target_path = files[1];

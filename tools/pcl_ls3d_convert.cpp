@@ -40,7 +40,8 @@ printHelp(const char* name)
 {
   print_error("Syntax is: %s input.{las,laz,copc.laz,pcd,ply,xyz,txt,csv} "
               "output.{las,laz,pcd,ply,xyz,txt} <options>\n"
-              "       or: %s input.ext -split_strips DIR <options>\n", name, name);
+              "       or: %s input.ext -split_strips DIR <options>\n",
+              name, name);
   print_info("  where options are:\n");
   print_info("    -bounds xmin,ymin,xmax,ymax[,zmin,zmax] : keep only the points in this box (file\n"
              "                         coordinates, faces included); a COPC input decodes only\n"
@@ -84,12 +85,12 @@ printHelp(const char* name)
 bool
 checkOptions(int argc, char** argv, std::vector<std::string>& positional)
 {
-  const std::set<std::string> with_value = {"-split_strips", "-format", "-classes", "-origin",
-                                            "-columns", "-las_format", "-las_version", "-las_scale",
-                                            "-xyz_decimals", "-bounds", "-level"};
+  const std::set<std::string> with_value = {"-split_strips", "-format",     "-classes",     "-origin",
+                                            "-columns",      "-las_format", "-las_version", "-las_scale",
+                                            "-xyz_decimals", "-bounds",     "-level"};
   std::string why;
-  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, with_value, {"-ascii", "-overwrite"},
-                                       positional, why)) {
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, with_value, {"-ascii", "-overwrite"}, positional,
+                                       why)) {
     print_error("%s\n", why.c_str());
     return false;
   }
@@ -156,8 +157,7 @@ saveOptions(const Cloud& cloud, const pcl_ls3d::io::CloudInfo& info, const Outpu
     s.las_scale = info.las.scale;
     s.las_vlrs = info.las.vlrs;
     s.las_adjusted_standard_gps_time = info.las.global_encoding & 1;
-  }
-  else {
+  } else {
     for (const auto& p : cloud)
       if (p.classification > 31 || p.return_number > 7 || p.number_of_returns > 7) {
         s.las_point_format = 6;  // formats 0-5 cannot hold these values
@@ -189,7 +189,8 @@ warnNoClasses(const std::string& input, const pcl_ls3d::io::CloudInfo& info)
   if (!info.segments_file || info.hasField("classification"))
     return;
   print_warn("%s holds segment ids, not object classes (-mode mrg or pcl_rg): the "
-             "classification is left 0 (never classified)\n", input.c_str());
+             "classification is left 0 (never classified)\n",
+             input.c_str());
 }
 
 /// Everything the command line asks for, checked before the input is read (which can take long).
@@ -227,8 +228,7 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
     o.load.use_origin = true;
     o.load.origin = Eigen::Vector3d(values[0], values[1], values[2]);
   }
-  if (!o.classes_text.empty() &&
-      !pcl_ls3d::tools::parseClassList("-classes", o.classes_text, o.classes, why))
+  if (!o.classes_text.empty() && !pcl_ls3d::tools::parseClassList("-classes", o.classes_text, o.classes, why))
     return false;
   if (!parseOverrides(argc, argv, o.overrides, why) ||
       !pcl_ls3d::tools::regionOptions(argc, argv, o.load.region, why))
@@ -341,8 +341,9 @@ bool
 writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes, std::string& why)
 {
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out || !out.write(reinterpret_cast<const char*>(bytes.data()),
-                         static_cast<std::streamsize>(bytes.size())) || !out.flush())
+  if (!out ||
+      !out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())) ||
+      !out.flush())
     return (why = "Cannot write " + path), false;
   return true;
 }
@@ -397,8 +398,8 @@ convertSelectedRecords(const Options& o, std::string& why)
   if (selection.empty())
     return (why = "No point of " + o.files[0] + " is inside -bounds and in -classes."), false;
   pcl_ls3d::io::LasRewriteSummary summary;
-  if (!pcl_ls3d::io::rewriteLas(file, o.classes.empty() ? nullptr : &selection, nullptr, o.files[1],
-                                summary, why, o.overwrite))
+  if (!pcl_ls3d::io::rewriteLas(file, o.classes.empty() ? nullptr : &selection, nullptr, o.files[1], summary,
+                                why, o.overwrite))
     return (why = "Cannot write " + why), false;
   print_info("Wrote ");
   print_value("%s", o.files[1].c_str());

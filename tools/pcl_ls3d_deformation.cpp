@@ -24,7 +24,6 @@
 
 #include <nlohmann/json.hpp>
 
-
 #include <algorithm>
 
 #include <cmath>
@@ -49,70 +48,70 @@ constexpr double kNearHalfPercent = 40.0;
 void
 printHelp(const char* prog)
 {
-  print_info(
-      "Local deformation between two epochs of a surface: robust matching of EPOCH onto REFERENCE\n"
-      "(the transformation of the stable part, no control points; up to half the surface may have\n"
-      "moved), then the residual of every epoch point, its sigma, significance and the connected\n"
-      "deformed regions (Li, Xu, Chen & Tsai 2001).\n\n"
-      "Usage: %s REFERENCE EPOCH [options]\n"
-      "  REFERENCE, EPOCH     .las .laz .copc.laz .pcd .ply .xyz/.txt (a gridded DEM as x y z text works too;\n"
-      "                       the reference is loaded first, the epoch uses its local origin)\n"
-      "  -estimator NAME      mm (default: LTS start + Tukey M-step, high breakdown and 95 %%\n"
-      "                       efficiency), lms (Li: LMS subsets then M), md (Li's M-D), m (Tukey on\n"
-      "                       MAD), huber, zuo, ls (plain least squares). mm and lms also fit from\n"
-      "                       a block start and keep the fit whose stable part scatters least\n"
-      "  -rule lzd|lnd        residuals along z (LHD, default) or along the surface normal\n"
-      "  -params 6|7|3        rigid (default), similarity, translation. Without -params, a\n"
-      "                       rigid fit the surface does not determine (nearly flat terrain)\n"
-      "                       is replaced by the translation alone, with a note; with it, the\n"
-      "                       model named or a refusal\n"
-      "  -subsets N           random subsets per search round for lms/mm (default: lms from Li\n"
-      "                       eq. 12, at least 3000 above 40 %% contamination; mm 500 FAST-LTS\n"
-      "                       starts); up to 3 rounds, re-linearised while the fit moves, so a run\n"
-      "                       reports up to 3 N subsets (mm: 1500)\n"
-      "  -contamination E     share of the surface that may have moved, for eq. 12 (default 0.5)\n"
-      "  -seed S              random seed of the subsets (default 1)\n"
-      "  -k K                 significance |r| > K sigma (default 3)\n"
-      "  -lod95               significance by an M3C2-style level of detection at 95 %% instead\n"
-      "                       (not with -k)\n"
-      "  -min_region N        smaller connected detections are noise (default 10 points)\n"
-      "  -grow_k G            regions grow into adjacent points of their sign with |r| > G sigma\n"
-      "                       (hysteresis; default 2, 0: off; below K, with -lod95 below 1.96)\n"
-      "  -refine N            rounds of the stable-part refinement: the regions and their rim\n"
-      "                       left out, the rest matched again until that set repeats (default at\n"
-      "                       most 10; 0: the estimator's\n"
-      "                       own answer, as in Li et al.)\n"
-      "  -max_dist d          maximum correspondence distance (default unlimited)\n"
-      "  -max_iter N          iterations of each adjustment (default 30; at the limit: exit 3)\n"
-      "  -matching_points N   match on at most N evenly spread epoch points (default 50000; 0:\n"
-      "                       all); residuals are computed for every point\n"
-      "  -o RESIDUALS.pcd     one record per epoch point, epoch order: x y z (local coordinates,\n"
-      "                       origin and CRS in the header, origin in the JSON) residual sigma\n"
-      "                       significant region; .xyz/.txt: the same as text with full file\n"
-      "                       coordinates\n"
-      "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
-      "                       coordinates), converged, parameters and sigmas (reduced frame about\n"
-      "                       local_origin_source / local_origin_target), params (free\n"
-      "                       parameters; model_note when fewer than asked), estimator, scale,\n"
-      "                       subsets, percent_deformed, regions\n"
-      "  -map PREFIX          PREFIX.png, .pdf or .svg (residual map, diverging colour bar,\n"
-      "                       significant regions outlined) and PREFIX.tif (float32 GeoTIFF of\n"
-      "                       the residuals, NaN where no point has one, with the CRS of -crs or\n"
-      "                       the reference's)\n"
-      "  -map_format F        png (default), pdf or svg: the map as PREFIX.F (pdf and svg: vector\n"
-      "                       graphics for reports)\n"
-      "  -map_cell C          map cell edge (default 1.5 point spacings; irregular airborne data:\n"
-      "                       about 2.5 spacings, so that most cells hold points)\n"
-      "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
-      "                       PROJ string or WKT; default: the CRS the reference declares in its\n"
-      "                       LAS VLRs or its PCD / PLY header, if any); also the units of an\n"
-      "                       input that declares no CRS (heights in another unit than the plan\n"
-      "                       are converted to the plan unit for the matching)\n"
-      "  -overwrite           allow replacing existing output files\n"
-      "  -h                   this help\n"
-      "Exit status: 0 done; 1 bad input or the matching failed (nothing written); 3 the matching\n"
-      "did not converge (MAX_ITERATIONS: outputs written, marked \"converged\": false).\n",
-      prog);
+  print_info("Local deformation between two epochs of a surface: robust matching of EPOCH onto REFERENCE\n"
+             "(the transformation of the stable part, no control points; up to half the surface may have\n"
+             "moved), then the residual of every epoch point, its sigma, significance and the connected\n"
+             "deformed regions (Li, Xu, Chen & Tsai 2001).\n\n"
+             "Usage: %s REFERENCE EPOCH [options]\n"
+             "  REFERENCE, EPOCH     .las .laz .copc.laz .pcd .ply .xyz/.txt (a gridded DEM as x y z text "
+             "works too;\n"
+             "                       the reference is loaded first, the epoch uses its local origin)\n"
+             "  -estimator NAME      mm (default: LTS start + Tukey M-step, high breakdown and 95 %%\n"
+             "                       efficiency), lms (Li: LMS subsets then M), md (Li's M-D), m (Tukey on\n"
+             "                       MAD), huber, zuo, ls (plain least squares). mm and lms also fit from\n"
+             "                       a block start and keep the fit whose stable part scatters least\n"
+             "  -rule lzd|lnd        residuals along z (LHD, default) or along the surface normal\n"
+             "  -params 6|7|3        rigid (default), similarity, translation. Without -params, a\n"
+             "                       rigid fit the surface does not determine (nearly flat terrain)\n"
+             "                       is replaced by the translation alone, with a note; with it, the\n"
+             "                       model named or a refusal\n"
+             "  -subsets N           random subsets per search round for lms/mm (default: lms from Li\n"
+             "                       eq. 12, at least 3000 above 40 %% contamination; mm 500 FAST-LTS\n"
+             "                       starts); up to 3 rounds, re-linearised while the fit moves, so a run\n"
+             "                       reports up to 3 N subsets (mm: 1500)\n"
+             "  -contamination E     share of the surface that may have moved, for eq. 12 (default 0.5)\n"
+             "  -seed S              random seed of the subsets (default 1)\n"
+             "  -k K                 significance |r| > K sigma (default 3)\n"
+             "  -lod95               significance by an M3C2-style level of detection at 95 %% instead\n"
+             "                       (not with -k)\n"
+             "  -min_region N        smaller connected detections are noise (default 10 points)\n"
+             "  -grow_k G            regions grow into adjacent points of their sign with |r| > G sigma\n"
+             "                       (hysteresis; default 2, 0: off; below K, with -lod95 below 1.96)\n"
+             "  -refine N            rounds of the stable-part refinement: the regions and their rim\n"
+             "                       left out, the rest matched again until that set repeats (default at\n"
+             "                       most 10; 0: the estimator's\n"
+             "                       own answer, as in Li et al.)\n"
+             "  -max_dist d          maximum correspondence distance (default unlimited)\n"
+             "  -max_iter N          iterations of each adjustment (default 30; at the limit: exit 3)\n"
+             "  -matching_points N   match on at most N evenly spread epoch points (default 50000; 0:\n"
+             "                       all); residuals are computed for every point\n"
+             "  -o RESIDUALS.pcd     one record per epoch point, epoch order: x y z (local coordinates,\n"
+             "                       origin and CRS in the header, origin in the JSON) residual sigma\n"
+             "                       significant region; .xyz/.txt: the same as text with full file\n"
+             "                       coordinates\n"
+             "  -json REPORT         transformation (4x4 row-major, EPOCH -> REFERENCE, input\n"
+             "                       coordinates), converged, parameters and sigmas (reduced frame about\n"
+             "                       local_origin_source / local_origin_target), params (free\n"
+             "                       parameters; model_note when fewer than asked), estimator, scale,\n"
+             "                       subsets, percent_deformed, regions\n"
+             "  -map PREFIX          PREFIX.png, .pdf or .svg (residual map, diverging colour bar,\n"
+             "                       significant regions outlined) and PREFIX.tif (float32 GeoTIFF of\n"
+             "                       the residuals, NaN where no point has one, with the CRS of -crs or\n"
+             "                       the reference's)\n"
+             "  -map_format F        png (default), pdf or svg: the map as PREFIX.F (pdf and svg: vector\n"
+             "                       graphics for reports)\n"
+             "  -map_cell C          map cell edge (default 1.5 point spacings; irregular airborne data:\n"
+             "                       about 2.5 spacings, so that most cells hold points)\n"
+             "  -crs CRS             coordinate reference of the inputs for the GeoTIFF (EPSG:26917, a\n"
+             "                       PROJ string or WKT; default: the CRS the reference declares in its\n"
+             "                       LAS VLRs or its PCD / PLY header, if any); also the units of an\n"
+             "                       input that declares no CRS (heights in another unit than the plan\n"
+             "                       are converted to the plan unit for the matching)\n"
+             "  -overwrite           allow replacing existing output files\n"
+             "  -h                   this help\n"
+             "Exit status: 0 done; 1 bad input or the matching failed (nothing written); 3 the matching\n"
+             "did not converge (MAX_ITERATIONS: outputs written, marked \"converged\": false).\n",
+             prog);
 }
 
 /// -lod95's significance threshold in sigmas of the level of detection (residual_field.cpp).
@@ -134,8 +133,10 @@ optionConflict(int argc, char** argv, bool lod95, double k, double grow_k, std::
   if (!grow_text || !(grow_k > 0.0 && grow_k >= detection))
     return true;
   char buf[160];
-  std::snprintf(buf, sizeof(buf), "-grow_k %g must be below %s (%g): regions grow into weaker neighbours "
-                "(-grow_k 0: off)", grow_k, lod95 ? "-lod95's threshold" : "-k", detection);
+  std::snprintf(buf, sizeof(buf),
+                "-grow_k %g must be below %s (%g): regions grow into weaker neighbours "
+                "(-grow_k 0: off)",
+                grow_k, lod95 ? "-lod95's threshold" : "-k", detection);
   why = buf;
   return false;
 }
@@ -242,7 +243,6 @@ writeResiduals(const std::string& path, const Cloud& epoch, const def::Deformati
   return pcl_ls3d::io::savePcdBinaryWithOrigin(path, blob, origin, crs_line, error);
 }
 
-
 /// The map's line on heights converted to the plan unit; empty when none were.
 std::string
 heightsNote(const pcl_ls3d::HeightUnits& h, const std::string& crs_wkt)
@@ -257,17 +257,18 @@ heightsNote(const pcl_ls3d::HeightUnits& h, const std::string& crs_wkt)
                   h.target);
   else
     std::snprintf(line, sizeof line,
-                  "heights converted to %s (reference x %.7g, epoch x %.7g) before matching",
-                  unit.c_str(), h.target, h.source);
+                  "heights converted to %s (reference x %.7g, epoch x %.7g) before matching", unit.c_str(),
+                  h.target, h.source);
   return line;
 }
 
 /// PREFIX.png (.pdf, .svg) and PREFIX.tif of the residuals (deformation/deformation_map.h).
 bool
-writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points, const def::DeformationResult& r,
-         const Eigen::Vector3d& origin, const std::string& crs_wkt, const std::string& reference_path,
-         const std::string& epoch_path, double k, bool lod95, double cell, const std::string& heights_note,
-         bool overwrite, pcl_ls3d::maps::MapFormat format, std::string& error)
+writeMap(const std::string& prefix, const std::vector<Eigen::Vector3d>& points,
+         const def::DeformationResult& r, const Eigen::Vector3d& origin, const std::string& crs_wkt,
+         const std::string& reference_path, const std::string& epoch_path, double k, bool lod95, double cell,
+         const std::string& heights_note, bool overwrite, pcl_ls3d::maps::MapFormat format,
+         std::string& error)
 {
   def::DeformationMapSettings ms;
   ms.title = "Deformation: " + std::filesystem::path(epoch_path).filename().string() + " against " +
@@ -326,7 +327,8 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
     return false;
   if (!optionValue(argc, argv, "-grow_k") && grow_k >= (o.lod95 ? kLod95Factor : k))
     print_warn("Warning: %s %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
-               "below it, or 0)\n", o.lod95 ? "-lod95's threshold" : "-k", o.lod95 ? kLod95Factor : k, grow_k);
+               "below it, or 0)\n",
+               o.lod95 ? "-lod95's threshold" : "-k", o.lod95 ? kLod95Factor : k, grow_k);
 
   def::DeformationSettings& settings = o.settings;
   pcl_ls3d::RobustMatchingSettings& m = settings.matching;
@@ -364,10 +366,11 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
 bool
 parseOptions(int argc, char** argv, Options& o, std::string& why)
 {
-  static const std::set<std::string> valued = {"-estimator", "-rule", "-params", "-subsets",
-                                               "-contamination", "-seed", "-k", "-min_region", "-grow_k", "-refine",
-                                               "-max_iter", "-max_dist", "-matching_points", "-o", "-json",
-                                               "-map", "-crs", "-map_cell", "-map_format"};
+  static const std::set<std::string> valued = {
+      "-estimator", "-rule",     "-params",          "-subsets",   "-contamination",
+      "-seed",      "-k",        "-min_region",      "-grow_k",    "-refine",
+      "-max_iter",  "-max_dist", "-matching_points", "-o",         "-json",
+      "-map",       "-crs",      "-map_cell",        "-map_format"};
   std::vector<std::string> files;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite", "-lod95"}, files, why))
     return false;
@@ -420,7 +423,8 @@ loadEpochs(const Options& o, Epochs& e, std::string& error)
     return false;
   pcl_ls3d::tools::printPairNotes(e);
   e.load_ms = tt.toc();
-  print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
+  print_info("Loaded reference %s (%zu points) and epoch %s (%zu points), local origin (%.3f, %.3f, %.3f) in "
+             "%.0f ms\n",
              o.reference_path.c_str(), e.target->size(), o.epoch_path.c_str(), e.source->size(),
              e.target_info.origin.x(), e.target_info.origin.y(), e.target_info.origin.z(), e.load_ms);
   if (e.target->size() < 3)
@@ -433,8 +437,7 @@ loadEpochs(const Options& o, Epochs& e, std::string& error)
 
 /// Robust matching of the epoch onto the reference, then the residual field and its regions.
 bool
-analyse(const Options& o, const Epochs& e, def::DeformationResult& result, double& run_ms,
-        std::string& why)
+analyse(const Options& o, const Epochs& e, def::DeformationResult& result, double& run_ms, std::string& why)
 {
   TicToc tt;
   tt.tic();
@@ -454,8 +457,8 @@ analyse(const Options& o, const Epochs& e, def::DeformationResult& result, doubl
   run_ms = tt.toc();
   const pcl_ls3d::RobustMatchingReport& mr = result.matching;
   if (!result.ok()) {
-    why = std::string("robust matching failed: ") + pcl_ls3d::terminationTypeToString(mr.termination) +
-          ": " + mr.message;
+    why = std::string("robust matching failed: ") + pcl_ls3d::terminationTypeToString(mr.termination) + ": " +
+          mr.message;
     // A model named with -params that the surface does not determine: say what would do.
     if (!o.settings.translation_when_undetermined &&
         def::rotationsUndetermined(result, o.settings.matching.adjustment))
@@ -491,8 +494,7 @@ centroidShift(const Epochs& e, const Eigen::Matrix4d& local_transformation)
 
 /// The result on the console: transformation, parameters, the start's choice, the regions.
 void
-printResult(const Epochs& e, const def::DeformationResult& result, const CentroidShift& c,
-            double run_ms)
+printResult(const Epochs& e, const def::DeformationResult& result, const CentroidShift& c, double run_ms)
 {
   const pcl_ls3d::RobustMatchingReport& mr = result.matching;
   const pcl_ls3d::AdjustmentReport& a = mr.adjustment;
@@ -508,8 +510,7 @@ printResult(const Epochs& e, const def::DeformationResult& result, const Centroi
   print_info("Shift of the epoch's centroid (%.3f, %.3f, %.3f): (%+.4f, %+.4f, %+.4f)%s\n", c.centroid.x(),
              c.centroid.y(), c.centroid.z(), c.shift.x(), c.shift.y(), c.shift.z(),
              e.heights.converts() ? " (the shift with its height in the plan unit)" : "");
-  printParameters(a, a.local_origin_source + origin, a.local_origin_target + origin,
-                  e.heights.converts());
+  printParameters(a, a.local_origin_source + origin, a.local_origin_target + origin, e.heights.converts());
   if (!result.start_choice.candidates.empty()) {
     print_info("Fits compared by the scatter of their stable part:");
     for (const auto& candidate : result.start_choice.candidates)
@@ -540,10 +541,13 @@ startChoiceJson(const def::StartChoice& choice, double block_support)
 {
   nlohmann::json scores = nlohmann::json::object(), usable = nlohmann::json::object();
   for (const auto& candidate : choice.candidates) {
-    scores[candidate.name] = finiteOrNull(candidate.scatter);  // null: refused, or its regions are the majority
+    scores[candidate.name] =
+        finiteOrNull(candidate.scatter);  // null: refused, or its regions are the majority
     usable[candidate.name] = candidate.usable;
   }
-  return {{"chosen", choice.chosen}, {"stable_part_scatter", scores}, {"usable", usable},
+  return {{"chosen", choice.chosen},
+          {"stable_part_scatter", scores},
+          {"usable", usable},
           {"block_support", block_support}};
 }
 
@@ -559,8 +563,8 @@ regionsJson(const std::vector<def::DeformationRegion>& regions, const Eigen::Vec
 
 /// The -json report.
 nlohmann::json
-reportJson(const Options& o, const Epochs& e, const def::DeformationResult& result,
-           const CentroidShift& c, double run_ms)
+reportJson(const Options& o, const Epochs& e, const def::DeformationResult& result, const CentroidShift& c,
+           double run_ms)
 {
   const pcl_ls3d::RobustMatchingReport& mr = result.matching;
   const pcl_ls3d::AdjustmentReport& a = mr.adjustment;
@@ -662,9 +666,9 @@ main(int argc, char** argv)
     print_info("Wrote %s\n", o.out_path.c_str());
   }
   if (!o.map_prefix.empty()) {
-    if (!writeMap(o.map_prefix, e.points, result, e.working_origin, crs_wkt, o.reference_path,
-                  o.epoch_path, o.settings.residuals.k, o.lod95, o.map_cell,
-                  heightsNote(e.heights, crs_wkt), o.overwrite, o.map_format, error))
+    if (!writeMap(o.map_prefix, e.points, result, e.working_origin, crs_wkt, o.reference_path, o.epoch_path,
+                  o.settings.residuals.k, o.lod95, o.map_cell, heightsNote(e.heights, crs_wkt), o.overwrite,
+                  o.map_format, error))
       return fail(error), 1;
     print_info("Wrote %s and %s%s\n", o.picture_path.c_str(), o.tif_path.c_str(),
                crs_wkt.empty() ? " (no coordinate reference known: use -crs)" : "");
@@ -674,7 +678,8 @@ main(int argc, char** argv)
     return fail("cannot write " + o.json_path), 1;
   if (mr.termination != pcl_ls3d::TerminationType::CONVERGED) {
     print_warn("Warning: the matching ended %s, not CONVERGED: the transformation and the residuals "
-               "are the last iterate's (exit 3)\n", pcl_ls3d::terminationTypeToString(mr.termination));
+               "are the last iterate's (exit 3)\n",
+               pcl_ls3d::terminationTypeToString(mr.termination));
     return 3;
   }
   return 0;

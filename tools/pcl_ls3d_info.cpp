@@ -35,8 +35,7 @@ namespace {
 void
 printHelp(const char* name)
 {
-  print_error("Syntax is: %s file.{las,laz,copc.laz,pcd,ply,xyz,txt,csv} [more files] <options>\n",
-              name);
+  print_error("Syntax is: %s file.{las,laz,copc.laz,pcd,ply,xyz,txt,csv} [more files] <options>\n", name);
   print_info("  where options are:\n");
   print_info("    -columns x,y,z,... : column names of ASCII XYZ inputs (see pcl_ls3d_convert -h)\n");
   print_info("    -bounds xmin,ymin,xmax,ymax[,zmin,zmax] : describe only the points in this box\n"
@@ -76,10 +75,14 @@ const char*
 compressorName(int compressor)
 {
   switch (compressor) {
-    case 1: return "pointwise";
-    case 2: return "pointwise-chunked";
-    case 3: return "layered-chunked";
-    default: return "none";
+  case 1:
+    return "pointwise";
+  case 2:
+    return "pointwise-chunked";
+  case 3:
+    return "layered-chunked";
+  default:
+    return "none";
   }
 }
 
@@ -171,13 +174,13 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
     l["header_max"] = vec(h.max);
     std::vector<std::string> vlrs;
     for (const auto& v : h.vlrs)
-      vlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" +
-                     std::to_string(v.data.size()) + " B)");
+      vlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" + std::to_string(v.data.size()) +
+                     " B)");
     l["vlrs"] = vlrs;
     std::vector<std::string> evlrs;
     for (const auto& v : h.evlrs)
-      evlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" +
-                      std::to_string(v.data.size()) + " B)");
+      evlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" + std::to_string(v.data.size()) +
+                      " B)");
     l["evlrs"] = evlrs;
     j["las"] = l;
     if (h.laz.compressed)
@@ -226,19 +229,22 @@ printLazAndCopc(const nlohmann::json& j)
 {
   if (j.contains("laz")) {
     const auto& z = j["laz"];
-    const std::string size = z["chunk_size"].is_string() ? "variable-size chunks"
-                             : "chunks of " + std::to_string(z["chunk_size"].get<std::uint64_t>()) + " points";
+    const std::string size =
+        z["chunk_size"].is_string()
+            ? "variable-size chunks"
+            : "chunks of " + std::to_string(z["chunk_size"].get<std::uint64_t>()) + " points";
     print_info("  LAZ %s, %s, %zu chunks (chunk table %s); items %s\n",
-               z["compressor"].get<std::string>().c_str(), size.c_str(),
-               z["chunk_count"].get<std::size_t>(), z["chunk_table"].get<bool>() ? "read" : "missing: chunks walked",
+               z["compressor"].get<std::string>().c_str(), size.c_str(), z["chunk_count"].get<std::size_t>(),
+               z["chunk_table"].get<bool>() ? "read" : "missing: chunks walked",
                z["items"].get<std::string>().c_str());
   }
   if (j.contains("copc")) {
     const auto& c = j["copc"];
     std::string levels;
     for (const auto& l : c["levels"])
-      levels += " " + std::to_string(l["level"].get<int>()) + ":" + std::to_string(l["nodes"].get<std::size_t>()) +
-                "/" + std::to_string(l["points"].get<std::uint64_t>());
+      levels += " " + std::to_string(l["level"].get<int>()) + ":" +
+                std::to_string(l["nodes"].get<std::size_t>()) + "/" +
+                std::to_string(l["points"].get<std::uint64_t>());
     print_info("  COPC octree: %zu nodes in %zu levels, spacing %g; per level (level:nodes/points):%s\n",
                c["nodes"].get<std::size_t>(), c["levels"].size(), c["spacing"].get<double>(), levels.c_str());
   }
@@ -268,14 +274,11 @@ printText(const nlohmann::json& j)
   printCrs(j);
   if (j.contains("origin_applied")) {
     const auto f = j["origin_applied"].get<std::vector<double>>();
-    print_info("  origin %.3f %.3f %.3f applied (local float coordinates in the file)\n", f[0], f[1],
-               f[2]);
-  }
-  else {
+    print_info("  origin %.3f %.3f %.3f applied (local float coordinates in the file)\n", f[0], f[1], f[2]);
+  } else {
     print_info("  local origin %.3f %.3f %.3f\n", o[0], o[1], o[2]);
   }
-  print_info("  bounds min %.3f %.3f %.3f  max %.3f %.3f %.3f\n", lo[0], lo[1], lo[2], hi[0], hi[1],
-             hi[2]);
+  print_info("  bounds min %.3f %.3f %.3f  max %.3f %.3f %.3f\n", lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]);
   std::string fields;
   for (const auto& f : j["fields"])
     fields += " " + f.get<std::string>();
@@ -287,12 +290,13 @@ printText(const nlohmann::json& j)
     const auto& l = j["las"];
     const auto s = l["scale"].get<std::vector<double>>(), off = l["offset"].get<std::vector<double>>();
     print_info("  LAS %s, point format %d, record %d B (%d extra), header %d B, points at %u, "
-               "global encoding %d\n", l["version"].get<std::string>().c_str(),
-               l["point_format"].get<int>(), l["record_length"].get<int>(),
-               l["extra_bytes_per_record"].get<int>(), l["header_size"].get<int>(),
-               l["offset_to_points"].get<unsigned>(), l["global_encoding"].get<int>());
-    print_info("  scale %g %g %g, offset %.3f %.3f %.3f, software \"%s\"\n", s[0], s[1], s[2], off[0],
-               off[1], off[2], l["generating_software"].get<std::string>().c_str());
+               "global encoding %d\n",
+               l["version"].get<std::string>().c_str(), l["point_format"].get<int>(),
+               l["record_length"].get<int>(), l["extra_bytes_per_record"].get<int>(),
+               l["header_size"].get<int>(), l["offset_to_points"].get<unsigned>(),
+               l["global_encoding"].get<int>());
+    print_info("  scale %g %g %g, offset %.3f %.3f %.3f, software \"%s\"\n", s[0], s[1], s[2], off[0], off[1],
+               off[2], l["generating_software"].get<std::string>().c_str());
     for (const auto& v : l["vlrs"])
       print_info("  VLR %s\n", v.get<std::string>().c_str());
     for (const auto& v : l["evlrs"])
@@ -305,8 +309,8 @@ printText(const nlohmann::json& j)
       print_info("  labels are segment ids (pcl_ls3d_segment output), not classes\n");
     else
       print_info("  labels are segment ids (pcl_ls3d_segment output), not classes: %zu segments, "
-                 "%zu points in none\n", s["count"].get<std::size_t>(),
-                 s["points_in_none"].get<std::size_t>());
+                 "%zu points in none\n",
+                 s["count"].get<std::size_t>(), s["points_in_none"].get<std::size_t>());
   }
   for (const char* key : {"classes", "object_classes"}) {
     if (!j.contains(key))
@@ -339,8 +343,8 @@ main(int argc, char** argv)
   pcl_ls3d::io::LoadOptions options;
   std::vector<std::string> files;
   std::string why;
-  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, {"-columns", "-bounds", "-level"}, {"-json"},
-                                       files, why) ||
+  if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, {"-columns", "-bounds", "-level"}, {"-json"}, files,
+                                       why) ||
       !pcl_ls3d::tools::regionOptions(argc, argv, options.region, why)) {
     print_error("%s\n", why.c_str());
     return 1;

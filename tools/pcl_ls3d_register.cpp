@@ -6,10 +6,10 @@
 #include <pcl_ls3d/evaluation/transform_error.h>
 #include <pcl_ls3d/io/cloud_io.h>
 #include <pcl_ls3d/io/cloud_pair.h>
+#include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/io/las_rewrite.h>
 #include <pcl_ls3d/io/strip_tools.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
-#include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/registration/least_squares_surface_matching.h>
 
 #include <pcl/common/transforms.h>
@@ -35,42 +35,43 @@ namespace {
 void
 printHelp(const char* prog)
 {
-  print_info("Least-squares 3D surface matching (LS3D): estimates the similarity transform that maps\n"
-             "SOURCE onto TARGET.\n\n"
-             "Usage: %s SOURCE TARGET [options]\n"
-             "  SOURCE, TARGET       .las .laz .copc.laz .pcd .ply .xyz/.txt (target loaded first;\n"
-             "                       the source uses the target's local origin)\n"
-             "  -classes C1,C2       match on these LAS classes only (e.g. 2,6: ground and buildings,\n"
-             "                       the stable surfaces of airborne strips; vegetation seen from two\n"
-             "                       flight lines biases the shift); -o still moves every point\n"
-             "  -o ALIGNED           write the transformed source (input coordinates); a LAS or LAZ\n"
-             "                       source written as .las or .laz keeps its version, point format, VLRs (CRS)\n"
-             "                       and every attribute: only X, Y, Z and the bounds change;\n"
-             "                       other outputs declare the target's CRS (else the source's):\n"
-             "                       a PCD or PLY in its header, a LAS as a WKT VLR. Heights in\n"
-             "                       another unit than the plan (a compound CRS, metres + US feet)\n"
-             "                       are matched in the plan unit; outputs keep the files' units\n"
-             "  -rule lnd|lzd|icp    conjugate-point rule (default lnd)\n"
-             "  -params 7|6|3|1      similarity, rigid (m fixed), translation, height only (default 6)\n"
-             "  -fix tx,ty,...       also fix these parameters (tx ty tz phi omega kappa m)\n"
-             "  -max_iter N          iteration limit (default 30)\n"
-             "  -K k                 reject residuals beyond k*sigma0 (Zuo eq. 15; default 6)\n"
-             "  -thin step           use one source point per voxel of this edge (default 0 = all)\n"
-             "  -max_dist d          maximum correspondence distance (default unlimited); a finite\n"
-             "                       value also skips source points with no target point within it\n"
-             "                       before any neighbour search (faster on partial overlap)\n"
-             "  -guess d             how far the initial guess may be off: residuals up to d are\n"
-             "                       kept in the first iteration, halving each iteration (default\n"
-             "                       1 %% of the source extent, at most -max_dist)\n"
-             "  -json REPORT         write a JSON report\n"
-             "  -truth TRUTH.json    compare with a known transform (key \"transformation\": 4x4\n"
-             "                       row-major, SOURCE -> TARGET, input coordinates)\n"
-             "  -overwrite           allow replacing existing output files\n"
-             "  -h                   this help\n\n"
-             "Exit status: 0 a trusted estimate; 1 bad input or options, or no estimate (the -json\n"
-             "report says why); 3 an estimate the quality gate refused (UNRELIABLE, STALLED,\n"
-             "IMPLAUSIBLE_SCALE: in the report and -json, not written to -o).\n",
-             prog);
+  print_info(
+      "Least-squares 3D surface matching (LS3D): estimates the similarity transform that maps\n"
+      "SOURCE onto TARGET.\n\n"
+      "Usage: %s SOURCE TARGET [options]\n"
+      "  SOURCE, TARGET       .las .laz .copc.laz .pcd .ply .xyz/.txt (target loaded first;\n"
+      "                       the source uses the target's local origin)\n"
+      "  -classes C1,C2       match on these LAS classes only (e.g. 2,6: ground and buildings,\n"
+      "                       the stable surfaces of airborne strips; vegetation seen from two\n"
+      "                       flight lines biases the shift); -o still moves every point\n"
+      "  -o ALIGNED           write the transformed source (input coordinates); a LAS or LAZ\n"
+      "                       source written as .las or .laz keeps its version, point format, VLRs (CRS)\n"
+      "                       and every attribute: only X, Y, Z and the bounds change;\n"
+      "                       other outputs declare the target's CRS (else the source's):\n"
+      "                       a PCD or PLY in its header, a LAS as a WKT VLR. Heights in\n"
+      "                       another unit than the plan (a compound CRS, metres + US feet)\n"
+      "                       are matched in the plan unit; outputs keep the files' units\n"
+      "  -rule lnd|lzd|icp    conjugate-point rule (default lnd)\n"
+      "  -params 7|6|3|1      similarity, rigid (m fixed), translation, height only (default 6)\n"
+      "  -fix tx,ty,...       also fix these parameters (tx ty tz phi omega kappa m)\n"
+      "  -max_iter N          iteration limit (default 30)\n"
+      "  -K k                 reject residuals beyond k*sigma0 (Zuo eq. 15; default 6)\n"
+      "  -thin step           use one source point per voxel of this edge (default 0 = all)\n"
+      "  -max_dist d          maximum correspondence distance (default unlimited); a finite\n"
+      "                       value also skips source points with no target point within it\n"
+      "                       before any neighbour search (faster on partial overlap)\n"
+      "  -guess d             how far the initial guess may be off: residuals up to d are\n"
+      "                       kept in the first iteration, halving each iteration (default\n"
+      "                       1 %% of the source extent, at most -max_dist)\n"
+      "  -json REPORT         write a JSON report\n"
+      "  -truth TRUTH.json    compare with a known transform (key \"transformation\": 4x4\n"
+      "                       row-major, SOURCE -> TARGET, input coordinates)\n"
+      "  -overwrite           allow replacing existing output files\n"
+      "  -h                   this help\n\n"
+      "Exit status: 0 a trusted estimate; 1 bad input or options, or no estimate (the -json\n"
+      "report says why); 3 an estimate the quality gate refused (UNRELIABLE, STALLED,\n"
+      "IMPLAUSIBLE_SCALE: in the report and -json, not written to -o).\n",
+      prog);
 }
 
 bool
@@ -110,8 +111,7 @@ readTruth(const std::string& path, Eigen::Matrix4d& T, std::string& error)
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c)
         T(r, c) = rows.at(static_cast<std::size_t>(r)).at(static_cast<std::size_t>(c)).get<double>();
-  }
-  catch (const std::exception& e) {
+  } catch (const std::exception& e) {
     error = "invalid truth file " + path + ": " + e.what();
     return false;
   }
@@ -122,7 +122,8 @@ readTruth(const std::string& path, Eigen::Matrix4d& T, std::string& error)
 
 /// Keeps the points of `classes` (all when empty); false when none is left.
 bool
-keepClasses(Cloud::Ptr& cloud, const std::set<std::uint8_t>& classes, const std::string& path, std::string& error)
+keepClasses(Cloud::Ptr& cloud, const std::set<std::uint8_t>& classes, const std::string& path,
+            std::string& error)
 {
   if (classes.empty())
     return true;
@@ -160,10 +161,10 @@ struct Options
   std::string source_path, target_path, out_path, json_path, truth_path;
   std::string rule_text = "lnd", classes_text;
   bool overwrite = false;
-  std::set<std::uint8_t> classes;   ///< -classes; empty: every point
+  std::set<std::uint8_t> classes;  ///< -classes; empty: every point
   pcl_ls3d::ConjugateRuleType rule = pcl_ls3d::ConjugateRuleType::LND;
   pcl_ls3d::AdjustmentSettings settings;
-  double K = 6.0;                   ///< Zuo's weight-function constant
+  double K = 6.0;  ///< Zuo's weight-function constant
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
 };
 
@@ -221,9 +222,9 @@ bool
 parseOptions(int argc, char** argv, Options& o, std::string& why)
 {
   // Positional files and the known options (anything else starting with '-' is an error).
-  static const std::set<std::string> valued = {"-o", "-rule", "-params", "-fix", "-max_iter",
-                                               "-K", "-thin", "-max_dist", "-guess", "-json", "-truth",
-                                               "-classes"};
+  static const std::set<std::string> valued = {"-o",        "-rule", "-params", "-fix",
+                                               "-max_iter", "-K",    "-thin",   "-max_dist",
+                                               "-guess",    "-json", "-truth",  "-classes"};
   std::vector<std::string> files;
   if (!pcl_ls3d::tools::splitArguments(argc, argv, 1, valued, {"-overwrite"}, files, why))
     return false;
@@ -276,9 +277,11 @@ loadPair(const Options& o, Pair& pair, std::string& error)
                o.classes_text.c_str(), pair.target->size(), target_points, pair.source->size(),
                pair.whole_source->size());
   pair.load_ms = tt.toc();
-  print_info("Loaded target %s (%zu points) and source %s (%zu points), local origin (%.3f, %.3f, %.3f) in %.0f ms\n",
+  print_info("Loaded target %s (%zu points) and source %s (%zu points), local origin (%.3f, %.3f, %.3f) in "
+             "%.0f ms\n",
              o.target_path.c_str(), pair.target->size(), o.source_path.c_str(), pair.source->size(),
-             pair.target_info.origin.x(), pair.target_info.origin.y(), pair.target_info.origin.z(), pair.load_ms);
+             pair.target_info.origin.x(), pair.target_info.origin.y(), pair.target_info.origin.z(),
+             pair.load_ms);
   return true;
 }
 
@@ -309,8 +312,9 @@ failWithoutEstimate(const Options& o, const pcl_ls3d::AdjustmentReport& r)
                             {"transformation", nullptr}};
   if (!o.json_path.empty() && !pcl_ls3d::tools::writeJsonFile(o.json_path, j))
     return fail("cannot write " + o.json_path), 1;
-  return fail(std::string("registration failed: ") + pcl_ls3d::terminationTypeToString(r.termination) +
-              ": " + r.message), 1;
+  return fail(std::string("registration failed: ") + pcl_ls3d::terminationTypeToString(r.termination) + ": " +
+              r.message),
+         1;
 }
 
 /// -truth: the error of the transformation over every point -o moves, printed and in the JSON
@@ -322,15 +326,13 @@ reportTruthError(const Pair& pair, const Eigen::Matrix4d& T_working, const Eigen
   const Cloud& whole = *pair.whole_source;
   Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(whole.size()));
   for (std::size_t i = 0; i < whole.size(); ++i)
-    pts.col(static_cast<Eigen::Index>(i)) =
-        whole[i].getVector3fMap().cast<double>() + pair.working_origin;
-  const auto e = pcl_ls3d::evaluation::computeTransformError(
-      T_working, pair.heights.toWorking(truth), pts);
+    pts.col(static_cast<Eigen::Index>(i)) = whole[i].getVector3fMap().cast<double>() + pair.working_origin;
+  const auto e = pcl_ls3d::evaluation::computeTransformError(T_working, pair.heights.toWorking(truth), pts);
   // Significant digits: a fixed 4 decimals would show a 0.05 mm error on metre data as 0.
   print_info("Error vs truth: mean displacement %.3g, max %.3g, max over bbox %.3g\n", e.mean, e.max,
              e.max_bbox);
-  j["truth_error"] = {{"mean_displacement", e.mean}, {"max_displacement", e.max},
-                      {"max_displacement_bbox", e.max_bbox}};
+  j["truth_error"] = {
+      {"mean_displacement", e.mean}, {"max_displacement", e.max}, {"max_displacement_bbox", e.max_bbox}};
 }
 
 /// -o: the source moved (a LAS source to LAS record by record, with its header and VLRs, so its
@@ -354,9 +356,9 @@ writeAligned(const Options& o, const Pair& pair, const pcl_ls3d::AdjustmentRepor
   if (!las_to_las)  // the target's height unit again
     pcl_ls3d::heightsToFile(aligned, pair.heights.target, pair.heights.target, pair.target_info.origin.z());
   const pcl_ls3d::HeightUnits in_source_units = pcl_ls3d::HeightUnits::ofOneFile(pair.heights.source);
-  if (las_to_las ? !writeMovedLas(o.source_path, in_source_units.toFiles(T_working), o.out_path,
-                                  o.overwrite, error)
-                 : !pcl_ls3d::io::saveCloud(o.out_path, aligned, pair.target_info.origin, error, so))
+  if (las_to_las
+          ? !writeMovedLas(o.source_path, in_source_units.toFiles(T_working), o.out_path, o.overwrite, error)
+          : !pcl_ls3d::io::saveCloud(o.out_path, aligned, pair.target_info.origin, error, so))
     return false;
   print_info("Wrote %s in %.0f ms\n", o.out_path.c_str(), tt.toc());
   return true;
@@ -415,6 +417,7 @@ main(int argc, char** argv)
   if (!trusted)
     return fail(std::string("registration not trustworthy: ") +
                 pcl_ls3d::terminationTypeToString(r.termination) + ": " + r.message +
-                (o.out_path.empty() ? "" : " (" + o.out_path + " not written)")), 3;
+                (o.out_path.empty() ? "" : " (" + o.out_path + " not written)")),
+           3;
   return 0;
 }

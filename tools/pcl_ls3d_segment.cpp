@@ -20,10 +20,10 @@
 #include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/cloud_io.h>
+#include <pcl_ls3d/io/json_text.h>
 #include <pcl_ls3d/maps/coordinate_reference.h>
 #include <pcl_ls3d/segmentation/dimensionality_features.h>
 #include <pcl_ls3d/segmentation/object_classes.h>
-#include <pcl_ls3d/io/json_text.h>
 
 #include <pcl/common/time.h>
 #include <pcl/console/parse.h>
@@ -35,8 +35,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -50,9 +50,21 @@ namespace ev = pcl_ls3d::evaluation;
 
 namespace {
 
-const std::set<std::string> kValueOptions{"-o", "-mode", "-json", "-k", "-Nt", "-Mt", "-vt",
-                                          "-dt", "-st", "-Vt", "-classes", "-threads",
-                                          "-eval_min_size", "-min_fragment", "-level",
+const std::set<std::string> kValueOptions{"-o",
+                                          "-mode",
+                                          "-json",
+                                          "-k",
+                                          "-Nt",
+                                          "-Mt",
+                                          "-vt",
+                                          "-dt",
+                                          "-st",
+                                          "-Vt",
+                                          "-classes",
+                                          "-threads",
+                                          "-eval_min_size",
+                                          "-min_fragment",
+                                          "-level",
                                           "-object_radius"};
 const std::set<std::string> kFlagOptions{"-evaluate", "-overwrite", "-h", "--help", "-help"};
 
@@ -61,7 +73,8 @@ printHelp(const char* prog)
 {
   print_info("Multi-factor segmentation by improved multi-rule region growing (Wang et al. 2021).\n\n"
              "Syntax: %s INPUT [options]\n"
-             "  INPUT              .las .laz .copc.laz .pcd .ply .xyz/.txt (LAS classification / PCD label = reference;\n"
+             "  INPUT              .las .laz .copc.laz .pcd .ply .xyz/.txt (LAS classification / PCD label = "
+             "reference;\n"
              "                     its numbers of returns, where recorded, tell parked cars from shrubs;\n"
              "                     a CRS in feet is segmented in metres: lengths, thresholds and\n"
              "                     the options below are metres, SEGMENTS.pcd keeps the file's unit;\n"
@@ -260,10 +273,10 @@ struct Input
   /// Metres per unit in plan and in height, as the CRS declares them; 0: not declared (metres
   /// assumed).
   double metres_per_unit = 0.0, metres_per_height_unit = 0.0;
-  std::vector<int> reference;  ///< LAS classification / PCD label per point
-  std::vector<std::uint8_t> returns;  ///< number of returns per point (all 1 where not recorded)
+  std::vector<int> reference;          ///< LAS classification / PCD label per point
+  std::vector<std::uint8_t> returns;   ///< number of returns per point (all 1 where not recorded)
   double multiple_return_share = 0.0;  ///< of the points; 0: returns not recorded
-  std::string wkt;             ///< CRS of the coordinates; empty: none declared
+  std::string wkt;                     ///< CRS of the coordinates; empty: none declared
   double seconds = 0.0;
 };
 
@@ -271,8 +284,7 @@ struct Input
 double
 multipleReturnShare(const std::vector<std::uint8_t>& returns)
 {
-  const auto multiple =
-      std::count_if(returns.begin(), returns.end(), [](std::uint8_t r) { return r > 1; });
+  const auto multiple = std::count_if(returns.begin(), returns.end(), [](std::uint8_t r) { return r > 1; });
   return returns.empty() ? 0.0 : static_cast<double>(multiple) / static_cast<double>(returns.size());
 }
 
@@ -332,7 +344,8 @@ loadInput(const Options& o, Input& in, std::string& error)
   if (!io::loadCloud(o.input, in.cloud, in.info, error))
     return false;
   if (o.evaluate && in.info.segments_file)  // the reader recognised it (io::kPcdSegmentsMarker)
-    return (error = "-evaluate: '" + o.input + "' is a SEGMENTS file of pcl_ls3d_segment: its labels "
+    return (error = "-evaluate: '" + o.input +
+                    "' is a SEGMENTS file of pcl_ls3d_segment: its labels "
                     "are segment ids, not reference classes (evaluate the labelled input instead)"),
            false;
   const std::size_t n = in.cloud.size();
@@ -340,11 +353,10 @@ loadInput(const Options& o, Input& in, std::string& error)
     return (error = "cloud too large for pcl::PointIndices"), false;
   in.seconds = tt.toc() / 1000.0;
   print_info("Loaded %s: %zu points (%zu non-finite dropped), origin (%.3f, %.3f, %.3f) in %.3f s\n",
-             o.input.c_str(), n, in.info.points_dropped_nonfinite, in.info.origin.x(),
-             in.info.origin.y(), in.info.origin.z(), in.seconds);
+             o.input.c_str(), n, in.info.points_dropped_nonfinite, in.info.origin.x(), in.info.origin.y(),
+             in.info.origin.z(), in.seconds);
   // The multi-rule methods' smallest neighbourhood (pcl_rg runs on fewer: its clusters say so).
-  const int k_min =
-      o.settings.k_min > 0 ? o.settings.k_min : segmentation::NeighbourhoodSettings().k_min;
+  const int k_min = o.settings.k_min > 0 ? o.settings.k_min : segmentation::NeighbourhoodSettings().k_min;
   if (o.settings.method != ev::SegmentationMethod::PclRegionGrowing && n < static_cast<std::size_t>(k_min))
     return (error = "need at least k_min = " + std::to_string(k_min) + " finite points (-k) for " +
                     ev::toString(o.settings.method) + ", got " + std::to_string(n)),
@@ -360,10 +372,9 @@ loadInput(const Options& o, Input& in, std::string& error)
     in.returns[i] = in.cloud[i].number_of_returns;
   }
   const ev::ClassLookup lookup(o.eval.groups, o.eval.excluded_codes);
-  if (o.evaluate && std::none_of(in.reference.begin(), in.reference.end(),
-                                 [&](int c) { return lookup.groupOf(c) >= 0; }))
-    return (error = "-evaluate: no point of '" + o.input +
-                    "' carries a label of the evaluated classes"),
+  if (o.evaluate &&
+      std::none_of(in.reference.begin(), in.reference.end(), [&](int c) { return lookup.groupOf(c) >= 0; }))
+    return (error = "-evaluate: no point of '" + o.input + "' carries a label of the evaluated classes"),
            false;
   in.wkt = maps::crsOfFile(in.info);
   if (!(error = maps::notInLengths(o.input, in.wkt)).empty())
@@ -382,10 +393,8 @@ inputWarnings(const Input& in)
   // Metres are assumed without a CRS; a CRS whose unit is unreadable gives no density to judge.
   const bool density_known = in.wkt.empty() || in.metres_per_unit > 0.0;
   json warnings = json::array();
-  for (const std::string& w :
-       {tools::farOutlierWarning(*in.metric),
-        density_known ? tools::sparseDataWarning(*in.metric)
-                      : std::string()})
+  for (const std::string& w : {tools::farOutlierWarning(*in.metric),
+                               density_known ? tools::sparseDataWarning(*in.metric) : std::string()})
     if (!w.empty()) {
       print_warn("Warning: %s\n", w.c_str());
       warnings.push_back(w);
@@ -404,8 +413,7 @@ struct Results
 
 /// A baseline that failed: a row of every table, with its reason.
 void
-recordFailure(ev::SegmentationMethod m, double seconds, const std::string& why, json& report,
-              Results& r)
+recordFailure(ev::SegmentationMethod m, double seconds, const std::string& why, json& report, Results& r)
 {
   print_warn("%s failed: %s\n", ev::toString(m).c_str(), why.c_str());
   report["runs"].push_back({{"method", ev::toString(m)}, {"failure", why}});
@@ -425,19 +433,18 @@ recordFailure(ev::SegmentationMethod m, double seconds, const std::string& why, 
 
 /// One line per run: segments, time, thresholds or the baseline's own figures; and its classes.
 void
-printRun(ev::SegmentationMethod m, const ev::SegmentationRun& run, double seconds,
-         std::size_t points, json& report)
+printRun(ev::SegmentationMethod m, const ev::SegmentationRun& run, double seconds, std::size_t points,
+         json& report)
 {
-  print_info("%s: %zu segments (%zu before merging) in %.3f s", ev::toString(m).c_str(),
-             run.segments.size(), run.segments_before_merge, seconds);
+  print_info("%s: %zu segments (%zu before merging) in %.3f s", ev::toString(m).c_str(), run.segments.size(),
+             run.segments_before_merge, seconds);
   if (m == ev::SegmentationMethod::IMRG || m == ev::SegmentationMethod::MRG)
     print_info("; v_t %.4f m, d_t %.4f m, s_t %.4f m, V_t %.3f; linear/planar/volumetric "
                "%zu/%zu/%zu\n",
-               run.residual_threshold, run.distance_threshold, run.similarity_threshold,
-               run.volume_threshold, run.linear, run.planar, run.volumetric);
+               run.residual_threshold, run.distance_threshold, run.similarity_threshold, run.volume_threshold,
+               run.linear, run.planar, run.volumetric);
   else if (m == ev::SegmentationMethod::PclRegionGrowing)
-    print_info(" (normals %.3f s; %zu points in the rest segment)\n", run.seconds_normals,
-               run.rest_points);
+    print_info(" (normals %.3f s; %zu points in the rest segment)\n", run.seconds_normals, run.rest_points);
   else
     print_info(" (voxel edge %.3f m)\n", run.voxel_size);
   json rj = tools::segment_report::runToJson(run);
@@ -456,9 +463,8 @@ printRun(ev::SegmentationMethod m, const ev::SegmentationRun& run, double second
 
 /// The run scored against the reference: per point, per object, and IMRG's classes.
 bool
-evaluateRun(const Options& o, const Input& in, const ev::ReferenceObjects& objects,
-            ev::SegmentationMethod m, const ev::SegmentationRun& run, json& report, Results& r,
-            std::string& error)
+evaluateRun(const Options& o, const Input& in, const ev::ReferenceObjects& objects, ev::SegmentationMethod m,
+            const ev::SegmentationRun& run, json& report, Results& r, std::string& error)
 {
   ev::SegmentationEvaluation e;
   e.method = ev::toString(m);
@@ -487,8 +493,8 @@ evaluateRun(const Options& o, const Input& in, const ev::ReferenceObjects& objec
 /// The selected method, or all four for -evaluate (the selected one first, so that the voxel
 /// grid can match IMRG's count either way). A baseline's failure is a row, not the run's.
 bool
-runMethods(const Options& o, const Input& in, const ev::ReferenceObjects& objects, json& report,
-           Results& r, std::string& error)
+runMethods(const Options& o, const Input& in, const ev::ReferenceObjects& objects, json& report, Results& r,
+           std::string& error)
 {
   std::vector<ev::SegmentationMethod> methods{o.settings.method};
   if (o.evaluate) {
@@ -525,8 +531,7 @@ runMethods(const Options& o, const Input& in, const ev::ReferenceObjects& object
       if (r.selected.empty())
         print_warn("%s: every point lies in a cluster under the minimum size: all labels 0\n",
                    ev::toString(m).c_str());
-      const std::string dominant =
-          tools::dominantSegmentWarning(run.segments, run.classes, in.cloud.size());
+      const std::string dominant = tools::dominantSegmentWarning(run.segments, run.classes, in.cloud.size());
       if (!dominant.empty()) {
         print_warn("Warning: %s\n", dominant.c_str());
         report["warnings"].push_back(dominant);
@@ -553,12 +558,10 @@ printEvaluation(const Options& o, const Results& r)
              "the median number of\nvalid segments per object and the median share of the "
              "object in its largest valid segment.\n%s",
              object_settings.min_object_points,
-             ev::formatFragmentationTable(r.object_evaluations, object_settings.min_object_points)
-                 .c_str());
-  const std::string small =
-      o.eval.min_segment_size > 0
-          ? " (or in one under " + std::to_string(o.eval.min_segment_size) + " points)"
-          : "";
+             ev::formatFragmentationTable(r.object_evaluations, object_settings.min_object_points).c_str());
+  const std::string small = o.eval.min_segment_size > 0
+                                ? " (or in one under " + std::to_string(o.eval.min_segment_size) + " points)"
+                                : "";
   print_info("\nPer-point precision / recall / F1 (%%); segments mapped to their majority class;\n"
              "points in no segment%s count as false negatives; %s.\n%s",
              small.c_str(), excluded.c_str(), ev::formatSegmentationTable(r.evaluations).c_str());
@@ -575,8 +578,7 @@ printEvaluation(const Options& o, const Results& r)
 
 /// SEGMENTS.pcd (segments_file.h) and what the JSON says about it.
 bool
-writeSegments(const Options& o, const Input& in, const Results& r, json& report,
-              std::string& error)
+writeSegments(const Options& o, const Input& in, const Results& r, json& report, std::string& error)
 {
   TicToc tt;
   tt.tic();
@@ -601,8 +603,8 @@ writeSegments(const Options& o, const Input& in, const Results& r, json& report,
                              {"label", "segment id + 1; 0 = no segment or non-finite input"},
                              {"crs", in.wkt.empty() ? json(nullptr) : json(maps::crsName(in.wkt))}};
   if (!codes.empty()) {
-    report["segments_file"]["classification"] = "LAS code of the segment's object class: " +
-                                                segmentation::describeLasCodes() + "; 0 = no segment";
+    report["segments_file"]["classification"] =
+        "LAS code of the segment's object class: " + segmentation::describeLasCodes() + "; 0 = no segment";
     json names = json::array();
     for (const auto c : r.selected_classes)
       names.push_back(segmentation::toString(c));
@@ -610,8 +612,7 @@ writeSegments(const Options& o, const Input& in, const Results& r, json& report,
   }
   print_info("Wrote %s (%zu points in input order, %zu segments; local float coordinates, "
              "origin (%.3f, %.3f, %.3f) in its header) in %.3f s\n",
-             o.out_pcd.c_str(), points, r.selected.size(), origin.x(), origin.y(), origin.z(),
-             seconds);
+             o.out_pcd.c_str(), points, r.selected.size(), origin.x(), origin.y(), origin.z(), seconds);
   return true;
 }
 
@@ -640,10 +641,9 @@ main(int argc, char** argv)
   report["origin"] = {in.info.origin.x(), in.info.origin.y(), in.info.origin.z()};
   // Thresholds, spacings and radii in the report are metres; coordinates the file's unit
   // (null: no unit declared, metres assumed).
-  report["metres_per_unit"] =
-      in.metres_per_unit > 0.0
-          ? json{{"horizontal", in.metres_per_unit}, {"vertical", in.metres_per_height_unit}}
-          : json(nullptr);
+  report["metres_per_unit"] = in.metres_per_unit > 0.0 ? json{{"horizontal", in.metres_per_unit},
+                                                              {"vertical", in.metres_per_height_unit}}
+                                                       : json(nullptr);
   report["level"] = o.settings.level == ev::SegmentationLevel::Planes ? "planes" : "objects";
   report["seconds_load"] = in.seconds;
   report["warnings"] = inputWarnings(in);
@@ -660,7 +660,8 @@ main(int argc, char** argv)
     if (!ev::referenceObjectsFromLabels(*in.metric, in.reference, ro, objects, error))
       return fail("-evaluate: " + error);
     print_info("Reference objects: %zu (connected components per class group, radius %.2f m) "
-               "in %.3f s\n", objects.objects(), objects.radius, tt.toc() / 1000.0);
+               "in %.3f s\n",
+               objects.objects(), objects.radius, tt.toc() / 1000.0);
     report["reference_objects"] = {{"objects", objects.objects()}, {"radius_m", objects.radius}};
   }
   Results results;

@@ -33,7 +33,8 @@ printHelp(const char* prog)
       "Every strip gets its own similarity transform (Zuo et al. 2012), all estimated at once from\n"
       "conjugate points between the stable surfaces of every overlap, in both directions.\n\n"
       "Usage: %s INPUT... [options]                    adjust in this process\n"
-      "       %s plan INPUT... -work DIR [options]     cluster stages (see scripts/slurm/strip_adjust.sbatch)\n"
+      "       %s plan INPUT... -work DIR [options]     cluster stages (see "
+      "scripts/slurm/strip_adjust.sbatch)\n"
       "       %s match -work DIR -job K | solve -work DIR | apply -work DIR -unit K | counts -work DIR\n\n"
       "  INPUT...               .las (1.0-1.4) .laz .copc.laz .pcd .ply .xyz; one strip per\n"
       "                         file, or see -split\n"
@@ -92,10 +93,11 @@ fail(const std::string& message)
   return 1;
 }
 
-const std::set<std::string> kWithValue = {"-split", "-reference", "-soft", "-params", "-rule", "-estimator",
-                                          "-classes", "-spacing", "-max_obs", "-max_dist", "-min_area",
-                                          "-min_obs", "-max_iter", "-held_out_z", "-held_out_noise", "-o", "-json", "-maps",
-                                          "-bands", "-work", "-job", "-unit", "-map_format"};
+const std::set<std::string> kWithValue = {
+    "-split",          "-reference", "-soft",     "-params",   "-rule",    "-estimator", "-classes",
+    "-spacing",        "-max_obs",   "-max_dist", "-min_area", "-min_obs", "-max_iter",  "-held_out_z",
+    "-held_out_noise", "-o",         "-json",     "-maps",     "-bands",   "-work",      "-job",
+    "-unit",           "-map_format"};
 const std::set<std::string> kSwitches = {"-keep_files", "-overwrite", "-q", "-one_way"};
 
 // Options shared by the single run and the plan stage, parsed into the plan request.
@@ -190,7 +192,8 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   parse_argument(argc, argv, "-o", o.request.output_dir);
   parse_argument(argc, argv, "-json", o.request.json_path);
   parse_argument(argc, argv, "-maps", o.request.maps_dir);
-  if (parse_argument(argc, argv, "-map_format", text) >= 0 && !maps::parseMapFormat(text, o.request.map_format))
+  if (parse_argument(argc, argv, "-map_format", text) >= 0 &&
+      !maps::parseMapFormat(text, o.request.map_format))
     return (why = "-map_format takes png, pdf or svg, not '" + text + "'").empty();
   o.request.keep_files = find_switch(argc, argv, "-keep_files");
   o.overwrite = find_switch(argc, argv, "-overwrite");
@@ -239,7 +242,8 @@ checkCorrectedOutputs(const Options& o, const std::vector<strips::OutputUnit>& u
   std::error_code ec;
   for (const auto& u : units) {
     if (!o.request.json_path.empty() && io::isSameFile(u.path, o.request.json_path))
-      return (why = "the report " + o.request.json_path + " would replace the corrected strip " + u.path).empty();
+      return (why = "the report " + o.request.json_path + " would replace the corrected strip " + u.path)
+          .empty();
     if (fs::exists(u.path, ec) && !o.overwrite)
       return (why = u.path + " exists (use -overwrite to replace it)").empty();
   }
@@ -248,13 +252,15 @@ checkCorrectedOutputs(const Options& o, const std::vector<strips::OutputUnit>& u
   for (fs::directory_iterator it(o.request.maps_dir, ec), end; !ec && it != end; it.increment(ec))
     if (isMapFile(o, it->path()))
       return (why = "the maps folder " + o.request.maps_dir + " holds maps already (" +
-                    it->path().filename().string() + "; use -overwrite to replace them)").empty();
+                    it->path().filename().string() + "; use -overwrite to replace them)")
+          .empty();
   return true;
 }
 
 // -reference IDs → strip indices (point-source ids with -split, else input names).
 bool
-resolveReferences(const Options& o, const strips::LoadedStrips& block, std::vector<int>& indices, std::string& why)
+resolveReferences(const Options& o, const strips::LoadedStrips& block, std::vector<int>& indices,
+                  std::string& why)
 {
   for (const std::string& id : o.references) {
     int found = -1;
@@ -266,7 +272,8 @@ resolveReferences(const Options& o, const strips::LoadedStrips& block, std::vect
     if (found < 0) {
       std::string names;
       for (const auto& s : block.sources)
-        names += (names.empty() ? "" : ", ") + (s.point_source_id >= 0 ? std::to_string(s.point_source_id) : s.name);
+        names += (names.empty() ? "" : ", ") +
+                 (s.point_source_id >= 0 ? std::to_string(s.point_source_id) : s.name);
       return (why = "unknown reference strip '" + id + "' (strips: " + names + ")").empty();
     }
     indices.push_back(found);
@@ -301,7 +308,8 @@ splitHint(const Options& o, const strips::LoadedStrips& block)
     for (const auto& kv : f.point_sources)
       ids += kv.first != 0;
     if (ids > 1)
-      return " (" + f.path + " holds " + std::to_string(ids) + " point-source ids: -split psid makes each a strip)";
+      return " (" + f.path + " holds " + std::to_string(ids) +
+             " point-source ids: -split psid makes each a strip)";
   }
   return "";
 }
@@ -335,12 +343,14 @@ runSingle(Options& o)
   if (!resolveReferences(o, block, o.request.plan.settings.reference_strips, error))
     return fail(error);
   const std::vector<strips::OutputUnit> units =
-      o.request.output_dir.empty() ? std::vector<strips::OutputUnit>() : strips::outputUnits(block, o.request.output_dir, o.request.keep_files);
+      o.request.output_dir.empty() ? std::vector<strips::OutputUnit>()
+                                   : strips::outputUnits(block, o.request.output_dir, o.request.keep_files);
   if (!checkCorrectedOutputs(o, units, error))
     return fail(error);
   if (!o.quiet)
-    print_info("Loaded %zu strips from %zu files in %.1f s, block origin (%.3f, %.3f, %.3f)\n", block.strips.size(),
-               block.inputs.size(), tt.toc() / 1000.0, block.block_origin.x(), block.block_origin.y(), block.block_origin.z());
+    print_info("Loaded %zu strips from %zu files in %.1f s, block origin (%.3f, %.3f, %.3f)\n",
+               block.strips.size(), block.inputs.size(), tt.toc() / 1000.0, block.block_origin.x(),
+               block.block_origin.y(), block.block_origin.z());
   strips::StripBlockAdjustment adjustment;
   adjustment.setSettings(o.request.plan.settings);
   adjustment.setBlockOrigin(block.block_origin);
@@ -359,7 +369,8 @@ runSingle(Options& o)
   clearOutputs(o, units);
   std::vector<Eigen::Matrix4d> corrections;
   for (const auto& s : report.strips)
-    corrections.push_back(s.parameters == identityParameters() ? Eigen::Matrix4d::Identity() : s.transformation);
+    corrections.push_back(s.parameters == identityParameters() ? Eigen::Matrix4d::Identity()
+                                                               : s.transformation);
   std::error_code ec;
   if (!units.empty())
     fs::create_directories(o.request.output_dir, ec);
@@ -390,7 +401,8 @@ runStage(const std::string& stage, Options& o)
         return fail(error);
     }
     int jobs = 0, units = 0;
-    if (!strips::stagePlan(o.inputs, o.request, work, error) || !strips::stageCounts(work, jobs, units, error))
+    if (!strips::stagePlan(o.inputs, o.request, work, error) ||
+        !strips::stageCounts(work, jobs, units, error))
       return fail(error);
     if (!o.quiet)
       print_info("Planned %d match jobs and %d output files in %s\n", jobs, units, o.work.c_str());
@@ -404,9 +416,11 @@ runStage(const std::string& stage, Options& o)
     return 0;
   }
   if (stage == "match")
-    return o.job >= 0 ? (strips::stageMatch(work, o.job, error) ? 0 : fail(error)) : fail("match needs -job K");
+    return o.job >= 0 ? (strips::stageMatch(work, o.job, error) ? 0 : fail(error))
+                      : fail("match needs -job K");
   if (stage == "apply")
-    return o.unit >= 0 ? (strips::stageApply(work, o.unit, error) ? 0 : fail(error)) : fail("apply needs -unit K");
+    return o.unit >= 0 ? (strips::stageApply(work, o.unit, error) ? 0 : fail(error))
+                       : fail("apply needs -unit K");
   std::string phase;
   TerminationType termination = TerminationType::CONVERGED;
   if (!strips::stageSolve(work, phase, error, &termination))
@@ -437,14 +451,14 @@ main(int argc, char** argv)
     setVerbosityLevel(L_ERROR);
   if (stage.empty() || stage == "plan") {
     if (o.inputs.size() < 2 && !o.request.load.split_by_point_source)
-      return fail(o.inputs.empty() ? "no input given (see -h)"
-                                   : "one strip only: give two or more strips, or -split psid for a file holding several");
+      return fail(o.inputs.empty()
+                      ? "no input given (see -h)"
+                      : "one strip only: give two or more strips, or -split psid for a file holding several");
     if (o.inputs.empty())
       return fail("no input given (see -h)");
     if (!checkOutputs(o, why))
       return fail(why);
-  }
-  else if (!o.inputs.empty())
+  } else if (!o.inputs.empty())
     return fail("the " + stage + " stage takes no input files");
   return stage.empty() ? runSingle(o) : runStage(stage, o);
 }

@@ -31,15 +31,16 @@ namespace {
 // Options per subcommand (value options; switches listed separately).
 const std::set<std::string> kCommon = {"-seed", "-o", "-format", "-noise"};
 const std::map<std::string, std::set<std::string>> kValues = {
-    {"pair", {"-size", "-source_density", "-target_density", "-overlap", "-transform", "-origin",
-              "-relief", "-wavelength", "-buildings_per_ha"}},
-    {"scene", {"-size", "-density", "-origin", "-relief", "-wavelength", "-buildings_per_ha",
-               "-trees", "-shrubs", "-cars", "-car_class", "-towers", "-wires"}},
-    {"strips", {"-strips", "-heading", "-length", "-swath", "-side_overlap", "-density",
-                "-pattern", "-shift_sigma", "-angle_sigma", "-scale_sigma", "-origin", "-relief",
-                "-wavelength", "-buildings_per_ha", "-speed"}},
-    {"li", {"-grid", "-spacing", "-relief", "-wavelength", "-percent", "-c", "-position",
-            "-transform"}}};
+    {"pair",
+     {"-size", "-source_density", "-target_density", "-overlap", "-transform", "-origin", "-relief",
+      "-wavelength", "-buildings_per_ha"}},
+    {"scene",
+     {"-size", "-density", "-origin", "-relief", "-wavelength", "-buildings_per_ha", "-trees", "-shrubs",
+      "-cars", "-car_class", "-towers", "-wires"}},
+    {"strips",
+     {"-strips", "-heading", "-length", "-swath", "-side_overlap", "-density", "-pattern", "-shift_sigma",
+      "-angle_sigma", "-scale_sigma", "-origin", "-relief", "-wavelength", "-buildings_per_ha", "-speed"}},
+    {"li", {"-grid", "-spacing", "-relief", "-wavelength", "-percent", "-c", "-position", "-transform"}}};
 const std::map<std::string, std::set<std::string>> kSwitches = {
     {"pair", {"-no_buildings"}},
     {"scene", {"-no_buildings", "-no_power_line"}},
@@ -112,8 +113,7 @@ numbers(int argc, char** argv, const char* name, std::size_t count, bool& ok)
   if (parse_argument(argc, argv, name, text) < 0)
     return v;
   if (!pcl_ls3d::tools::parseNumberList(text, v) || (count && v.size() != count)) {
-    print_error("%s needs %zu finite comma-separated number(s), got '%s'.\n", name, count,
-                text.c_str());
+    print_error("%s needs %zu finite comma-separated number(s), got '%s'.\n", name, count, text.c_str());
     ok = false;
     v.clear();
   }
@@ -171,8 +171,8 @@ setTransform(int argc, char** argv, pcl_ls3d::SimilarityTransform& T, bool allow
   if (v.empty())
     return;
   if (v.size() != 7 && !(v.size() == 6)) {
-    print_error("-transform needs tx,ty,tz,phi,omega,kappa%s (got %zu values).\n",
-                allow7 ? "[,m]" : "", v.size());
+    print_error("-transform needs tx,ty,tz,phi,omega,kappa%s (got %zu values).\n", allow7 ? "[,m]" : "",
+                v.size());
     ok = false;
     return;
   }
@@ -294,7 +294,9 @@ runPair(int argc, char** argv, const Context& ctx)
   print_info(" ms\n");
   return writeAll({{ctx.file("source"), pair.source.get(), pair.origin},
                    {ctx.file("target"), pair.target.get(), pair.origin}},
-                  ctx.json_path, synth::truthJson(pair, s), ctx.overwrite, ctx.format) ? 0 : -1;
+                  ctx.json_path, synth::truthJson(pair, s), ctx.overwrite, ctx.format)
+             ? 0
+             : -1;
 }
 
 int
@@ -338,7 +340,9 @@ runScene(int argc, char** argv, const Context& ctx)
   print_value("%g", tt.toc());
   print_info(" ms\n");
   return writeAll({{ctx.file("scene"), scene.cloud.get(), scene.origin}}, ctx.json_path,
-                  synth::truthJson(scene, s), ctx.overwrite, ctx.format) ? 0 : -1;
+                  synth::truthJson(scene, s), ctx.overwrite, ctx.format)
+             ? 0
+             : -1;
 }
 
 int
@@ -447,8 +451,11 @@ runLi(int argc, char** argv, const Context& ctx)
   print_value("%g", tt.toc());
   print_info(" ms\n");
   const Eigen::Vector3d zero = Eigen::Vector3d::Zero();
-  return writeAll({{ctx.file("reference"), li.reference.get(), zero}, {ctx.file("mate"), li.mate.get(), zero}},
-                  ctx.json_path, synth::truthJson(li, s), ctx.overwrite, ctx.format) ? 0 : -1;
+  return writeAll(
+             {{ctx.file("reference"), li.reference.get(), zero}, {ctx.file("mate"), li.mate.get(), zero}},
+             ctx.json_path, synth::truthJson(li, s), ctx.overwrite, ctx.format)
+             ? 0
+             : -1;
 }
 
 }  // namespace

@@ -35,25 +35,29 @@ runToJson(const ev::SegmentationRun& r)
   j["segments_before_merging"] = r.segments_before_merge;
   j["segments_after_merging"] = r.segments_after_merge;
   j["merges"] = r.merges;
-  j["thresholds"] = {{"v_t_m", finiteOrNull(r.residual_threshold)},
-                     {"d_t_m", finiteOrNull(r.distance_threshold)},
-                     {"s_t_m", finiteOrNull(r.similarity_threshold)},
-                     {"V_t", finiteOrNull(r.volume_threshold)},
-                     {"distance_samples", r.distance_samples},
-                     {"volume_samples", r.volume_samples}};
+  j["thresholds"] = {
+      {"v_t_m", finiteOrNull(r.residual_threshold)},   {"d_t_m", finiteOrNull(r.distance_threshold)},
+      {"s_t_m", finiteOrNull(r.similarity_threshold)}, {"V_t", finiteOrNull(r.volume_threshold)},
+      {"distance_samples", r.distance_samples},        {"volume_samples", r.volume_samples}};
   j["spacing_m"] = finiteOrNull(r.spacing);
   j["growth_radius_m"] = finiteOrNull(r.growth_radius);
   j["volumetric_radius_m"] = finiteOrNull(r.volumetric_radius);
-  j["dimensionality"] = {{"linear", r.linear}, {"planar", r.planar},
-                         {"volumetric", r.volumetric}, {"invalid", r.invalid}};
+  j["dimensionality"] = {
+      {"linear", r.linear}, {"planar", r.planar}, {"volumetric", r.volumetric}, {"invalid", r.invalid}};
   j["fragments_absorbed"] = r.fragments_absorbed;
   // Segments whose convex hull is degenerate (decided before qhull, which runs silently).
-  j["segment_hulls"] = {{"tiny", r.hulls_tiny}, {"collinear", r.hulls_collinear},
-                        {"flat", r.hulls_flat}, {"solid", r.hulls_solid}};
-  j["seconds"] = {{"total", r.seconds_total}, {"normals", r.seconds_normals},
-                  {"segmentation", r.seconds_segmentation}, {"search", r.seconds_search},
-                  {"features", r.seconds_features}, {"growing", r.seconds_growing},
-                  {"merging", r.seconds_merging}, {"absorbing", r.seconds_absorbing}};
+  j["segment_hulls"] = {{"tiny", r.hulls_tiny},
+                        {"collinear", r.hulls_collinear},
+                        {"flat", r.hulls_flat},
+                        {"solid", r.hulls_solid}};
+  j["seconds"] = {{"total", r.seconds_total},
+                  {"normals", r.seconds_normals},
+                  {"segmentation", r.seconds_segmentation},
+                  {"search", r.seconds_search},
+                  {"features", r.seconds_features},
+                  {"growing", r.seconds_growing},
+                  {"merging", r.seconds_merging},
+                  {"absorbing", r.seconds_absorbing}};
   return j;
 }
 
@@ -62,8 +66,12 @@ template <typename Scores>
 inline json
 scoresJson(const Scores& c)
 {
-  return {{"precision", finiteOrNull(c.precision)}, {"recall", finiteOrNull(c.recall)},
-          {"f1", finiteOrNull(c.f1)}, {"tp", c.tp}, {"fp", c.fp}, {"fn", c.fn}};
+  return {{"precision", finiteOrNull(c.precision)},
+          {"recall", finiteOrNull(c.recall)},
+          {"f1", finiteOrNull(c.f1)},
+          {"tp", c.tp},
+          {"fp", c.fp},
+          {"fn", c.fn}};
 }
 
 inline json
@@ -121,10 +129,9 @@ classSummary(const std::vector<pcl::PointIndices>& segments,
   j = json::object();
   for (const auto& [c, n] : per) {
     char buf[96];
-    std::snprintf(buf, sizeof(buf), "%s%s %zu (%.1f %%)", text.empty() ? "" : ", ",
-                  segmentation::toString(c), n.first,
-                  100.0 * static_cast<double>(n.second) /
-                      static_cast<double>(std::max<std::size_t>(points, 1)));
+    std::snprintf(
+        buf, sizeof(buf), "%s%s %zu (%.1f %%)", text.empty() ? "" : ", ", segmentation::toString(c), n.first,
+        100.0 * static_cast<double>(n.second) / static_cast<double>(std::max<std::size_t>(points, 1)));
     text += buf;
     j[segmentation::toString(c)] = {{"segments", n.first}, {"points", n.second}};
   }

@@ -42,8 +42,7 @@ namespace tools {
 ///        with a one-line reason on an unknown or repeated option, or an option missing its value.
 inline bool
 splitArguments(int argc, char** argv, int first, const std::set<std::string>& with_value,
-               const std::set<std::string>& switches, std::vector<std::string>& positional,
-               std::string& why)
+               const std::set<std::string>& switches, std::vector<std::string>& positional, std::string& why)
 {
   std::set<std::string> seen;
   for (int i = first; i < argc; ++i) {
@@ -59,14 +58,12 @@ splitArguments(int argc, char** argv, int first, const std::set<std::string>& wi
         return false;
       }
       ++i;
-    }
-    else if (switches.count(a) || a == "-h" || a == "--help")
+    } else if (switches.count(a) || a == "-h" || a == "--help")
       continue;
     else if (a.size() > 1 && a[0] == '-') {
       why = "Unknown option " + a + " (see -h)";
       return false;
-    }
-    else
+    } else
       positional.push_back(a);
   }
   return true;
@@ -101,8 +98,7 @@ optionValue(int argc, char** argv, const std::string& name)
 ///        when it is not a finite number in [lo, hi]. `value` is untouched when absent.
 inline bool
 numberOption(int argc, char** argv, const std::string& name, double& value, std::string& why,
-             double lo = -std::numeric_limits<double>::max(),
-             double hi = std::numeric_limits<double>::max())
+             double lo = -std::numeric_limits<double>::max(), double hi = std::numeric_limits<double>::max())
 {
   const char* text = optionValue(argc, argv, name);
   if (!text)
@@ -129,8 +125,8 @@ numberOption(int argc, char** argv, const std::string& name, double& value, std:
 /// \brief Integer version of numberOption(): whole numbers in [lo, hi] only ("6x", "6.5" refused).
 template <typename Int>
 inline bool
-integerOption(int argc, char** argv, const std::string& name, Int& value, std::string& why,
-              long long lo, long long hi)
+integerOption(int argc, char** argv, const std::string& name, Int& value, std::string& why, long long lo,
+              long long hi)
 {
   const char* text = optionValue(argc, argv, name);
   if (!text)
@@ -174,8 +170,10 @@ parseBounds(const std::string& option, const std::string& text, pcl_ls3d::io::Re
 {
   std::vector<double> v;
   if (!parseNumberList(text, v) || (v.size() != 4 && v.size() != 6)) {
-    why = option + " takes xmin,ymin,xmax,ymax or xmin,ymin,xmax,ymax,zmin,zmax (file coordinates), "
-                   "got '" + text + "'";
+    why = option +
+          " takes xmin,ymin,xmax,ymax or xmin,ymin,xmax,ymax,zmin,zmax (file coordinates), "
+          "got '" +
+          text + "'";
     return false;
   }
   region.use_z = v.size() == 6;
@@ -274,8 +272,8 @@ checkOutputFile(const std::string& path, const std::vector<std::string>& inputs,
   if (cloud && !io::canSaveFormat(path, why))
     why = path + ": " + why;
   else if (fs::is_symlink(fs::symlink_status(path, ec)) && !fs::exists(path, ec))
-    why = "output " + path + " is a symbolic link to the missing " +
-          fs::read_symlink(path, ec).string() + "; remove the link or name another output";
+    why = "output " + path + " is a symbolic link to the missing " + fs::read_symlink(path, ec).string() +
+          "; remove the link or name another output";
   else if (fs::is_directory(path, ec))
     why = "output " + path + " is a folder, not a file";
   else if (fs::exists(path, ec) && !fs::is_regular_file(path, ec))

@@ -10,17 +10,28 @@ const char*
 terminationTypeToString(TerminationType type)
 {
   switch (type) {
-  case TerminationType::NOT_RUN: return "NOT_RUN";
-  case TerminationType::CONVERGED: return "CONVERGED";
-  case TerminationType::MAX_ITERATIONS: return "MAX_ITERATIONS";
-  case TerminationType::INVALID_INPUT: return "INVALID_INPUT";
-  case TerminationType::NO_OVERLAP: return "NO_OVERLAP";
-  case TerminationType::TOO_FEW_OBSERVATIONS: return "TOO_FEW_OBSERVATIONS";
-  case TerminationType::SINGULAR: return "SINGULAR";
-  case TerminationType::DIVERGED: return "DIVERGED";
-  case TerminationType::STALLED: return "STALLED";
-  case TerminationType::UNRELIABLE: return "UNRELIABLE";
-  case TerminationType::IMPLAUSIBLE_SCALE: return "IMPLAUSIBLE_SCALE";
+  case TerminationType::NOT_RUN:
+    return "NOT_RUN";
+  case TerminationType::CONVERGED:
+    return "CONVERGED";
+  case TerminationType::MAX_ITERATIONS:
+    return "MAX_ITERATIONS";
+  case TerminationType::INVALID_INPUT:
+    return "INVALID_INPUT";
+  case TerminationType::NO_OVERLAP:
+    return "NO_OVERLAP";
+  case TerminationType::TOO_FEW_OBSERVATIONS:
+    return "TOO_FEW_OBSERVATIONS";
+  case TerminationType::SINGULAR:
+    return "SINGULAR";
+  case TerminationType::DIVERGED:
+    return "DIVERGED";
+  case TerminationType::STALLED:
+    return "STALLED";
+  case TerminationType::UNRELIABLE:
+    return "UNRELIABLE";
+  case TerminationType::IMPLAUSIBLE_SCALE:
+    return "IMPLAUSIBLE_SCALE";
   }
   return "UNKNOWN";
 }
@@ -29,16 +40,14 @@ bool
 AdjustmentReport::hasEstimate() const
 {
   return (isSolutionUsable() || termination == TerminationType::STALLED ||
-          termination == TerminationType::UNRELIABLE ||
-          termination == TerminationType::IMPLAUSIBLE_SCALE) &&
+          termination == TerminationType::UNRELIABLE || termination == TerminationType::IMPLAUSIBLE_SCALE) &&
          parameters.allFinite();
 }
 
 bool
 AdjustmentReport::isSolutionUsable() const
 {
-  return (termination == TerminationType::CONVERGED ||
-          termination == TerminationType::MAX_ITERATIONS) &&
+  return (termination == TerminationType::CONVERGED || termination == TerminationType::MAX_ITERATIONS) &&
          parameters.allFinite();
 }
 
@@ -46,9 +55,9 @@ std::string
 AdjustmentReport::brief() const
 {
   char line[256];
-  std::snprintf(line, sizeof(line), "%s after %d iterations, sigma0 = %.6g, %zu observations used, %zu rejected",
-                terminationTypeToString(termination), iterations, sigma0, observations_used,
-                observations_rejected);
+  std::snprintf(
+      line, sizeof(line), "%s after %d iterations, sigma0 = %.6g, %zu observations used, %zu rejected",
+      terminationTypeToString(termination), iterations, sigma0, observations_used, observations_rejected);
   return line;
 }
 
@@ -72,18 +81,20 @@ AdjustmentReport::fullReport() const
   if (quality.expected_noise > 0.0 || quality.coverage > 0.0)
     os << (quality.noise_yardstick > quality.expected_noise
                ? format("  quality: sigma0 = %.3g x 0.001 x the point spacing (%.3g; the surfaces' own noise "
-                        "%.3g is below it)", quality.sigma0_ratio, quality.noise_yardstick, quality.expected_noise)
+                        "%.3g is below it)",
+                        quality.sigma0_ratio, quality.noise_yardstick, quality.expected_noise)
                : format("  quality: sigma0 = %.3g x the surfaces' own noise (%.3g)", quality.sigma0_ratio,
                         quality.expected_noise))
        << (quality.normal_sigma_ratio > 0.0
-               ? format(" (across the surface %.3g x)", quality.normal_sigma_ratio) : std::string())
+               ? format(" (across the surface %.3g x)", quality.normal_sigma_ratio)
+               : std::string())
        << format(", coverage %.3f, rejected %.3f", quality.coverage, quality.rejected_fraction)
        << format(", moved %.4g (position sigma %.3g), kept %.3g of the start's correspondences",
-                 quality.movement, quality.position_sigma, quality.observations_kept) << ": "
-       << (quality.trustworthy ? "trustworthy\n" : "NOT TRUSTWORTHY\n");
+                 quality.movement, quality.position_sigma, quality.observations_kept)
+       << ": " << (quality.trustworthy ? "trustworthy\n" : "NOT TRUSTWORTHY\n");
   if (quality.held_out_scale_tested)
-    os << format("  held-out scale if freed: m - 1 = %+.4g ppm +- %.3g (z %+.3g)", 1e6 * quality.held_out_scale,
-                 1e6 * quality.held_out_scale_sigma, quality.held_out_scale_z)
+    os << format("  held-out scale if freed: m - 1 = %+.4g ppm +- %.3g (z %+.3g)",
+                 1e6 * quality.held_out_scale, 1e6 * quality.held_out_scale_sigma, quality.held_out_scale_z)
        << format(", moves the source's edge by %.4g\n", quality.held_out_scale_effect);
   os << format("  local origin (source) = (%.4f, %.4f, %.4f)\n", local_origin_source.x(),
                local_origin_source.y(), local_origin_source.z());

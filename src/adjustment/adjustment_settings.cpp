@@ -101,8 +101,9 @@ AdjustmentSettings::isValid(std::string* why) const
     return fail("min_observations must be >= 1");
   if (!(max_scale_deviation > 0.0) || !(max_sigma0_ratio > 0.0) || !(max_median_gradient >= 1.0) ||
       !(max_scale_growth >= 1.0))
-    return fail("max_scale_deviation, max_sigma0_ratio must be > 0, max_median_gradient and max_scale_growth >= 1 "
-                "(+inf switches a test off)");
+    return fail(
+        "max_scale_deviation, max_sigma0_ratio must be > 0, max_median_gradient and max_scale_growth >= 1 "
+        "(+inf switches a test off)");
   if (!(min_coverage >= 0.0 && min_coverage <= 1.0) ||
       !(max_rejected_fraction >= 0.0 && max_rejected_fraction <= 1.0) ||
       !(min_observations_kept >= 0.0 && min_observations_kept <= 1.0))
@@ -125,9 +126,8 @@ sourceBlockFromGuess(const Eigen::Matrix4d& guess, const Eigen::Vector3d& reduct
   ParameterBlock block;
   block.input_origin = reduction_origin;
   block.output_origin = (guess * reduction_origin.homogeneous()).head<3>();
-  block.values = SimilarityTransform::fromMatrix(
-                     globalToLocal(guess, block.input_origin, block.output_origin))
-                     .vector();
+  block.values =
+      SimilarityTransform::fromMatrix(globalToLocal(guess, block.input_origin, block.output_origin)).vector();
   block.values.head<3>().setZero();  // o_t = guess(o_s) by construction
   block.apriori_values = settings.apriori_from_guess ? block.values : settings.apriori_values;
   block.apriori_weights = settings.apriori_weights;

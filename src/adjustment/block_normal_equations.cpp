@@ -13,7 +13,7 @@ namespace pcl_ls3d {
 using detail::indicesOf;
 
 BlockNormalEquations::BlockNormalEquations(int blocks)
-: blocks_(blocks), b_(Eigen::VectorXd::Zero(7 * static_cast<Eigen::Index>(blocks)))
+    : blocks_(blocks), b_(Eigen::VectorXd::Zero(7 * static_cast<Eigen::Index>(blocks)))
 {}
 
 void
@@ -31,8 +31,8 @@ BlockNormalEquations::addOverlap(int i, int j, const PairNormalEquations& c)
 {
   if (i == j) {  // both rows on one block: the sum of the two halves
     NormalEquations single;
-    single.N = c.N.topLeftCorner<7, 7>() + c.N.topRightCorner<7, 7>() +
-               c.N.bottomLeftCorner<7, 7>() + c.N.bottomRightCorner<7, 7>();
+    single.N = c.N.topLeftCorner<7, 7>() + c.N.topRightCorner<7, 7>() + c.N.bottomLeftCorner<7, 7>() +
+               c.N.bottomRightCorner<7, 7>();
     single.b = c.b.head<7>() + c.b.tail<7>();
     single.ltpl = c.ltpl;
     single.n = c.n;
@@ -43,8 +43,7 @@ BlockNormalEquations::addOverlap(int i, int j, const PairNormalEquations& c)
   const int lo = swap ? j : i, hi = swap ? i : j;
   addToBlock(i, i, c.N.topLeftCorner<7, 7>());
   addToBlock(j, j, c.N.bottomRightCorner<7, 7>());
-  addToBlock(lo, hi, swap ? Matrix7d(c.N.bottomLeftCorner<7, 7>())
-                          : Matrix7d(c.N.topRightCorner<7, 7>()));
+  addToBlock(lo, hi, swap ? Matrix7d(c.N.bottomLeftCorner<7, 7>()) : Matrix7d(c.N.topRightCorner<7, 7>()));
   b_.segment<7>(7 * i) += c.b.head<7>();
   b_.segment<7>(7 * j) += c.b.tail<7>();
   ltpl_ += c.ltpl;
@@ -180,9 +179,8 @@ solveSparse(const BlockNormalEquations& ne, const GaussMarkovProblem& problem)
     for (Eigen::Index i = 0; i < S.rows(); ++i)
       shifted.coeffRef(i, i) += shift;
     ldlt.compute(shifted);
-    const int weak = ldlt.info() == Eigen::Success
-                         ? weakestPivot(ldlt, S, problem.determinability_threshold)
-                         : -2;
+    const int weak =
+        ldlt.info() == Eigen::Success ? weakestPivot(ldlt, S, problem.determinability_threshold) : -2;
     if (weak == -2) {
       sol.message = "sparse factorisation of the normal matrix failed";
       return sol;
@@ -204,7 +202,7 @@ solveSparse(const BlockNormalEquations& ne, const GaussMarkovProblem& problem)
     br[r] = b[idx[static_cast<std::size_t>(r)]];
   }
   // N_r⁻¹ = D S⁻¹ D.
-  const Eigen::VectorXd dxr = -(scale.asDiagonal() * ldlt.solve(scale.asDiagonal() * br)).eval();  // eq. 10
+  const Eigen::VectorXd dxr = -(scale.asDiagonal() * ldlt.solve(scale.asDiagonal() * br)).eval();   // eq. 10
   const Eigen::MatrixXd Qr = scale.asDiagonal() * ldlt.solve(Eigen::MatrixXd(scale.asDiagonal()));  // eq. 14
   if (!dxr.allFinite() || !Qr.allFinite()) {
     sol.message = "solve produced non-finite values";
@@ -227,8 +225,7 @@ solveSparse(const BlockNormalEquations& ne, const GaussMarkovProblem& problem)
 }  // namespace
 
 GaussMarkovSolution
-solveGaussMarkov(const BlockNormalEquations& ne, const GaussMarkovProblem& problem,
-                 Eigen::Index dense_limit)
+solveGaussMarkov(const BlockNormalEquations& ne, const GaussMarkovProblem& problem, Eigen::Index dense_limit)
 {
   const Eigen::Index u = ne.unknowns();
   if (problem.current.size() != u || problem.apriori_values.size() != u ||

@@ -57,8 +57,8 @@ removeUndeterminable(const Matrix& N, const Eigen::VectorXd& scaling, double thr
 // Adds the a-priori observations (eq. 9) to N and b; marks fixed parameters.
 template <typename Matrix, typename Vector>
 void
-addAprioriObservations(const GaussMarkovProblem& problem, Matrix& N, Vector& b,
-                       GaussMarkovSolution& sol, std::vector<bool>& estimated)
+addAprioriObservations(const GaussMarkovProblem& problem, Matrix& N, Vector& b, GaussMarkovSolution& sol,
+                       std::vector<bool>& estimated)
 {
   const Eigen::VectorXd& pe = problem.apriori_weights;
   for (Eigen::Index i = 0; i < N.rows(); ++i) {
@@ -107,7 +107,7 @@ solve(const Matrix& N0, const Vector& b0, double ltpl, std::size_t n, const Gaus
     sol.message = "reduced normal matrix is not positive definite";
     return sol;
   }
-  const Eigen::VectorXd dxr = -ldlt.solve(br);                              // eq. 10
+  const Eigen::VectorXd dxr = -ldlt.solve(br);                             // eq. 10
   const Eigen::MatrixXd Qr = ldlt.solve(Eigen::MatrixXd::Identity(k, k));  // eq. 14
   if (!dxr.allFinite() || !Qr.allFinite()) {
     sol.message = "solve produced non-finite values";
@@ -132,17 +132,15 @@ bool
 consistent(const Eigen::MatrixXd& N, const Eigen::VectorXd& b, const GaussMarkovProblem& p)
 {
   const Eigen::Index u = N.rows();
-  return u > 0 && N.cols() == u && b.size() == u && p.current.size() == u &&
-         p.apriori_values.size() == u && p.apriori_weights.size() == u && p.scaling.size() == u;
+  return u > 0 && N.cols() == u && b.size() == u && p.current.size() == u && p.apriori_values.size() == u &&
+         p.apriori_weights.size() == u && p.scaling.size() == u;
 }
 
 }  // namespace
 
 GaussMarkovProblem::GaussMarkovProblem(int unknowns)
-: current(Eigen::VectorXd::Zero(unknowns))
-, apriori_values(Eigen::VectorXd::Zero(unknowns))
-, apriori_weights(Eigen::VectorXd::Zero(unknowns))
-, scaling(Eigen::VectorXd::Ones(unknowns))
+    : current(Eigen::VectorXd::Zero(unknowns)), apriori_values(Eigen::VectorXd::Zero(unknowns)),
+      apriori_weights(Eigen::VectorXd::Zero(unknowns)), scaling(Eigen::VectorXd::Ones(unknowns))
 {}
 
 GaussMarkovSolution

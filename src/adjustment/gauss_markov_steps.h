@@ -22,9 +22,9 @@ indicesOf(const std::vector<bool>& mask)
 // VᵀPV (eq. 12 without storing V), V_eᵀP_eV_e (eq. 13), r and σ0 (eq. 11).
 template <typename Matrix, typename Vector>
 void
-fillResidualStatistics(const Matrix& N, const Vector& b, double ltpl, std::size_t n,
-                       const Vector& dx, const std::vector<int>& idx,
-                       const GaussMarkovProblem& problem, GaussMarkovSolution& sol)
+fillResidualStatistics(const Matrix& N, const Vector& b, double ltpl, std::size_t n, const Vector& dx,
+                       const std::vector<int>& idx, const GaussMarkovProblem& problem,
+                       GaussMarkovSolution& sol)
 {
   sol.vtpv = std::max(0.0, ltpl + 2.0 * dx.dot(b) + dx.dot(N * dx));
   const Eigen::VectorXd& pe = problem.apriori_weights;

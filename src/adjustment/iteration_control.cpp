@@ -30,9 +30,8 @@ changesBelow(const GaussMarkovSolution& sol, double fraction)
 
 IterationControl::IterationControl(const AdjustmentSettings& settings, std::size_t n, bool culling,
                                    double spacing)
-: settings_(settings)
-, culling_(culling)
-, extrapolator_(spacing > 0.0 ? spacing : std::numeric_limits<double>::infinity())
+    : settings_(settings), culling_(culling),
+      extrapolator_(spacing > 0.0 ? spacing : std::numeric_limits<double>::infinity())
 {
   // Coarse phase: every stride-th point only, until the estimate has settled to ~1 σ_i.
   const std::size_t wanted = settings.coarse_observations;

@@ -17,8 +17,8 @@ setUpPair(const std::vector<Eigen::Vector3d>& source, const TargetSurface& targe
           std::vector<Eigen::Vector3d>& reduced)
 {
   Eigen::Vector3d o_s;
-  if (!overlapCentroid(source, target, guess, settings.max_correspondence_distance, o_s,
-                       setup.target_box, setup.inside))
+  if (!overlapCentroid(source, target, guess, settings.max_correspondence_distance, o_s, setup.target_box,
+                       setup.inside))
     return false;
   setup.source = sourceBlockFromGuess(guess, o_s, settings);
   setup.target = ParameterBlock::fixedIdentity(setup.source.output_origin);
@@ -71,8 +71,7 @@ fillPrecision(AdjustmentReport& report, const GaussMarkovSolution& sol)
     else if (!sol.determinable[s]) {
       report.sigmas[i] = report.sigmas_formal[i] = std::numeric_limits<double>::infinity();
       undetermined += (undetermined.empty() ? "" : ", ") + similarityParameterNames()[s];
-    }
-    else if (exact_fit)
+    } else if (exact_fit)
       report.sigmas[i] = report.sigmas_formal[i] = std::numeric_limits<double>::quiet_NaN();
     else
       report.sigmas[i] = std::sqrt(std::max(0.0, report.covariance(i, i)));

@@ -6,8 +6,8 @@
 // rules/target_overlap.h.
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
-#include <pcl_ls3d/adjustment/gauss_markov.h>
 #include <pcl_ls3d/adjustment/errors_in_variables.h>
+#include <pcl_ls3d/adjustment/gauss_markov.h>
 #include <pcl_ls3d/adjustment/normal_equations.h>
 #include <pcl_ls3d/adjustment/omitted_parameters.h>
 #include <pcl_ls3d/adjustment/pair_matcher.h>
@@ -28,10 +28,10 @@ struct PairSetup
 {
   ParameterBlock source;
   ParameterBlock target;
-  Eigen::AlignedBox3d target_box;       ///< of the target points (cloud coordinates)
-  Eigen::AlignedBox3d source_box;       ///< of the finite reduced source points
-  std::vector<int> inside;              ///< source points over the target's box (σ_s seeds)
-  double radius = 0.0;                  ///< largest |finite reduced source point|
+  Eigen::AlignedBox3d target_box;  ///< of the target points (cloud coordinates)
+  Eigen::AlignedBox3d source_box;  ///< of the finite reduced source points
+  std::vector<int> inside;         ///< source points over the target's box (σ_s seeds)
+  double radius = 0.0;             ///< largest |finite reduced source point|
 };
 
 /// Reduction to a local origin near the overlap (conditioning on georeferenced data), starting
@@ -65,7 +65,6 @@ conjugatePoints(const ObservationSet& set, std::size_t most = 256);
 /// The 7 flags of a one-block solution as the report's array.
 std::array<bool, 7>
 flags7(const std::vector<bool>& flags);
-
 
 /// Design row of the source block with the errors-in-variables correction of the scale column
 /// (errors_in_variables.h): a_m' = a_m − c l.

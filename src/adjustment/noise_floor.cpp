@@ -37,7 +37,8 @@ sequentialNeighbours(const PairMatcher& matcher, const ObservationSet& set, doub
       continue;
     const std::size_t last = prev;
     prev = k;
-    if (last != set.size() && (matcher.position(set[last]) - matcher.position(set[k])).squaredNorm() <= reach2)
+    if (last != set.size() &&
+        (matcher.position(set[last]) - matcher.position(set[k])).squaredNorm() <= reach2)
       pairs.emplace_back(last, k);
   }
   return pairs;
@@ -58,8 +59,9 @@ fittedNormalVariance(const TargetSurface& target, const ObservationSet& set, int
     const int count = target.nearestKSearch(o.foot, neighbours, index, d2);
     double height = 0.0;
     Eigen::Vector2d slope, slope_variance;
-    if (tin::quadricPatch(target, index, count, o.foot, o.direction / len, height, slope, nullptr,
-                          nullptr, &slope_variance) && slope_variance.allFinite())
+    if (tin::quadricPatch(target, index, count, o.foot, o.direction / len, height, slope, nullptr, nullptr,
+                          &slope_variance) &&
+        slope_variance.allFinite())
       variance.push_back(0.5 * slope_variance.sum());
   }
   return variance.size() < 20 ? 0.0 : upperMedian(std::move(variance));
@@ -82,8 +84,8 @@ normalNoiseVariance(const ObservationSet& set, const NeighbourPairs& neighbours)
 }
 
 std::vector<bool>
-noiseDominated(const Matrix7d& N, const Matrix7d& M, const Vector7d& apriori_weights,
-               const Vector7d& scaling, double share)
+noiseDominated(const Matrix7d& N, const Matrix7d& M, const Vector7d& apriori_weights, const Vector7d& scaling,
+               double share)
 {
   std::vector<bool> flagged(7, false);
   std::vector<int> free;

@@ -60,8 +60,7 @@ PairMatcher::matchPoint(std::size_t p, const BlockLinearization& source_pose,
   ConjugateObservations found;
   int count = 0;
   const int most = std::max(1, std::min(3, rule_->maxObservations()));
-  if (grid_.mayOverlap(query) &&
-      rule_->findConjugate(query, *target_, max_distance_, caches_[p], found))
+  if (grid_.mayOverlap(query) && rule_->findConjugate(query, *target_, max_distance_, caches_[p], found))
     for (int k = 0; k < std::min(found.count, most); ++k) {
       const ConjugateObservation& c = found.items[static_cast<std::size_t>(k)];
       if (!std::isfinite(c.distance) || !c.direction.allFinite())

@@ -20,7 +20,7 @@ accumulateNormalEquations(const SourceRows& row, const Eigen::VectorXd& weights)
 {
   NormalEquations ne;
   const Index m = weights.size();
-#pragma omp parallel if (worthParallel(static_cast<std::size_t>(m)))
+#pragma omp parallel if (worthParallel(static_cast <std::size_t>(m)))
   {
     NormalEquations local;
 #pragma omp for schedule(static) nowait
@@ -125,7 +125,8 @@ heldOutScaleTest(const GaussMarkovSolution& sol, const SourceRows& row, const Ei
   const MiddleTermFn middle = [&](const Eigen::VectorXd& step, const Eigen::MatrixXd& q) -> Eigen::MatrixXd {
     if (!(cell > 0.0))
       return sol.sigma0 * sol.sigma0 * (N + soft);
-    return spatialMiddleTerm(row.set.size(), cell, Matrix7d(q), sol.sigma0, pe, freed, observation(Vector7d(step)));
+    return spatialMiddleTerm(row.set.size(), cell, Matrix7d(q), sol.sigma0, pe, freed,
+                             observation(Vector7d(step)));
   };
   return testOmittedParameters(N, g, Matrix7d(sol.qxx), middle, sol.sigma0, {SCALE});
 }

@@ -98,12 +98,9 @@ ParameterBlock::matrix() const
 }
 
 BlockLinearization::BlockLinearization(const ParameterBlock& block)
-: lin_(SimilarityTransform(block.values))
-, input_origin_(block.input_origin)
-, output_origin_(block.output_origin)
-, rotation_(SimilarityTransform(block.values).rotation())
-, scale_(block.values[SCALE])
-, identity_(block.isFixedIdentity())
+    : lin_(SimilarityTransform(block.values)), input_origin_(block.input_origin),
+      output_origin_(block.output_origin), rotation_(SimilarityTransform(block.values).rotation()),
+      scale_(block.values[SCALE]), identity_(block.isFixedIdentity())
 {}
 
 Eigen::Vector3d

@@ -1,5 +1,5 @@
-#include <pcl_ls3d/adjustment/quality_gate.h>
 #include <pcl_ls3d/adjustment/observation_weighting.h>
+#include <pcl_ls3d/adjustment/quality_gate.h>
 
 #include <Eigen/Eigenvalues>
 
@@ -43,7 +43,8 @@ cornerPositionSigma(const Vector7d& estimate, const Matrix7d& covariance, const 
       Vector7d plus = estimate, minus = estimate;
       plus[i] += h;
       minus[i] -= h;
-      jacobian.col(i) = (SimilarityTransform(plus).apply(corner) - SimilarityTransform(minus).apply(corner)) / (2.0 * h);
+      jacobian.col(i) =
+          (SimilarityTransform(plus).apply(corner) - SimilarityTransform(minus).apply(corner)) / (2.0 * h);
     }
     const Eigen::Matrix3d position = jacobian * covariance * jacobian.transpose();
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(position, Eigen::EigenvaluesOnly);
@@ -116,21 +117,19 @@ measureQuality(const QualityInputs& in, const ObservationSet& observations)
   q.noise_yardstick = std::max(q.expected_noise, 1e-3 * in.spacing);
   q.sigma0_ratio = q.noise_yardstick > 0.0 ? in.sigma0 / q.noise_yardstick : 0.0;
   q.normal_sigma_ratio = q.noise_yardstick > 0.0 ? in.normal_sigma / q.noise_yardstick : 0.0;
-  q.coverage = in.candidates > 0 ? static_cast<double>(distinctPoints(observations)) /
-                                       static_cast<double>(in.candidates)
-                                 : 0.0;
-  q.rejected_fraction = in.correspondences > 0
-                            ? static_cast<double>(in.correspondences - in.used) /
-                                  static_cast<double>(in.correspondences)
-                            : 0.0;
+  q.coverage = in.candidates > 0
+                   ? static_cast<double>(distinctPoints(observations)) / static_cast<double>(in.candidates)
+                   : 0.0;
+  q.rejected_fraction = in.correspondences > 0 ? static_cast<double>(in.correspondences - in.used) /
+                                                     static_cast<double>(in.correspondences)
+                                               : 0.0;
   q.movement = movementOverBox(in.start, in.estimate, in.source_box);
   q.position_sigma = cornerPositionSigma(in.estimate, in.covariance, in.source_box);
   q.median_gradient = medianGradient(observations);
   q.start_scale = in.start_scale;
-  q.observations_kept = in.start_correspondences > 0
-                            ? static_cast<double>(in.correspondences) /
-                                  static_cast<double>(in.start_correspondences)
-                            : 1.0;
+  q.observations_kept = in.start_correspondences > 0 ? static_cast<double>(in.correspondences) /
+                                                           static_cast<double>(in.start_correspondences)
+                                                     : 1.0;
   q.final_scale = robustScale(observations.distances());
   return q;
 }
@@ -158,8 +157,8 @@ normalComponentSigma(const ObservationSet& observations, const Eigen::VectorXd& 
 bool
 moveUndetermined(const QualityFigures& q, const AdjustmentSettings& s)
 {
-  return q.position_sigma > s.max_position_sigma_ratio * q.expected_noise &&
-         q.movement > q.expected_noise && q.movement < s.min_movement_significance * q.position_sigma;
+  return q.position_sigma > s.max_position_sigma_ratio * q.expected_noise && q.movement > q.expected_noise &&
+         q.movement < s.min_movement_significance * q.position_sigma;
 }
 
 bool
@@ -184,15 +183,16 @@ applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimate
     return TerminationType::IMPLAUSIBLE_SCALE;
   }
   if (q.sigma0_ratio > s.max_sigma0_ratio)
-    add(figure(q.noise_yardstick > q.expected_noise
-                   ? "sigma0 is %.3g x the smallest noise the gate assumes, 0.001 x the point spacing (limit %.3g)"
-                   : "sigma0 is %.3g x the surfaces' own noise (limit %.3g)",
-               q.sigma0_ratio, s.max_sigma0_ratio));
+    add(figure(
+        q.noise_yardstick > q.expected_noise
+            ? "sigma0 is %.3g x the smallest noise the gate assumes, 0.001 x the point spacing (limit %.3g)"
+            : "sigma0 is %.3g x the surfaces' own noise (limit %.3g)",
+        q.sigma0_ratio, s.max_sigma0_ratio));
   if (const std::string normal = normalResidualReason(q, s); !normal.empty())
     add(normal);
   if (q.coverage < s.min_coverage)
-    add(figure("only %.3g of the source points over the target have an observation (limit %.3g)",
-               q.coverage, s.min_coverage));
+    add(figure("only %.3g of the source points over the target have an observation (limit %.3g)", q.coverage,
+               s.min_coverage));
   if (q.rejected_fraction > s.max_rejected_fraction)
     add(figure("%.3g of the correspondences were rejected (limit %.3g)", q.rejected_fraction,
                s.max_rejected_fraction));

@@ -6,8 +6,8 @@
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
 #include <pcl_ls3d/adjustment/surface_noise.h>
 
-#include "matching_steps.h"
 #include "../rules/target_overlap.h"
+#include "matching_steps.h"
 
 #include <algorithm>
 #include <cmath>
@@ -47,18 +47,18 @@ invalidInput(const std::vector<Eigen::Vector3d>& source, const TargetSurface& ta
 // The state of one pair adjustment between the stages.
 struct PairRun
 {
-  PairSetup setup;                 // stage 1: the source block (estimated) and the target's
-  GaussMarkovProblem problem;      // a-priori observations and the rank-test scaling
-  ScaleColumnCorrection eiv;       // errors in variables of the scale column
-  GaussMarkovSolution sol;         // the last solve
-  Vector7d start;                  // the parameters at the initial guess
-  double source_noise = 0.0;       // σ_s, the source's own roughness
-  double start_scale = 0.0;        // 1.4826 · median |l| at the initial guess
+  PairSetup setup;                        // stage 1: the source block (estimated) and the target's
+  GaussMarkovProblem problem;             // a-priori observations and the rank-test scaling
+  ScaleColumnCorrection eiv;              // errors in variables of the scale column
+  GaussMarkovSolution sol;                // the last solve
+  Vector7d start;                         // the parameters at the initial guess
+  double source_noise = 0.0;              // σ_s, the source's own roughness
+  double start_scale = 0.0;               // 1.4826 · median |l| at the initial guess
   std::size_t start_correspondences = 0;  // observations at the initial guess
-  double spacing = 0.0;            // the target's point spacing (nearest-neighbour median)
-  double guess_uncertainty = 0.0;  // the annealed cut's floor in the first iteration
-  double normal_variance = -1.0;   // σ_u² of the target's normals where observed (< 0: not yet)
-  bool reset = false;              // this iteration moved a newly held parameter back to its start
+  double spacing = 0.0;                   // the target's point spacing (nearest-neighbour median)
+  double guess_uncertainty = 0.0;         // the annealed cut's floor in the first iteration
+  double normal_variance = -1.0;          // σ_u² of the target's normals where observed (< 0: not yet)
+  bool reset = false;                     // this iteration moved a newly held parameter back to its start
 
   void
   prepare(const AdjustmentSettings& settings, const std::vector<Eigen::Vector3d>& reduced)
@@ -69,10 +69,9 @@ struct PairRun
     problem.scaling = rankTestScaling(setup.radius);
     start = setup.source.values;
     source_noise = sourceNoise(reduced, setup);
-    guess_uncertainty = settings.guess_uncertainty > 0.0
-                            ? settings.guess_uncertainty
-                            : std::min(0.01 * setup.source_box.diagonal().norm(),
-                                       settings.max_correspondence_distance);
+    guess_uncertainty = settings.guess_uncertainty > 0.0 ? settings.guess_uncertainty
+                                                         : std::min(0.01 * setup.source_box.diagonal().norm(),
+                                                                    settings.max_correspondence_distance);
     if (settings.correct_source_noise)
       eiv.setSourceNoise(source_noise);
     sol.qxx = Matrix7d::Zero();
@@ -98,7 +97,8 @@ noConjugatePoint(const std::vector<Eigen::Vector3d>& source, const Eigen::Matrix
       degenerateTargetReason(source, setup.inside, guess, target, "target", "source");
   if (!degenerate.empty())
     return fail(report, TerminationType::TOO_FEW_OBSERVATIONS, degenerate);
-  return fail(report, TerminationType::NO_OVERLAP, "the rule found no conjugate point on the target (no overlap)");
+  return fail(report, TerminationType::NO_OVERLAP,
+              "the rule found no conjugate point on the target (no overlap)");
 }
 
 // Too few conjugate points to go on (sets the report's failure).
@@ -109,7 +109,8 @@ tooFewObservations(std::size_t m, int it, const AdjustmentSettings& settings, Ad
     return false;
   report.iterations = it - 1;
   fail(report, TerminationType::TOO_FEW_OBSERVATIONS,
-       "only " + std::to_string(m) + " observations (minimum " + std::to_string(settings.min_observations) + ")");
+       "only " + std::to_string(m) + " observations (minimum " + std::to_string(settings.min_observations) +
+           ")");
   return true;
 }
 
@@ -121,8 +122,8 @@ std::vector<bool>
 noiseDominatedParameters(PairRun& run, const TargetSurface& target, const SourceRows& row,
                          const Eigen::VectorXd& weights, const NormalEquations& ne)
 {
-  const bool normals_only = std::none_of(row.set.begin(), row.set.end(),
-                                         [](const Observation& o) { return o.component != 0; });
+  const bool normals_only =
+      std::none_of(row.set.begin(), row.set.end(), [](const Observation& o) { return o.component != 0; });
   if (!normals_only)
     return std::vector<bool>(7, false);
   if (run.normal_variance < 0.0)  // a property of the target: measured once
@@ -191,8 +192,8 @@ solveAndUpdate(PairRun& run, const NormalEquations& ne, const std::vector<bool>&
 // The quality gate on a finished adjustment (quality_gate.h).
 void
 assess(const PairRun& run, const ObservationSet& obs, const Eigen::VectorXd& weights,
-       const TargetSurface& target, const AdjustmentSettings& settings,
-       const OmittedParameterTest& held_out, AdjustmentReport& report)
+       const TargetSurface& target, const AdjustmentSettings& settings, const OmittedParameterTest& held_out,
+       AdjustmentReport& report)
 {
   QualityInputs in;
   in.sigma0 = run.sol.sigma0;
@@ -222,8 +223,8 @@ assess(const PairRun& run, const ObservationSet& obs, const Eigen::VectorXd& wei
       report.termination != TerminationType::MAX_ITERATIONS)
     return;
   const bool scale_estimated = run.sol.determinable[SCALE];
-  report.termination = applyQualityGate(report.quality, in, scale_estimated, settings,
-                                        report.termination, report.message);
+  report.termination =
+      applyQualityGate(report.quality, in, scale_estimated, settings, report.termination, report.message);
 }
 
 // Estimate, precision (eq. 14 / spatial sandwich) and reliability of the last iteration.
@@ -263,10 +264,10 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
 }  // namespace
 
 AdjustmentReport
-SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
-                         const std::vector<int>& source_indices, const TargetSurface& target,
-                         const ConjugateRule& rule, const RobustEstimator& estimator,
-                         const AdjustmentSettings& settings, const Eigen::Matrix4d& guess)
+SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& source_indices,
+                         const TargetSurface& target, const ConjugateRule& rule,
+                         const RobustEstimator& estimator, const AdjustmentSettings& settings,
+                         const Eigen::Matrix4d& guess)
 {
   AdjustmentReport report;
   report.rule_name = rule.name();
@@ -338,8 +339,7 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
     report.log.push_back(rec);
     if (next.freeze)
       matcher_.freeze();
-    const bool stop = hooks_.after_iteration &&
-                      hooks_.after_iteration(rec, pair.setup.source.matrix(), obs);
+    const bool stop = hooks_.after_iteration && hooks_.after_iteration(rec, pair.setup.source.matrix(), obs);
     // Converged while the annealed floor still set the cut: the estimate is the floor's, not
     // the estimator's. Go on while the floor keeps halving, until the estimator's own cut rules.
     const bool settled = next.converged && !weighting_.floorBound() && !pair.reset;
@@ -348,8 +348,8 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source,
       break;
     }
   }
-  finish(pair, SourceRows{matcher_, matcher_.observations(), pair.eiv}, weighting_.weights(),
-         settings, target, source_indices, report);
+  finish(pair, SourceRows{matcher_, matcher_.observations(), pair.eiv}, weighting_.weights(), settings,
+         target, source_indices, report);
   return report;
 }
 

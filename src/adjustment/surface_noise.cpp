@@ -16,8 +16,8 @@ std::uint64_t
 cellKey(const Eigen::Array3i& c)
 {
   constexpr std::int64_t mask = (std::int64_t(1) << 21) - 1;
-  return (static_cast<std::uint64_t>(c.x() & mask) << 42) |
-         (static_cast<std::uint64_t>(c.y() & mask) << 21) | static_cast<std::uint64_t>(c.z() & mask);
+  return (static_cast<std::uint64_t>(c.x() & mask) << 42) | (static_cast<std::uint64_t>(c.y() & mask) << 21) |
+         static_cast<std::uint64_t>(c.z() & mask);
 }
 
 Eigen::Array3i
@@ -25,7 +25,6 @@ cellOf(const Eigen::Vector3d& x, double inv_cell)
 {
   return (x * inv_cell).array().floor().cast<int>();
 }
-
 
 // Median of the per-neighbourhood σ̂² ~ σ² χ²_ν/ν of local quadrics, corrected to a mean.
 class NoisePool
@@ -90,8 +89,8 @@ private:
 }  // namespace
 
 double
-estimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& seeds,
-                     double radius, std::size_t max_seeds)
+estimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& seeds, double radius,
+                     std::size_t max_seeds)
 {
   if (!(radius > 0.0) || seeds.empty() || points.empty())
     return 0.0;
@@ -166,7 +165,8 @@ estimatePointSpacing(const TargetSurface& surface, std::size_t samples)
     const Eigen::Vector3d p = surface.point(static_cast<int>(i));
     const int found = surface.nearestKSearch(p, 2, indices, sq_dists);
     for (int j = 0; j < found; ++j)  // the first neighbour at distance 0 is the point itself
-      if (indices[static_cast<std::size_t>(j)] != static_cast<int>(i) && sq_dists[static_cast<std::size_t>(j)] > 0.f) {
+      if (indices[static_cast<std::size_t>(j)] != static_cast<int>(i) &&
+          sq_dists[static_cast<std::size_t>(j)] > 0.f) {
         nearest.push_back(std::sqrt(static_cast<double>(sq_dists[static_cast<std::size_t>(j)])));
         break;
       }

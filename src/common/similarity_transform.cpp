@@ -14,7 +14,7 @@ similarityParameterNames()
 }
 
 SimilarityTransform::SimilarityTransform(const Vector7d& p)
-: t(p.head<3>()), phi(p[PHI]), omega(p[OMEGA]), kappa(p[KAPPA]), m(p[SCALE])
+    : t(p.head<3>()), phi(p[PHI]), omega(p[OMEGA]), kappa(p[KAPPA]), m(p[SCALE])
 {}
 
 Vector7d
@@ -78,8 +78,7 @@ SimilarityTransform::fromMatrix(const Eigen::Matrix4d& T)
 }
 
 Eigen::Matrix4d
-localToGlobal(const Eigen::Matrix4d& T_local,
-              const Eigen::Vector3d& origin_source,
+localToGlobal(const Eigen::Matrix4d& T_local, const Eigen::Vector3d& origin_source,
               const Eigen::Vector3d& origin_target)
 {
   Eigen::Matrix4d T = T_local;
@@ -90,13 +89,12 @@ localToGlobal(const Eigen::Matrix4d& T_local,
 }
 
 Eigen::Matrix4d
-globalToLocal(const Eigen::Matrix4d& T_global,
-              const Eigen::Vector3d& origin_source,
+globalToLocal(const Eigen::Matrix4d& T_global, const Eigen::Vector3d& origin_source,
               const Eigen::Vector3d& origin_target)
 {
   Eigen::Matrix4d T = T_global;
-  T.topRightCorner<3, 1>() = T_global.topRightCorner<3, 1>() - origin_target +
-                             T_global.topLeftCorner<3, 3>() * origin_source;
+  T.topRightCorner<3, 1>() =
+      T_global.topRightCorner<3, 1>() - origin_target + T_global.topLeftCorner<3, 3>() * origin_source;
   return T;
 }
 

@@ -24,7 +24,8 @@ cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis)
     return out;
   const Eigen::Vector3d e = box.sizes();
   const double areas[3] = {e.y() * e.z(), e.x() * e.z(), e.x() * e.y()};  // normal x, y, z
-  out.normal_axis = axis >= 0 && axis < 3 ? axis : static_cast<int>(std::max_element(areas, areas + 3) - areas);
+  out.normal_axis =
+      axis >= 0 && axis < 3 ? axis : static_cast<int>(std::max_element(areas, areas + 3) - areas);
   out.spacing = std::sqrt(areas[out.normal_axis] / static_cast<double>(n));
   if (!(out.spacing > 0.0)) {  // collinear points: spacing along the line
     out.spacing = e.maxCoeff() / static_cast<double>(n);
@@ -34,8 +35,8 @@ cloudSpacing(const std::vector<Eigen::Vector3d>& points, int axis)
   // refine with the area of the occupied cells, twice.
   const int a = (out.normal_axis + 1) % 3, b = (out.normal_axis + 2) % 3;
   for (int pass = 0; pass < 2; ++pass)
-    out.spacing = std::sqrt(static_cast<double>(occupiedCells(points, a, b, out.spacing)) *
-                            out.spacing * out.spacing / static_cast<double>(n));
+    out.spacing = std::sqrt(static_cast<double>(occupiedCells(points, a, b, out.spacing)) * out.spacing *
+                            out.spacing / static_cast<double>(n));
   return out;
 }
 
@@ -77,7 +78,7 @@ voxelCoordinate(double x, double cell)
 }
 
 VoxelIndex::VoxelIndex(const std::vector<Eigen::Vector3d>& points, double cell)
-: points_(points), cell_(cell > 0.0 ? cell : 1.0)
+    : points_(points), cell_(cell > 0.0 ? cell : 1.0)
 {
   for (std::size_t i = 0; i < points.size(); ++i)
     if (points[i].allFinite()) {

@@ -74,16 +74,14 @@ DeformationSettings::isValid(std::string* why) const
       *why = "max_stable_scatter_ratio must be >= 0 (0: off)";
     return false;
   }
-  return matching.isValid(why) && residuals.isValid(why) && regions.isValid(why) &&
-         refinement.isValid(why);
+  return matching.isValid(why) && residuals.isValid(why) && regions.isValid(why) && refinement.isValid(why);
 }
 
 namespace {
 
 DeformationResult
 analyseWithModel(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface& reference,
-                 const ConjugateRule& rule, const DeformationSettings& settings,
-                 const Eigen::Matrix4d& guess)
+                 const ConjugateRule& rule, const DeformationSettings& settings, const Eigen::Matrix4d& guess)
 {
   DeformationResult out;
   const std::vector<int> sample = matchingSample(epoch, settings.matching_points);
@@ -126,7 +124,8 @@ analyseWithModel(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface&
   if (restarted && !unrefined.isSolutionUsable())
     estimator += "; its own fit refused by the quality gate";
   if (restarted)
-    estimator += "; chosen: the fit from its " + out.start_choice.chosen + " (" + out.start_choice.chosen_matching + ")";
+    estimator += "; chosen: the fit from its " + out.start_choice.chosen + " (" +
+                 out.start_choice.chosen_matching + ")";
   if (out.refinement.rounds > 0)
     estimator += ", then " + out.matching.estimator + " on the stable part (" +
                  std::to_string(out.refinement.left_out) + " left out)";
@@ -158,7 +157,8 @@ translationAlone(const AdjustmentSettings& settings)
 
 DeformationResult
 analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurface& reference,
-                   const ConjugateRule& rule, const DeformationSettings& settings, const Eigen::Matrix4d& guess)
+                   const ConjugateRule& rule, const DeformationSettings& settings,
+                   const Eigen::Matrix4d& guess)
 {
   std::string why;
   if (!settings.isValid(&why)) {
@@ -168,8 +168,7 @@ analyseDeformation(const std::vector<Eigen::Vector3d>& epoch, const TargetSurfac
     return out;
   }
   DeformationResult out = analyseWithModel(epoch, reference, rule, settings, guess);
-  if (!settings.translation_when_undetermined ||
-      !rotationsUndetermined(out, settings.matching.adjustment))
+  if (!settings.translation_when_undetermined || !rotationsUndetermined(out, settings.matching.adjustment))
     return out;
   DeformationSettings shift = settings;
   shift.matching.adjustment = translationAlone(settings.matching.adjustment);

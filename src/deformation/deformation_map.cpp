@@ -89,14 +89,15 @@ mapStyle(const DeformationResult& r, const DeformationMapSettings& s, const maps
   const std::string unit = crs_unit.empty() ? "input units" : crs_unit;
   maps::MapStyle style;
   style.title = s.title;
-  const std::string test = s.lod95 ? "neighbourhood mean beyond its 95 % level of detection"
-                                    : format("|r| > %g sigma", s.k);
+  const std::string test =
+      s.lod95 ? "neighbourhood mean beyond its 95 % level of detection" : format("|r| > %g sigma", s.k);
   style.subtitle = wrapped(format("%s; robust scale %.3g %s, %zu of %zu points significant (%s)",
                                   r.matching.estimator.c_str(), r.matching.scale, unit.c_str(),
                                   r.field.significant_count, r.field.observed, test.c_str()),
                            kSubtitleWidth);
-  style.subtitle.push_back(format("%.1f %% of the area in %zu deformed regions (outlined), %zu noise clusters",
-                                  r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size()));
+  style.subtitle.push_back(
+      format("%.1f %% of the area in %zu deformed regions (outlined), %zu noise clusters",
+             r.regions.percent_deformed, r.regions.regions.size(), r.regions.noise.size()));
   // Fewer parameters than asked: the client reading the map should know.
   for (const std::string& line : wrapped(r.model_note, kSubtitleWidth))
     style.subtitle.push_back(line);
@@ -142,8 +143,8 @@ makeDeformationMap(const std::vector<Eigen::Vector3d>& epoch, const DeformationR
   const double cells = std::ceil((hi.x() - lo.x()) / cell + 1.0) * std::ceil((hi.y() - lo.y()) / cell + 1.0);
   if (!(cells <= kMaxCells)) {
     char buf[200];
-    std::snprintf(buf, sizeof(buf), "a map cell of %.3g gives %.3g cells (at most %.3g): raise -map_cell", cell,
-                  cells, kMaxCells);
+    std::snprintf(buf, sizeof(buf), "a map cell of %.3g gives %.3g cells (at most %.3g): raise -map_cell",
+                  cell, cells, kMaxCells);
     out.why_empty = buf;
     return out;
   }

@@ -1,5 +1,5 @@
-#include <pcl_ls3d/deformation/deformation_regions.h>
 #include <pcl_ls3d/common/voxel_index.h>
+#include <pcl_ls3d/deformation/deformation_regions.h>
 
 #include <algorithm>
 #include <cmath>
@@ -15,12 +15,16 @@ namespace {
 /// Union-find with path halving.
 struct DisjointSets
 {
-  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  explicit DisjointSets(std::size_t n) : parent(n)
+  {
+    std::iota(parent.begin(), parent.end(), 0);
+  }
   int
   find(int a)
   {
     while (parent[static_cast<std::size_t>(a)] != a)
-      a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      a = parent[static_cast<std::size_t>(a)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
     return a;
   }
   void
@@ -103,7 +107,8 @@ growRegions(std::vector<std::vector<int>>& kept, const std::vector<Eigen::Vector
   const std::size_t n = points.size();
   std::vector<Eigen::Vector3d> weak(n, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (std::size_t i = 0; i < n; ++i)
-    if (!field.significant[i] && std::isfinite(field.residual[i]) && std::abs(field.residual[i]) > grow_k * field.sigma[i])
+    if (!field.significant[i] && std::isfinite(field.residual[i]) &&
+        std::abs(field.residual[i]) > grow_k * field.sigma[i])
       weak[i] = points[i];
   const VoxelIndex index(weak, std::max(adjacency, 1e-9));
   std::vector<int> near;
@@ -148,11 +153,12 @@ namespace {
 // The observed points' spacing, plane and cell, and the observed area (cells holding a residual).
 // False when no cell size follows from the data.
 bool
-measureObserved(const std::vector<Eigen::Vector3d>& points, const ResidualField& field, const RegionSettings& s,
-                RegionAnalysis& out)
+measureObserved(const std::vector<Eigen::Vector3d>& points, const ResidualField& field,
+                const RegionSettings& s, RegionAnalysis& out)
 {
   const std::size_t n = points.size();
-  std::vector<Eigen::Vector3d> observed(n, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  std::vector<Eigen::Vector3d> observed(n,
+                                        Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (std::size_t i = 0; i < n; ++i)
     if (std::isfinite(field.residual[i]))
       observed[i] = points[i];
@@ -176,7 +182,8 @@ std::unordered_map<int, std::vector<int>>
 linkSignificant(const std::vector<Eigen::Vector3d>& link, const ResidualField& field, double adjacency)
 {
   const std::size_t n = link.size();
-  std::vector<Eigen::Vector3d> flagged(n, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  std::vector<Eigen::Vector3d> flagged(n,
+                                       Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (std::size_t i = 0; i < n; ++i)
     if (field.significant[i] && std::isfinite(field.residual[i]))
       flagged[i] = link[i];
@@ -213,7 +220,8 @@ numberRegions(const std::vector<std::vector<int>>& kept, const std::vector<Eigen
       return ra.area > rb.area;
     if (ra.points != rb.points)
       return ra.points > rb.points;
-    return *std::min_element(kept[a].begin(), kept[a].end()) < *std::min_element(kept[b].begin(), kept[b].end());
+    return *std::min_element(kept[a].begin(), kept[a].end()) <
+           *std::min_element(kept[b].begin(), kept[b].end());
   });
   std::vector<DeformationRegion> sorted;
   std::unordered_set<std::int64_t> deformed_cells;
@@ -233,7 +241,8 @@ numberRegions(const std::vector<std::vector<int>>& kept, const std::vector<Eigen
 }  // namespace
 
 RegionAnalysis
-analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& field, const RegionSettings& s)
+analyseRegions(const std::vector<Eigen::Vector3d>& points, const ResidualField& field,
+               const RegionSettings& s)
 {
   RegionAnalysis out;
   out.region.assign(points.size(), 0);

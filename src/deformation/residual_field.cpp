@@ -1,5 +1,5 @@
-#include <pcl_ls3d/deformation/residual_field.h>
 #include <pcl_ls3d/common/voxel_index.h>
+#include <pcl_ls3d/deformation/residual_field.h>
 
 #include <pcl_ls3d/adjustment/pair_matcher.h>
 #include <pcl_ls3d/adjustment/parameter_block.h>

@@ -1,5 +1,5 @@
-#include <pcl_ls3d/deformation/stable_refinement.h>
 #include <pcl_ls3d/common/voxel_index.h>
+#include <pcl_ls3d/deformation/stable_refinement.h>
 #include <pcl_ls3d/evaluation/transform_error.h>
 
 #include <cmath>
@@ -15,7 +15,7 @@ struct LeftOut
   std::vector<std::uint8_t> mask;  // per point: in a region or its rim
   std::size_t count = 0;           // observed points in the mask
   std::size_t observed = 0;
-  std::size_t regions = 0;         // regions found
+  std::size_t regions = 0;  // regions found
 };
 
 // The regions of `analysis` (of `field`) and their rim; with `largest` > 0 only regions
@@ -45,20 +45,23 @@ regionsAndRim(const std::vector<Eigen::Vector3d>& points, const ResidualField& f
 // alone out lets the next round correct the tilt.
 LeftOut
 leftOut(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference, const ConjugateRule& rule,
-       const RobustMatchingReport& robust, const ResidualSettings& residuals, const RegionSettings& regions,
-       double max_share)
+        const RobustMatchingReport& robust, const ResidualSettings& residuals, const RegionSettings& regions,
+        double max_share)
 {
   ResidualSettings by_means = residuals;
   by_means.rule = DetectionRule::LOD95;
-  const ResidualField means = computeResidualField(points, reference, rule, robust.adjustment, robust.scale, by_means);
+  const ResidualField means =
+      computeResidualField(points, reference, rule, robust.adjustment, robust.scale, by_means);
   const double max_count = max_share * static_cast<double>(means.observed);
   LeftOut left = regionsAndRim(points, means, analyseRegions(points, means, regions), regions.plane_axis);
   if (static_cast<double>(left.count) <= max_count)
     return left;
-  const ResidualField own = computeResidualField(points, reference, rule, robust.adjustment, robust.scale, residuals);
+  const ResidualField own =
+      computeResidualField(points, reference, rule, robust.adjustment, robust.scale, residuals);
   const RegionAnalysis analysis = analyseRegions(points, own, regions);
   left = regionsAndRim(points, own, analysis, regions.plane_axis);
-  for (std::size_t largest = 1; static_cast<double>(left.count) > max_count && largest < left.regions; ++largest) {
+  for (std::size_t largest = 1; static_cast<double>(left.count) > max_count && largest < left.regions;
+       ++largest) {
     LeftOut fewer = regionsAndRim(points, own, analysis, regions.plane_axis, largest);
     if (static_cast<double>(fewer.count) > max_count)
       break;
@@ -174,7 +177,8 @@ refineOnStablePart(const std::vector<Eigen::Vector3d>& points, const std::vector
     }
     std::vector<Eigen::Vector3d> kept;
     std::vector<int> kept_indices;
-    selectPoints(points, point_indices, [&](std::size_t i) { return !left.mask[i]; }, kept, kept_indices);
+    selectPoints(
+        points, point_indices, [&](std::size_t i) { return !left.mask[i]; }, kept, kept_indices);
     RobustMatchingReport refined =
         robustMatching(kept, kept_indices, reference, rule, m, robust.adjustment.transformation);
     if (!refined.isSolutionUsable()) {

@@ -1,6 +1,6 @@
-#include <pcl_ls3d/deformation/start_choice.h>
 #include <pcl_ls3d/adjustment/observation_weighting.h>
 #include <pcl_ls3d/common/similarity_transform.h>
+#include <pcl_ls3d/deformation/start_choice.h>
 
 #include <cmath>
 #include <limits>
@@ -56,16 +56,19 @@ refinedFrom(const Eigen::Matrix4d& T, const std::vector<Eigen::Vector3d>& points
   std::vector<Eigen::Vector3d> kept = points;
   std::vector<int> kept_indices = point_indices;
   if (!all_points)
-    selectPoints(points, point_indices,
-                 [&](std::size_t i) { return analysis.region[i] <= 0 && std::isfinite(field.residual[i]); }, kept,
-                 kept_indices);
-  RobustMatchingReport fit = robustMatching(kept, kept_indices, reference, rule, stablePartMatching(matching), T);
+    selectPoints(
+        points, point_indices,
+        [&](std::size_t i) { return analysis.region[i] <= 0 && std::isfinite(field.residual[i]); }, kept,
+        kept_indices);
+  RobustMatchingReport fit =
+      robustMatching(kept, kept_indices, reference, rule, stablePartMatching(matching), T);
   if (!fit.isSolutionUsable())
     return fit;
   keepHighBreakdownFigures(unrefined, fit);
   fit.held_out = 0;  // nothing of this fit was held out
   first_matching = fit.estimator + (all_points ? " on all points" : " outside its regions");
-  refinement = refineOnStablePart(points, point_indices, reference, rule, matching, residuals, regions, settings, fit);
+  refinement =
+      refineOnStablePart(points, point_indices, reference, rule, matching, residuals, regions, settings, fit);
   return fit;
 }
 
@@ -85,7 +88,8 @@ clearlySmaller(const StartCandidate& a, const StartCandidate& b)
 double
 stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
                   const ConjugateRule& rule, const AdjustmentReport& fit, double noise,
-                  const ResidualSettings& residuals, const RegionSettings& regions, std::size_t* outside_count)
+                  const ResidualSettings& residuals, const RegionSettings& regions,
+                  std::size_t* outside_count)
 {
   const ResidualField field = computeResidualField(points, reference, rule, fit, noise, residuals);
   const RegionAnalysis analysis = analyseRegions(points, field, regions);
@@ -97,7 +101,8 @@ stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurfac
     *outside_count = outside.size();
   if (outside.empty() || !significantMinority(field, analysis))
     return kInf;
-  return robustScale(Eigen::Map<const Eigen::VectorXd>(outside.data(), static_cast<Eigen::Index>(outside.size())));
+  return robustScale(
+      Eigen::Map<const Eigen::VectorXd>(outside.data(), static_cast<Eigen::Index>(outside.size())));
 }
 
 StartChoice
@@ -117,8 +122,8 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
     return choice;
   StartCandidate kept{toString(unrefined.method), kInf, 0, robust.isSolutionUsable()};
   if (kept.usable)
-    kept.scatter =
-        stablePartScatter(points, reference, rule, robust.adjustment, noise, residuals, regions, &kept.outside);
+    kept.scatter = stablePartScatter(points, reference, rule, robust.adjustment, noise, residuals, regions,
+                                     &kept.outside);
   choice.candidates.push_back(kept);
   choice.chosen = kept.name;
   const std::pair<const char*, Eigen::Matrix4d> starts[] = {
@@ -127,14 +132,15 @@ chooseBetweenStarts(const std::vector<Eigen::Vector3d>& points, const std::vecto
   for (const auto& start : starts) {
     StableRefinementReport r;
     std::string first_matching;
-    RobustMatchingReport fit = refinedFrom(start.second, points, point_indices, reference, rule, matching, residuals,
-                                           regions, settings, unrefined, noise, r, first_matching);
+    RobustMatchingReport fit = refinedFrom(start.second, points, point_indices, reference, rule, matching,
+                                           residuals, regions, settings, unrefined, noise, r, first_matching);
     // A fit whose refinement did not settle (MAX_ITERATIONS: the stable part flips between
     // rounds) is a snapshot of an oscillation, not a fit to prefer (docs/DECISIONS.md).
     StartCandidate c{start.first, kInf, 0,
                      fit.isSolutionUsable() && fit.termination == TerminationType::CONVERGED};
     if (c.usable)
-      c.scatter = stablePartScatter(points, reference, rule, fit.adjustment, noise, residuals, regions, &c.outside);
+      c.scatter =
+          stablePartScatter(points, reference, rule, fit.adjustment, noise, residuals, regions, &c.outside);
     choice.candidates.push_back(c);
     if (c.usable && clearlySmaller(c, kept)) {
       kept = c;

@@ -1,5 +1,5 @@
-#include <pcl_ls3d/estimators/neighbour_noise.h>
 #include <pcl_ls3d/common/voxel_index.h>
+#include <pcl_ls3d/estimators/neighbour_noise.h>
 #include <pcl_ls3d/stats/descriptive.h>
 
 #include <algorithm>
@@ -16,7 +16,8 @@ double
 neighbourDifferenceScale(const std::vector<Eigen::Vector3d>& points, const std::vector<double>& residuals)
 {
   const std::size_t n = std::min(points.size(), residuals.size());
-  std::vector<Eigen::Vector3d> observed(n, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
+  std::vector<Eigen::Vector3d> observed(n,
+                                        Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));
   for (std::size_t i = 0; i < n; ++i)
     if (points[i].allFinite() && std::isfinite(residuals[i]))
       observed[i] = points[i];

@@ -16,11 +16,16 @@ makeRobustEstimator(RobustEstimatorType type, double constant)
 {
   const bool given = std::isfinite(constant);
   switch (type) {
-  case RobustEstimatorType::LEAST_SQUARES: return std::make_shared<LeastSquaresEstimator>();
-  case RobustEstimatorType::ZUO: return std::make_shared<ZuoEstimator>(given ? constant : 6.0);
-  case RobustEstimatorType::HUBER: return std::make_shared<HuberEstimator>(given ? constant : kHuber95);
-  case RobustEstimatorType::TUKEY: return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
-  case RobustEstimatorType::MD: return std::make_shared<MdEstimator>(given ? constant : kTukey95);
+  case RobustEstimatorType::LEAST_SQUARES:
+    return std::make_shared<LeastSquaresEstimator>();
+  case RobustEstimatorType::ZUO:
+    return std::make_shared<ZuoEstimator>(given ? constant : 6.0);
+  case RobustEstimatorType::HUBER:
+    return std::make_shared<HuberEstimator>(given ? constant : kHuber95);
+  case RobustEstimatorType::TUKEY:
+    return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
+  case RobustEstimatorType::MD:
+    return std::make_shared<MdEstimator>(given ? constant : kTukey95);
   }
   return nullptr;
 }
@@ -35,10 +40,14 @@ namespace {
 
 // Every spelling, the first of each type being the one toString() writes.
 const std::pair<const char*, RobustEstimatorType> kNames[] = {
-    {"ls", RobustEstimatorType::LEAST_SQUARES}, {"least-squares", RobustEstimatorType::LEAST_SQUARES},
-    {"zuo", RobustEstimatorType::ZUO},          {"huber", RobustEstimatorType::HUBER},
-    {"tukey", RobustEstimatorType::TUKEY},      {"m", RobustEstimatorType::TUKEY},
-    {"md", RobustEstimatorType::MD},            {"m-d", RobustEstimatorType::MD},
+    {"ls", RobustEstimatorType::LEAST_SQUARES},
+    {"least-squares", RobustEstimatorType::LEAST_SQUARES},
+    {"zuo", RobustEstimatorType::ZUO},
+    {"huber", RobustEstimatorType::HUBER},
+    {"tukey", RobustEstimatorType::TUKEY},
+    {"m", RobustEstimatorType::TUKEY},
+    {"md", RobustEstimatorType::MD},
+    {"m-d", RobustEstimatorType::MD},
     {"gm", RobustEstimatorType::MD}};
 
 }  // namespace

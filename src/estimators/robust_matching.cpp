@@ -33,15 +33,20 @@ weightFunction(RobustMethod method, double constant, double fixed_scale)
 {
   const bool given = std::isfinite(constant);
   switch (method) {
-  case RobustMethod::LEAST_SQUARES: return std::make_shared<LeastSquaresEstimator>();
-  case RobustMethod::ZUO: return std::make_shared<ZuoEstimator>(given ? constant : 6.0);
-  case RobustMethod::HUBER: return std::make_shared<HuberEstimator>(given ? constant : kHuber95);
-  case RobustMethod::M: return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
+  case RobustMethod::LEAST_SQUARES:
+    return std::make_shared<LeastSquaresEstimator>();
+  case RobustMethod::ZUO:
+    return std::make_shared<ZuoEstimator>(given ? constant : 6.0);
+  case RobustMethod::HUBER:
+    return std::make_shared<HuberEstimator>(given ? constant : kHuber95);
+  case RobustMethod::M:
+    return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
   case RobustMethod::LMS:
     if (!(fixed_scale > 0.0))  // LmsScale::MAD: eq. 7 on all residuals, every iteration
       return std::make_shared<TukeyEstimator>(given ? constant : kTukey95);
     return std::make_shared<TukeyEstimator>(given ? constant : kTukey95, ScaleRule::FIXED, fixed_scale);
-  case RobustMethod::MD: return std::make_shared<MdEstimator>(given ? constant : kTukey95);
+  case RobustMethod::MD:
+    return std::make_shared<MdEstimator>(given ? constant : kTukey95);
   case RobustMethod::MM:
     return std::make_shared<TukeyEstimator>(given ? constant : kTukey95, ScaleRule::FIXED, fixed_scale);
   }
@@ -52,7 +57,8 @@ weightFunction(RobustMethod method, double constant, double fixed_scale)
 double
 finalScale(const RobustEstimator& estimator, const AdjustmentReport& r)
 {
-  const Eigen::VectorXd v = Eigen::Map<const Eigen::VectorXd>(r.residuals.data(), static_cast<Eigen::Index>(r.residuals.size()));
+  const Eigen::VectorXd v =
+      Eigen::Map<const Eigen::VectorXd>(r.residuals.data(), static_cast<Eigen::Index>(r.residuals.size()));
   const Eigen::VectorXd none;
   return estimator.scale(WeightingInput(v, none, none, r.sigma0));
 }
@@ -78,8 +84,8 @@ maxDisplacement(const LinearizedMatching& lin, const Vector7d& a, const Vector7d
 /// matched observations): LMS s0 (recomputed at X, which may be an earlier round's) and σ*;
 /// MM the LTS scale reweighted, or the S-scale; at most the neighbour noise when capped.
 double
-fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchingSettings& s, double search_scale,
-           double& neighbour_noise)
+fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchingSettings& s,
+           double search_scale, double& neighbour_noise)
 {
   Eigen::VectorXd v;
   lin.residuals(X, v);
@@ -88,9 +94,9 @@ fixedScale(const LinearizedMatching& lin, const Vector7d& X, const RobustMatchin
     const double s0 = lmsScale(lmsCriterion(lin, X), lin.size(), lin.freeParameters());
     fixed = s.lms_scale == LmsScale::PRELIMINARY ? s0 : lmsFinalScale(v, s0, lin.freeParameters());
     fixed = fixed > 0.0 ? fixed : s0;
-  }
-  else {
-    fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, search_scale) : reweightedScale(v, search_scale);
+  } else {
+    fixed = s.mm_scale == MmScale::S_SCALE ? mScale(v, kTukeyS50, 0.5, search_scale)
+                                           : reweightedScale(v, search_scale);
     fixed = fixed > 0.0 ? fixed : search_scale;
   }
   neighbour_noise = neighbourDifferenceScale(lin.reducedPoints(), lin.pointResiduals(v));
@@ -175,8 +181,8 @@ std::string
 startSlidOff(const AdjustmentReport& start, const AdjustmentSettings& settings)
 {
   if (!start.hasEstimate())
-    return std::string("the least-squares start ended ") + terminationTypeToString(start.termination) +
-           " (" + start.message + ")";
+    return std::string("the least-squares start ended ") + terminationTypeToString(start.termination) + " (" +
+           start.message + ")";
   if (start.quality.observations_kept < settings.min_observations_kept) {
     char kept[32];
     std::snprintf(kept, sizeof kept, "%.3f", start.quality.observations_kept);
@@ -196,8 +202,8 @@ finalResiduals(const std::vector<Eigen::Vector3d>& points, const std::vector<int
   std::unordered_map<int, std::size_t> position_of;
   for (std::size_t k = 0; k < points.size(); ++k)
     position_of.emplace(point_indices[k], k);
-  const std::size_t m = std::min({fit.residuals.size(), fit.weights.size(),
-                                  fit.observation_source_index.size()});
+  const std::size_t m =
+      std::min({fit.residuals.size(), fit.weights.size(), fit.observation_source_index.size()});
   int last = std::numeric_limits<int>::min();
   for (std::size_t j = 0; j < m; ++j) {
     if (fit.weights[j] > 0.0)
@@ -214,8 +220,8 @@ finalResiduals(const std::vector<Eigen::Vector3d>& points, const std::vector<int
 
 // RobustMatchingSettings::max_kept_scale_ratio on a usable LMS / MM fit.
 void
-keptScaleGate(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices,
-              double limit, RobustMatchingReport& report)
+keptScaleGate(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices, double limit,
+              RobustMatchingReport& report)
 {
   std::vector<Eigen::Vector3d> positions;
   std::vector<double> residuals, kept;
@@ -254,7 +260,8 @@ bool
 parseRobustMethod(const std::string& text, RobustMethod& method)
 {
   std::string t = text;
-  std::transform(t.begin(), t.end(), t.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(t.begin(), t.end(), t.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (t == "least-squares")
     t = "ls";
   else if (t == "m-d" || t == "gm")
@@ -304,8 +311,8 @@ RobustMatchingReport::brief() const
   // The estimator's name grows with the stages run (deformation: the refinement too): no fixed
   // buffer around it.
   char tail[128];
-  std::snprintf(tail, sizeof(tail), ": %s, sigma_hat %.4g, %d iterations", terminationTypeToString(termination),
-                scale, iterations);
+  std::snprintf(tail, sizeof(tail), ": %s, sigma_hat %.4g, %d iterations",
+                terminationTypeToString(termination), scale, iterations);
   std::string line = estimator + tail;
   if (subsets_drawn > 0)
     line += ", " + std::to_string(subsets_drawn) + " subsets in " + std::to_string(rounds) + " round(s)";
@@ -367,8 +374,7 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
   double fixed_scale = 0.0;
   std::vector<std::uint8_t> held_out;  // MM: points beyond 2.5 ŝ of the start
   const auto failed = [&](TerminationType type, const std::string& message) {
-    return fail(report, type,
-                start_note.empty() ? message : start_note + "; from the guess: " + message);
+    return fail(report, type, start_note.empty() ? message : start_note + "; from the guess: " + message);
   };
 
   // 2. High-breakdown start (LMS, MM).
@@ -380,12 +386,11 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
     const std::size_t matched = lin.size();
     if (matched < static_cast<std::size_t>(std::max(s.sample_size, lin.freeParameters() + 1)))
       return failed(TerminationType::TOO_FEW_OBSERVATIONS,
-                    "only " + std::to_string(matched) +
-                        " epoch points have a conjugate point (sample size " +
+                    "only " + std::to_string(matched) + " epoch points have a conjugate point (sample size " +
                         std::to_string(s.sample_size) + ")");
     if (!highBreakdownSearch(lin, s, report))
-      return failed(TerminationType::SINGULAR, "no subset of " + std::to_string(s.sample_size) +
-                                                   " points determined the parameters");
+      return failed(TerminationType::SINGULAR,
+                    "no subset of " + std::to_string(s.sample_size) + " points determined the parameters");
     from = report.high_breakdown_transformation;
     if (!(s.method == RobustMethod::LMS && s.lms_scale == LmsScale::MAD))
       fixed_scale = report.high_breakdown_scale;
@@ -410,8 +415,8 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
   report.termination = report.adjustment.termination;
   report.message = report.adjustment.message;
   if (!start_note.empty() && s.method != RobustMethod::LEAST_SQUARES)
-    report.message += (report.message.empty() ? "" : "; ") + start_note +
-                      ": the robust stages began at the guess";
+    report.message +=
+        (report.message.empty() ? "" : "; ") + start_note + ": the robust stages began at the guess";
   if (report.adjustment.isSolutionUsable())
     report.scale = finalScale(*w, report.adjustment);
   if (s.method == RobustMethod::LMS || s.method == RobustMethod::MM)

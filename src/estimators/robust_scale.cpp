@@ -25,9 +25,12 @@ const char*
 toString(ScaleRule rule)
 {
   switch (rule) {
-  case ScaleRule::SIGMA0: return "sigma0";
-  case ScaleRule::MAD: return "mad";
-  case ScaleRule::FIXED: return "fixed";
+  case ScaleRule::SIGMA0:
+    return "sigma0";
+  case ScaleRule::MAD:
+    return "mad";
+  case ScaleRule::FIXED:
+    return "fixed";
   }
   return "?";
 }
@@ -155,9 +158,12 @@ double
 scaleByRule(ScaleRule rule, const Eigen::Ref<const Eigen::VectorXd>& v, double sigma0, double fixed)
 {
   switch (rule) {
-  case ScaleRule::SIGMA0: return sigma0 > 0.0 ? sigma0 : madScale(v);
-  case ScaleRule::MAD: return madScale(v);
-  case ScaleRule::FIXED: return fixed;
+  case ScaleRule::SIGMA0:
+    return sigma0 > 0.0 ? sigma0 : madScale(v);
+  case ScaleRule::MAD:
+    return madScale(v);
+  case ScaleRule::FIXED:
+    return fixed;
   }
   return 0.0;
 }

@@ -37,7 +37,8 @@ scaleOrSigma0(ScaleRule rule, const Eigen::Ref<const Eigen::VectorXd>& v, double
 
 // Zuo's 0/1 weight: 0 where |v_i| > limit, else 1.
 void
-zeroBeyond(const Eigen::Ref<const Eigen::VectorXd>& residuals, double limit, Eigen::Ref<Eigen::VectorXd> weights)
+zeroBeyond(const Eigen::Ref<const Eigen::VectorXd>& residuals, double limit,
+           Eigen::Ref<Eigen::VectorXd> weights)
 {
   for (Eigen::Index i = 0; i < residuals.size(); ++i)
     weights[i] = std::abs(residuals[i]) > limit ? 0.0 : 1.0;
@@ -134,7 +135,8 @@ MdEstimator::name() const
 }
 
 Eigen::VectorXd
-MdEstimator::normalised(const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen::Ref<const Eigen::VectorXd>& r)
+MdEstimator::normalised(const Eigen::Ref<const Eigen::VectorXd>& v,
+                        const Eigen::Ref<const Eigen::VectorXd>& r)
 {
   Eigen::VectorXd t = v;
   if (r.size() == v.size())
@@ -144,7 +146,8 @@ MdEstimator::normalised(const Eigen::Ref<const Eigen::VectorXd>& v, const Eigen:
 }
 
 void
-MdEstimator::weighNormalised(const Eigen::VectorXd& t, double sigma0, Eigen::Ref<Eigen::VectorXd> weights) const
+MdEstimator::weighNormalised(const Eigen::VectorXd& t, double sigma0,
+                             Eigen::Ref<Eigen::VectorXd> weights) const
 {
   const double s = scaleOrSigma0(rule_, t, sigma0, fixed_);
   for (Eigen::Index i = 0; i < t.size(); ++i)

@@ -1,5 +1,5 @@
-#include <pcl_ls3d/evaluation/comparison_report.h>
 #include <pcl_ls3d/common/similarity_transform.h>
+#include <pcl_ls3d/evaluation/comparison_report.h>
 #include <pcl_ls3d/io/json_text.h>
 
 #include <nlohmann/json.hpp>
@@ -74,22 +74,20 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth,
   };
   std::string out;
   char buf[256];
-  std::snprintf(buf, sizeof(buf), "%-10s %5s %8s %8s %5s %-10s %5s %8s %8s", "method", "iter",
-                "time[s]", "cpu[s]", "conv", "stop", "trust", header("RMS", unit).c_str(),
-                header("s0", unit).c_str());
+  std::snprintf(buf, sizeof(buf), "%-10s %5s %8s %8s %5s %-10s %5s %8s %8s", "method", "iter", "time[s]",
+                "cpu[s]", "conv", "stop", "trust", header("RMS", unit).c_str(), header("s0", unit).c_str());
   out += buf;
   if (with_truth) {
     std::snprintf(buf, sizeof(buf), " %9s %9s %9s | %8s %8s %8s %8s %8s %8s %8s",
-                  header("mean", small).c_str(), header("max", small).c_str(),
-                  header("bbox", small).c_str(), header("tx", small).c_str(),
-                  header("ty", small).c_str(), header("tz", small).c_str(), "phi[ur]", "om[ur]",
-                  "ka[ur]", "m[ppm]");
+                  header("mean", small).c_str(), header("max", small).c_str(), header("bbox", small).c_str(),
+                  header("tx", small).c_str(), header("ty", small).c_str(), header("tz", small).c_str(),
+                  "phi[ur]", "om[ur]", "ka[ur]", "m[ppm]");
     out += buf;
   }
   out += "\n";
   for (const auto& r : runs) {
-    std::snprintf(buf, sizeof(buf), "%-10s %5d %8.3f %8.3f %5s %-10.10s %5s", r.name.c_str(),
-                  r.iterations, r.time_s, r.cpu_s, !r.ran ? "FAIL" : (r.converged ? "yes" : "no"),
+    std::snprintf(buf, sizeof(buf), "%-10s %5d %8.3f %8.3f %5s %-10.10s %5s", r.name.c_str(), r.iterations,
+                  r.time_s, r.cpu_s, !r.ran ? "FAIL" : (r.converged ? "yes" : "no"),
                   r.stop.empty() ? "-" : r.stop.c_str(),
                   !r.quality_checked ? "-" : (r.pcl_converged ? "yes" : "no"));
     out += buf;
@@ -97,8 +95,8 @@ formatComparisonTable(const std::vector<RegistrationRun>& runs, bool with_truth,
     if (with_truth) {
       const bool ok = r.ran && r.error.valid;
       const double nan = std::nan("");
-      out += " " + length(ok ? r.error.mean : nan, 9) + " " + length(ok ? r.error.max : nan, 9) +
-             " " + length(ok ? r.error.max_bbox : nan, 9) + " |";
+      out += " " + length(ok ? r.error.mean : nan, 9) + " " + length(ok ? r.error.max : nan, 9) + " " +
+             length(ok ? r.error.max_bbox : nan, 9) + " |";
       for (int i = 0; i < 3; ++i)
         out += " " + length(ok ? r.error.parameters[i] : nan, 8);
       for (int i = 3; i < 7; ++i)  // angles [µrad], scale [ppm]

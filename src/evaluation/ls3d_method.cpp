@@ -11,9 +11,12 @@ std::string
 ls3dMethodName(ConjugateRuleType rule)
 {
   switch (rule) {
-  case ConjugateRuleType::LND: return "LS3D-LND";
-  case ConjugateRuleType::LZD: return "LS3D-LZD";
-  case ConjugateRuleType::ICP: return "LS3D-ICP";
+  case ConjugateRuleType::LND:
+    return "LS3D-LND";
+  case ConjugateRuleType::LZD:
+    return "LS3D-LZD";
+  case ConjugateRuleType::ICP:
+    return "LS3D-ICP";
   }
   return "LS3D-?";
 }
@@ -70,9 +73,10 @@ collectReport(LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ>& ls3d, R
   run.sigma0 = report.isSolutionUsable() ? report.sigma0 : std::numeric_limits<double>::quiet_NaN();
   // No estimate (e.g. TOO_FEW_OBSERVATIONS): no transformation either, so the RMS and the
   // errors vs truth read "-" rather than those of the identity (a perfect run for no motion).
-  run.transformation = !report.hasEstimate()      ? kNoTransformation
-                       : report.isSolutionUsable() ? report.transformation
-                                                   : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
+  run.transformation = !report.hasEstimate() ? kNoTransformation
+                       : report.isSolutionUsable()
+                           ? report.transformation
+                           : Eigen::Matrix4d(ls3d.getFinalTransformation().cast<double>());
   run.message = terminationTypeToString(report.termination);
   if (!report.message.empty())
     run.message += ": " + report.message;
@@ -82,8 +86,7 @@ collectReport(LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ>& ls3d, R
 
 RegistrationRun
 runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
-        const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
-        const Ls3dMethodSettings& settings)
+        const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target, const Ls3dMethodSettings& settings)
 {
   return timedRun(ls3dMethodName(rule), source, target, [&](RegistrationRun& run) {
     LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ> ls3d;

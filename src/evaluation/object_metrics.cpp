@@ -56,15 +56,14 @@ medianOf(const std::vector<double>& v)
 
 bool
 evaluateObjects(const std::vector<pcl::PointIndices>& segments, const ReferenceObjects& ref,
-                const ObjectEvaluationSettings& settings, ObjectEvaluation& result,
-                std::string& error)
+                const ObjectEvaluationSettings& settings, ObjectEvaluation& result, std::string& error)
 {
   const std::size_t n = ref.object_of.size();
   for (std::size_t s = 0; s < segments.size(); ++s)
     for (const int i : segments[s].indices)
       if (i < 0 || static_cast<std::size_t>(i) >= n) {
-        error = "segment " + std::to_string(s) + " holds index " + std::to_string(i) +
-                " outside the " + std::to_string(n) + " reference points";
+        error = "segment " + std::to_string(s) + " holds index " + std::to_string(i) + " outside the " +
+                std::to_string(n) + " reference points";
         return false;
       }
 
@@ -87,8 +86,8 @@ evaluateObjects(const std::vector<pcl::PointIndices>& segments, const ReferenceO
     ObjectResult& o = res.objects[static_cast<std::size_t>(matches[s].object)];
     ++o.valid_segments;
     o.matched_points += matches[s].overlap;
-    o.largest_share = std::max(o.largest_share, static_cast<double>(matches[s].overlap) /
-                                                    static_cast<double>(o.points));
+    o.largest_share =
+        std::max(o.largest_share, static_cast<double>(matches[s].overlap) / static_cast<double>(o.points));
   }
   for (auto& o : res.objects)
     o.recognised = 2 * o.matched_points > o.points;

@@ -47,8 +47,7 @@ alignAndCollect(Reg& reg, const CloudPtr& source, const CloudPtr& target, const 
   run.converged = run.pcl_converged && !run.hit_limit;
   run.transformation = reg.getFinalTransformation().template cast<double>();
   run.ran = true;
-  run.message = run.converged ? "converged"
-                              : (run.hit_limit ? "iteration limit" : "not converged");
+  run.message = run.converged ? "converged" : (run.hit_limit ? "iteration limit" : "not converged");
   run.stop = run.converged ? "conv" : (run.hit_limit ? "LIMIT" : "noconv");
   // PCL can report convergence with a NaN transformation (ICP-N on collinear points).
   if (!run.transformation.allFinite()) {
@@ -70,14 +69,14 @@ setIcpCriteria(Icp& icp, const PclMethodSettings& s)
 }
 
 void
-runIcp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
-       const PclMethodSettings& s, bool with_scale, RegistrationRun& run)
+runIcp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target, const PclMethodSettings& s,
+       bool with_scale, RegistrationRun& run)
 {
   Counted<pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> icp;
   if (with_scale)
     icp.setTransformationEstimation(
-        pcl::make_shared<pcl::registration::TransformationEstimationSVDScale<pcl::PointXYZ,
-                                                                            pcl::PointXYZ>>());
+        pcl::make_shared<
+            pcl::registration::TransformationEstimationSVDScale<pcl::PointXYZ, pcl::PointXYZ>>());
   setIcpCriteria(icp, s);
   alignAndCollect(icp, source, target, s, run);
 }
@@ -92,8 +91,8 @@ copyPositions(const CloudXYZ& cloud, CloudNormal& with_normals)
 }
 
 void
-runIcpNormals(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
-              const PclMethodSettings& s, RegistrationRun& run)
+runIcpNormals(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target, const PclMethodSettings& s,
+              RegistrationRun& run)
 {
   pcl::StopWatch watch;
   // Target normals only: PCL's point-to-plane objective (TransformationEstimationPointToPlaneLLS)
@@ -114,8 +113,8 @@ runIcpNormals(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target
 }
 
 void
-runGicp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
-        const PclMethodSettings& s, RegistrationRun& run)
+runGicp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target, const PclMethodSettings& s,
+        RegistrationRun& run)
 {
   Counted<pcl::GeneralizedIterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ>> gicp;
   gicp.setMaxCorrespondenceDistance(s.max_correspondence_distance);
@@ -128,8 +127,8 @@ runGicp(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
 }
 
 void
-runNdt(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
-       const PclMethodSettings& s, RegistrationRun& run)
+runNdt(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target, const PclMethodSettings& s,
+       RegistrationRun& run)
 {
   Counted<pcl::NormalDistributionsTransform<pcl::PointXYZ, pcl::PointXYZ>> ndt;
   ndt.setResolution(static_cast<float>(s.ndt_resolution));
@@ -145,11 +144,16 @@ std::string
 pclMethodName(PclMethod method)
 {
   switch (method) {
-  case PclMethod::ICP: return "PCL-ICP";
-  case PclMethod::ICP_NORMALS: return "PCL-ICP-N";
-  case PclMethod::GICP: return "PCL-GICP";
-  case PclMethod::NDT: return "PCL-NDT";
-  case PclMethod::ICP_SCALE: return "PCL-ICP-S";
+  case PclMethod::ICP:
+    return "PCL-ICP";
+  case PclMethod::ICP_NORMALS:
+    return "PCL-ICP-N";
+  case PclMethod::GICP:
+    return "PCL-GICP";
+  case PclMethod::NDT:
+    return "PCL-NDT";
+  case PclMethod::ICP_SCALE:
+    return "PCL-ICP-S";
   }
   return "PCL-?";
 }
@@ -157,8 +161,8 @@ pclMethodName(PclMethod method)
 const std::vector<PclMethod>&
 allPclMethods()
 {
-  static const std::vector<PclMethod> all{PclMethod::ICP, PclMethod::ICP_NORMALS,
-                                          PclMethod::GICP, PclMethod::NDT};
+  static const std::vector<PclMethod> all{PclMethod::ICP, PclMethod::ICP_NORMALS, PclMethod::GICP,
+                                          PclMethod::NDT};
   return all;
 }
 
@@ -174,8 +178,8 @@ PclMethodSettings::describe(const std::string& unit) const
                 "outlier=%g",
                 max_correspondence_distance, u, max_iterations, transformation_epsilon, u,
                 1.0 - rotation_epsilon, gicp_translation_epsilon, u, gicp_rotation_epsilon,
-                gicp_k_correspondences, gicp_gradient_tolerance, normal_k, ndt_resolution, u,
-                ndt_step_size, u, ndt_outlier_ratio);
+                gicp_k_correspondences, gicp_gradient_tolerance, normal_k, ndt_resolution, u, ndt_step_size,
+                u, ndt_outlier_ratio);
   return buf;
 }
 
@@ -193,16 +197,25 @@ PclMethodSettings::inUnit(double metres_per_unit) const
 
 RegistrationRun
 runPclMethod(PclMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
-             const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
-             const PclMethodSettings& settings)
+             const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target, const PclMethodSettings& settings)
 {
   return timedRun(pclMethodName(method), source, target, [&](RegistrationRun& run) {
     switch (method) {
-    case PclMethod::ICP: runIcp(source, target, settings, false, run); break;
-    case PclMethod::ICP_SCALE: runIcp(source, target, settings, true, run); break;
-    case PclMethod::ICP_NORMALS: runIcpNormals(source, target, settings, run); break;
-    case PclMethod::GICP: runGicp(source, target, settings, run); break;
-    case PclMethod::NDT: runNdt(source, target, settings, run); break;
+    case PclMethod::ICP:
+      runIcp(source, target, settings, false, run);
+      break;
+    case PclMethod::ICP_SCALE:
+      runIcp(source, target, settings, true, run);
+      break;
+    case PclMethod::ICP_NORMALS:
+      runIcpNormals(source, target, settings, run);
+      break;
+    case PclMethod::GICP:
+      runGicp(source, target, settings, run);
+      break;
+    case PclMethod::NDT:
+      runNdt(source, target, settings, run);
+      break;
     }
   });
 }

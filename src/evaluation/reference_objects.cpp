@@ -33,15 +33,13 @@ automaticRadius(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
 }  // namespace
 
 bool
-referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                           const std::vector<int>& labels,
+referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::vector<int>& labels,
                            const ReferenceObjectSettings& settings, ReferenceObjects& objects,
                            std::string& error)
 {
   if (cloud.size() != labels.size() || cloud.empty()) {
     error = "reference objects need one label per point of a non-empty cloud (" +
-            std::to_string(labels.size()) + " labels, " + std::to_string(cloud.size()) +
-            " points)";
+            std::to_string(labels.size()) + " labels, " + std::to_string(cloud.size()) + " points)";
     return false;
   }
   ReferenceObjects out;
@@ -60,8 +58,7 @@ referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud,
   // flattened points never connect to another group.
   std::vector<char> in_plan(settings.groups.size(), 0);
   for (std::size_t g = 0; g < settings.groups.size(); ++g)
-    in_plan[g] = std::find(settings.plan_connected_groups.begin(),
-                           settings.plan_connected_groups.end(),
+    in_plan[g] = std::find(settings.plan_connected_groups.begin(), settings.plan_connected_groups.end(),
                            settings.groups[g].name) != settings.plan_connected_groups.end();
   pcl::PointCloud<pcl::PointXYZ>::Ptr all(new pcl::PointCloud<pcl::PointXYZ>(cloud));
   pcl::search::KdTree<pcl::PointXYZ> tree;
@@ -103,13 +100,12 @@ referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud,
 
 bool
 referenceObjectsFromIds(const std::vector<int>& ids, const std::vector<int>& labels,
-                        const std::vector<ClassGroup>& groups,
-                        const std::vector<int>& excluded_codes, ReferenceObjects& objects,
-                        std::string& error)
+                        const std::vector<ClassGroup>& groups, const std::vector<int>& excluded_codes,
+                        ReferenceObjects& objects, std::string& error)
 {
   if (ids.size() != labels.size()) {
-    error = "reference objects need one id per label (" + std::to_string(ids.size()) +
-            " ids, " + std::to_string(labels.size()) + " labels)";
+    error = "reference objects need one id per label (" + std::to_string(ids.size()) + " ids, " +
+            std::to_string(labels.size()) + " labels)";
     return false;
   }
   ReferenceObjects out;

@@ -34,8 +34,7 @@ timedRun(const std::string& name, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr
     method(run);
     run.time_s = watch.getTimeSeconds();
     run.cpu_s = processCpuSeconds() - cpu0;
-  }
-  catch (const std::exception& e) {
+  } catch (const std::exception& e) {
     run.ran = false;
     run.message = std::string("exception: ") + e.what();
   }
@@ -44,7 +43,7 @@ timedRun(const std::string& name, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr
 
 RunEvaluation::RunEvaluation(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
                              double max_distance)
-: rms_max_distance(max_distance), source_points(cloudToMatrix(*source))
+    : rms_max_distance(max_distance), source_points(cloudToMatrix(*source))
 {
   if (target && !target->empty())
     target_tree.setInputCloud(target);
@@ -68,8 +67,7 @@ RunEvaluation::evaluate(RegistrationRun& run, const Eigen::Matrix4d* truth) cons
 #pragma omp parallel for reduction(+ : sum_sq, n) schedule(static)
   for (Eigen::Index i = 0; i < source_points.cols(); ++i) {
     const Eigen::Vector3d y = R * source_points.col(i) + t;
-    pcl::PointXYZ q(static_cast<float>(y.x()), static_cast<float>(y.y()),
-                    static_cast<float>(y.z()));
+    pcl::PointXYZ q(static_cast<float>(y.x()), static_cast<float>(y.y()), static_cast<float>(y.z()));
     pcl::Indices k(1);
     std::vector<float> d2(1);
     if (target_tree.nearestKSearch(q, 1, k, d2) == 1 && d2[0] <= max_sq) {

@@ -16,7 +16,8 @@ std::string
 robustMethodName(RobustMethod method)
 {
   std::string name = toString(method);
-  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
   return "ROBUST-" + name;
 }
 

@@ -30,8 +30,7 @@ parseCodes(const std::string& s, std::vector<int>& codes)
       if (!parseCode(part, a))
         return false;
       b = a;
-    }
-    else if (!parseCode(part.substr(0, dash), a) || !parseCode(part.substr(dash + 1), b) || b < a)
+    } else if (!parseCode(part.substr(0, dash), a) || !parseCode(part.substr(dash + 1), b) || b < a)
       return false;
     for (int c = a; c <= b; ++c)
       codes.push_back(c);
@@ -43,18 +42,36 @@ parseCodes(const std::string& s, std::vector<int>& codes)
 std::string
 lasClassName(int code)
 {
-  static const char* const kAsprs[] = {
-      "never classified", "unclassified", "ground", "low vegetation", "medium vegetation",
-      "high vegetation", "building", "low point (noise)", "model key point (LAS 1.0–1.3)", "water",
-      "rail", "road surface", "overlap (LAS 1.0–1.3)", "wire guard", "wire",
-      "transmission tower", "wire connector", "bridge deck", "high noise"};
+  static const char* const kAsprs[] = {"never classified",
+                                       "unclassified",
+                                       "ground",
+                                       "low vegetation",
+                                       "medium vegetation",
+                                       "high vegetation",
+                                       "building",
+                                       "low point (noise)",
+                                       "model key point (LAS 1.0–1.3)",
+                                       "water",
+                                       "rail",
+                                       "road surface",
+                                       "overlap (LAS 1.0–1.3)",
+                                       "wire guard",
+                                       "wire",
+                                       "transmission tower",
+                                       "wire connector",
+                                       "bridge deck",
+                                       "high noise"};
   if (code >= 0 && code < static_cast<int>(sizeof(kAsprs) / sizeof(kAsprs[0])))
     return kAsprs[code];
   switch (code) {  // IGN LiDAR HD, "sursol pérenne", "artefacts", "points virtuels"
-    case 64: return "user-defined (IGN: permanent structure)";
-    case 65: return "user-defined (IGN: artefact)";
-    case 66: return "user-defined (IGN: virtual point)";
-    default: return code >= 64 && code <= 255 ? "user-defined" : "reserved";
+  case 64:
+    return "user-defined (IGN: permanent structure)";
+  case 65:
+    return "user-defined (IGN: artefact)";
+  case 66:
+    return "user-defined (IGN: virtual point)";
+  default:
+    return code >= 64 && code <= 255 ? "user-defined" : "reserved";
   }
 }
 
@@ -128,7 +145,7 @@ parseClassGroups(const std::string& spec, std::vector<ClassGroup>& groups, std::
 }
 
 ClassLookup::ClassLookup(const std::vector<ClassGroup>& groups, const std::vector<int>& excluded)
-: table_(256, kOther)
+    : table_(256, kOther)
 {
   for (int c : excluded)
     if (c >= 0 && c <= 255)

@@ -19,8 +19,7 @@ labelsFromSegments(const std::vector<pcl::PointIndices>& segments, std::size_t n
 
 std::vector<int>
 classCodesFromSegments(const std::vector<pcl::PointIndices>& segments,
-                       const std::vector<segmentation::ObjectClass>& classes,
-                       std::size_t num_points)
+                       const std::vector<segmentation::ObjectClass>& classes, std::size_t num_points)
 {
   std::vector<int> codes(num_points, 0);
   if (classes.size() != segments.size())
@@ -61,12 +60,30 @@ segmentColour(std::uint32_t label)
   const double f = h - i;
   double r = 0, g = 0, b = 0;
   switch (i % 6) {
-    case 0: r = 1; g = f; break;
-    case 1: r = 1 - f; g = 1; break;
-    case 2: g = 1; b = f; break;
-    case 3: g = 1 - f; b = 1; break;
-    case 4: r = f; b = 1; break;
-    default: r = 1; b = 1 - f; break;
+  case 0:
+    r = 1;
+    g = f;
+    break;
+  case 1:
+    r = 1 - f;
+    g = 1;
+    break;
+  case 2:
+    g = 1;
+    b = f;
+    break;
+  case 3:
+    g = 1 - f;
+    b = 1;
+    break;
+  case 4:
+    r = f;
+    b = 1;
+    break;
+  default:
+    r = 1;
+    b = 1 - f;
+    break;
   }
   auto byte = [v](double c) { return static_cast<std::uint32_t>(c * v * 255.0 + 0.5); };
   return (byte(r) << 16) | (byte(g) << 8) | byte(b);

@@ -63,8 +63,7 @@ scoreConfusion(const std::vector<ClassGroup>& groups, const std::vector<std::siz
 void
 computeScores(ClassScores& s)
 {
-  const auto tp = static_cast<double>(s.tp), fp = static_cast<double>(s.fp),
-             fn = static_cast<double>(s.fn);
+  const auto tp = static_cast<double>(s.tp), fp = static_cast<double>(s.fp), fn = static_cast<double>(s.fn);
   s.precision = (s.tp + s.fp) > 0 ? tp / (tp + fp) : kNaN;
   s.recall = (s.tp + s.fn) > 0 ? tp / (tp + fn) : kNaN;
   // 2PR/(P+R) = 2TP/(2TP+FP+FN): defined (0) even when P or R is undefined but the other is 0.
@@ -72,18 +71,17 @@ computeScores(ClassScores& s)
 }
 
 bool
-evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
-                     const std::vector<int>& reference_labels,
-                     const SegmentationEvaluationSettings& settings,
-                     SegmentationEvaluation& result, std::string& error)
+evaluateSegmentation(const std::vector<pcl::PointIndices>& segments, const std::vector<int>& reference_labels,
+                     const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
+                     std::string& error)
 {
   const std::size_t n = reference_labels.size();
   const std::size_t G = settings.groups.size();
   for (std::size_t s = 0; s < segments.size(); ++s)
     for (int idx : segments[s].indices)
       if (idx < 0 || static_cast<std::size_t>(idx) >= n) {
-        error = "segment " + std::to_string(s) + " holds index " + std::to_string(idx) +
-                " outside the " + std::to_string(n) + " reference labels";
+        error = "segment " + std::to_string(s) + " holds index " + std::to_string(idx) + " outside the " +
+                std::to_string(n) + " reference labels";
         return false;
       }
 
@@ -143,15 +141,14 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
 }
 
 bool
-evaluateClassification(const std::vector<int>& predicted_codes,
-                       const std::vector<int>& reference_labels,
-                       const SegmentationEvaluationSettings& settings,
-                       SegmentationEvaluation& result, std::string& error)
+evaluateClassification(const std::vector<int>& predicted_codes, const std::vector<int>& reference_labels,
+                       const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
+                       std::string& error)
 {
   const std::size_t n = reference_labels.size();
   if (predicted_codes.size() != n) {
-    error = std::to_string(predicted_codes.size()) + " predicted classes for " +
-            std::to_string(n) + " reference labels";
+    error = std::to_string(predicted_codes.size()) + " predicted classes for " + std::to_string(n) +
+            " reference labels";
     return false;
   }
   const std::size_t G = settings.groups.size();
@@ -168,8 +165,7 @@ evaluateClassification(const std::vector<int>& predicted_codes,
       continue;
     ++res.points_evaluated;
     // 0 (no segment) and 1 (unclassified) predict nothing, whatever the groups name.
-    const int pred = predicted_codes[i] <= 1 ? ClassLookup::kExcluded
-                                             : lookup.groupOf(predicted_codes[i]);
+    const int pred = predicted_codes[i] <= 1 ? ClassLookup::kExcluded : lookup.groupOf(predicted_codes[i]);
     const std::size_t col = pred == ClassLookup::kExcluded ? G + 1
                             : pred == ClassLookup::kOther  ? G
                                                            : static_cast<std::size_t>(pred);

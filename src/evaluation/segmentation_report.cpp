@@ -47,8 +47,7 @@ formatSegmentationTable(const std::vector<SegmentationEvaluation>& evaluations)
   for (std::size_t c = 0; c < first.size(); ++c) {
     bool any = false;
     for (const auto& e : evaluations)
-      any |= c < e.classes.size() &&
-             (e.classes[c].reference_points > 0 || e.classes[c].predicted_points > 0);
+      any |= c < e.classes.size() && (e.classes[c].reference_points > 0 || e.classes[c].predicted_points > 0);
     if (any)
       shown.push_back(c);
   }
@@ -74,8 +73,7 @@ formatSegmentationTable(const std::vector<SegmentationEvaluation>& evaluations)
     }
     for (std::size_t c : shown) {
       const ClassScores& s = e.classes[c];
-      os << ' ' << pad(percent(s.precision) + " / " + percent(s.recall) + " / " + percent(s.f1), 22)
-         << " |";
+      os << ' ' << pad(percent(s.precision) + " / " + percent(s.recall) + " / " + percent(s.f1), 22) << " |";
     }
     os << '\n';
   }
@@ -141,8 +139,7 @@ formatObjectTable(const std::vector<ObjectEvaluation>& evaluations)
     }
     for (std::size_t c : shown) {
       const ObjectClassScores& s = e.classes[c];
-      os << ' ' << pad(percent(s.precision) + " / " + percent(s.recall) + " / " + percent(s.f1), 22)
-         << " |";
+      os << ' ' << pad(percent(s.precision) + " / " + percent(s.recall) + " / " + percent(s.f1), 22) << " |";
     }
     os << '\n';
   }
@@ -175,8 +172,7 @@ formatFragmentationTable(const std::vector<ObjectEvaluation>& evaluations, std::
       const ObjectClassScores& s = e.classes[c];
       os << ' '
          << pad(std::to_string(s.recognised) + "/" + std::to_string(s.objects) + "  " +
-                    fixed(s.median_valid_segments, "%.1f") + "  " +
-                    fixed(s.median_largest_share, "%.2f"),
+                    fixed(s.median_valid_segments, "%.1f") + "  " + fixed(s.median_largest_share, "%.2f"),
                 26)
          << " |";
     }
@@ -184,8 +180,9 @@ formatFragmentationTable(const std::vector<ObjectEvaluation>& evaluations, std::
   }
   os << "(rec/obj: recognised / reference objects; seg, share: medians over the objects of at "
         "least "
-     << min_points << " points of valid segments per object and of the largest valid segment's "
-                      "share of the object)\n";
+     << min_points
+     << " points of valid segments per object and of the largest valid segment's "
+        "share of the object)\n";
   return os.str();
 }
 

@@ -1,5 +1,5 @@
-#include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
+#include <pcl_ls3d/evaluation/segmentation_runner.h>
 #include <pcl_ls3d/evaluation/voxel_baseline.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 
@@ -84,17 +84,25 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   for (D d : dims) {
     run.dimensionality.push_back(static_cast<std::uint8_t>(d));
     switch (d) {
-      case D::Linear: ++run.linear; break;
-      case D::Planar: ++run.planar; break;
-      case D::Volumetric: ++run.volumetric; break;
-      default: ++run.invalid; break;
+    case D::Linear:
+      ++run.linear;
+      break;
+    case D::Planar:
+      ++run.planar;
+      break;
+    case D::Volumetric:
+      ++run.volumetric;
+      break;
+    default:
+      ++run.invalid;
+      break;
     }
   }
 }
 
 void
-runPclRegionGrowing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
-                    const SegmentationRunSettings& s, SegmentationRun& run)
+runPclRegionGrowing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud, const SegmentationRunSettings& s,
+                    SegmentationRun& run)
 {
   pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
   pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
@@ -136,20 +144,20 @@ runPclRegionGrowing(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   run.seconds_total = run.seconds_normals + run.seconds_segmentation;
   run.segments_before_merge = run.segments_after_merge = run.segments.size();
   const double nan = std::nan("");
-  run.residual_threshold = run.distance_threshold = run.similarity_threshold =
-      run.volume_threshold = run.spacing = run.growth_radius = run.volumetric_radius = nan;
+  run.residual_threshold = run.distance_threshold = run.similarity_threshold = run.volume_threshold =
+      run.spacing = run.growth_radius = run.volumetric_radius = nan;
 }
 void
-runVoxelGrid(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
-             const SegmentationRunSettings& s, SegmentationRun& run)
+runVoxelGrid(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud, const SegmentationRunSettings& s,
+             SegmentationRun& run)
 {
   pcl::StopWatch watch;
   run.segments = voxelSegmentsWithCount(*cloud, s.voxel_segments, run.voxel_size);
   run.seconds_segmentation = run.seconds_total = watch.getTimeSeconds();
   run.segments_before_merge = run.segments_after_merge = run.segments.size();
   const double nan = std::nan("");
-  run.residual_threshold = run.distance_threshold = run.similarity_threshold =
-      run.volume_threshold = run.spacing = run.growth_radius = run.volumetric_radius = nan;
+  run.residual_threshold = run.distance_threshold = run.similarity_threshold = run.volume_threshold =
+      run.spacing = run.growth_radius = run.volumetric_radius = nan;
 }
 }  // namespace
 
@@ -157,18 +165,22 @@ std::string
 toString(SegmentationMethod m)
 {
   switch (m) {
-    case SegmentationMethod::IMRG: return "imrg";
-    case SegmentationMethod::MRG: return "mrg";
-    case SegmentationMethod::VoxelGrid: return "voxel";
-    default: return "pcl_rg";
+  case SegmentationMethod::IMRG:
+    return "imrg";
+  case SegmentationMethod::MRG:
+    return "mrg";
+  case SegmentationMethod::VoxelGrid:
+    return "voxel";
+  default:
+    return "pcl_rg";
   }
 }
 
 bool
 parseSegmentationMethod(const std::string& s, SegmentationMethod& m)
 {
-  for (auto c : {SegmentationMethod::IMRG, SegmentationMethod::MRG,
-                 SegmentationMethod::PclRegionGrowing, SegmentationMethod::VoxelGrid})
+  for (auto c : {SegmentationMethod::IMRG, SegmentationMethod::MRG, SegmentationMethod::PclRegionGrowing,
+                 SegmentationMethod::VoxelGrid})
     if (s == toString(c)) {
       m = c;
       return true;
@@ -185,8 +197,8 @@ SegmentationRunSettings::isValid(std::string* why) const
     return false;
   };
   if ((k_min > 0) != (k_max > 0) || (k_min > 0 && (k_min < 3 || k_max < k_min || k_max > 65535)))
-    return fail("neighbourhood range needs 3 <= kmin <= kmax <= 65535 (got " +
-                std::to_string(k_min) + "," + std::to_string(k_max) + ")");
+    return fail("neighbourhood range needs 3 <= kmin <= kmax <= 65535 (got " + std::to_string(k_min) + "," +
+                std::to_string(k_max) + ")");
   if (!(normal_angle_deg < 180.0) || !(principal_angle_deg < 180.0))
     return fail("angle thresholds must be below 180 degrees");
   for (double t : {residual_threshold, distance_threshold, similarity_threshold, volume_threshold})
@@ -239,17 +251,16 @@ evaluateRunClasses(const SegmentationRun& run, const std::vector<int>& reference
                    std::string& error)
 {
   if (run.classes.size() != run.segments.size()) {
-    error = std::to_string(run.classes.size()) + " classes for " +
-            std::to_string(run.segments.size()) + " segments";
+    error = std::to_string(run.classes.size()) + " classes for " + std::to_string(run.segments.size()) +
+            " segments";
     return false;
   }
   result = SegmentationEvaluation();
   result.method = toString(run.method) + " classes";
   result.seconds = run.seconds_total;
   result.segments = run.segments.size();
-  return evaluateClassification(
-      classCodesFromSegments(run.segments, run.classes, reference_labels.size()),
-      reference_labels, settings, result, error);
+  return evaluateClassification(classCodesFromSegments(run.segments, run.classes, reference_labels.size()),
+                                reference_labels, settings, result, error);
 }
 
 }  // namespace evaluation

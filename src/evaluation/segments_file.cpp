@@ -1,8 +1,8 @@
 /// \file segments_file.cpp
 /// \brief SEGMENTS.pcd writer and origin reader.
 
-#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/evaluation/segmentation_labels.h>
+#include <pcl_ls3d/evaluation/segments_file.h>
 #include <pcl_ls3d/io/pcd_io.h>
 
 #include <pcl/PCLPointCloud2.h>
@@ -23,9 +23,8 @@ namespace {
 /// The input points back in file order: loaded points in their places, NaN where the input
 /// point was not finite, segment labels and colours.
 bool
-fileOrderCloud(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-               const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
-               pcl::PointCloud<pcl::PointXYZRGBL>& out, std::string& error)
+fileOrderCloud(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::vector<pcl::PointIndices>& segments,
+               const InputLayout& layout, pcl::PointCloud<pcl::PointXYZRGBL>& out, std::string& error)
 {
   const std::size_t total = std::max(layout.points_in_file, cloud.size());
   if (cloud.size() + layout.nonfinite.size() != total) {
@@ -45,8 +44,7 @@ fileOrderCloud(const pcl::PointCloud<pcl::PointXYZ>& cloud,
       ++next_bad;
       p.x = p.y = p.z = nan;
       p.label = 0;
-    }
-    else {
+    } else {
       p.getVector3fMap() = cloud[loaded].getVector3fMap();
       p.label = labels[loaded++];
     }
@@ -84,8 +82,8 @@ appendClassification(const pcl::PointCloud<pcl::PointXYZRGBL>& points,
 
 bool
 saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
-                std::string& error, const std::vector<std::uint8_t>& segment_codes)
+                const std::vector<pcl::PointIndices>& segments, const InputLayout& layout, std::string& error,
+                const std::vector<std::uint8_t>& segment_codes)
 {
   if (!segment_codes.empty() && segment_codes.size() != segments.size()) {
     error = "segments file: " + std::to_string(segment_codes.size()) + " class codes for " +
@@ -126,8 +124,7 @@ anyHeaderLine(const std::string& path, const std::function<bool(const std::strin
 bool
 isSegmentsFile(const std::string& path)
 {
-  return anyHeaderLine(path,
-                       [](const std::string& line) { return io::isPcdSegmentsMarkerLine(line); });
+  return anyHeaderLine(path, [](const std::string& line) { return io::isPcdSegmentsMarkerLine(line); });
 }
 
 bool

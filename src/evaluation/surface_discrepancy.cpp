@@ -9,9 +9,8 @@
 namespace pcl_ls3d {
 namespace evaluation {
 
-SurfaceDiscrepancy::SurfaceDiscrepancy(const CloudXYZ::ConstPtr& target,
-                                       const DiscrepancySettings& settings)
-: settings_(settings), target_(target)
+SurfaceDiscrepancy::SurfaceDiscrepancy(const CloudXYZ::ConstPtr& target, const DiscrepancySettings& settings)
+    : settings_(settings), target_(target)
 {
   const std::size_t n = target ? target->size() : 0;
   centroid_.assign(n, Eigen::Vector3d::Zero());
@@ -37,8 +36,7 @@ SurfaceDiscrepancy::SurfaceDiscrepancy(const CloudXYZ::ConstPtr& target,
     c /= static_cast<double>(idx.size());
     Eigen::Matrix3d C = Eigen::Matrix3d::Zero();
     for (auto j : idx) {
-      const Eigen::Vector3d d =
-          (*target)[static_cast<std::size_t>(j)].getVector3fMap().cast<double>() - c;
+      const Eigen::Vector3d d = (*target)[static_cast<std::size_t>(j)].getVector3fMap().cast<double>() - c;
       C += d * d.transpose();
     }
     Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(C);
@@ -74,8 +72,7 @@ SurfaceDiscrepancy::evaluate(const Eigen::Matrix3Xd& source_points, const Eigen:
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t i = 0; i < m; ++i) {
     const Eigen::Vector3d y = A * source_points.col(i) + t;
-    pcl::PointXYZ q(static_cast<float>(y.x()), static_cast<float>(y.y()),
-                    static_cast<float>(y.z()));
+    pcl::PointXYZ q(static_cast<float>(y.x()), static_cast<float>(y.y()), static_cast<float>(y.z()));
     pcl::Indices k(1);
     std::vector<float> d2(1);
     if (tree_.nearestKSearch(q, 1, k, d2) != 1 || d2[0] > max_sq)

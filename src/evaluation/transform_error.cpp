@@ -20,8 +20,7 @@ wrapAngle(double a)
 }  // namespace
 
 double
-displacementError(const Eigen::Matrix4d& T_est, const Eigen::Matrix4d& T_true,
-                  const Eigen::Vector3d& x)
+displacementError(const Eigen::Matrix4d& T_est, const Eigen::Matrix4d& T_true, const Eigen::Vector3d& x)
 {
   // (T_est − T_true) applied to [x; 1]: one product instead of two transforms.
   const Eigen::Matrix<double, 3, 4> D = (T_est - T_true).topRows<3>();
@@ -31,8 +30,8 @@ displacementError(const Eigen::Matrix4d& T_est, const Eigen::Matrix4d& T_true,
 Vector7d
 parameterErrors(const Eigen::Matrix4d& T_est, const Eigen::Matrix4d& T_true)
 {
-  Vector7d e = SimilarityTransform::fromMatrix(T_est).vector() -
-               SimilarityTransform::fromMatrix(T_true).vector();
+  Vector7d e =
+      SimilarityTransform::fromMatrix(T_est).vector() - SimilarityTransform::fromMatrix(T_true).vector();
   for (int i = PHI; i <= KAPPA; ++i)
     e[i] = wrapAngle(e[i]);
   return e;

@@ -64,11 +64,9 @@ voxelSegments(const pcl::PointCloud<pcl::PointXYZ>& cloud, double size)
 }
 
 std::vector<pcl::PointIndices>
-voxelSegmentsWithCount(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t target,
-                       double& size)
+voxelSegmentsWithCount(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t target, double& size)
 {
-  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()),
-                  hi = -lo;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const auto& p : cloud.points)
     if (finite(p)) {
       lo = lo.cwiseMin(p.getVector3fMap().cast<double>());

@@ -19,10 +19,9 @@ void
 appendNumber(std::string& out, double v, int decimals)
 {
   char buffer[64];
-  const auto r = decimals < 0
-                     ? std::to_chars(buffer, buffer + sizeof(buffer), v)
-                     : std::to_chars(buffer, buffer + sizeof(buffer), v, std::chars_format::fixed,
-                                     std::min(decimals, 17));
+  const auto r = decimals < 0 ? std::to_chars(buffer, buffer + sizeof(buffer), v)
+                              : std::to_chars(buffer, buffer + sizeof(buffer), v, std::chars_format::fixed,
+                                              std::min(decimals, 17));
   out.append(buffer, r.ec == std::errc() ? r.ptr : buffer);
 }
 
@@ -56,8 +55,8 @@ appendPoint(std::string& line, const PointLiDAR& p, const Eigen::Vector3d& origi
 }
 
 bool
-writeText(const std::string& path, const std::string& header,
-          const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin)
+writeText(const std::string& path, const std::string& header, const pcl::PointCloud<PointLiDAR>& cloud,
+          const Eigen::Vector3d& origin)
 {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f)
@@ -79,12 +78,17 @@ writePcdAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
               const Eigen::Vector3d& origin, const std::string& comments)
 {
   const std::string xyz = origin.isZero(0.0) ? "4" : "8", n = std::to_string(cloud.size());
-  const std::string header =
-      "# .PCD v0.7 - Point Cloud Data file format\n" + comments + "VERSION 0.7\n"
-      "FIELDS x y z intensity gps_time point_source_id classification return_number "
-      "number_of_returns\nSIZE " + xyz + " " + xyz + " " + xyz + " 4 8 2 1 1 1\n"
-      "TYPE F F F F F U U U U\nCOUNT 1 1 1 1 1 1 1 1 1\nWIDTH " + n + "\nHEIGHT 1\n"
-      "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + n + "\nDATA ascii\n";
+  const std::string header = "# .PCD v0.7 - Point Cloud Data file format\n" + comments +
+                             "VERSION 0.7\n"
+                             "FIELDS x y z intensity gps_time point_source_id classification return_number "
+                             "number_of_returns\nSIZE " +
+                             xyz + " " + xyz + " " + xyz +
+                             " 4 8 2 1 1 1\n"
+                             "TYPE F F F F F U U U U\nCOUNT 1 1 1 1 1 1 1 1 1\nWIDTH " +
+                             n +
+                             "\nHEIGHT 1\n"
+                             "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS " +
+                             n + "\nDATA ascii\n";
   return writeText(path, header, cloud, origin);
 }
 
@@ -94,8 +98,9 @@ writePlyAscii(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
 {
   const std::string t = origin.isZero(0.0) ? "float" : "double";
   const std::string header =
-      "ply\nformat ascii 1.0\n" + comments + "comment pcl_ls3d\nelement vertex " + std::to_string(cloud.size()) +
-      "\nproperty " + t + " x\nproperty " + t + " y\nproperty " + t + " z\n"
+      "ply\nformat ascii 1.0\n" + comments + "comment pcl_ls3d\nelement vertex " +
+      std::to_string(cloud.size()) + "\nproperty " + t + " x\nproperty " + t + " y\nproperty " + t +
+      " z\n"
       "property float intensity\nproperty double gps_time\nproperty ushort point_source_id\n"
       "property uchar classification\nproperty uchar return_number\n"
       "property uchar number_of_returns\nend_header\n";

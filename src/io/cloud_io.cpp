@@ -51,7 +51,6 @@ isSameFile(const std::string& a, const std::string& b)
   return pa == pb;
 }
 
-
 namespace {
 
 /// "las", "laz", "pcd", "ply", "xyz" from the first bytes, else "".
@@ -67,8 +66,7 @@ sniffFormat(const std::string& path)
     return "las";
   if (s.compare(0, 4, "ply\n") == 0 || s.compare(0, 4, "ply\r") == 0)
     return "ply";
-  if (s.compare(0, 6, "# .PCD") == 0 || s.compare(0, 7, "VERSION") == 0 ||
-      s.compare(0, 6, "FIELDS") == 0)
+  if (s.compare(0, 6, "# .PCD") == 0 || s.compare(0, 7, "VERSION") == 0 || s.compare(0, 6, "FIELDS") == 0)
     return "pcd";
   return "";
 }
@@ -95,7 +93,8 @@ keepRegion(const Region& region, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& 
   for (const PointLiDAR& p : cloud.points) {
     const Eigen::Vector3d x = info.origin + p.getVector3fMap().cast<double>();
     if (((x.head(dims).array() >= region.box.min().head(dims).array()) &&
-         (x.head(dims).array() <= region.box.max().head(dims).array())).all()) {
+         (x.head(dims).array() <= region.box.max().head(dims).array()))
+            .all()) {
       cloud.points[kept++] = p;
       lo = lo.cwiseMin(x);
       hi = hi.cwiseMax(x);
@@ -113,9 +112,8 @@ keepRegion(const Region& region, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& 
 }
 
 bool
-loadByFormat(const std::string& format, const std::string& path,
-             pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
-             const LoadOptions& options)
+loadByFormat(const std::string& format, const std::string& path, pcl::PointCloud<PointLiDAR>& cloud,
+             CloudInfo& info, std::string& error, const LoadOptions& options)
 {
   if (format == "las" || format == "laz")  // a LAZ file is LAS with compressed records
     return readLasFile(path, cloud, info, error, options);
@@ -135,8 +133,7 @@ loadByFormat(const std::string& format, const std::string& path,
       return false;
     ok = format == "pcd" ? readPcd(file.data(), file.size(), cloud, info, error, whole)
                          : readPly(file.data(), file.size(), cloud, info, error, whole);
-  }
-  else {
+  } else {
     std::ifstream in(path);
     if (!in) {
       error = "cannot open file";
@@ -152,8 +149,8 @@ loadByFormat(const std::string& format, const std::string& path,
 }  // namespace
 
 bool
-loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
-          std::string& error, const LoadOptions& options)
+loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
+          const LoadOptions& options)
 {
   cloud.clear();
   info = CloudInfo();
@@ -185,8 +182,7 @@ loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo
     reason = info.points_outside_region > 0 ? std::string("no point of the file lies inside the region")
              : info.points_in_file == 0
                  ? std::string("no points in the file")
-                 : "no finite points (all " + std::to_string(info.points_in_file) +
-                       " points are NaN/inf)";
+                 : "no finite points (all " + std::to_string(info.points_in_file) + " points are NaN/inf)";
   }
   if (!reason.empty()) {
     error = detail::printable(path) + ": " + reason;
@@ -202,14 +198,13 @@ canSaveFormat(const std::string& path, std::string& why)
   const std::string format = formatOf(ext);
   if (!format.empty())
     return true;
-  why = "cannot write " + detail::quote("." + ext) +
-        " files (supported: .las .laz .pcd .ply .xyz .txt .csv)";
+  why = "cannot write " + detail::quote("." + ext) + " files (supported: .las .laz .pcd .ply .xyz .txt .csv)";
   return false;
 }
 
 bool
-saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-          const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+          std::string& error, const SaveOptions& options)
 {
   const std::string format = formatOf(fileExtension(path));
   std::string reason;

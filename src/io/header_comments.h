@@ -16,7 +16,8 @@ inline std::string
 oneLineComment(std::string_view prefix, const std::string& text)
 {
   std::string line = std::string(prefix) + text;
-  std::replace_if(line.begin(), line.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace_if(
+      line.begin(), line.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   return line;
 }
 

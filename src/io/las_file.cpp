@@ -12,8 +12,8 @@ namespace pcl_ls3d {
 namespace io {
 
 bool
-readLasFile(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
-            std::string& error, const LoadOptions& options)
+readLasFile(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
+            const LoadOptions& options)
 {
   detail::MappedFile file;  // mapped read-only: no copy of the point block
   if (!file.open(path, error))
@@ -22,15 +22,15 @@ readLasFile(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudIn
 }
 
 bool
-writeLasFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+writeLasFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+             std::string& error, const SaveOptions& options)
 {
   std::vector<std::uint8_t> bytes;
   if (!writeLas(cloud, origin, bytes, error, options))
     return false;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out || !out.write(reinterpret_cast<const char*>(bytes.data()),
-                         static_cast<std::streamsize>(bytes.size()))) {
+  if (!out ||
+      !out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
     error = "cannot write the file";
     return false;
   }

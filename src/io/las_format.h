@@ -23,8 +23,8 @@ constexpr std::size_t kFileSourceId = 4, kGlobalEncoding = 6, kCreationDay = 90,
 constexpr std::size_t kHeaderSize = 94, kOffsetToPoints = 96, kNumberOfVlrs = 100;
 constexpr std::size_t kPointFormat = 104, kRecordLength = 105, kLegacyCount = 107;
 constexpr std::size_t kLegacyByReturn = 111, kScale = 131, kOffset = 155;
-constexpr std::size_t kMaxX = 179;  // then minX, maxY, minY, maxZ, minZ (doubles)
-constexpr std::size_t kWaveformStart = 227;                          // 1.3+
+constexpr std::size_t kMaxX = 179;           // then minX, maxY, minY, maxZ, minZ (doubles)
+constexpr std::size_t kWaveformStart = 227;  // 1.3+
 constexpr std::size_t kEvlrStart = 235, kEvlrCount = 243, kCount64 = 247, kByReturn64 = 255;  // 1.4
 
 constexpr std::size_t kHeaderSize10 = 227, kHeaderSize13 = 235, kHeaderSize14 = 375;
@@ -52,14 +52,13 @@ gpsTimeOffset(int format)
 /// are made of.
 struct IntegerBox
 {
-  std::int32_t lo[3] = {std::numeric_limits<std::int32_t>::max(),
-                        std::numeric_limits<std::int32_t>::max(),
+  std::int32_t lo[3] = {std::numeric_limits<std::int32_t>::max(), std::numeric_limits<std::int32_t>::max(),
                         std::numeric_limits<std::int32_t>::max()};
-  std::int32_t hi[3] = {std::numeric_limits<std::int32_t>::min(),
-                        std::numeric_limits<std::int32_t>::min(),
+  std::int32_t hi[3] = {std::numeric_limits<std::int32_t>::min(), std::numeric_limits<std::int32_t>::min(),
                         std::numeric_limits<std::int32_t>::min()};
 
-  void add(int k, std::int32_t v)
+  void
+  add(int k, std::int32_t v)
   {
     lo[k] = std::min(lo[k], v);
     hi[k] = std::max(hi[k], v);

@@ -33,8 +33,7 @@ describesCompression(const LasVlr& v);
 /// kept VLRs, then the bytes that lay between the VLRs and the points. The VLR count and offset
 /// to the points are set, the format byte's compression bits cleared.
 std::vector<std::uint8_t>
-rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h,
-            const std::vector<std::uint8_t>& extra_vlr);
+rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h, const std::vector<std::uint8_t>& extra_vlr);
 
 /// Appends the file's EVLRs (as they are, but for a COPC hierarchy, see describesCompression) to
 /// `out`, a rebuilt file whose header is at its start, and sets the header's EVLR offset and
@@ -50,8 +49,7 @@ writeCounts(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::uint64
 
 /// Sets the header bounds of `head` from the records' integer bounds (zero when `empty`).
 void
-writeBounds(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, const IntegerBox& box,
-            bool empty);
+writeBounds(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, const IntegerBox& box, bool empty);
 
 /// The PointLiDAR fields a LAS record fills.
 std::vector<std::string>
@@ -77,8 +75,8 @@ struct LocalFrame
 /// From the records' integer bounds: the file bounds in `info`, the origin (options' or the
 /// auto-origin rule) and the frame; false when a coordinate is not finite or does not fit a float.
 bool
-chooseFrame(const IntegerBox& box, std::size_t n, const LasHeaderInfo& h,
-            const LoadOptions& options, CloudInfo& info, LocalFrame& frame, std::string& error);
+chooseFrame(const IntegerBox& box, std::size_t n, const LasHeaderInfo& h, const LoadOptions& options,
+            CloudInfo& info, LocalFrame& frame, std::string& error);
 
 }  // namespace las
 
@@ -87,8 +85,8 @@ namespace laz_detail {
 /// The records of a LAZ file (its header parsed by las::parseHeader) into `cloud`, decoded chunk
 /// by chunk (laz/laz_reader.cpp).
 bool
-readLazPoints(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-              CloudInfo& info, std::string& error, const LoadOptions& options);
+readLazPoints(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+              std::string& error, const LoadOptions& options);
 
 /// Fills h.laz.chunk_count and chunk_table by opening the chunk table; false when the LAZ
 /// container is unreadable.

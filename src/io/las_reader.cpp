@@ -74,8 +74,8 @@ readVlrs(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
     const std::size_t length = las::get<std::uint16_t>(v + 20);
     vlr.description = fixedString(v + 22, 32);
     if (pos + las::kVlrHeaderSize + length > end) {
-      error = concat("VLR ", i + 1, " (", detail::clip(vlr.user_id), "/", vlr.record_id, ") of ",
-                     length, " bytes runs past the point data at byte ", end);
+      error = concat("VLR ", i + 1, " (", detail::clip(vlr.user_id), "/", vlr.record_id, ") of ", length,
+                     " bytes runs past the point data at byte ", end);
       return false;
     }
     vlr.data.assign(v + las::kVlrHeaderSize, v + las::kVlrHeaderSize + length);
@@ -124,8 +124,7 @@ readVersion(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::s
     return false;
   }
   if (size < h.header_size) {
-    error = concat("truncated LAS header: file has ", size, " bytes, header size is ",
-                   h.header_size);
+    error = concat("truncated LAS header: file has ", size, " bytes, header size is ", h.header_size);
     return false;
   }
   return true;
@@ -174,8 +173,8 @@ readLegacyFields(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
     h.max[k] = las::get<double>(data + las::kMaxX + 16 * k);
     h.min[k] = las::get<double>(data + las::kMaxX + 16 * k + 8);
     if (!std::isfinite(h.scale[k]) || h.scale[k] == 0.0 || !std::isfinite(h.offset[k])) {
-      error = concat("invalid scale factor or offset for ", "xyz"[k], " (scale ", h.scale[k],
-                     ", offset ", h.offset[k], ")");
+      error = concat("invalid scale factor or offset for ", "xyz"[k], " (scale ", h.scale[k], ", offset ",
+                     h.offset[k], ")");
       return false;
     }
   }
@@ -192,8 +191,7 @@ readPointCount(const std::uint8_t* data, LasHeaderInfo& h, std::string& error)
     return true;
   const std::uint64_t count64 = las::get<std::uint64_t>(data + las::kCount64);
   if (count64 != 0 && h.legacy_point_count != 0 && count64 != h.legacy_point_count) {
-    error = concat("point count mismatch: legacy count ", h.legacy_point_count,
-                   " vs 64-bit count ", count64);
+    error = concat("point count mismatch: legacy count ", h.legacy_point_count, " vs 64-bit count ", count64);
     return false;
   }
   if (count64 != 0) {
@@ -209,13 +207,13 @@ bool
 checkPointOffset(const LasHeaderInfo& h, std::size_t size, std::string& error)
 {
   if (h.offset_to_points < h.header_size) {
-    error = concat("offset to point data (", h.offset_to_points, ") lies inside the ",
-                   h.header_size, "-byte header");
+    error = concat("offset to point data (", h.offset_to_points, ") lies inside the ", h.header_size,
+                   "-byte header");
     return false;
   }
   if (h.offset_to_points > size) {
-    error = concat("offset to point data (", h.offset_to_points,
-                   ") is beyond the end of the file (", size, " bytes)");
+    error = concat("offset to point data (", h.offset_to_points, ") is beyond the end of the file (", size,
+                   " bytes)");
     return false;
   }
   return true;
@@ -227,10 +225,9 @@ checkPointBlock(const LasHeaderInfo& h, std::size_t size, std::string& error)
 {
   const std::uint64_t available = size - h.offset_to_points;
   if (h.point_count > available / h.record_length) {
-    error = concat("point block truncated or point count wrong: header says ", h.point_count,
-                   " points of ", h.record_length, " bytes from byte ", h.offset_to_points,
-                   " but only ", available, " bytes follow (room for ",
-                   available / h.record_length, " points)");
+    error = concat("point block truncated or point count wrong: header says ", h.point_count, " points of ",
+                   h.record_length, " bytes from byte ", h.offset_to_points, " but only ", available,
+                   " bytes follow (room for ", available / h.record_length, " points)");
     return false;
   }
   return true;
@@ -254,8 +251,8 @@ readLaszipVlr(LasHeaderInfo& h, std::string& error)
     return false;
   }
   laz::LaszipVlr vlr;
-  if (!laz::parseLaszipVlr(found->data.data(), found->data.size(), h.point_format,
-                           h.record_length, vlr, error))
+  if (!laz::parseLaszipVlr(found->data.data(), found->data.size(), h.point_format, h.record_length, vlr,
+                           error))
     return false;
   h.laz.compressor = static_cast<int>(vlr.compressor);
   h.laz.chunk_size = vlr.chunk_size;
@@ -273,8 +270,7 @@ readEvlrs(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::str
   std::uint64_t pos = las::get<std::uint64_t>(data + las::kEvlrStart);
   const std::uint32_t count = las::get<std::uint32_t>(data + las::kEvlrCount);
   if (count > 0 && pos < h.offset_to_points) {
-    error = concat("the EVLRs start at byte ", pos, ", before the point data at byte ",
-                   h.offset_to_points);
+    error = concat("the EVLRs start at byte ", pos, ", before the point data at byte ", h.offset_to_points);
     return false;
   }
   for (std::uint32_t i = 0; i < count; ++i) {
@@ -315,8 +311,7 @@ parseHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::s
   h = LasHeaderInfo();
   if (!(readVersion(data, size, h, error) && readPointFormat(data, h, error) &&
         readLegacyFields(data, h, error) && readPointCount(data, h, error) &&
-        checkPointOffset(h, size, error) && readVlrs(data, h, error) &&
-        readLaszipVlr(h, error)))
+        checkPointOffset(h, size, error) && readVlrs(data, h, error) && readLaszipVlr(h, error)))
     return false;
   if (!h.laz.compressed && !checkPointBlock(h, size, error))
     return false;
@@ -330,8 +325,7 @@ describesCompression(const LasVlr& v)
 }
 
 std::vector<std::uint8_t>
-rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h,
-            const std::vector<std::uint8_t>& extra_vlr)
+rebuildHead(const std::uint8_t* data, const LasHeaderInfo& h, const std::vector<std::uint8_t>& extra_vlr)
 {
   std::vector<std::uint8_t> head(data, data + h.header_size);
   std::size_t pos = h.header_size;
@@ -393,8 +387,7 @@ writeCounts(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::uint64
 }
 
 void
-writeBounds(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, const IntegerBox& box,
-            bool empty)
+writeBounds(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, const IntegerBox& box, bool empty)
 {
   for (int c = 0; c < 3; ++c) {
     double a = 0.0, b = 0.0;
@@ -410,8 +403,8 @@ writeBounds(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, const Integ
 std::vector<std::string>
 loadedFields(const LasHeaderInfo& h)
 {
-  std::vector<std::string> fields = {"x", "y", "z", "intensity", "return_number",
-                                     "number_of_returns", "classification", "point_source_id"};
+  std::vector<std::string> fields = {
+      "x", "y", "z", "intensity", "return_number", "number_of_returns", "classification", "point_source_id"};
   if (las::gpsTimeOffset(h.point_format))
     fields.push_back("gps_time");
   return fields;
@@ -427,8 +420,7 @@ decodeAttributes(const std::uint8_t* r, const LasHeaderInfo& h, PointLiDAR& p)
     p.number_of_returns = returns >> 4;
     p.classification = r[16];
     p.point_source_id = las::get<std::uint16_t>(r + 20);
-  }
-  else {
+  } else {
     p.return_number = returns & 0x07;
     p.number_of_returns = (returns >> 3) & 0x07;
     p.classification = r[15] & 0x1F;
@@ -439,8 +431,8 @@ decodeAttributes(const std::uint8_t* r, const LasHeaderInfo& h, PointLiDAR& p)
 }
 
 bool
-chooseFrame(const IntegerBox& box, std::size_t n, const LasHeaderInfo& h,
-            const LoadOptions& options, CloudInfo& info, LocalFrame& frame, std::string& error)
+chooseFrame(const IntegerBox& box, std::size_t n, const LasHeaderInfo& h, const LoadOptions& options,
+            CloudInfo& info, LocalFrame& frame, std::string& error)
 {
   // The file coordinates' bounds from the integer bounds (a negative scale swaps the ends).
   for (int k = 0; k < 3 && n > 0; ++k) {
@@ -480,8 +472,8 @@ namespace {
 /// other; `info` describes the whole input (its header, compression and octree) and what the
 /// query read and left out.
 bool
-readLasRegion(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-              CloudInfo& info, std::string& error, const LoadOptions& options)
+readLasRegion(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+              std::string& error, const LoadOptions& options)
 {
   LasHeaderInfo& h = info.las;
   std::vector<std::uint8_t> las;
@@ -513,8 +505,8 @@ readLasRegion(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointL
 }  // namespace
 
 bool
-readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-        CloudInfo& info, std::string& error, const LoadOptions& options)
+readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+        std::string& error, const LoadOptions& options)
 {
   info = CloudInfo();
   info.format = "las";

@@ -22,10 +22,10 @@ struct LasRecordFile::Impl
   LasHeaderInfo header;
   const std::uint8_t* data = nullptr;
   std::size_t size = 0;
-  void* map = nullptr;                 // mmap'ed file, or null when read into `buffer`
+  void* map = nullptr;  // mmap'ed file, or null when read into `buffer`
   std::vector<std::uint8_t> buffer;
   const std::uint8_t* records = nullptr;
-  bool new_layout = false;             // point formats 6–10
+  bool new_layout = false;  // point formats 6–10
   RegionInfo region;
 
   ~Impl()
@@ -51,8 +51,7 @@ struct LasRecordFile::Impl
   crop(const Region& r, std::string& error)
   {
     std::vector<std::uint8_t> las;
-    return las::extractRegion(data, size, header, r, las, region, error) &&
-           replaceBy(las, error);
+    return las::extractRegion(data, size, header, r, las, region, error) && replaceBy(las, error);
   }
 
   bool
@@ -68,7 +67,8 @@ struct LasRecordFile::Impl
   }
 };
 
-LasRecordFile::LasRecordFile() : impl_(std::make_unique<Impl>()) {}
+LasRecordFile::LasRecordFile() : impl_(std::make_unique<Impl>())
+{}
 LasRecordFile::~LasRecordFile() = default;
 LasRecordFile::LasRecordFile(LasRecordFile&&) noexcept = default;
 LasRecordFile&
@@ -94,8 +94,7 @@ LasRecordFile::open(const std::string& path, std::string& error, const Region* r
   if (map != MAP_FAILED) {
     impl_->map = map;
     impl_->data = static_cast<const std::uint8_t*>(map);
-  }
-  else {
+  } else {
     impl_->buffer.resize(impl_->size);
     std::size_t got = 0;
     while (got < impl_->size) {
@@ -171,8 +170,7 @@ LasRecordFile::coordinates(std::size_t i) const
 {
   const Eigen::Vector3i q = quantised(i);
   const LasHeaderInfo& h = impl_->header;
-  return {q[0] * h.scale[0] + h.offset[0], q[1] * h.scale[1] + h.offset[1],
-          q[2] * h.scale[2] + h.offset[2]};
+  return {q[0] * h.scale[0] + h.offset[0], q[1] * h.scale[1] + h.offset[1], q[2] * h.scale[2] + h.offset[2]};
 }
 
 std::uint8_t
@@ -190,8 +188,7 @@ LasRecordFile::flags(std::size_t i) const
   if (impl_->new_layout) {
     const std::uint8_t b = r[15];
     f = {(b & 1) != 0, (b & 2) != 0, (b & 4) != 0, (b & 8) != 0};
-  }
-  else {
+  } else {
     const std::uint8_t b = r[15];
     f = {(b & 0x20) != 0, (b & 0x40) != 0, (b & 0x80) != 0, false};
   }

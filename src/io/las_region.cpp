@@ -40,8 +40,8 @@ gatherLas(const std::uint8_t* data, const LasHeaderInfo& h, const Region& region
 /// The records of a LAZ file inside the region, decoded chunk by chunk (in parallel when it has
 /// a chunk table): only one batch of decoded chunks is held beside the records kept.
 bool
-gatherLaz(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
-          const Region& region, Parts& parts, RegionInfo& read, std::string& error)
+gatherLaz(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h, const Region& region,
+          Parts& parts, RegionInfo& read, std::string& error)
 {
   laz::LazChunkReader reader;
   if (!reader.open(data, size, h, error))
@@ -67,8 +67,8 @@ gatherLaz(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
 
 /// The records of a COPC file inside the region, from the nodes whose cube meets it.
 bool
-gatherCopc(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
-           const Region& region, Parts& parts, RegionInfo& read, std::string& error)
+gatherCopc(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h, const Region& region,
+           Parts& parts, RegionInfo& read, std::string& error)
 {
   laz::CopcFile copc;
   if (!laz::openCopc(data, size, h, copc, error))
@@ -86,8 +86,7 @@ gatherCopc(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
 /// The LAS file of the kept records: the input's header, VLRs and EVLRs (less what described
 /// its compression), with the counts and bounds of these records.
 void
-assemble(const std::uint8_t* data, const LasHeaderInfo& h, const Parts& parts,
-         std::vector<std::uint8_t>& las)
+assemble(const std::uint8_t* data, const LasHeaderInfo& h, const Parts& parts, std::vector<std::uint8_t>& las)
 {
   las = rebuildHead(data, h, {});
   IntegerBox box;
@@ -140,9 +139,8 @@ insideRegion(const std::uint8_t* r, const LasHeaderInfo& h, const Region& region
 }
 
 bool
-extractRegion(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
-              const Region& region, std::vector<std::uint8_t>& las, RegionInfo& read,
-              std::string& error)
+extractRegion(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h, const Region& region,
+              std::vector<std::uint8_t>& las, RegionInfo& read, std::string& error)
 {
   read = RegionInfo();
   read.applied = true;
@@ -154,7 +152,7 @@ extractRegion(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h
     return false;
   }
   Parts parts;
-  const bool ok = copc              ? gatherCopc(data, size, h, region, parts, read, error)
+  const bool ok = copc               ? gatherCopc(data, size, h, region, parts, read, error)
                   : h.laz.compressed ? gatherLaz(data, size, h, region, parts, read, error)
                                      : (gatherLas(data, h, region, parts, read), true);
   if (!ok)

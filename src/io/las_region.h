@@ -29,9 +29,8 @@ insideRegion(const std::uint8_t* record, const LasHeaderInfo& h, const Region& r
 /// The records of the file [data, data + size) (header parsed into `h`) inside `region`, as an
 /// uncompressed LAS file in `las`. `read` says what was decoded. False with a one-line reason.
 bool
-extractRegion(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
-              const Region& region, std::vector<std::uint8_t>& las, RegionInfo& read,
-              std::string& error);
+extractRegion(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h, const Region& region,
+              std::vector<std::uint8_t>& las, RegionInfo& read, std::string& error);
 
 }  // namespace las
 }  // namespace io

@@ -48,7 +48,8 @@ shiftTailOffsets(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::u
       return;
     const std::uint64_t v = las::get<std::uint64_t>(head.data() + at);
     if (v >= old_end)
-      las::put<std::uint64_t>(head.data() + at, static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + delta));
+      las::put<std::uint64_t>(head.data() + at,
+                              static_cast<std::uint64_t>(static_cast<std::int64_t>(v) + delta));
   };
   if (h.version_minor >= 3)
     shift(las::kWaveformStart);
@@ -59,9 +60,8 @@ shiftTailOffsets(std::vector<std::uint8_t>& head, const LasHeaderInfo& h, std::u
 }  // namespace
 
 bool
-rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection,
-           const RecordMover& move, const std::string& path, LasRewriteSummary& summary,
-           std::string& error, bool overwrite)
+rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection, const RecordMover& move,
+           const std::string& path, LasRewriteSummary& summary, std::string& error, bool overwrite)
 {
   summary = LasRewriteSummary();
   if (!overwrite && exists(path)) {
@@ -127,7 +127,8 @@ rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection,
     bytes.swap(laz);
   }
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
-  if (!file || !file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())) ||
+  if (!file ||
+      !file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())) ||
       !file.flush()) {
     error = "cannot write " + path;
     return false;

@@ -66,10 +66,9 @@ checkOptions(const pcl::PointCloud<PointLiDAR>& cloud, const SaveOptions& o, std
       return false;
     }
     if (p.return_number > max_return || p.number_of_returns > max_return) {
-      error = "point " + std::to_string(i) + " has return " + std::to_string(p.return_number) +
-              "/" + std::to_string(p.number_of_returns) + ", beyond the " +
-              std::to_string(max_return) + " that LAS point format " + std::to_string(format) +
-              " can store";
+      error = "point " + std::to_string(i) + " has return " + std::to_string(p.return_number) + "/" +
+              std::to_string(p.number_of_returns) + ", beyond the " + std::to_string(max_return) +
+              " that LAS point format " + std::to_string(format) + " can store";
       return false;
     }
   }
@@ -79,8 +78,8 @@ checkOptions(const pcl::PointCloud<PointLiDAR>& cloud, const SaveOptions& o, std
 /// The LAS offset (the rounded box centre of the file coordinates unless given); false when a
 /// point is not finite or the extent does not fit in 32-bit integers at the scale.
 bool
-chooseOffset(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
-             const SaveOptions& o, Eigen::Vector3d& offset, std::string& error)
+chooseOffset(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin, const SaveOptions& o,
+             Eigen::Vector3d& offset, std::string& error)
 {
   Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector3d hi = -lo;
@@ -111,8 +110,7 @@ chooseOffset(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& or
 /// The VLRs to write: those that describe the input's records (extra bytes, LASzip, COPC's octree)
 /// would lie about ours and are dropped; false when one is too large for a VLR.
 bool
-keptVlrs(const SaveOptions& o, std::vector<const LasVlr*>& vlrs, std::size_t& bytes,
-         std::string& error)
+keptVlrs(const SaveOptions& o, std::vector<const LasVlr*>& vlrs, std::size_t& bytes, std::string& error)
 {
   vlrs.clear();
   bytes = 0;
@@ -149,15 +147,14 @@ putRecord(const PointLiDAR& p, const Eigen::Vector3d& origin, const Eigen::Vecto
     sum.box.add(k, q);
   }
   const float in = p.intensity;
-  las::put<std::uint16_t>(r + 12, !(in > 0.f) ? 0 : (in >= 65535.f ? 65535 : static_cast<std::uint16_t>(std::lround(in))));
+  las::put<std::uint16_t>(
+      r + 12, !(in > 0.f) ? 0 : (in >= 65535.f ? 65535 : static_cast<std::uint16_t>(std::lround(in))));
   if (format >= 6) {
     r[14] = static_cast<std::uint8_t>((p.return_number & 0x0F) | (p.number_of_returns << 4));
     r[16] = p.classification;
     las::put<std::uint16_t>(r + 20, p.point_source_id);
-  }
-  else {
-    r[14] = static_cast<std::uint8_t>((p.return_number & 0x07) |
-                                      ((p.number_of_returns & 0x07) << 3));
+  } else {
+    r[14] = static_cast<std::uint8_t>((p.return_number & 0x07) | ((p.number_of_returns & 0x07) << 3));
     r[15] = p.classification & 0x1F;
     las::put<std::uint16_t>(r + 18, p.point_source_id);
   }

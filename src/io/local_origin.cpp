@@ -27,11 +27,11 @@ chooseOrigin(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file)
 namespace detail {
 
 bool
-fitsInFloat(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file,
-            const Eigen::Vector3d& origin, std::string& error)
+fitsInFloat(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file, const Eigen::Vector3d& origin,
+            std::string& error)
 {
-  const double reach = std::max((min_file - origin).cwiseAbs().maxCoeff(),
-                                (max_file - origin).cwiseAbs().maxCoeff());
+  const double reach =
+      std::max((min_file - origin).cwiseAbs().maxCoeff(), (max_file - origin).cwiseAbs().maxCoeff());
   if (reach <= static_cast<double>(std::numeric_limits<float>::max()))
     return true;
   std::ostringstream s;
@@ -41,9 +41,8 @@ fitsInFloat(const Eigen::Vector3d& min_file, const Eigen::Vector3d& max_file,
 }
 
 bool
-applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cloud,
-                 CloudInfo& info, const LoadOptions& options, std::string& error,
-                 const Eigen::Vector3d& file_origin)
+applyLocalOrigin(const std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+                 const LoadOptions& options, std::string& error, const Eigen::Vector3d& file_origin)
 {
   const std::size_t n = cloud.size();
   info.points_in_file = n;

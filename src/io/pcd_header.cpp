@@ -38,8 +38,8 @@ parseOriginTokens(const std::vector<std::string_view>& t, Eigen::Vector3d& origi
   if (t.size() < 3 || t[0] != "#" || t[1] != "pcl_ls3d" || t[2] != "origin")
     return PcdOriginLine::NotOrigin;
   Eigen::Vector3d o;
-  if (t.size() != 6 || !parseDouble(t[3], o[0]) || !parseDouble(t[4], o[1]) ||
-      !parseDouble(t[5], o[2]) || !o.allFinite())
+  if (t.size() != 6 || !parseDouble(t[3], o[0]) || !parseDouble(t[4], o[1]) || !parseDouble(t[5], o[2]) ||
+      !o.allFinite())
     return PcdOriginLine::Malformed;
   origin = o;
   return PcdOriginLine::Origin;
@@ -117,8 +117,8 @@ headerLine(const std::vector<std::string_view>& t, PcdHeader& h, std::string& er
   if (dims) {
     const std::uint64_t max = key == "POINTS" ? std::numeric_limits<std::uint64_t>::max() : kMaxU32;
     if (t.size() != 2 || !parseCount(t[1], max, v))
-      return fail(error, "header: " + std::string(key) + " " +
-                             quote(t.size() > 1 ? t[1] : "") + " is not a count");
+      return fail(error,
+                  "header: " + std::string(key) + " " + quote(t.size() > 1 ? t[1] : "") + " is not a count");
     bool& seen = key == "WIDTH" ? h.has_width : key == "HEIGHT" ? h.has_height : h.has_points;
     (key == "WIDTH" ? h.width : key == "HEIGHT" ? h.height : h.points) = v;
     if (seen)
@@ -135,8 +135,7 @@ headerLine(const std::vector<std::string_view>& t, PcdHeader& h, std::string& er
     else if (kind == "binary_compressed")
       h.body = PcdBody::Compressed;
     else
-      return fail(error, "header: DATA " + quote(kind) +
-                             " is not ascii, binary or binary_compressed");
+      return fail(error, "header: DATA " + quote(kind) + " is not ascii, binary or binary_compressed");
     return true;
   }
   return fail(error, "header: unknown line starting with " + quote(key));
@@ -154,9 +153,8 @@ finishHeader(PcdHeader& h, std::string& error)
   for (std::size_t i = 0; i < n; ++i) {
     Scalar type;
     if (!scalarOf(h.kinds[i], h.sizes[i], type))
-      return fail(error, "header: field " + quote(h.names[i]) + " has TYPE " +
-                             std::string(1, h.kinds[i]) + " with SIZE " +
-                             std::to_string(h.sizes[i]));
+      return fail(error, "header: field " + quote(h.names[i]) + " has TYPE " + std::string(1, h.kinds[i]) +
+                             " with SIZE " + std::to_string(h.sizes[i]));
     h.types.push_back(type);
     h.record += h.sizes[i] * h.counts[i];
     h.values += h.counts[i];
@@ -176,8 +174,8 @@ finishHeader(PcdHeader& h, std::string& error)
   if (!h.has_points && !overflow)
     h.points = h.width * h.height;
   if (overflow || h.width * h.height != h.points)
-    return fail(error, "header: WIDTH " + std::to_string(h.width) + " x HEIGHT " +
-                           std::to_string(h.height) + " is not POINTS " + std::to_string(h.points));
+    return fail(error, "header: WIDTH " + std::to_string(h.width) + " x HEIGHT " + std::to_string(h.height) +
+                           " is not POINTS " + std::to_string(h.points));
   return true;
 }
 
@@ -233,7 +231,6 @@ parsePcdHeader(const std::uint8_t* data, std::size_t size, PcdHeader& h, std::st
   }
   return fail(error, "header has no DATA line (truncated or not a PCD file)");
 }
-
 
 }  // namespace detail
 

@@ -10,14 +10,18 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
-#include <string>
 #include <vector>
 
 namespace pcl_ls3d {
 namespace io {
 namespace detail {
 
-enum class PcdBody { Ascii, Binary, Compressed };
+enum class PcdBody
+{
+  Ascii,
+  Binary,
+  Compressed
+};
 
 /// The header as written, then what follows from it.
 struct PcdHeader
@@ -31,12 +35,12 @@ struct PcdHeader
   PcdBody body = PcdBody::Ascii;
   std::size_t data_offset = 0;
   std::vector<Scalar> types;
-  std::size_t record = 0;  ///< bytes per point (binary)
-  std::size_t packed = 0;  ///< bytes per point without "_" padding fields (binary_compressed)
-  std::size_t values = 0;  ///< values per point (ASCII)
+  std::size_t record = 0;   ///< bytes per point (binary)
+  std::size_t packed = 0;   ///< bytes per point without "_" padding fields (binary_compressed)
+  std::size_t values = 0;   ///< values per point (ASCII)
   bool has_origin = false;  ///< a "# pcl_ls3d origin" line was read (pcd_io.h)
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< x_file = stored value + origin
-  std::string crs_wkt;  ///< the first "# pcl_ls3d crs" line's WKT (pcd_io.h), empty if none
+  std::string crs_wkt;           ///< the first "# pcl_ls3d crs" line's WKT (pcd_io.h), empty if none
   bool segments_marker = false;  ///< a kPcdSegmentsMarker line was read: label is no class
 };
 

@@ -95,15 +95,15 @@ readAscii(const char* text, std::size_t size, std::size_t line_number, const Pcd
     ++n;
   }
   if (n != h.points)
-    return fail(error, "header says " + std::to_string(h.points) + " points, the data has " +
-                           std::to_string(n));
+    return fail(error,
+                "header says " + std::to_string(h.points) + " points, the data has " + std::to_string(n));
   return true;
 }
 
 /// binary_compressed: two uint32 sizes, then LZF data holding field after field.
 bool
-decompress(const std::uint8_t* body, std::size_t size, const PcdHeader& h,
-           std::vector<std::uint8_t>& out, std::string& error)
+decompress(const std::uint8_t* body, std::size_t size, const PcdHeader& h, std::vector<std::uint8_t>& out,
+           std::string& error)
 {
   if (size < 8)
     return fail(error, "binary_compressed data shorter than its 8-byte size block");
@@ -133,8 +133,8 @@ decompress(const std::uint8_t* body, std::size_t size, const PcdHeader& h,
 }  // namespace
 
 bool
-readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-        CloudInfo& info, std::string& error, const LoadOptions& options)
+readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+        std::string& error, const LoadOptions& options)
 {
   info = CloudInfo();
   info.format = "pcd";
@@ -143,8 +143,7 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
   if (!detail::parsePcdHeader(data, size, h, error))
     return false;
   info.segments_file = h.segments_marker;
-  const std::vector<Attribute> attributes =
-      detail::mapAttributes(h.names, info.fields, !h.segments_marker);
+  const std::vector<Attribute> attributes = detail::mapAttributes(h.names, info.fields, !h.segments_marker);
   if (!detail::hasXyz(attributes))
     return fail(error, "file has no x, y, z fields");
   const std::vector<MappedField> fields = mappedFields(h, attributes);
@@ -152,8 +151,9 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
   const std::size_t left = size - h.data_offset;
   std::vector<std::uint8_t> unpacked;
   if (h.body == PcdBody::Binary && h.points > left / h.record)
-    return fail(error, claim(h, "only " + std::to_string(left) + " bytes of " +
-                                    std::to_string(h.record) + "-byte records follow",
+    return fail(error, claim(h,
+                             "only " + std::to_string(left) + " bytes of " + std::to_string(h.record) +
+                                 "-byte records follow",
                              left / h.record));
   if (h.body == PcdBody::Ascii && h.points > (left + 1) / (2 * h.values))
     return fail(error, claim(h, "only " + std::to_string(left) + " bytes of ASCII data follow",
@@ -167,20 +167,17 @@ readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
     std::size_t header_lines = 0;
     for (std::size_t i = 0; i < h.data_offset; ++i)
       header_lines += data[i] == '\n';
-    if (!readAscii(reinterpret_cast<const char*>(body), left, header_lines, h, fields, cloud, xyz,
-                   error)) {
+    if (!readAscii(reinterpret_cast<const char*>(body), left, header_lines, h, fields, cloud, xyz, error)) {
       cloud.clear();
       return false;
     }
-  }
-  else {
+  } else {
     const bool packed = h.body == PcdBody::Compressed;
     for (std::size_t i = 0; i < h.points; ++i)
       for (const MappedField& f : fields) {
-        const std::uint8_t* p = packed ? unpacked.data() + f.block + i * f.stride
-                                       : body + i * h.record + f.offset;
-        detail::setAttribute(f.attribute, detail::readScalar(p, f.type, false), cloud[i],
-                             &xyz[3 * i]);
+        const std::uint8_t* p =
+            packed ? unpacked.data() + f.block + i * f.stride : body + i * h.record + f.offset;
+        detail::setAttribute(f.attribute, detail::readScalar(p, f.type, false), cloud[i], &xyz[3 * i]);
       }
   }
   // A recorded origin is the file's own local frame: kept unless another one is forced.

@@ -21,8 +21,7 @@ pcl::PCLPointCloud2
 packedFields(const pcl::PCLPointCloud2& in)
 {
   std::vector<pcl::PCLPointField> fields = in.fields;
-  std::sort(fields.begin(), fields.end(),
-            [](const auto& a, const auto& b) { return a.offset < b.offset; });
+  std::sort(fields.begin(), fields.end(), [](const auto& a, const auto& b) { return a.offset < b.offset; });
   pcl::PCLPointCloud2 out;
   out.width = in.width;
   out.height = in.height;
@@ -55,8 +54,7 @@ packedFields(const pcl::PCLPointCloud2& in)
 
 bool
 savePcdBinaryWithOrigin(const std::string& path, const pcl::PCLPointCloud2& cloud,
-                        const Eigen::Vector3d& origin, const std::string& comments,
-                        std::string& error)
+                        const Eigen::Vector3d& origin, const std::string& comments, std::string& error)
 {
   return savePcdBinaryWithComments(path, cloud, pcdOriginLine(origin) + "\n" + comments, error);
 }
@@ -71,8 +69,8 @@ savePcdBinaryWithComments(const std::string& path, const pcl::PCLPointCloud2& cl
   }
   const pcl::PCLPointCloud2 packed = packedFields(cloud);
   // PCDWriter cannot add comment lines: its own header, ours after its first line.
-  std::string header = pcl::PCDWriter().generateHeaderBinary(packed, Eigen::Vector4f::Zero(),
-                                                              Eigen::Quaternionf::Identity());
+  std::string header =
+      pcl::PCDWriter().generateHeaderBinary(packed, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity());
   const std::size_t first = header.find('\n');
   header.insert(first == std::string::npos ? 0 : first + 1, comments);
   header += "DATA binary\n";  // generateHeaderBinary() stops before it, as writeBinary() adds it

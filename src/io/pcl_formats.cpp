@@ -62,9 +62,8 @@ addField(pcl::PCLPointCloud2& c, const std::string& name, std::uint8_t datatype)
 }  // namespace
 
 bool
-writePclFile(const std::string& path, const std::string& format,
-             const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
-             std::string& error, const SaveOptions& options)
+writePclFile(const std::string& path, const std::string& format, const pcl::PointCloud<PointLiDAR>& cloud,
+             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
 {
   const bool shifted = !origin.isZero(0.0);
   const std::uint8_t xyz_type = shifted ? pcl::PCLPointField::FLOAT64 : pcl::PCLPointField::FLOAT32;
@@ -92,8 +91,7 @@ writePclFile(const std::string& path, const std::string& format,
       if (shifted) {
         std::memcpy(p + at, &v, 8);
         at += 8;
-      }
-      else {
+      } else {
         const float f = q.data[k];
         std::memcpy(p + at, &f, 4);
         at += 4;
@@ -115,19 +113,19 @@ writePclFile(const std::string& path, const std::string& format,
         !crs ? "" : (format == "pcd" ? pcdCrsLine(options.crs_wkt) : plyCrsLine(options.crs_wkt)) + "\n";
     if (!options.binary)
       status = (format == "pcd" ? writePcdAscii(path, cloud, origin, comments)
-                                : writePlyAscii(path, cloud, origin, comments)) ? 0 : -1;
+                                : writePlyAscii(path, cloud, origin, comments))
+                   ? 0
+                   : -1;
     else if (format == "pcd") {
       std::string why;  // names the path, which saveCloud() adds itself
       status = savePcdBinaryWithComments(path, c, comments, why) ? 0 : -1;
-    }
-    else {  // no camera element: other PLY readers do not expect one
-      status = pcl::PLYWriter().writeBinary(path, c, Eigen::Vector4f::Zero(),
-                                            Eigen::Quaternionf::Identity(), false);
+    } else {  // no camera element: other PLY readers do not expect one
+      status = pcl::PLYWriter().writeBinary(path, c, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity(),
+                                            false);
       if (status >= 0 && !insertPlyComments(path, comments))
         status = -1;
     }
-  }
-  catch (const std::exception& e) {
+  } catch (const std::exception& e) {
     error = std::string("PCL ") + format + " writer failed: " + e.what();
     return false;
   }

@@ -14,9 +14,8 @@ namespace detail {
 
 /// Writes every PointLiDAR field; x y z are FLOAT64 when origin != 0, else FLOAT32.
 bool
-writePclFile(const std::string& path, const std::string& format,
-             const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
-             std::string& error, const SaveOptions& options);
+writePclFile(const std::string& path, const std::string& format, const pcl::PointCloud<PointLiDAR>& cloud,
+             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options);
 
 }  // namespace detail
 }  // namespace io

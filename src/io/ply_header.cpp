@@ -43,11 +43,11 @@ bool
 scalarOf(std::string_view name, Scalar& type)
 {
   static const std::pair<const char*, Scalar> kTypes[] = {
-      {"char", Scalar::Int8},     {"int8", Scalar::Int8},       {"uchar", Scalar::UInt8},
-      {"uint8", Scalar::UInt8},   {"short", Scalar::Int16},     {"int16", Scalar::Int16},
-      {"ushort", Scalar::UInt16}, {"uint16", Scalar::UInt16},   {"int", Scalar::Int32},
-      {"int32", Scalar::Int32},   {"uint", Scalar::UInt32},     {"uint32", Scalar::UInt32},
-      {"float", Scalar::Float32}, {"float32", Scalar::Float32}, {"double", Scalar::Float64},
+      {"char", Scalar::Int8},      {"int8", Scalar::Int8},       {"uchar", Scalar::UInt8},
+      {"uint8", Scalar::UInt8},    {"short", Scalar::Int16},     {"int16", Scalar::Int16},
+      {"ushort", Scalar::UInt16},  {"uint16", Scalar::UInt16},   {"int", Scalar::Int32},
+      {"int32", Scalar::Int32},    {"uint", Scalar::UInt32},     {"uint32", Scalar::UInt32},
+      {"float", Scalar::Float32},  {"float32", Scalar::Float32}, {"double", Scalar::Float64},
       {"float64", Scalar::Float64}};
   for (const auto& [n, t] : kTypes)
     if (name == n) {
@@ -86,8 +86,7 @@ propertyLine(const std::vector<std::string_view>& t, PlyHeader& h, std::string& 
 }
 
 bool
-headerLine(const std::vector<std::string_view>& t, PlyHeader& h, bool& has_format,
-           std::string& error)
+headerLine(const std::vector<std::string_view>& t, PlyHeader& h, bool& has_format, std::string& error)
 {
   const std::string_view key = t[0];
   if (key == "comment" || key == "obj_info")

@@ -14,14 +14,19 @@ namespace pcl_ls3d {
 namespace io {
 namespace detail {
 
-enum class PlyFormat { Ascii, BinaryLittleEndian, BinaryBigEndian };
+enum class PlyFormat
+{
+  Ascii,
+  BinaryLittleEndian,
+  BinaryBigEndian
+};
 
 struct PlyProperty
 {
   std::string name;
   bool list = false;
-  Scalar type = Scalar::Float32;        ///< the value type (a list's item type)
-  Scalar count_type = Scalar::UInt8;    ///< a list's count type (an integer type)
+  Scalar type = Scalar::Float32;      ///< the value type (a list's item type)
+  Scalar count_type = Scalar::UInt8;  ///< a list's count type (an integer type)
 };
 
 struct PlyElement

@@ -89,8 +89,8 @@ struct AsciiCursor
 
 /// One binary item; `attributes` (one per property) is null for a skipped element.
 bool
-binaryItem(const PlyElement& e, const std::vector<Attribute>* attributes, BinaryCursor& c,
-           PointLiDAR& point, double* xyz, std::string& error)
+binaryItem(const PlyElement& e, const std::vector<Attribute>* attributes, BinaryCursor& c, PointLiDAR& point,
+           double* xyz, std::string& error)
 {
   for (std::size_t k = 0; k < e.properties.size(); ++k) {
     const auto& p = e.properties[k];
@@ -101,8 +101,7 @@ binaryItem(const PlyElement& e, const std::vector<Attribute>* attributes, Binary
       if (!validListCount(v) || !c.skip(static_cast<std::uint64_t>(v) * detail::scalarSize(p.type)))
         return fail(error, "element " + detail::quote(e.name) + ": list " + detail::quote(p.name) +
                                " count " + std::to_string(v) + " runs past the data");
-    }
-    else if (attributes)
+    } else if (attributes)
       detail::setAttribute((*attributes)[k], v, point, xyz);
   }
   return true;
@@ -126,16 +125,15 @@ asciiItem(const PlyElement& e, const std::vector<Attribute>* attributes, const A
     ++t;
     if (p.list) {
       if (!validListCount(v) || v > static_cast<double>(c.tokens.size() - t))
-        return fail(error, at + "list " + detail::quote(p.name) + " count " +
-                               detail::quote(c.tokens[t - 1]) + " does not match the line");
+        return fail(error, at + "list " + detail::quote(p.name) + " count " + detail::quote(c.tokens[t - 1]) +
+                               " does not match the line");
       t += static_cast<std::size_t>(v);
-    }
-    else if (attributes)
+    } else if (attributes)
       detail::setAttribute((*attributes)[k], v, point, xyz);
   }
   if (t != c.tokens.size())
-    return fail(error, at + std::to_string(c.tokens.size()) + " values, element " +
-                           detail::quote(e.name) + " has " + std::to_string(t));
+    return fail(error, at + std::to_string(c.tokens.size()) + " values, element " + detail::quote(e.name) +
+                           " has " + std::to_string(t));
   return true;
 }
 
@@ -150,8 +148,8 @@ room(const PlyElement& e, PlyFormat format, std::size_t left)
 
 bool
 readElement(const PlyElement& e, const PlyHeader& h, const std::vector<Attribute>* attributes,
-            BinaryCursor& b, AsciiCursor& a, pcl::PointCloud<PointLiDAR>& cloud,
-            std::vector<double>& xyz, std::string& error)
+            BinaryCursor& b, AsciiCursor& a, pcl::PointCloud<PointLiDAR>& cloud, std::vector<double>& xyz,
+            std::string& error)
 {
   if (e.properties.empty())
     return true;
@@ -159,8 +157,7 @@ readElement(const PlyElement& e, const PlyHeader& h, const std::vector<Attribute
   const std::uint64_t fits = room(e, h.format, ascii ? a.size - a.pos : b.size - b.pos);
   if (e.count > fits)
     return fail(error, "header says " + std::to_string(e.count) + " " + detail::clip(e.name) +
-                           " items, the " +
-                           "data after it can hold at most " + std::to_string(fits));
+                           " items, the " + "data after it can hold at most " + std::to_string(fits));
   if (!ascii && !e.hasList() && !attributes) {
     b.skip(e.count * e.minimumBytes());  // fits: checked above
     return true;
@@ -177,8 +174,7 @@ readElement(const PlyElement& e, const PlyHeader& h, const std::vector<Attribute
     if (ascii && !a.next())
       return fail(error, "header says " + std::to_string(e.count) + " " + detail::clip(e.name) +
                              " items, the data ends after " + std::to_string(i));
-    if (!(ascii ? asciiItem(e, attributes, a, p, x, error)
-                : binaryItem(e, attributes, b, p, x, error)))
+    if (!(ascii ? asciiItem(e, attributes, a, p, x, error) : binaryItem(e, attributes, b, p, x, error)))
       return false;
   }
   return true;
@@ -193,8 +189,8 @@ plyCrsLine(const std::string& wkt)
 }
 
 bool
-readPly(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-        CloudInfo& info, std::string& error, const LoadOptions& options)
+readPly(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+        std::string& error, const LoadOptions& options)
 {
   info = CloudInfo();
   info.format = "ply";
@@ -220,8 +216,7 @@ readPly(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>&
   AsciiCursor a{reinterpret_cast<const char*>(data), size, h.data_offset, h.header_lines, {}};
   std::vector<double> xyz;
   for (std::size_t i = 0; i <= vertex; ++i)
-    if (!readElement(h.elements[i], h, i == vertex ? &attributes : nullptr, b, a, cloud, xyz,
-                     error)) {
+    if (!readElement(h.elements[i], h, i == vertex ? &attributes : nullptr, b, a, cloud, xyz, error)) {
       cloud.clear();
       return false;
     }

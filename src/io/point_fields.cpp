@@ -45,13 +45,17 @@ scalarSize(Scalar type)
 {
   switch (type) {
   case Scalar::Int8:
-  case Scalar::UInt8: return 1;
+  case Scalar::UInt8:
+    return 1;
   case Scalar::Int16:
-  case Scalar::UInt16: return 2;
+  case Scalar::UInt16:
+    return 2;
   case Scalar::Int32:
   case Scalar::UInt32:
-  case Scalar::Float32: return 4;
-  default: return 8;
+  case Scalar::Float32:
+    return 4;
+  default:
+    return 8;
   }
 }
 
@@ -59,22 +63,31 @@ double
 readScalar(const std::uint8_t* p, Scalar type, bool big_endian)
 {
   switch (type) {
-  case Scalar::Int8: return load<std::int8_t>(p, false);
-  case Scalar::UInt8: return load<std::uint8_t>(p, false);
-  case Scalar::Int16: return load<std::int16_t>(p, big_endian);
-  case Scalar::UInt16: return load<std::uint16_t>(p, big_endian);
-  case Scalar::Int32: return load<std::int32_t>(p, big_endian);
-  case Scalar::UInt32: return load<std::uint32_t>(p, big_endian);
-  case Scalar::Int64: return load<std::int64_t>(p, big_endian);
-  case Scalar::UInt64: return load<std::uint64_t>(p, big_endian);
-  case Scalar::Float32: return load<float>(p, big_endian);
-  default: return load<double>(p, big_endian);
+  case Scalar::Int8:
+    return load<std::int8_t>(p, false);
+  case Scalar::UInt8:
+    return load<std::uint8_t>(p, false);
+  case Scalar::Int16:
+    return load<std::int16_t>(p, big_endian);
+  case Scalar::UInt16:
+    return load<std::uint16_t>(p, big_endian);
+  case Scalar::Int32:
+    return load<std::int32_t>(p, big_endian);
+  case Scalar::UInt32:
+    return load<std::uint32_t>(p, big_endian);
+  case Scalar::Int64:
+    return load<std::int64_t>(p, big_endian);
+  case Scalar::UInt64:
+    return load<std::uint64_t>(p, big_endian);
+  case Scalar::Float32:
+    return load<float>(p, big_endian);
+  default:
+    return load<double>(p, big_endian);
   }
 }
 
 std::vector<Attribute>
-mapAttributes(const std::vector<std::string>& names, std::vector<std::string>& mapped,
-              bool label_is_class)
+mapAttributes(const std::vector<std::string>& names, std::vector<std::string>& mapped, bool label_is_class)
 {
   static const std::pair<const char*, Attribute> kNames[] = {
       {"x", Attribute::X},
@@ -87,8 +100,7 @@ mapAttributes(const std::vector<std::string>& names, std::vector<std::string>& m
       {"label", Attribute::Classification},
       {"return_number", Attribute::ReturnNumber},
       {"number_of_returns", Attribute::NumberOfReturns}};
-  const bool has_classification =
-      std::find(names.begin(), names.end(), "classification") != names.end();
+  const bool has_classification = std::find(names.begin(), names.end(), "classification") != names.end();
   std::vector<Attribute> out(names.size(), Attribute::None);
   mapped.clear();
   for (const auto& [name, attribute] : kNames) {
@@ -116,16 +128,35 @@ void
 setAttribute(Attribute a, double value, PointLiDAR& point, double* xyz)
 {
   switch (a) {
-  case Attribute::X: xyz[0] = value; break;
-  case Attribute::Y: xyz[1] = value; break;
-  case Attribute::Z: xyz[2] = value; break;
-  case Attribute::Intensity: point.intensity = static_cast<float>(value); break;
-  case Attribute::GpsTime: point.gps_time = value; break;
-  case Attribute::PointSourceId: point.point_source_id = clampTo<std::uint16_t>(value); break;
-  case Attribute::Classification: point.classification = clampTo<std::uint8_t>(value); break;
-  case Attribute::ReturnNumber: point.return_number = clampTo<std::uint8_t>(value); break;
-  case Attribute::NumberOfReturns: point.number_of_returns = clampTo<std::uint8_t>(value); break;
-  default: break;
+  case Attribute::X:
+    xyz[0] = value;
+    break;
+  case Attribute::Y:
+    xyz[1] = value;
+    break;
+  case Attribute::Z:
+    xyz[2] = value;
+    break;
+  case Attribute::Intensity:
+    point.intensity = static_cast<float>(value);
+    break;
+  case Attribute::GpsTime:
+    point.gps_time = value;
+    break;
+  case Attribute::PointSourceId:
+    point.point_source_id = clampTo<std::uint16_t>(value);
+    break;
+  case Attribute::Classification:
+    point.classification = clampTo<std::uint8_t>(value);
+    break;
+  case Attribute::ReturnNumber:
+    point.return_number = clampTo<std::uint8_t>(value);
+    break;
+  case Attribute::NumberOfReturns:
+    point.number_of_returns = clampTo<std::uint8_t>(value);
+    break;
+  default:
+    break;
   }
 }
 

@@ -16,8 +16,19 @@ namespace pcl_ls3d {
 namespace io {
 namespace detail {
 
-enum class Scalar : std::uint8_t { Int8, UInt8, Int16, UInt16, Int32, UInt32, Int64, UInt64,
-                                   Float32, Float64 };
+enum class Scalar : std::uint8_t
+{
+  Int8,
+  UInt8,
+  Int16,
+  UInt16,
+  Int32,
+  UInt32,
+  Int64,
+  UInt64,
+  Float32,
+  Float64
+};
 
 /// Bytes of one value.
 std::size_t
@@ -28,8 +39,19 @@ double
 readScalar(const std::uint8_t* p, Scalar type, bool big_endian);
 
 /// What a named field fills in a PointLiDAR (X, Y, Z go to the double coordinates).
-enum class Attribute : std::uint8_t { None, X, Y, Z, Intensity, GpsTime, PointSourceId,
-                                      Classification, ReturnNumber, NumberOfReturns };
+enum class Attribute : std::uint8_t
+{
+  None,
+  X,
+  Y,
+  Z,
+  Intensity,
+  GpsTime,
+  PointSourceId,
+  Classification,
+  ReturnNumber,
+  NumberOfReturns
+};
 
 /// One attribute per field name, in order: x y z intensity gps_time point_source_id
 /// classification (or label when there is no classification and `label_is_class`: a

@@ -16,8 +16,8 @@ splitByPointSource(const pcl::PointCloud<PointLiDAR>& cloud)
 }
 
 pcl::Indices
-filterByClassification(const pcl::PointCloud<PointLiDAR>& cloud,
-                       const std::set<std::uint8_t>& classes, bool keep)
+filterByClassification(const pcl::PointCloud<PointLiDAR>& cloud, const std::set<std::uint8_t>& classes,
+                       bool keep)
 {
   pcl::Indices indices;
   for (std::size_t i = 0; i < cloud.size(); ++i)

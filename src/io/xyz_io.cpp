@@ -20,29 +20,57 @@ namespace io {
 
 namespace {
 
-enum class Column { X, Y, Z, Intensity, Classification, PointSourceId, GpsTime, ReturnNumber,
-                    NumberOfReturns, Skip, Unknown };
+enum class Column
+{
+  X,
+  Y,
+  Z,
+  Intensity,
+  Classification,
+  PointSourceId,
+  GpsTime,
+  ReturnNumber,
+  NumberOfReturns,
+  Skip,
+  Unknown
+};
 
 Column
 columnOf(std::string name)
 {
   std::transform(name.begin(), name.end(), name.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (name == "x") return Column::X;
-  if (name == "y") return Column::Y;
-  if (name == "z") return Column::Z;
-  if (name == "intensity" || name == "i") return Column::Intensity;
-  if (name == "classification" || name == "class" || name == "label") return Column::Classification;
-  if (name == "point_source_id" || name == "psid" || name == "source_id") return Column::PointSourceId;
-  if (name == "gps_time" || name == "time" || name == "t") return Column::GpsTime;
-  if (name == "return_number") return Column::ReturnNumber;
-  if (name == "number_of_returns") return Column::NumberOfReturns;
-  if (name == "_" || name == "skip") return Column::Skip;
+  if (name == "x")
+    return Column::X;
+  if (name == "y")
+    return Column::Y;
+  if (name == "z")
+    return Column::Z;
+  if (name == "intensity" || name == "i")
+    return Column::Intensity;
+  if (name == "classification" || name == "class" || name == "label")
+    return Column::Classification;
+  if (name == "point_source_id" || name == "psid" || name == "source_id")
+    return Column::PointSourceId;
+  if (name == "gps_time" || name == "time" || name == "t")
+    return Column::GpsTime;
+  if (name == "return_number")
+    return Column::ReturnNumber;
+  if (name == "number_of_returns")
+    return Column::NumberOfReturns;
+  if (name == "_" || name == "skip")
+    return Column::Skip;
   return Column::Unknown;
 }
 
-const char* const kColumnNames[] = {"x", "y", "z", "intensity", "classification",
-                                    "point_source_id", "gps_time", "return_number",
+const char* const kColumnNames[] = {"x",
+                                    "y",
+                                    "z",
+                                    "intensity",
+                                    "classification",
+                                    "point_source_id",
+                                    "gps_time",
+                                    "return_number",
                                     "number_of_returns"};
 
 bool
@@ -99,8 +127,8 @@ std::string
 notANumber(const std::string& line, std::size_t line_number, std::string_view token)
 {
   const std::size_t column = static_cast<std::size_t>(token.data() - line.data()) + 1;
-  return "line " + std::to_string(line_number) + ", column " + std::to_string(column) +
-         ": cannot parse " + detail::quote(token) + " as a number";
+  return "line " + std::to_string(line_number) + ", column " + std::to_string(column) + ": cannot parse " +
+         detail::quote(token) + " as a number";
 }
 
 template <typename T>
@@ -149,16 +177,14 @@ lineTokens(const std::string& line, std::vector<std::string_view>& tokens, bool&
 /// Before the data: a header names the columns (LoadOptions::xyz_columns, when given, wins and
 /// the header is skipped); any other uncommented text is an error.
 bool
-readHeaderLine(const std::string& line, std::size_t line_number,
-               const std::vector<std::string_view>& tokens, bool comment, bool columns_given,
-               std::vector<Column>& map, std::string& error)
+readHeaderLine(const std::string& line, std::size_t line_number, const std::vector<std::string_view>& tokens,
+               bool comment, bool columns_given, std::vector<Column>& map, std::string& error)
 {
   std::vector<Column> candidate;
   if (mappingFromNames(tokens, candidate)) {
     if (!columns_given)
       map = candidate;
-  }
-  else if (!comment) {
+  } else if (!comment) {
     error = notANumber(line, line_number, tokens[0]);
     return false;
   }
@@ -188,14 +214,13 @@ fixColumns(std::vector<Column>& map, std::size_t columns, CloudInfo& info)
 
 /// One data line into a point (attributes) and its file coordinates (appended to `xyz`).
 bool
-readPoint(const std::string& line, std::size_t line_number,
-          const std::vector<std::string_view>& tokens, const std::vector<Column>& map,
-          std::size_t needed, std::vector<double>& xyz, pcl::PointCloud<PointLiDAR>& cloud,
-          std::string& error)
+readPoint(const std::string& line, std::size_t line_number, const std::vector<std::string_view>& tokens,
+          const std::vector<Column>& map, std::size_t needed, std::vector<double>& xyz,
+          pcl::PointCloud<PointLiDAR>& cloud, std::string& error)
 {
   if (tokens.size() < needed) {
-    error = "line " + std::to_string(line_number) + ": expected at least " +
-            std::to_string(needed) + " columns, found " + std::to_string(tokens.size());
+    error = "line " + std::to_string(line_number) + ": expected at least " + std::to_string(needed) +
+            " columns, found " + std::to_string(tokens.size());
     return false;
   }
   PointLiDAR p;
@@ -209,16 +234,35 @@ readPoint(const std::string& line, std::size_t line_number,
       return false;
     }
     switch (map[c]) {
-    case Column::X: c3[0] = v; break;
-    case Column::Y: c3[1] = v; break;
-    case Column::Z: c3[2] = v; break;
-    case Column::Intensity: p.intensity = static_cast<float>(v); break;
-    case Column::Classification: p.classification = clampTo<std::uint8_t>(v); break;
-    case Column::PointSourceId: p.point_source_id = clampTo<std::uint16_t>(v); break;
-    case Column::GpsTime: p.gps_time = v; break;
-    case Column::ReturnNumber: p.return_number = clampTo<std::uint8_t>(v); break;
-    case Column::NumberOfReturns: p.number_of_returns = clampTo<std::uint8_t>(v); break;
-    default: break;
+    case Column::X:
+      c3[0] = v;
+      break;
+    case Column::Y:
+      c3[1] = v;
+      break;
+    case Column::Z:
+      c3[2] = v;
+      break;
+    case Column::Intensity:
+      p.intensity = static_cast<float>(v);
+      break;
+    case Column::Classification:
+      p.classification = clampTo<std::uint8_t>(v);
+      break;
+    case Column::PointSourceId:
+      p.point_source_id = clampTo<std::uint16_t>(v);
+      break;
+    case Column::GpsTime:
+      p.gps_time = v;
+      break;
+    case Column::ReturnNumber:
+      p.return_number = clampTo<std::uint8_t>(v);
+      break;
+    case Column::NumberOfReturns:
+      p.number_of_returns = clampTo<std::uint8_t>(v);
+      break;
+    default:
+      break;
     }
   }
   xyz.insert(xyz.end(), c3, c3 + 3);
@@ -249,8 +293,7 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
       continue;
     double first = 0.0;
     if (needed == 0 && (comment || !parseNumber(tokens[0], first))) {
-      if (!readHeaderLine(line, line_number, tokens, comment, !options.xyz_columns.empty(), map,
-                          error))
+      if (!readHeaderLine(line, line_number, tokens, comment, !options.xyz_columns.empty(), map, error))
         return false;
       continue;
     }
@@ -269,8 +312,8 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
 }
 
 bool
-writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+             std::string& error, const SaveOptions& options)
 {
   std::FILE* f = std::fopen(path.c_str(), "w");
   if (!f) {
@@ -278,7 +321,8 @@ writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
     return false;
   }
   bool ok = std::fputs("# x y z intensity classification point_source_id gps_time return_number "
-                       "number_of_returns\n", f) >= 0;
+                       "number_of_returns\n",
+                       f) >= 0;
   std::string line;
   for (std::size_t i = 0; ok && i < cloud.size(); ++i) {
     const PointLiDAR& p = cloud[i];

@@ -68,8 +68,8 @@ OutputFile::commit(cairo_status_t status, std::string& error)
     return true;
   }
   removePartial(path_);
-  error = "cannot write " + path_ + ": " +
-          (errno_ != 0 ? std::strerror(errno_) : cairo_status_to_string(status));
+  error =
+      "cannot write " + path_ + ": " + (errno_ != 0 ? std::strerror(errno_) : cairo_status_to_string(status));
   return false;
 }
 

@@ -62,7 +62,9 @@ void
 drawColourBar(Drawing& d, int x0, int y0, int h, const ColourMap& c, const MapStyle& style)
 {
   // Rows of pixels: a value's line is the pixel row it falls in, as the ramp shows it.
-  auto yOf = [&](double v) { return y0 + static_cast<int>(std::lround((c.max() - v) / (c.max() - c.min()) * (h - 1))); };
+  auto yOf = [&](double v) {
+    return y0 + static_cast<int>(std::lround((c.max() - v) / (c.max() - c.min()) * (h - 1)));
+  };
   d.verticalGradient(x0, y0, kBarWidth, h, gradientStops(c));
   d.frame(x0 - 1, y0 - 1, kBarWidth + 2, h + 2, kFrame);
   for (double s : c.steps())

@@ -64,13 +64,12 @@ ColourMap::colour(double v) const
   if (v >= stops_.back().value)
     return stops_.back().colour;
   // First stop strictly above v; at a step (equal values) v takes the upper colour.
-  const auto hi = std::upper_bound(stops_.begin(), stops_.end(), v,
-                                   [](double x, const Stop& s) { return x < s.value; });
+  const auto hi =
+      std::upper_bound(stops_.begin(), stops_.end(), v, [](double x, const Stop& s) { return x < s.value; });
   const Stop& b = *hi;
   const Stop& a = *(hi - 1);
   const double t = b.value > a.value ? (v - a.value) / (b.value - a.value) : 1.0;
-  return {mix(a.colour.r, b.colour.r, t), mix(a.colour.g, b.colour.g, t),
-          mix(a.colour.b, b.colour.b, t)};
+  return {mix(a.colour.r, b.colour.r, t), mix(a.colour.g, b.colour.g, t), mix(a.colour.b, b.colour.b, t)};
 }
 
 std::vector<double>
@@ -97,11 +96,17 @@ ColourMap::bandedDiverging(double inner, double outer)
 {
   const double o = outer, i = inner, e = 1.5 * outer;
   auto c = [](int k) { return Rgb::hex(kRdBu[k]); };
-  ColourMap m({{-e, c(10)}, {-o, c(9)},    // saturated blue: d ≤ −outer
-               {-o, c(8)}, {-i, c(7)},     // medium blue: −outer < d ≤ −inner
-               {-i, c(6)}, {0, c(5)}, {i, c(4)},  // within tolerance: nearly white
-               {i, c(3)}, {o, c(2)},       // orange: inner ≤ d < outer
-               {o, c(1)}, {e, c(0)}},      // saturated red: d ≥ outer
+  ColourMap m({{-e, c(10)},
+               {-o, c(9)},  // saturated blue: d ≤ −outer
+               {-o, c(8)},
+               {-i, c(7)},  // medium blue: −outer < d ≤ −inner
+               {-i, c(6)},
+               {0, c(5)},
+               {i, c(4)},  // within tolerance: nearly white
+               {i, c(3)},
+               {o, c(2)},  // orange: inner ≤ d < outer
+               {o, c(1)},
+               {e, c(0)}},  // saturated red: d ≥ outer
               "banded RdBu");
   m.setTicks({-e, -o, -i, 0.0, i, o, e});
   return m;

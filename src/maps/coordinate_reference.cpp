@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <memory>
 
@@ -96,8 +96,7 @@ buildTiff(std::vector<TiffEntry> entries)
     if (e.data.size() <= 4) {
       e.data.resize(4, 0);
       out.insert(out.end(), e.data.begin(), e.data.end());
-    }
-    else {
+    } else {
       append(out, static_cast<std::uint32_t>(data_offset + tail.size()));
       tail.insert(tail.end(), e.data.begin(), e.data.end());
       if (tail.size() % 2)
@@ -121,13 +120,19 @@ wktOfGeoKeys(const std::vector<io::LasVlr>& vlrs, std::string* why)
   const io::LasVlr* keys = findProjectionVlr(vlrs, kGeoKeys);
   if (!keys)
     return "";
-  std::vector<TiffEntry> entries = {shortEntry(256, 1), shortEntry(257, 1), shortEntry(258, 8),
-                                    shortEntry(259, 1), shortEntry(262, 1), shortEntry(277, 1),
-                                    shortEntry(278, 1), longEntry(279, 1),
+  std::vector<TiffEntry> entries = {shortEntry(256, 1),
+                                    shortEntry(257, 1),
+                                    shortEntry(258, 8),
+                                    shortEntry(259, 1),
+                                    shortEntry(262, 1),
+                                    shortEntry(277, 1),
+                                    shortEntry(278, 1),
+                                    longEntry(279, 1),
                                     doublesEntry(33550, {1.0, 1.0, 0.0}),
                                     doublesEntry(33922, {0, 0, 0, 0, 0, 0})};
-  entries.push_back({kGeoKeys, 3, static_cast<std::uint32_t>(keys->data.size() / 2),
-                     std::vector<std::uint8_t>(keys->data.begin(), keys->data.end() - keys->data.size() % 2)});
+  entries.push_back(
+      {kGeoKeys, 3, static_cast<std::uint32_t>(keys->data.size() / 2),
+       std::vector<std::uint8_t>(keys->data.begin(), keys->data.end() - keys->data.size() % 2)});
   if (const io::LasVlr* d = findProjectionVlr(vlrs, kGeoDoubles))
     entries.push_back({kGeoDoubles, 12, static_cast<std::uint32_t>(d->data.size() / 8),
                        std::vector<std::uint8_t>(d->data.begin(), d->data.end() - d->data.size() % 8)});
@@ -257,8 +262,8 @@ notInLengths(const std::string& path, const std::string& wkt)
   const bool degrees = crsIsGeographic(wkt);
   if (!degrees && !crsIsGeocentric(wkt))
     return "";
-  return "'" + path + "' is in " + (degrees ? "degrees" : "earth-centred coordinates") + " (" +
-         crsName(wkt) + "): distances and heights need lengths; reproject it to a projected "
+  return "'" + path + "' is in " + (degrees ? "degrees" : "earth-centred coordinates") + " (" + crsName(wkt) +
+         "): distances and heights need lengths; reproject it to a projected "
          "CRS first";
 }
 
@@ -271,8 +276,7 @@ crsVerticalUnit(const std::string& wkt)
   if (!srs->IsCompound())
     return srs->GetLinearUnits(nullptr);
   // The vertical part's own unit; not guessed when GDAL's tree does not show it.
-  return srs->GetAttrNode("VERT_CS") != nullptr ? srs->GetTargetLinearUnits("VERT_CS", nullptr)
-                                                : 0.0;
+  return srs->GetAttrNode("VERT_CS") != nullptr ? srs->GetTargetLinearUnits("VERT_CS", nullptr) : 0.0;
 }
 
 namespace {
@@ -349,7 +353,8 @@ crsNotes(const std::vector<std::pair<std::string, std::string>>& files)
       first = &file;
     else if (!sameHorizontalCrs(first->second, wkt))
       notes.push_back("'" + path + "' declares " + crsName(wkt) + ", '" + first->first + "' " +
-                      crsName(first->second) + ": their coordinates are used as they are; "
+                      crsName(first->second) +
+                      ": their coordinates are used as they are; "
                       "reproject one into the other's CRS unless both describe the same frame");
   }
   return notes;

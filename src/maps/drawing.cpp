@@ -29,7 +29,10 @@ struct Measure
   cairo_surface_t* surface = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
   cairo_t* cr = cairo_create(surface);
 
-  explicit Measure(FontStyle style) { detail::selectFont(cr, style); }
+  explicit Measure(FontStyle style)
+  {
+    detail::selectFont(cr, style);
+  }
   ~Measure()
   {
     cairo_destroy(cr);
@@ -46,7 +49,7 @@ Drawing&
 Drawing::operator=(Drawing&& other) noexcept = default;
 
 Drawing::Drawing(int width, int height, Rgb background)
-: width_(std::max(0, width)), height_(std::max(0, height))
+    : width_(std::max(0, width)), height_(std::max(0, height))
 {
   if (empty())
     return;

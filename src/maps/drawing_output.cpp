@@ -42,7 +42,8 @@ cairo_surface_t*
 vectorSurface(MapFormat format, detail::OutputFile& file, int width, int height, const std::string& title)
 {
   if (format == MapFormat::SVG) {
-    cairo_surface_t* svg = cairo_svg_surface_create_for_stream(&detail::OutputFile::write, &file, width, height);
+    cairo_surface_t* svg =
+        cairo_svg_surface_create_for_stream(&detail::OutputFile::write, &file, width, height);
     cairo_svg_surface_set_document_unit(svg, CAIRO_SVG_UNIT_PX);
     return svg;
   }
@@ -73,7 +74,8 @@ Drawing::write(const std::string& path, MapFormat format, std::string& error, bo
   if (empty())
     return (error = "nothing to draw into " + path).empty();
   if (cairo_status(recording_->cr) != CAIRO_STATUS_SUCCESS)
-    return (error = "cannot draw " + path + ": " + cairo_status_to_string(cairo_status(recording_->cr))).empty();
+    return (error = "cannot draw " + path + ": " + cairo_status_to_string(cairo_status(recording_->cr)))
+        .empty();
   detail::OutputFile file(path, overwrite);
   if (!file.isOpen())
     return (error = file.openError()).empty();
@@ -84,8 +86,7 @@ Drawing::write(const std::string& path, MapFormat format, std::string& error, bo
     status = cairo_surface_status(surface);
     if (status == CAIRO_STATUS_SUCCESS)
       status = cairo_surface_write_to_png_stream(surface, &detail::OutputFile::write, &file);
-  }
-  else {
+  } else {
     surface = vectorSurface(format, file, width_, height_, title_);
     const double scale = format == MapFormat::PDF ? kPointsPerPixel : 1.0;
     status = cairo_surface_status(surface);

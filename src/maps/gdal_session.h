@@ -28,7 +28,10 @@ public:
     CPLPushErrorHandler(CPLQuietErrorHandler);
     CPLErrorReset();
   }
-  ~QuietGdal() { CPLPopErrorHandler(); }
+  ~QuietGdal()
+  {
+    CPLPopErrorHandler();
+  }
   QuietGdal(const QuietGdal&) = delete;
   QuietGdal&
   operator=(const QuietGdal&) = delete;

@@ -23,8 +23,8 @@ fileExists(const std::string& path)
 }  // namespace
 
 bool
-writeGeoTiff(const std::string& path, const Raster& raster, const std::string& crs_wkt,
-             std::string& error, bool overwrite)
+writeGeoTiff(const std::string& path, const Raster& raster, const std::string& crs_wkt, std::string& error,
+             bool overwrite)
 {
   if (!raster.grid.valid() || raster.values.size() != raster.grid.size()) {
     error = "cannot write an empty or inconsistent raster to " + path;
@@ -45,8 +45,8 @@ writeGeoTiff(const std::string& path, const Raster& raster, const std::string& c
   options = CSLSetNameValue(options, "PREDICTOR", "3");  // floating-point predictor
   if (raster.grid.cols > 512 || raster.grid.rows > 512)
     options = CSLSetNameValue(options, "TILED", "YES");
-  GDALDatasetH ds = GDALCreate(driver, path.c_str(), raster.grid.cols, raster.grid.rows, 1,
-                               GDT_Float32, options);
+  GDALDatasetH ds =
+      GDALCreate(driver, path.c_str(), raster.grid.cols, raster.grid.rows, 1, GDT_Float32, options);
   CSLDestroy(options);
   if (!ds) {
     error = "cannot create " + path + ": " + detail::QuietGdal::lastError();
@@ -59,8 +59,8 @@ writeGeoTiff(const std::string& path, const Raster& raster, const std::string& c
   GDALRasterBandH band = GDALGetRasterBand(ds, 1);
   ok = ok && GDALSetRasterNoDataValue(band, std::numeric_limits<double>::quiet_NaN()) == CE_None;
   ok = ok && GDALRasterIO(band, GF_Write, 0, 0, raster.grid.cols, raster.grid.rows,
-                          const_cast<float*>(raster.values.data()), raster.grid.cols,
-                          raster.grid.rows, GDT_Float32, 0, 0) == CE_None;
+                          const_cast<float*>(raster.values.data()), raster.grid.cols, raster.grid.rows,
+                          GDT_Float32, 0, 0) == CE_None;
   if (!ok)
     error = "cannot write " + path + ": " + detail::QuietGdal::lastError();
   GDALClose(ds);  // flushes
@@ -91,8 +91,8 @@ readGeoTiff(const std::string& path, Raster& raster, std::string& crs_wkt, std::
   g.rows = GDALGetRasterYSize(ds);
   raster = Raster(g);
   GDALRasterBandH band = GDALGetRasterBand(ds, 1);
-  bool ok = band && GDALRasterIO(band, GF_Read, 0, 0, g.cols, g.rows, raster.values.data(), g.cols,
-                                 g.rows, GDT_Float32, 0, 0) == CE_None;
+  bool ok = band && GDALRasterIO(band, GF_Read, 0, 0, g.cols, g.rows, raster.values.data(), g.cols, g.rows,
+                                 GDT_Float32, 0, 0) == CE_None;
   if (ok) {
     int has_nodata = 0;
     const double nodata = GDALGetRasterNoDataValue(band, &has_nodata);
@@ -102,8 +102,7 @@ readGeoTiff(const std::string& path, Raster& raster, std::string& crs_wkt, std::
           v = std::numeric_limits<float>::quiet_NaN();
     const char* ref = GDALGetProjectionRef(ds);
     crs_wkt = ref ? ref : "";
-  }
-  else
+  } else
     error = "cannot read " + path + ": " + detail::QuietGdal::lastError();
   GDALClose(ds);
   return ok;

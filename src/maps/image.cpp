@@ -6,8 +6,8 @@ namespace pcl_ls3d {
 namespace maps {
 
 Image::Image(int width, int height, Rgb background)
-: width_(std::max(0, width)), height_(std::max(0, height))
-, rgb_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 3)
+    : width_(std::max(0, width)), height_(std::max(0, height)),
+      rgb_(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 3)
 {
   for (std::size_t k = 0; k < rgb_.size(); k += 3) {
     rgb_[k] = background.r;

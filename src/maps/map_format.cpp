@@ -18,9 +18,12 @@ std::string
 mapFormatName(MapFormat format)
 {
   switch (format) {
-    case MapFormat::PDF: return "pdf";
-    case MapFormat::SVG: return "svg";
-    default: return "png";
+  case MapFormat::PDF:
+    return "pdf";
+  case MapFormat::SVG:
+    return "svg";
+  default:
+    return "png";
   }
 }
 

@@ -37,8 +37,13 @@ drawNorthArrow(Drawing& d, int cx, int top)
 {
   const double x = cx + 0.5;  // the middle of pixel column cx
   const double head = top + 14.0, shoulder = top + 24.0, foot = top + 36.0;
-  d.fillPolygon({{x, head}, {x + 5.0, shoulder}, {x + 2.5, shoulder}, {x + 2.5, foot},
-                 {x - 2.5, foot}, {x - 2.5, shoulder}, {x - 5.0, shoulder}},
+  d.fillPolygon({{x, head},
+                 {x + 5.0, shoulder},
+                 {x + 2.5, shoulder},
+                 {x + 2.5, foot},
+                 {x - 2.5, foot},
+                 {x - 2.5, shoulder},
+                 {x - 5.0, shoulder}},
                 kInk);
   d.text(x, top + 12, "N", kInk, FontStyle::BOLD, TextAlign::CENTRE);
 }

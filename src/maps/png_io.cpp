@@ -18,7 +18,7 @@ cairo_status_t
 readFromFile(void* closure, unsigned char* data, unsigned int length)
 {
   return std::fread(data, 1, length, static_cast<std::FILE*>(closure)) == length ? CAIRO_STATUS_SUCCESS
-                                                                                   : CAIRO_STATUS_READ_ERROR;
+                                                                                 : CAIRO_STATUS_READ_ERROR;
 }
 
 struct FileCloser

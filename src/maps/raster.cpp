@@ -38,8 +38,7 @@ GridGeometry::geoTransform() const
   return {min_x, cell, 0.0, max_y, 0.0, -cell};
 }
 
-Raster::Raster(const GridGeometry& g)
-: grid(g), values(g.size(), std::numeric_limits<float>::quiet_NaN())
+Raster::Raster(const GridGeometry& g) : grid(g), values(g.size(), std::numeric_limits<float>::quiet_NaN())
 {}
 
 std::size_t
@@ -64,7 +63,7 @@ Raster::range() const
 }
 
 RasterAccumulator::RasterAccumulator(const GridGeometry& grid, Mode mode)
-: grid_(grid), mode_(mode), value_(grid.size(), 0.0), count_(grid.size(), 0)
+    : grid_(grid), mode_(mode), value_(grid.size(), 0.0), count_(grid.size(), 0)
 {}
 
 void

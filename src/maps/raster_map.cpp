@@ -31,8 +31,8 @@ struct Layout
 double
 mapScale(const GridGeometry& g, const MapStyle& style)
 {
-  const double s = std::min(static_cast<double>(style.max_width) / g.cols,
-                            static_cast<double>(style.max_height) / g.rows);
+  const double s =
+      std::min(static_cast<double>(style.max_width) / g.cols, static_cast<double>(style.max_height) / g.rows);
   return s >= 1.0 ? std::floor(s) : s;
 }
 

@@ -94,7 +94,8 @@ cellPixels(const Raster& raster, double scale, const ColourMap& colours, Rgb no_
   const GridGeometry& g = raster.grid;
   const bool enlarged = scale >= 1.0;
   const int factor = enlarged ? static_cast<int>(scale) : 1;
-  const int w = std::max(1, static_cast<int>(g.cols * scale)), h = std::max(1, static_cast<int>(g.rows * scale));
+  const int w = std::max(1, static_cast<int>(g.cols * scale)),
+            h = std::max(1, static_cast<int>(g.rows * scale));
   Image pixels(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -126,17 +127,19 @@ outlineSegments(const Raster& marked, double scale, double x0, double y0, double
   const int cols = marked.grid.cols, rows = marked.grid.rows;
   for (int row = 0; row <= rows; ++row) {  // horizontal edges above each row (and below the last)
     const double y = y0 + row * scale;
-    joinRuns(cols, [&](int c) { return markedSide(isMarked(marked, c, row - 1), isMarked(marked, c, row)); },
-             [&](int a, int b, int side) {
-               segments.emplace_back(x0 + a * scale, y + side * inset, x0 + b * scale, y + side * inset);
-             });
+    joinRuns(
+        cols, [&](int c) { return markedSide(isMarked(marked, c, row - 1), isMarked(marked, c, row)); },
+        [&](int a, int b, int side) {
+          segments.emplace_back(x0 + a * scale, y + side * inset, x0 + b * scale, y + side * inset);
+        });
   }
   for (int col = 0; col <= cols; ++col) {  // vertical edges left of each column
     const double x = x0 + col * scale;
-    joinRuns(rows, [&](int r) { return markedSide(isMarked(marked, col - 1, r), isMarked(marked, col, r)); },
-             [&](int a, int b, int side) {
-               segments.emplace_back(x + side * inset, y0 + a * scale, x + side * inset, y0 + b * scale);
-             });
+    joinRuns(
+        rows, [&](int r) { return markedSide(isMarked(marked, col - 1, r), isMarked(marked, col, r)); },
+        [&](int a, int b, int side) {
+          segments.emplace_back(x + side * inset, y0 + a * scale, x + side * inset, y0 + b * scale);
+        });
   }
   return segments;
 }

@@ -16,12 +16,12 @@ template class PCL_EXPORTS pcl::KdTreeFLANN<pcl_ls3d::PointLiDAR>;
 template class PCL_EXPORTS pcl::search::KdTree<pcl_ls3d::PointLiDAR>;
 
 PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl::PointXYZ, pcl::PointXYZ)
-PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl::PointXYZI, pcl::PointXYZI)
-PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl::PointXYZRGB, pcl::PointXYZRGB)
-PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl::PointNormal, pcl::PointNormal)
-PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl_ls3d::PointLiDAR, pcl_ls3d::PointLiDAR)
-// Mixed source/target types (e.g. PointXYZ -> PointNormal) are not instantiated: PCL 1.13's own
-// Registration::initCompute() does not compile for them (reciprocal kd-tree type mismatch).
-template class PCL_EXPORTS pcl_ls3d::LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ, double>;
+    PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl::PointXYZI, pcl::PointXYZI)
+        PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl::PointXYZRGB, pcl::PointXYZRGB)
+            PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl::PointNormal, pcl::PointNormal)
+                PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(pcl_ls3d::PointLiDAR, pcl_ls3d::PointLiDAR)
+    // Mixed source/target types (e.g. PointXYZ -> PointNormal) are not instantiated: PCL 1.13's own
+    // Registration::initCompute() does not compile for them (reciprocal kd-tree type mismatch).
+    template class PCL_EXPORTS pcl_ls3d::LeastSquaresSurfaceMatching<pcl::PointXYZ, pcl::PointXYZ, double>;
 template class PCL_EXPORTS pcl_ls3d::LeastSquaresSurfaceMatching<pcl::PointXYZI, pcl::PointXYZI, double>;
 template class PCL_EXPORTS pcl_ls3d::LeastSquaresSurfaceMatching<pcl::PointNormal, pcl::PointNormal, double>;

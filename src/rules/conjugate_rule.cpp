@@ -13,9 +13,12 @@ ConjugateRule::Ptr
 makeConjugateRule(ConjugateRuleType type)
 {
   switch (type) {
-  case ConjugateRuleType::LND: return std::make_shared<LndRule>();
-  case ConjugateRuleType::LZD: return std::make_shared<LzdRule>();
-  case ConjugateRuleType::ICP: return std::make_shared<IcpRule>();
+  case ConjugateRuleType::LND:
+    return std::make_shared<LndRule>();
+  case ConjugateRuleType::LZD:
+    return std::make_shared<LzdRule>();
+  case ConjugateRuleType::ICP:
+    return std::make_shared<IcpRule>();
   }
   return nullptr;
 }
@@ -38,8 +41,7 @@ parseConjugateRuleType(const std::string& text, ConjugateRuleType& type)
 }
 
 int
-PointVectorTargetSurface::nearestKSearch(const Eigen::Vector3d& query, int k,
-                                         std::vector<int>& indices,
+PointVectorTargetSurface::nearestKSearch(const Eigen::Vector3d& query, int k, std::vector<int>& indices,
                                          std::vector<float>& sq_dists) const
 {
   // Brute force: partial sort of all points by distance (small inputs only).
@@ -50,8 +52,7 @@ PointVectorTargetSurface::nearestKSearch(const Eigen::Vector3d& query, int k,
   std::vector<int> all(static_cast<std::size_t>(n));
   std::iota(all.begin(), all.end(), 0);
   auto d2 = [&](int i) { return (points_[static_cast<std::size_t>(i)] - query).squaredNorm(); };
-  std::partial_sort(all.begin(), all.begin() + k, all.end(),
-                    [&](int a, int b) { return d2(a) < d2(b); });
+  std::partial_sort(all.begin(), all.begin() + k, all.end(), [&](int a, int b) { return d2(a) < d2(b); });
   indices.assign(all.begin(), all.begin() + k);
   sq_dists.resize(static_cast<std::size_t>(k));
   for (int i = 0; i < k; ++i)

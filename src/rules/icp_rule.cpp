@@ -11,9 +11,8 @@ namespace {
 // and two tangents (weight p_t), as (√p u, √p l) so the engine's unit weight applies.
 // Each scaled observation has the variance σ_n² of the normal one.
 void
-addFrameObservations(const Eigen::Vector3d& query, const Eigen::Vector3d& q,
-                     const Eigen::Vector3d& n, double tangential_weight, double variance,
-                     ConjugateObservations& out)
+addFrameObservations(const Eigen::Vector3d& query, const Eigen::Vector3d& q, const Eigen::Vector3d& n,
+                     double tangential_weight, double variance, ConjugateObservations& out)
 {
   Eigen::Vector3d e1, e2;
   tin::planeBasis(n, e1, e2);
@@ -29,9 +28,8 @@ addFrameObservations(const Eigen::Vector3d& query, const Eigen::Vector3d& q,
 // initial guess on street scans. As the TIN rules do, a line-like set is widened once to
 // kWiden·k points; the query is given up when that is a line too. Returns the count (0: none).
 int
-planeNeighbourhood(const Eigen::Vector3d& query, const TargetSurface& target, int k,
-                   double max_distance, std::vector<int>& indices, std::vector<float>& sq_dists,
-                   Eigen::Vector3d& normal)
+planeNeighbourhood(const Eigen::Vector3d& query, const TargetSurface& target, int k, double max_distance,
+                   std::vector<int>& indices, std::vector<float>& sq_dists, Eigen::Vector3d& normal)
 {
   constexpr double kMinSpreadRatio = 0.1;  // λ1/λ2, as the TIN rules (tin_rules.cpp)
   constexpr int kWiden = 3;
@@ -50,17 +48,15 @@ planeNeighbourhood(const Eigen::Vector3d& query, const TargetSurface& target, in
 }  // namespace
 
 bool
-IcpRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target,
-                       double max_distance, CorrespondenceCache& cache,
-                       ConjugateObservations& out) const
+IcpRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target, double max_distance,
+                       CorrespondenceCache& cache, ConjugateObservations& out) const
 {
   if (cache.frozen) {  // keep the last closest point and its error axes (see CorrespondenceCache)
     const int idx = cache.vertices[0];
     if (idx < 0 || idx >= static_cast<int>(target.size()))
       return false;
     const Eigen::Vector3d n(cache.plane[0], cache.plane[1], cache.plane[2]);
-    addFrameObservations(query, target.point(idx), n.normalized(), cache.plane[3], cache.variance,
-                         out);
+    addFrameObservations(query, target.point(idx), n.normalized(), cache.plane[3], cache.variance, out);
     return true;
   }
   thread_local std::vector<int> indices;
@@ -68,8 +64,8 @@ IcpRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   thread_local std::vector<Eigen::Vector2d> projected;
   cache.vertices[0] = -1;
   Eigen::Vector3d normal;
-  const int found = planeNeighbourhood(query, target, std::max(3, neighbours_), max_distance,
-                                       indices, sq_dists, normal);
+  const int found =
+      planeNeighbourhood(query, target, std::max(3, neighbours_), max_distance, indices, sq_dists, normal);
   if (found < 3)
     return false;
   if (require_enclosure_) {

@@ -44,8 +44,7 @@ neighbourhoodPca(const TargetSurface& target, const std::vector<int>& indices, i
 }
 
 bool
-planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count,
-            Eigen::Vector3d& normal)
+planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count, Eigen::Vector3d& normal)
 {
   Eigen::Vector3d eigenvalues;
   return neighbourhoodPca(target, indices, count, normal, eigenvalues);
@@ -129,8 +128,9 @@ smallestEnclosing(const std::vector<Eigen::Vector2d>& points, const std::vector<
   const std::size_t m = order.size();
   auto at = [&](std::size_t i) { return static_cast<std::size_t>(order[i]); };
   auto tryTriangle = [&](int a, int b, int c, double size) {
-    if (size < best && containsOrigin(points[static_cast<std::size_t>(a)], points[static_cast<std::size_t>(b)],
-                                      points[static_cast<std::size_t>(c)])) {
+    if (size < best &&
+        containsOrigin(points[static_cast<std::size_t>(a)], points[static_cast<std::size_t>(b)],
+                       points[static_cast<std::size_t>(c)])) {
       best = size;
       triangle = {a, b, c};
       std::sort(triangle.begin(), triangle.end());

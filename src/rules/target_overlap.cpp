@@ -57,9 +57,10 @@ neighbourhoodDegeneracy(const TargetSurface& target, const Eigen::Vector3d& quer
   // many orders below the largest, which the rounding tolerance below needs.
   Eigen::Vector3d mean;
   const Eigen::Matrix3d cov = tin::neighbourhoodCovariance(target, idx, n, mean);
-  const Eigen::Vector3d spread =
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly)
-          .eigenvalues().cwiseMax(0.0).cwiseSqrt();  // ascending
+  const Eigen::Vector3d spread = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(cov, Eigen::EigenvaluesOnly)
+                                     .eigenvalues()
+                                     .cwiseMax(0.0)
+                                     .cwiseSqrt();  // ascending
   // 1e-5 of the neighbourhood's length, plus the rounding of float coordinates (~1e-7 of their
   // size: not 1e-5 of it, which is metres at projected coordinates).
   const double tolerance = 1e-5 * spread[2] + 1e-7 * mean.cwiseAbs().maxCoeff();
@@ -97,8 +98,8 @@ degenerateTargetReason(const std::vector<Eigen::Vector3d>& source, const std::ve
   const std::string degenerate = degenerateTarget(source, inside, guess, target);
   if (degenerate.empty())
     return "";
-  return "no observation: the " + target_name + " has no surface the rule can fit where the " +
-         source_name + " lies over it (degenerate: its points there are " + degenerate + ")";
+  return "no observation: the " + target_name + " has no surface the rule can fit where the " + source_name +
+         " lies over it (degenerate: its points there are " + degenerate + ")";
 }
 
 }  // namespace detail

@@ -1,7 +1,7 @@
 // LND and LZD rules: both find a local TIN triangle of the target, then intersect it along the
 // triangle normal (LND) or the vertical (LZD).
-#include <pcl_ls3d/rules/local_tin.h>
 #include <pcl_ls3d/rules/lnd_rule.h>
+#include <pcl_ls3d/rules/local_tin.h>
 #include <pcl_ls3d/rules/lzd_rule.h>
 
 #include <Eigen/Cholesky>
@@ -73,8 +73,7 @@ towardsNearestSample(const Eigen::Vector3d& query, const TargetSurface& target,
     return element_point;
   const Eigen::Vector3d sample = target.point(cache.nearest_sample);
   const double weight = 1.0 - (sample - query).norm() / static_cast<double>(cache.snap_radius);
-  return weight > 0.0 ? Eigen::Vector3d(element_point + weight * (sample - element_point))
-                      : element_point;
+  return weight > 0.0 ? Eigen::Vector3d(element_point + weight * (sample - element_point)) : element_point;
 }
 
 // Barycentric test of p's projection along `dir` onto triangle (a, b, c).
@@ -129,7 +128,8 @@ void
 anchor(CorrespondenceCache& cache, const Eigen::Vector3d& query)
 {
   const Scratch& s = scratch();
-  cache.anchor = {{static_cast<float>(query.x()), static_cast<float>(query.y()), static_cast<float>(query.z())}};
+  cache.anchor = {
+      {static_cast<float>(query.x()), static_cast<float>(query.y()), static_cast<float>(query.z())}};
   cache.reuse_radius = s.sq_dists.empty() ? 0.f : 0.05f * std::sqrt(s.sq_dists.back());
   cache.nearest_sample = s.indices.empty() ? -1 : static_cast<std::int32_t>(s.indices.front());
   cache.snap_radius = static_cast<float>(snapRadius());
@@ -178,7 +178,8 @@ triangleThrough(const std::vector<Eigen::Vector2d>& projected, int apex, std::ar
         tri[1] = j;
       continue;
     }
-    const Eigen::Vector2d b = projected[static_cast<std::size_t>(tri[1])] - projected[static_cast<std::size_t>(apex)];
+    const Eigen::Vector2d b =
+        projected[static_cast<std::size_t>(tri[1])] - projected[static_cast<std::size_t>(apex)];
     if (std::abs(a.x() * b.y() - a.y() * b.x()) > 1e-3 * a.norm() * b.norm())
       tri[2] = j;
   }
@@ -191,9 +192,9 @@ triangleThrough(const std::vector<Eigen::Vector2d>& projected, int apex, std::ar
 // enclosing triangle): its surface is measured there, not extrapolated (the element is drawn
 // to that sample).
 bool
-searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
-               const Eigen::Vector3d* dir, double max_distance, CorrespondenceCache& cache,
-               std::array<Eigen::Vector3d, 3>& v, bool on_sample = false)
+searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k, const Eigen::Vector3d* dir,
+               double max_distance, CorrespondenceCache& cache, std::array<Eigen::Vector3d, 3>& v,
+               bool on_sample = false)
 {
   Scratch& s = scratch();
   int found = 0;
@@ -226,13 +227,11 @@ searchTriangle(const Eigen::Vector3d& query, const TargetSurface& target, int k,
   return true;
 }
 
-
 // Local quadric (tin::quadricPatch) of the scratch neighbours, frame axis `axis`; refitted once on
 // kWiden·k neighbours when its height is ill-determined (see kMaxHeightVariance).
 bool
 conditionedQuadric(const Eigen::Vector3d& query, const TargetSurface& target, int k,
-                   const Eigen::Vector3d& axis, double& height, Eigen::Vector2d& slope,
-                   float& variance)
+                   const Eigen::Vector3d& axis, double& height, Eigen::Vector2d& slope, float& variance)
 {
   Scratch& s = scratch();
   double q = 0.0, noise = 0.0;
@@ -318,8 +317,7 @@ lzdElement(const Eigen::Vector3d& centre, const TargetSurface& target, int k, Lz
     c = centre + h * up;
     n = (up - g.x() * e1 - g.y() * e2).normalized();
     height = c.z();
-  }
-  else if (std::abs(n.z()) > 1e-6)
+  } else if (std::abs(n.z()) > 1e-6)
     height = c.z() - (n.x() * (centre.x() - c.x()) + n.y() * (centre.y() - c.y())) / n.z();
   return true;
 }
@@ -343,9 +341,8 @@ planeObservation(const Eigen::Vector3d& query, Eigen::Vector3d n, const Eigen::V
 }  // namespace
 
 bool
-LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target,
-                       double max_distance, CorrespondenceCache& cache,
-                       ConjugateObservations& out) const
+LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target, double max_distance,
+                       CorrespondenceCache& cache, ConjugateObservations& out) const
 {
   std::array<Eigen::Vector3d, 3> v;
   const bool cached = cachedTriangle(target, cache, v);
@@ -399,14 +396,13 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   const Eigen::Vector3d n = (v[1] - v[0]).cross(v[2] - v[0]);
   if (!(n.norm() > 0.0))
     return false;
-  return planeObservation(query, n.normalized(), v[0], max_distance,
-                          std::numeric_limits<double>::quiet_NaN(), out);
+  return planeObservation(query, n.normalized(), v[0], max_distance, std::numeric_limits<double>::quiet_NaN(),
+                          out);
 }
 
 bool
-LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target,
-                       double max_distance, CorrespondenceCache& cache,
-                       ConjugateObservations& out) const
+LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target, double max_distance,
+                       CorrespondenceCache& cache, ConjugateObservations& out) const
 {
   static const Eigen::Vector3d up = Eigen::Vector3d::UnitZ();
   std::array<Eigen::Vector3d, 3> v;
@@ -446,10 +442,9 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     n = Eigen::Vector3d(cache.plane[0], cache.plane[1], cache.plane[2]);
     p = towardsNearestSample(query, target, cache,
                              Eigen::Vector3d(cache.plane[3], cache.plane[4], cache.plane[5]));
-  }
-  else {
-    const bool have = cached && (cache.frozen || (reusable(cache, query) &&
-                                                  projectsInto(query, up, v[0], v[1], v[2])));
+  } else {
+    const bool have =
+        cached && (cache.frozen || (reusable(cache, query) && projectsInto(query, up, v[0], v[1], v[2])));
     if (!have) {
       if (!searchTriangle(query, target, neighbours_, &up, max_distance, cache, v, kLzdOnSample)) {
         cache.vertices = {{-1, -1, -1}};

@@ -1,5 +1,5 @@
-#include <pcl_ls3d/sample_consensus/block_trimmed_squares.h>
 #include <pcl_ls3d/common/voxel_index.h>
+#include <pcl_ls3d/sample_consensus/block_trimmed_squares.h>
 
 #include <algorithm>
 #include <cmath>
@@ -128,7 +128,8 @@ concentrate(const LinearizedMatching& lin, const std::vector<std::vector<int>>& 
 }  // namespace
 
 BlockTrimmedSquaresResult
-blockTrimmedSquares(const LinearizedMatching& lin, const Vector7d& start, const BlockTrimmedSquaresSettings& s)
+blockTrimmedSquares(const LinearizedMatching& lin, const Vector7d& start,
+                    const BlockTrimmedSquaresSettings& s)
 {
   BlockTrimmedSquaresResult out;
   const std::vector<std::vector<int>> blocks = observationBlocks(lin, s.block_spacings);
@@ -165,7 +166,8 @@ blockTrimmedSquares(const LinearizedMatching& lin, const Vector7d& start, const 
   if (out.ok) {
     out.parameters = best->X;
     out.scale = std::sqrt(best->criterion);
-    out.support = static_cast<double>(best->observations) / static_cast<double>(std::max<std::size_t>(lin.size(), 1));
+    out.support =
+        static_cast<double>(best->observations) / static_cast<double>(std::max<std::size_t>(lin.size(), 1));
   }
   return out;
 }

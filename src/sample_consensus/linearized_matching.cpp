@@ -89,7 +89,8 @@ LinearizedMatching::rebuildRows()
 Vector7d
 LinearizedMatching::parametersOf(const Eigen::Matrix4d& T) const
 {
-  return SimilarityTransform::fromMatrix(globalToLocal(T, block_.input_origin, block_.output_origin)).vector();
+  return SimilarityTransform::fromMatrix(globalToLocal(T, block_.input_origin, block_.output_origin))
+      .vector();
 }
 
 Eigen::Matrix4d
@@ -121,7 +122,8 @@ LinearizedMatching::fit(const int* obs, std::size_t count, Vector7d& X) const
 }
 
 bool
-LinearizedMatching::fitWeighted(const Eigen::VectorXd& weights, Vector7d& X, GaussMarkovSolution* solution) const
+LinearizedMatching::fitWeighted(const Eigen::VectorXd& weights, Vector7d& X,
+                                GaussMarkovSolution* solution) const
 {
   NormalEquations ne;
   const Eigen::Index m = l_.size();

@@ -11,10 +11,10 @@
 #include <pcl/sample_consensus/impl/ransac.hpp>
 
 PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(pcl::PointXYZ)
-PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(pcl::PointXYZI)
-PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(pcl::PointNormal)
-PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(pcl_ls3d::PointLiDAR)
+    PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(pcl::PointXYZI)
+        PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(pcl::PointNormal)
+            PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(pcl_ls3d::PointLiDAR)
 
-template class PCL_EXPORTS pcl::LeastMedianSquares<pcl_ls3d::PointLiDAR>;
+                template class PCL_EXPORTS pcl::LeastMedianSquares<pcl_ls3d::PointLiDAR>;
 template class PCL_EXPORTS pcl::RandomSampleConsensus<pcl_ls3d::PointLiDAR>;
 template class PCL_EXPORTS pcl::MEstimatorSampleConsensus<pcl_ls3d::PointLiDAR>;

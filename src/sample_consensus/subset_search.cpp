@@ -1,5 +1,5 @@
-#include <pcl_ls3d/sample_consensus/subset_search.h>
 #include <pcl_ls3d/estimators/robust_scale.h>
+#include <pcl_ls3d/sample_consensus/subset_search.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,9 @@ namespace {
 class Stream
 {
 public:
-  Stream(std::uint32_t seed, std::uint64_t k) : s_((static_cast<std::uint64_t>(seed) << 32) ^ (k * 0x9E3779B97F4A7C15ull)) {}
+  Stream(std::uint32_t seed, std::uint64_t k)
+      : s_((static_cast<std::uint64_t>(seed) << 32) ^ (k * 0x9E3779B97F4A7C15ull))
+  {}
   std::uint64_t
   next()
   {
@@ -41,10 +43,10 @@ private:
 /// The observations subsets are drawn from (points with a conjugate) and ranked on.
 struct SearchData
 {
-  std::vector<int> points;       // epoch points with at least one observation
-  std::vector<int> scored;       // observation indices subsets are ranked on
+  std::vector<int> points;             // epoch points with at least one observation
+  std::vector<int> scored;             // observation indices subsets are ranked on
   LinearizedMatching::RowMatrix rows;  // rows of `scored`
-  Eigen::VectorXd l;             // distances of `scored`
+  Eigen::VectorXd l;                   // distances of `scored`
 };
 
 SearchData

@@ -5,8 +5,6 @@
 
 #include <pcl/point_types.h>
 
-PCL_LS3D_INSTANTIATE_FlannKdTree(pcl::PointXYZ)
-PCL_LS3D_INSTANTIATE_FlannKdTree(pcl::PointXYZI)
-PCL_LS3D_INSTANTIATE_FlannKdTree(pcl::PointXYZRGB)
-PCL_LS3D_INSTANTIATE_FlannKdTree(pcl::PointNormal)
-PCL_LS3D_INSTANTIATE_FlannKdTree(pcl_ls3d::PointLiDAR)
+PCL_LS3D_INSTANTIATE_FlannKdTree(pcl::PointXYZ) PCL_LS3D_INSTANTIATE_FlannKdTree(pcl::PointXYZI)
+    PCL_LS3D_INSTANTIATE_FlannKdTree(pcl::PointXYZRGB) PCL_LS3D_INSTANTIATE_FlannKdTree(pcl::PointNormal)
+        PCL_LS3D_INSTANTIATE_FlannKdTree(pcl_ls3d::PointLiDAR)

@@ -37,7 +37,10 @@ struct Contacts
 class Groups
 {
 public:
-  explicit Groups(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  explicit Groups(std::size_t n) : parent_(n)
+  {
+    std::iota(parent_.begin(), parent_.end(), 0);
+  }
   int
   find(int s)
   {

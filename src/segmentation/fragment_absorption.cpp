@@ -11,8 +11,8 @@ namespace pcl_ls3d {
 namespace segmentation {
 
 std::size_t
-absorbFragments(const std::vector<int>& graph, int graph_k, std::vector<int>& labels,
-                std::size_t min_size, const std::function<bool(int, int)>& linkable)
+absorbFragments(const std::vector<int>& graph, int graph_k, std::vector<int>& labels, std::size_t min_size,
+                const std::function<bool(int, int)>& linkable)
 {
   if (min_size < 2 || graph_k < 1 || labels.empty() ||
       graph.size() != labels.size() * static_cast<std::size_t>(graph_k))
@@ -59,9 +59,8 @@ absorbFragments(const std::vector<int>& graph, int graph_k, std::vector<int>& la
       }
     int best = -1, best_links = 0;
     for (const auto& [t, c] : links)
-      if (c > best_links ||
-          (c == best_links && (members[t].size() > members[best].size() ||
-                               (members[t].size() == members[best].size() && t < best)))) {
+      if (c > best_links || (c == best_links && (members[t].size() > members[best].size() ||
+                                                 (members[t].size() == members[best].size() && t < best)))) {
         best = t;
         best_links = c;
       }

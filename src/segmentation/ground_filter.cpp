@@ -59,7 +59,7 @@ filter2D(std::vector<float>& z, int rows, int cols, int h, float sign)
 }  // namespace
 
 LowestPointGrid::LowestPointGrid(const std::vector<Eigen::Vector3f>& points, double cell)
-: cell_(cell > 0.0 ? cell : 1.0)
+    : cell_(cell > 0.0 ? cell : 1.0)
 {
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d hi = -lo;
@@ -179,8 +179,7 @@ surfaceSlopes(const std::vector<float>& z, const std::vector<char>& occupied,
     const std::size_t at = cells[k];
     const int r = static_cast<int>(at / cols) - pad, c = static_cast<int>(at % cols) - pad;
     slope[k] = Eigen::Vector2f(axisSlope(z, occupied, at, 1, c, grid.cols()),
-                               axisSlope(z, occupied, at, static_cast<std::ptrdiff_t>(cols), r,
-                                         grid.rows()));
+                               axisSlope(z, occupied, at, static_cast<std::ptrdiff_t>(cols), r, grid.rows()));
   }
   return slope;
 }
@@ -220,24 +219,24 @@ groundPoints(const std::vector<Eigen::Vector3f>& points, const GroundFilterSetti
   std::vector<std::uint32_t> slot(points.size(), 0);
   for (std::size_t i = 0; i < points.size(); ++i)
     if (ground[i])
-      slot[i] = static_cast<std::uint32_t>(
-          std::lower_bound(cells.begin(), cells.end(), cell_of[i]) - cells.begin());
+      slot[i] = static_cast<std::uint32_t>(std::lower_bound(cells.begin(), cells.end(), cell_of[i]) -
+                                           cells.begin());
   std::vector<float> z = paddedSurface(grid, pad);
   int previous_window = 1;
   for (const int half : halves) {
     const int window = 2 * half + 1;
-    filter2D(z, rows, cols, half, 1.f);   // erosion
+    filter2D(z, rows, cols, half, 1.f);  // erosion
     for (float& v : z)
       if (v == kInf)
-        v = -kInf;  // still empty: must not win the dilation
+        v = -kInf;                        // still empty: must not win the dilation
     filter2D(z, rows, cols, half, -1.f);  // dilation
     for (float& v : z)
       if (v == -kInf)
         v = kInf;
-    const double dh =
-        half == 1 ? s.initial_distance
-                  : std::min(s.max_distance, s.initial_distance +
-                                                 s.slope * (window - previous_window) * grid.cell());
+    const double dh = half == 1
+                          ? s.initial_distance
+                          : std::min(s.max_distance,
+                                     s.initial_distance + s.slope * (window - previous_window) * grid.cell());
     const std::vector<Eigen::Vector2f> slope = surfaceSlopes(z, occupied, cells, grid, pad);
     for (std::size_t i = 0; i < points.size(); ++i)
       if (ground[i] && points[i].z() - z[cell_of[i]] - slope[slot[i]].dot(offset[i]) > dh)

@@ -18,32 +18,33 @@ namespace pcl_ls3d {
 namespace segmentation {
 namespace detail {
 
-
 constexpr int kNearestContourCandidates = 64;  ///< fallback k for the nearest other segment
-constexpr double kInsideTolerance = 1e-6;  ///< [m] point-in-hull slack (float coordinates)
+constexpr double kInsideTolerance = 1e-6;      ///< [m] point-in-hull slack (float coordinates)
 
 /// Working state of the merge loop (Fig. 8); segment ids are the initial labels.
 struct MergeState
 {
-  std::vector<std::vector<int>> members;  ///< positions per initial segment
-  std::vector<double> residual_sum;       ///< Σ r_j over the (merged) segment
-  std::vector<std::vector<int>> contour;  ///< global contour-point ids per root segment
-  std::vector<double> volume;             ///< hull volume per root segment
+  std::vector<std::vector<int>> members;             ///< positions per initial segment
+  std::vector<double> residual_sum;                  ///< Σ r_j over the (merged) segment
+  std::vector<std::vector<int>> contour;             ///< global contour-point ids per root segment
+  std::vector<double> volume;                        ///< hull volume per root segment
   std::vector<std::vector<Eigen::Vector4d>> planes;  ///< solid-hull facets per root segment
-  std::vector<int> parent;                ///< union-find
-  std::vector<Eigen::Vector3f> contour_xyz;  ///< all initial contour points
-  std::vector<int> contour_owner;         ///< initial segment of each contour point
-  std::vector<char> contour_active;       ///< still a hull vertex of its (merged) segment
-  std::size_t hull_kinds[5] = {0, 0, 0, 0, 0};  ///< initial hulls per HullKind
+  std::vector<int> parent;                           ///< union-find
+  std::vector<Eigen::Vector3f> contour_xyz;          ///< all initial contour points
+  std::vector<int> contour_owner;                    ///< initial segment of each contour point
+  std::vector<char> contour_active;                  ///< still a hull vertex of its (merged) segment
+  std::size_t hull_kinds[5] = {0, 0, 0, 0, 0};       ///< initial hulls per HullKind
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
 
-  int find(int s)
+  int
+  find(int s)
   {
     while (parent[s] != s)
       s = parent[s] = parent[parent[s]];
     return s;
   }
-  double meanResidual(int s) const
+  double
+  meanResidual(int s) const
   {
     return residual_sum[s] / static_cast<double>(std::max<std::size_t>(1, members[s].size()));
   }

@@ -21,7 +21,6 @@ using detail::Contacts;
 using detail::Groups;
 using detail::structural;
 
-
 /// May two touching segments (a, b) with \a links links join symmetrically? Linear segments
 /// never do: two spans of a wire meet end to end at their tower, and joining them would make
 /// one object of two; attachLines() places lines that run along a structure.
@@ -80,8 +79,8 @@ countRoots(Groups& groups, std::size_t n)
 /// its tower only with the few points at its end and stays alone; a line between a roof and
 /// a tree joins one of them, never bridging the two.
 void
-attachLines(const Contacts& c, const std::vector<SegmentShape>& shapes,
-            const std::vector<SegmentKind>& kind, const AssemblySettings& s, Groups& groups)
+attachLines(const Contacts& c, const std::vector<SegmentShape>& shapes, const std::vector<SegmentKind>& kind,
+            const AssemblySettings& s, Groups& groups)
 {
   std::map<std::pair<int, int>, std::size_t> touching;  // (line, other root) -> line points
   std::vector<int> seen;
@@ -184,10 +183,9 @@ attachEnclosed(const std::vector<SegmentLink>& adjacency, const std::vector<Segm
 /// assembled like any other segment. \a labels stays dense.
 /// \return points detached
 std::size_t
-detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
-                   int graph_k, const std::vector<char>& raised_point,
-                   const std::vector<SegmentKind>& kind, double max_length,
-                   std::vector<int>& labels, std::vector<int>& origin)
+detachRaisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph, int graph_k,
+                   const std::vector<char>& raised_point, const std::vector<SegmentKind>& kind,
+                   double max_length, std::vector<int>& labels, std::vector<int>& origin)
 {
   origin.clear();
   const double max_sq = max_length * max_length;
@@ -254,8 +252,8 @@ raisedPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<char>
 /// the labels from \a first on, \a origin their ground segments; labels stay dense.
 /// \return points that stay detached
 std::size_t
-restoreTerrainPieces(const std::vector<SegmentKind>& kind, std::size_t first,
-                     const std::vector<int>& origin, std::vector<int>& labels)
+restoreTerrainPieces(const std::vector<SegmentKind>& kind, std::size_t first, const std::vector<int>& origin,
+                     std::vector<int>& labels)
 {
   std::vector<int> to(kind.size(), -1);
   int next = static_cast<int>(first);
@@ -274,8 +272,8 @@ restoreTerrainPieces(const std::vector<SegmentKind>& kind, std::size_t first,
 /// flat patch of low vegetation, rough in its points, is vegetation standing on the terrain,
 /// not a roof.
 std::vector<SegmentKind>
-segmentKinds(const std::vector<SegmentShape>& shapes, std::size_t first_piece,
-             double ground_residual, const KindSettings& settings)
+segmentKinds(const std::vector<SegmentShape>& shapes, std::size_t first_piece, double ground_residual,
+             const KindSettings& settings)
 {
   std::vector<SegmentKind> kind(shapes.size());
   for (std::size_t s = 0; s < shapes.size(); ++s) {
@@ -290,10 +288,10 @@ segmentKinds(const std::vector<SegmentShape>& shapes, std::size_t first_piece,
 /// Stage 1: raised points leave their ground segments (detachRaisedPoints), pieces as smooth as
 /// terrain go back (restoreTerrainPieces). Returns the segments' shapes and kinds afterwards.
 std::vector<SegmentShape>
-detachStage(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
-            int graph_k, const std::vector<float>& residuals, const std::vector<char>& ground,
-            const AssemblySettings& settings, std::vector<int>& labels,
-            std::vector<SegmentKind>& kind, AssemblyReport& rep)
+detachStage(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph, int graph_k,
+            const std::vector<float>& residuals, const std::vector<char>& ground,
+            const AssemblySettings& settings, std::vector<int>& labels, std::vector<SegmentKind>& kind,
+            AssemblyReport& rep)
 {
   std::vector<SegmentShape> shapes = segmentShapes(points, labels, residuals, ground);
   rep.segments_before = shapes.size();
@@ -302,17 +300,16 @@ detachStage(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& 
     return shapes;
   std::vector<int> origin;
   const std::vector<char> raised =
-      raisedPoints(points, ground, kind, labels,
-                   settings.raised_noise_multiple * rep.ground_residual,
+      raisedPoints(points, ground, kind, labels, settings.raised_noise_multiple * rep.ground_residual,
                    terrainWindowHalfWidth(settings));
-  rep.detached_points = detachRaisedPoints(points, graph, graph_k, raised, kind,
-                                           settings.max_link_length, labels, origin);
+  rep.detached_points =
+      detachRaisedPoints(points, graph, graph_k, raised, kind, settings.max_link_length, labels, origin);
   if (rep.detached_points == 0)
     return shapes;
   const auto pieces = segmentShapes(points, labels, residuals, ground);
-  rep.detached_points = restoreTerrainPieces(
-      segmentKinds(pieces, rep.segments_before, rep.ground_residual, settings.kinds),
-      rep.segments_before, origin, labels);
+  rep.detached_points =
+      restoreTerrainPieces(segmentKinds(pieces, rep.segments_before, rep.ground_residual, settings.kinds),
+                           rep.segments_before, origin, labels);
   shapes = segmentShapes(points, labels, residuals, ground);
   kind = segmentKinds(shapes, rep.segments_before, rep.ground_residual, settings.kinds);
   return shapes;
@@ -336,8 +333,8 @@ joinTouching(const Contacts& contacts, const std::vector<SegmentLink>& adjacency
                                   ? std::min(settings.rough_link_length, settings.max_link_length)
                                   : settings.max_link_length;
   const std::vector<std::int8_t> side = detail::roofSides(contacts, kind, settings, groups);
-  for (const SegmentLink& l : segmentAdjacency(contacts.points, contacts.graph, contacts.graph_k,
-                                               contacts.labels, rough_length))
+  for (const SegmentLink& l :
+       segmentAdjacency(contacts.points, contacts.graph, contacts.graph_k, contacts.labels, rough_length))
     if (isRough(l.a) && isRough(l.b) &&
         side[static_cast<std::size_t>(l.a)] * side[static_cast<std::size_t>(l.b)] >= 0 &&
         joinable(l.a, l.b, l.links, kind, on_terrain, settings))
@@ -350,8 +347,7 @@ joinTouching(const Contacts& contacts, const std::vector<SegmentLink>& adjacency
 void
 attachUntilStable(const Contacts& contacts, const std::vector<SegmentLink>& adjacency,
                   const std::vector<SegmentShape>& shapes, const std::vector<SegmentKind>& kind,
-                  const std::vector<char>& on_terrain, const AssemblySettings& settings,
-                  Groups& groups)
+                  const std::vector<char>& on_terrain, const AssemblySettings& settings, Groups& groups)
 {
   std::vector<char> building(shapes.size(), 0);  // per segment: in a building group
   for (std::size_t before = 0, after = 1; before != after;) {
@@ -383,8 +379,8 @@ relabelByGroup(Groups& groups, std::size_t segments, std::vector<int>& labels)
 }  // namespace
 
 std::function<bool(int, int)>
-absorptionContact(const std::vector<Eigen::Vector3f>& points,
-                  const std::vector<SegmentKind>& point_kind, double max_link_length)
+absorptionContact(const std::vector<Eigen::Vector3f>& points, const std::vector<SegmentKind>& point_kind,
+                  double max_link_length)
 {
   if (points.size() != point_kind.size())
     return [](int, int) { return false; };
@@ -398,13 +394,12 @@ absorptionContact(const std::vector<Eigen::Vector3f>& points,
 }
 
 AssemblyReport
-assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
-                int graph_k, const std::vector<float>& residuals, const std::vector<char>& ground,
+assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph, int graph_k,
+                const std::vector<float>& residuals, const std::vector<char>& ground,
                 const AssemblySettings& settings, std::vector<int>& labels)
 {
   AssemblyReport rep;
-  if (points.size() != labels.size() || ground.size() != labels.size() ||
-      residuals.size() != labels.size())
+  if (points.size() != labels.size() || ground.size() != labels.size() || residuals.size() != labels.size())
     return rep;
   rep.ground_residual = groundResidual(residuals, ground);
   std::vector<SegmentKind> kind;

@@ -22,16 +22,27 @@ using detail::planCellOf;
 using detail::TerrainCells;
 using detail::TerrainPlane;
 
-enum Family { kGround, kRough, kSurface, kLinear, kFamilies };
+enum Family
+{
+  kGround,
+  kRough,
+  kSurface,
+  kLinear,
+  kFamilies
+};
 
 int
 familyOf(SegmentKind k)
 {
   switch (k) {
-  case SegmentKind::Ground: return kGround;
-  case SegmentKind::Rough: return kRough;
-  case SegmentKind::Linear: return kLinear;
-  default: return kSurface;  // solid, wall
+  case SegmentKind::Ground:
+    return kGround;
+  case SegmentKind::Rough:
+    return kRough;
+  case SegmentKind::Linear:
+    return kLinear;
+  default:
+    return kSurface;  // solid, wall
   }
 }
 
@@ -43,18 +54,27 @@ struct ObjectShape
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< first point (moments are relative)
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   Eigen::Matrix2d sum_sq = Eigen::Matrix2d::Zero();
-  Eigen::Vector2d axis = Eigen::Vector2d::UnitX();   ///< major plan axis
+  Eigen::Vector2d axis = Eigen::Vector2d::UnitX();  ///< major plan axis
   Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
-  Eigen::Vector2d hi = -lo;                          ///< along (axis, its normal)
-  Eigen::Vector2d box_lo = lo, box_hi = hi;          ///< x, y box (terrain search)
-  std::size_t cover = 0;                             ///< linear ones: occupied wire cells
+  Eigen::Vector2d hi = -lo;                  ///< along (axis, its normal)
+  Eigen::Vector2d box_lo = lo, box_hi = hi;  ///< x, y box (terrain search)
+  std::size_t cover = 0;                     ///< linear ones: occupied wire cells
 
-  int family() const
+  int
+  family() const
   {
     return static_cast<int>(std::max_element(votes, votes + kFamilies) - votes);
   }
-  double length() const { return hi.x() - lo.x(); }
-  double width() const { return hi.y() - lo.y(); }
+  double
+  length() const
+  {
+    return hi.x() - lo.x();
+  }
+  double
+  width() const
+  {
+    return hi.y() - lo.y();
+  }
 };
 
 std::vector<ObjectShape>
@@ -99,8 +119,8 @@ objectShapes(const std::vector<Eigen::Vector3f>& points, const std::vector<int>&
 /// Plan cells of edge \a cell that the points of each linear-family object occupy: a wire's
 /// run along its length, a canopy or a row of roofs seen as a line covers its width too.
 void
-countLinearCover(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
-                 double cell, std::vector<ObjectShape>& shapes)
+countLinearCover(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels, double cell,
+                 std::vector<ObjectShape>& shapes)
 {
   std::vector<std::unordered_set<std::uint64_t>> cells(shapes.size());
   for (std::size_t p = 0; p < points.size(); ++p) {
@@ -134,7 +154,11 @@ struct Heights
 {
   double low, middle, top, terrain;
 
-  bool known() const { return std::isfinite(terrain); }
+  bool
+  known() const
+  {
+    return std::isfinite(terrain);
+  }
 };
 
 /// Poles and lattice towers are taller than wide and hold their points all the way up (a tall
@@ -163,8 +187,8 @@ raisedAbove(const ObjectShape& s, const Heights& h, const ObjectClassSettings& c
 bool
 carSizedInPlan(const ObjectShape& s, const ObjectClassSettings& c)
 {
-  return s.length() >= c.car_min_length && s.length() <= c.car_max_length &&
-         s.width() >= c.car_min_width && s.width() <= c.car_max_width;
+  return s.length() >= c.car_min_length && s.length() <= c.car_max_length && s.width() >= c.car_min_width &&
+         s.width() <= c.car_max_width;
 }
 
 /// As wide as a car, at least as long as one and at most car_row_max_length: a car, or a row
@@ -235,13 +259,20 @@ const char*
 toString(ObjectClass c)
 {
   switch (c) {
-  case ObjectClass::Ground: return "ground";
-  case ObjectClass::Building: return "building";
-  case ObjectClass::Vegetation: return "vegetation";
-  case ObjectClass::Wire: return "wire";
-  case ObjectClass::Pole: return "pole";
-  case ObjectClass::Car: return "car";
-  default: return "unclassified";
+  case ObjectClass::Ground:
+    return "ground";
+  case ObjectClass::Building:
+    return "building";
+  case ObjectClass::Vegetation:
+    return "vegetation";
+  case ObjectClass::Wire:
+    return "wire";
+  case ObjectClass::Pole:
+    return "pole";
+  case ObjectClass::Car:
+    return "car";
+  default:
+    return "unclassified";
   }
 }
 
@@ -249,13 +280,20 @@ std::uint8_t
 lasCode(ObjectClass c)
 {
   switch (c) {
-  case ObjectClass::Ground: return 2;
-  case ObjectClass::Building: return 6;
-  case ObjectClass::Vegetation: return 5;
-  case ObjectClass::Wire: return 14;
-  case ObjectClass::Pole: return 15;
-  case ObjectClass::Car: return 64;
-  default: return 1;
+  case ObjectClass::Ground:
+    return 2;
+  case ObjectClass::Building:
+    return 6;
+  case ObjectClass::Vegetation:
+    return 5;
+  case ObjectClass::Wire:
+    return 14;
+  case ObjectClass::Pole:
+    return 15;
+  case ObjectClass::Car:
+    return 64;
+  default:
+    return 1;
   }
 }
 
@@ -274,9 +312,9 @@ std::string
 describeLasCodes()
 {
   std::string text;
-  for (const ObjectClass k : {ObjectClass::Ground, ObjectClass::Building, ObjectClass::Vegetation,
-                              ObjectClass::Wire, ObjectClass::Pole, ObjectClass::Car,
-                              ObjectClass::Unclassified})
+  for (const ObjectClass k :
+       {ObjectClass::Ground, ObjectClass::Building, ObjectClass::Vegetation, ObjectClass::Wire,
+        ObjectClass::Pole, ObjectClass::Car, ObjectClass::Unclassified})
     text += (text.empty() ? "" : ", ") + std::to_string(lasCode(k)) + " " + toString(k);
   return text;
 }
@@ -321,13 +359,11 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
                 const ObjectClassSettings& settings, const std::vector<char>& multiple_return)
 {
   if (labels.size() != points.size() || point_kind.size() != points.size() ||
-      ground.size() != points.size() ||
-      (!multiple_return.empty() && multiple_return.size() != points.size()))
+      ground.size() != points.size() || (!multiple_return.empty() && multiple_return.size() != points.size()))
     return {};
   std::vector<ObjectShape> shapes = objectShapes(points, labels, point_kind);
   countLinearCover(points, labels, settings.wire_cell, shapes);
-  const std::vector<char> may_be_car =
-      opaqueCarOrRow(points, labels, multiple_return, shapes, settings);
+  const std::vector<char> may_be_car = opaqueCarOrRow(points, labels, multiple_return, shapes, settings);
   const TerrainCells terrain(points, labels, ground, settings.terrain_cell);
   std::vector<TerrainPlane> planes(shapes.size());
   for (std::size_t o = 0; o < shapes.size(); ++o)  // rough: vegetation unless it may be a car
@@ -359,8 +395,8 @@ classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<in
     if (standsUpright(s, h, settings))
       classes[o] = ObjectClass::Pole;
     else
-      classes[o] = family == kSurface ? surfaceClass(s, h, settings)
-                                      : linearClass(s, h.low - h.terrain, settings);
+      classes[o] =
+          family == kSurface ? surfaceClass(s, h, settings) : linearClass(s, h.low - h.terrain, settings);
   }
   return classes;
 }

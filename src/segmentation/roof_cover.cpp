@@ -26,8 +26,7 @@ using RoofCells = std::unordered_map<std::uint64_t, RoofCell>;
 /// Plan cells holding points of the buildings' solid segments (their roof planes).
 RoofCells
 roofCells(const std::vector<Eigen::Vector3f>& points, const std::vector<SegmentKind>& point_kind,
-          const std::vector<ObjectClass>& object_class, double cell,
-          const std::vector<int>& labels)
+          const std::vector<ObjectClass>& object_class, double cell, const std::vector<int>& labels)
 {
   RoofCells cells;
   for (std::size_t p = 0; p < points.size(); ++p) {
@@ -52,8 +51,7 @@ roofCells(const std::vector<Eigen::Vector3f>& points, const std::vector<SegmentK
 }  // namespace
 
 std::size_t
-claimPointsUnderRoofs(const std::vector<Eigen::Vector3f>& points,
-                      const std::vector<SegmentKind>& point_kind,
+claimPointsUnderRoofs(const std::vector<Eigen::Vector3f>& points, const std::vector<SegmentKind>& point_kind,
                       const std::vector<ObjectClass>& object_class, double cell, double clearance,
                       std::vector<int>& labels)
 {

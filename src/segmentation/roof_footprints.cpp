@@ -29,8 +29,8 @@ cellKey(const Eigen::Vector3f& p, double cell, int dx = 0, int dy = 0)
 /// \a reach cells of the other) are one building: a roof step, where the wall between the
 /// levels holds too few points for the k-NN links, or an annex under the main roof's eaves.
 void
-joinTouchingRoofs(const std::unordered_map<std::int64_t, int>& own, int reach,
-                  std::size_t min_contacts, Groups& groups)
+joinTouchingRoofs(const std::unordered_map<std::int64_t, int>& own, int reach, std::size_t min_contacts,
+                  Groups& groups)
 {
   std::map<std::pair<int, int>, std::size_t> contacts;
   for (const auto& [key, a] : own) {
@@ -64,8 +64,8 @@ struct RoofCell
 /// highest structural point in the cell (spread cells: in the cells they spread from).
 std::unordered_map<std::int64_t, RoofCell>
 buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
-                   const std::vector<std::size_t>& size, double cell, int reach,
-                   std::size_t min_contacts, Groups& groups, std::vector<char>& building)
+                   const std::vector<std::size_t>& size, double cell, int reach, std::size_t min_contacts,
+                   Groups& groups, std::vector<char>& building)
 {
   std::vector<std::size_t> structural_points(size.size(), 0);
   for (std::size_t p = 0; p < c.labels.size(); ++p)
@@ -92,8 +92,7 @@ buildingFootprints(const Contacts& c, const std::vector<SegmentKind>& kind,
   std::unordered_map<std::int64_t, RoofCell> own, spread;
   for (const auto& [key, by_root] : count)
     own[key].root = std::max_element(by_root.begin(), by_root.end(), [&size](auto& a, auto& b) {
-                      return a.second < b.second ||
-                             (a.second == b.second && size[a.first] < size[b.first]);
+                      return a.second < b.second || (a.second == b.second && size[a.first] < size[b.first]);
                     })->first;
   std::unordered_map<std::int64_t, int> owner;
   for (const auto& [key, rc] : own)
@@ -144,14 +143,13 @@ struct PlanOccupancy
   holds(std::int64_t key, int root) const
   {
     const auto it = roots.find(key);
-    return it != roots.end() &&
-           std::find(it->second.begin(), it->second.end(), root) != it->second.end();
+    return it != roots.end() && std::find(it->second.begin(), it->second.end(), root) != it->second.end();
   }
 };
 
 PlanOccupancy
-planOccupancy(const Contacts& c, double cell,
-              const std::unordered_map<std::int64_t, RoofCell>& footprint, Groups& groups)
+planOccupancy(const Contacts& c, double cell, const std::unordered_map<std::int64_t, RoofCell>& footprint,
+              Groups& groups)
 {
   PlanOccupancy o;
   for (std::size_t p = 0; p < c.points.size(); ++p) {
@@ -179,8 +177,7 @@ planOccupancy(const Contacts& c, double cell,
 /// the cells it covers hold no roof point; they are enclosed by roof cells and by each other.
 /// Beyond the data's edge nothing is known (a roof cut by the tile edge may go on).
 bool
-opensBeyondRoof(std::int64_t key, int b, int g,
-                const std::unordered_map<std::int64_t, RoofCell>& footprint,
+opensBeyondRoof(std::int64_t key, int b, int g, const std::unordered_map<std::int64_t, RoofCell>& footprint,
                 const PlanOccupancy& occupancy)
 {
   constexpr std::pair<int, int> kSides[] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
@@ -211,8 +208,8 @@ opensBeyondRoof(std::int64_t key, int b, int g,
 /// hangs under the eaves; a crown overhanging the eave is above it and beyond the edge, a
 /// chimney stands on the roof's own cells and on those it hides.
 void
-attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
-                 const AssemblySettings& s, Groups& groups, std::vector<char>& building)
+attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind, const AssemblySettings& s,
+                 Groups& groups, std::vector<char>& building)
 {
   const std::size_t n = kind.size();
   std::vector<std::size_t> size(n, 0);
@@ -225,8 +222,7 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
       eligible[static_cast<std::size_t>(groups.find(static_cast<int>(i)))] = 0;
   const double cell = std::sqrt(c.max_sq);
   const int reach = static_cast<int>(std::ceil(s.footprint_margin / cell));
-  const auto footprint =
-      buildingFootprints(c, kind, size, cell, reach, s.min_links, groups, building);
+  const auto footprint = buildingFootprints(c, kind, size, cell, reach, s.min_links, groups, building);
   std::fill(size.begin(), size.end(), 0);  // touching roofs may have joined
   for (std::size_t p = 0; p < c.labels.size(); ++p)
     if (c.labels[p] >= 0)
@@ -239,8 +235,7 @@ attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
       continue;
     const int root = groups.find(c.labels[p]);
     const auto it = footprint.find(cellKey(c.points[p], cell));
-    if (!eligible[static_cast<std::size_t>(root)] || it == footprint.end() ||
-        it->second.root == root)
+    if (!eligible[static_cast<std::size_t>(root)] || it == footprint.end() || it->second.root == root)
       continue;
     const bool below = c.points[p].z() < it->second.top;
     if (it->second.margin && !below &&
@@ -280,8 +275,8 @@ roofSides(const Contacts& c, const std::vector<SegmentKind>& kind, const Assembl
     const auto seg = static_cast<std::size_t>(c.labels[p]);
     ++points[seg];
     const auto it = footprint.find(cellKey(c.points[p], cell));
-    under[seg] += it != footprint.end() && !it->second.margin &&
-                  it->second.root != g.find(c.labels[p]) && c.points[p].z() < it->second.top;
+    under[seg] += it != footprint.end() && !it->second.margin && it->second.root != g.find(c.labels[p]) &&
+                  c.points[p].z() < it->second.top;
   }
   std::vector<std::int8_t> side(n, 0);
   for (std::size_t i = 0; i < n; ++i) {

@@ -22,8 +22,8 @@ namespace detail {
 ///        \a building (per segment, all 0 at first) remembers between passes which groups are
 ///        buildings, so a building stays one after a rough facade has joined it.
 void
-attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind,
-                 const AssemblySettings& s, Groups& groups, std::vector<char>& building);
+attachUnderRoofs(const Contacts& c, const std::vector<SegmentKind>& kind, const AssemblySettings& s,
+                 Groups& groups, std::vector<char>& building);
 
 /// \brief Per segment, where it lies against the roofs of the buildings formed so far (the
 ///        groups mostly in roof and wall segments): +1 if it hangs under one (footprint_share of

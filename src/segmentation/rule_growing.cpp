@@ -26,14 +26,12 @@ struct Rules
 /// Does neighbour j join the segment growing through i (same set assumed)?
 bool
 joins(std::size_t i, std::size_t j, const std::vector<Eigen::Vector3f>& points,
-      const std::vector<PointFeatures>& features, const std::vector<Eigen::Vector3f>& normals,
-      const Rules& r)
+      const std::vector<PointFeatures>& features, const std::vector<Eigen::Vector3f>& normals, const Rules& r)
 {
   const double d2 = (points[i] - points[j]).squaredNorm();
   switch (features[i].dimensionality) {
   case Dimensionality::Linear:
-    return d2 <= r.growth_sq &&
-           std::abs(features[i].principal.dot(features[j].principal)) >= r.cos_principal;
+    return d2 <= r.growth_sq && std::abs(features[i].principal.dot(features[j].principal)) >= r.cos_principal;
   case Dimensionality::Planar:
     // On i's tangent plane too (an addition to the paper): a parallel surface beside a roof
     // edge (a crown's or hedge's top, a roof step) is not the roof.
@@ -51,8 +49,8 @@ joins(std::size_t i, std::size_t j, const std::vector<Eigen::Vector3f>& points,
 /// is absorbed but does not grow, so a line stops where it meets a structure (a wire at its
 /// tower's cross arm, a pole at the ground) instead of running on into the next span.
 bool
-propagates(std::size_t i, const std::vector<PointFeatures>& features,
-           const std::vector<char>& junction, const Rules& r)
+propagates(std::size_t i, const std::vector<PointFeatures>& features, const std::vector<char>& junction,
+           const Rules& r)
 {
   if (!r.seed_condition)
     return true;
@@ -69,9 +67,8 @@ propagates(std::size_t i, const std::vector<PointFeatures>& features,
 /// of both lines mix (an arm point next to a wire takes the wire's direction). A sagging span
 /// deviates from its chord by far less over one growth radius.
 std::vector<char>
-linearJunctions(const std::vector<Eigen::Vector3f>& points,
-                const std::vector<PointFeatures>& features, const std::vector<int>& graph,
-                std::size_t k, const Rules& r)
+linearJunctions(const std::vector<Eigen::Vector3f>& points, const std::vector<PointFeatures>& features,
+                const std::vector<int>& graph, std::size_t k, const Rules& r)
 {
   std::vector<char> out(points.size(), 0);
   const double off_sq = 0.04 * r.growth_sq;  // (growth radius / 5)²
@@ -94,10 +91,8 @@ linearJunctions(const std::vector<Eigen::Vector3f>& points,
 }  // namespace
 
 std::vector<int>
-growRegions(const std::vector<Eigen::Vector3f>& points,
-            const std::vector<PointFeatures>& features,
-            const std::vector<Eigen::Vector3f>& normals,
-            const std::vector<int>& graph,
+growRegions(const std::vector<Eigen::Vector3f>& points, const std::vector<PointFeatures>& features,
+            const std::vector<Eigen::Vector3f>& normals, const std::vector<int>& graph,
             const GrowingSettings& settings)
 {
   const std::size_t n = points.size();
@@ -119,9 +114,8 @@ growRegions(const std::vector<Eigen::Vector3f>& points,
   // Seeds in order of increasing residual: flat interiors first, boundaries last.
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return features[a].residual < features[b].residual;
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return features[a].residual < features[b].residual; });
 
   int next_label = 0;
   std::vector<std::size_t> queue;

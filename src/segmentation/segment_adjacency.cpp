@@ -10,8 +10,8 @@ namespace pcl_ls3d {
 namespace segmentation {
 
 std::vector<SegmentLink>
-segmentAdjacency(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
-                 int graph_k, const std::vector<int>& labels, double max_length)
+segmentAdjacency(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph, int graph_k,
+                 const std::vector<int>& labels, double max_length)
 {
   std::vector<SegmentLink> out;
   const auto k = static_cast<std::size_t>(std::max(0, graph_k));
@@ -29,8 +29,7 @@ segmentAdjacency(const std::vector<Eigen::Vector3f>& points, const std::vector<i
       if (q < 0)
         continue;
       const int b = labels[static_cast<std::size_t>(q)];
-      if (b < 0 || b == a ||
-          (points[p] - points[static_cast<std::size_t>(q)]).squaredNorm() > max_sq)
+      if (b < 0 || b == a || (points[p] - points[static_cast<std::size_t>(q)]).squaredNorm() > max_sq)
         continue;
       const auto lo = static_cast<std::uint64_t>(std::min(a, b));
       const auto hi = static_cast<std::uint64_t>(std::max(a, b));

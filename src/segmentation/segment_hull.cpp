@@ -43,8 +43,7 @@ runQhull(std::vector<coordT>& coords, int dim, const Eigen::Vector3d& centre, Se
   if (ok) {
     out.contour.clear();
     vertexT* vertex;
-    FORALLvertices
-      out.contour.push_back(qh_pointid(qh, vertex->point));
+    FORALLvertices out.contour.push_back(qh_pointid(qh, vertex->point));
     std::sort(out.contour.begin(), out.contour.end());
     out.volume = 0.0;
     out.planes.clear();
@@ -57,8 +56,7 @@ runQhull(std::vector<coordT>& coords, int dim, const Eigen::Vector3d& centre, Se
         const Eigen::Vector3d nrm(facet->normal[0], facet->normal[1], facet->normal[2]);
         if (!(nrm.norm() > 0.0))
           continue;
-        out.planes.emplace_back(nrm.x(), nrm.y(), nrm.z(),
-                                facet->offset - nrm.dot(centre));
+        out.planes.emplace_back(nrm.x(), nrm.y(), nrm.z(), facet->offset - nrm.dot(centre));
       }
     }
   }

@@ -60,8 +60,8 @@ chooseSimilarityThreshold(const MergeState& st, int n_segments, const MergeSetti
 /// segment has changed.
 double
 chooseVolumeThreshold(const MergeState& st, const std::vector<std::pair<int, double>>& nearest,
-         const MergeSettings& settings, double floor, int threads, MergeReport& rep,
-         std::vector<double>& candidate_dv)
+                      const MergeSettings& settings, double floor, int threads, MergeReport& rep,
+                      std::vector<double>& candidate_dv)
 {
   if (settings.volume_threshold >= 0.0)
     return settings.volume_threshold;
@@ -128,8 +128,7 @@ relabelRoots(MergeState& st, int n_segments, std::vector<int>& labels)
 
 MergeReport
 mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labels,
-              const std::vector<float>& residuals, const MergeSettings& settings,
-              double volume_floor_default)
+              const std::vector<float>& residuals, const MergeSettings& settings, double volume_floor_default)
 {
   MergeReport rep;
   const int n_segments = labels.empty() ? 0 : *std::max_element(labels.begin(), labels.end()) + 1;
@@ -143,8 +142,8 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
 #else
   const int threads = 1;
 #endif
-  const double floor = settings.volume_floor > 0.0 ? settings.volume_floor
-                                                   : std::max(volume_floor_default, 1e-12);
+  const double floor =
+      settings.volume_floor > 0.0 ? settings.volume_floor : std::max(volume_floor_default, 1e-12);
 
   MergeState st;
   pcl::StopWatch watch;
@@ -159,9 +158,8 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
   const std::vector<std::pair<int, double>> nearest = nearestSegments(st, n_segments, threads, D);
   rep.distance_samples = D.size();
   const double t_nearest = watch.getTimeSeconds();
-  rep.distance_threshold = settings.distance_threshold >= 0.0
-                               ? settings.distance_threshold
-                               : distanceThreshold(D, settings.alpha);
+  rep.distance_threshold =
+      settings.distance_threshold >= 0.0 ? settings.distance_threshold : distanceThreshold(D, settings.alpha);
   const double inf = std::numeric_limits<double>::infinity();
   rep.similarity_threshold = full ? chooseSimilarityThreshold(st, n_segments, settings) : inf;
   std::vector<double> candidate_dv(static_cast<std::size_t>(n_segments), -1.0);
@@ -172,9 +170,8 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
   // Fig. 8: smallest segment first; merge into its nearest unfinished segment or finish it.
   std::vector<int> order(n_segments);
   std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
-    return st.members[a].size() < st.members[b].size();
-  });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return st.members[a].size() < st.members[b].size(); });
   std::vector<char> finished(n_segments, 0);
   std::vector<char> changed(n_segments, 0);  // hull differs from the initial one
   for (const int s : order) {
@@ -202,8 +199,8 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
   }
 
   PCL_DEBUG("[pcl_ls3d::segmentation::mergeSegments] hulls %.2f s, nearest %.2f s, "
-            "thresholds %.2f s, loop %.2f s; %zu contour points.\n", t_hulls,
-            t_nearest - t_hulls, t_thresholds - t_nearest, watch.getTimeSeconds() - t_thresholds,
+            "thresholds %.2f s, loop %.2f s; %zu contour points.\n",
+            t_hulls, t_nearest - t_hulls, t_thresholds - t_nearest, watch.getTimeSeconds() - t_thresholds,
             st.contour_xyz.size());
   rep.segments_after = relabelRoots(st, n_segments, labels);
   return rep;

@@ -84,14 +84,13 @@ spreadsAcross(const Eigen::Matrix3d& normal, double min_variance)
   spread << normal(1, 1) / n - mean.x() * mean.x(), normal(1, 2) / n - mean.x() * mean.y(), 0.0,
       normal(2, 2) / n - mean.y() * mean.y();
   spread(1, 0) = spread(0, 1);
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread, Eigen::EigenvaluesOnly)
-             .eigenvalues()(0) >= min_variance;
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(spread, Eigen::EigenvaluesOnly).eigenvalues()(0) >=
+         min_variance;
 }
 
-TerrainCells::TerrainCells(const std::vector<Eigen::Vector3f>& points,
-                           const std::vector<int>& labels, const std::vector<char>& ground,
-                           double cell)
-: cell_(cell)
+TerrainCells::TerrainCells(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
+                           const std::vector<char>& ground, double cell)
+    : cell_(cell)
 {
   for (std::size_t p = 0; p < points.size(); ++p) {
     if (!ground[p] || !points[p].allFinite())
@@ -104,8 +103,8 @@ TerrainCells::TerrainCells(const std::vector<Eigen::Vector3f>& points,
 }
 
 TerrainPlane
-TerrainCells::planeAround(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& box_hi,
-                          double margin, int except) const
+TerrainCells::planeAround(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& box_hi, double margin,
+                          int except) const
 {
   const std::vector<Lowest> near = cellsNear(box_lo, box_hi, margin);
   std::vector<Eigen::Vector3f> lowest(near.size());
@@ -123,8 +122,7 @@ TerrainCells::planeAround(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& 
 }
 
 std::vector<TerrainCells::Lowest>
-TerrainCells::cellsNear(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& box_hi,
-                        double margin) const
+TerrainCells::cellsNear(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& box_hi, double margin) const
 {
   const std::int64_t x0 = planCellCoordinate(box_lo.x() - margin, cell_);
   const std::int64_t x1 = planCellCoordinate(box_hi.x() + margin, cell_);
@@ -140,8 +138,7 @@ TerrainCells::cellsNear(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& bo
       if (x >= x0 && x <= x1 && y >= y0 && y <= y1)
         near.push_back(lowest);
     }
-  }
-  else {
+  } else {
     for (std::int64_t x = x0; x <= x1; ++x)
       for (std::int64_t y = y0; y <= y1; ++y)
         if (const auto it = cells_.find(planCellKey(x, y)); it != cells_.end())

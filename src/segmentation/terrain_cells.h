@@ -35,7 +35,8 @@ struct TerrainPlane
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
 
   /// z with the terrain's slope taken out: its height above the terrain is detrended − level.
-  double detrended(const Eigen::Vector3f& p) const
+  double
+  detrended(const Eigen::Vector3f& p) const
   {
     return p.z() - tilt.dot(p.head<2>().cast<double>() - centre);
   }
@@ -54,8 +55,8 @@ public:
   ///        it): its slope from all of them (robust least squares, terrain_cells.cpp), its level
   ///        the median along that slope over the cells whose lowest point is not of object
   ///        \a except (−2: take all).
-  TerrainPlane planeAround(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& box_hi,
-                           double margin, int except) const;
+  TerrainPlane
+  planeAround(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& box_hi, double margin, int except) const;
 
 private:
   struct Lowest
@@ -64,8 +65,8 @@ private:
     int object;
   };
 
-  std::vector<Lowest> cellsNear(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& box_hi,
-                                double margin) const;
+  std::vector<Lowest>
+  cellsNear(const Eigen::Vector2d& box_lo, const Eigen::Vector2d& box_hi, double margin) const;
 
   double cell_;
   std::unordered_map<std::uint64_t, Lowest> cells_;

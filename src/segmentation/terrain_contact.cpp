@@ -93,19 +93,16 @@ candidatesLinkingTo(const std::vector<std::size_t>& on_terrain, std::size_t n_po
 
 std::size_t
 returnTerrainPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
-                    const std::vector<int>& graph, int graph_k,
-                    const std::vector<ObjectClass>& object_class, double limit,
-                    double half_width, std::vector<int>& labels)
+                    const std::vector<int>& graph, int graph_k, const std::vector<ObjectClass>& object_class,
+                    double limit, double half_width, std::vector<int>& labels)
 {
   const std::size_t n = points.size();
   const std::size_t k = graph_k > 0 ? static_cast<std::size_t>(graph_k) : 0;
-  if (ground.size() != n || labels.size() != n || graph.size() != n * k || k == 0 ||
-      !(limit > 0.0))
+  if (ground.size() != n || labels.size() != n || graph.size() != n * k || k == 0 || !(limit > 0.0))
     return 0;
   const std::vector<std::size_t> on_terrain =
       pointsOnTerrain(points, ground, object_class, limit, half_width, labels);
-  const std::vector<std::vector<std::size_t>> linked_from =
-      candidatesLinkingTo(on_terrain, n, graph, k);
+  const std::vector<std::vector<std::size_t>> linked_from = candidatesLinkingTo(on_terrain, n, graph, k);
   // Rounds from the lawn inwards; a round decides on the labels as it found them.
   std::vector<std::size_t> check(on_terrain.size());
   std::iota(check.begin(), check.end(), std::size_t{0});

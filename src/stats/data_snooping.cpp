@@ -30,8 +30,8 @@ DataSnoopingResult
 dataSnooping(const std::vector<double>& values, const DataSnoopingSettings& settings)
 {
   DataSnoopingResult res;
-  res.critical_value = settings.critical_value > 0.0 ? settings.critical_value
-                                                     : normalCriticalValue(settings.alpha);
+  res.critical_value =
+      settings.critical_value > 0.0 ? settings.critical_value : normalCriticalValue(settings.alpha);
   std::vector<std::size_t> order;
   for (std::size_t i = 0; i < values.size(); ++i)
     (std::isfinite(values[i]) ? order : res.rejected).push_back(i);
@@ -104,9 +104,8 @@ dataSnooping(const std::vector<double>& values, const DataSnoopingSettings& sett
 }
 
 BaardaTestResult
-baardaTest(const std::vector<double>& v, const std::vector<double>& r,
-           const std::vector<double>& p, double sigma0, double critical_value,
-           double min_redundancy)
+baardaTest(const std::vector<double>& v, const std::vector<double>& r, const std::vector<double>& p,
+           double sigma0, double critical_value, double min_redundancy)
 {
   BaardaTestResult res;
   const std::size_t n = v.size();

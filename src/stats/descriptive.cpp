@@ -57,8 +57,7 @@ mad(const std::vector<double>& values, bool scaled)
     return kNaN;
   const double med = median(values);
   std::vector<double> dev(values.size());
-  std::transform(values.begin(), values.end(), dev.begin(),
-                 [med](double x) { return std::abs(x - med); });
+  std::transform(values.begin(), values.end(), dev.begin(), [med](double x) { return std::abs(x - med); });
   const double m = median(std::move(dev));
   return scaled ? kMadToSigma * m : m;
 }

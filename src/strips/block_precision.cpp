@@ -60,7 +60,8 @@ sumBlock(const std::vector<const Entry*>& entries, const Eigen::VectorXd* step)
   b.score = Eigen::VectorXd::Zero(d);
   b.normal = Eigen::MatrixXd::Zero(d, d);
   auto slot = [&](int strip) {
-    return 7 * static_cast<Eigen::Index>(std::lower_bound(b.strips.begin(), b.strips.end(), strip) - b.strips.begin());
+    return 7 * static_cast<Eigen::Index>(std::lower_bound(b.strips.begin(), b.strips.end(), strip) -
+                                         b.strips.begin());
   };
   for (const Entry* e : entries) {
     const Eigen::Index at[2] = {slot(e->i), slot(e->j)};
@@ -108,21 +109,22 @@ blockMiddleTerm(const std::vector<OverlapContribution>& contributions, const Eig
       for (std::size_t a = 0; a < b.strips.size(); ++a)
         for (std::size_t c = 0; c < b.strips.size(); ++c)
           M.block<7, 7>(7 * b.strips[a], 7 * b.strips[c]) +=
-              s.segment<7>(7 * static_cast<Eigen::Index>(a)) * s.segment<7>(7 * static_cast<Eigen::Index>(c)).transpose();
+              s.segment<7>(7 * static_cast<Eigen::Index>(a)) *
+              s.segment<7>(7 * static_cast<Eigen::Index>(c)).transpose();
     }
   }
   M /= 8.0;
   M = 0.5 * (M + M.transpose()).eval();
   for (Eigen::Index p = 0; p < u; ++p)
-    if (determinable[static_cast<std::size_t>(p)] && apriori_weights[p] > 0.0 && std::isfinite(apriori_weights[p]))
+    if (determinable[static_cast<std::size_t>(p)] && apriori_weights[p] > 0.0 &&
+        std::isfinite(apriori_weights[p]))
       M(p, p) += sigma0 * sigma0 * apriori_weights[p];
   return M;
 }
 
 Eigen::MatrixXd
-blockSandwichCovariance(const std::vector<OverlapContribution>& contributions,
-                        const Eigen::MatrixXd& qxx, double sigma0,
-                        const Eigen::VectorXd& apriori_weights,
+blockSandwichCovariance(const std::vector<OverlapContribution>& contributions, const Eigen::MatrixXd& qxx,
+                        double sigma0, const Eigen::VectorXd& apriori_weights,
                         const std::vector<bool>& determinable)
 {
   const Eigen::MatrixXd M = blockMiddleTerm(contributions, qxx, sigma0, apriori_weights, determinable);

@@ -7,8 +7,8 @@
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
-#include <limits>
 #include <cmath>
+#include <limits>
 
 namespace pcl_ls3d {
 namespace strips {
@@ -83,7 +83,8 @@ holdWeakParameters(const StripPlan& plan, const std::vector<OverlapContribution>
                    BlockState& state, GaussMarkovProblem& problem)
 {
   const std::vector<bool> weak = noiseFloorUndeterminable(plan, contributions, problem);
-  const Eigen::VectorXd start = identityParameters().replicate(static_cast<Eigen::Index>(plan.strips.size()), 1);
+  const Eigen::VectorXd start =
+      identityParameters().replicate(static_cast<Eigen::Index>(plan.strips.size()), 1);
   for (std::size_t g = 0; g < weak.size(); ++g)
     if (weak[g])
       state.values[g / 7][static_cast<Eigen::Index>(g % 7)] = start[static_cast<Eigen::Index>(g)];
@@ -180,7 +181,8 @@ solveIteration(const StripPlan& plan, const std::vector<OverlapContribution>& co
   for (std::size_t k = 0; k < state.values.size(); ++k) {
     state.values[k] += sol.dx.segment<7>(7 * static_cast<Eigen::Index>(k));
     if (!state.values[k].allFinite() || !(state.values[k][SCALE] > 0.0))
-      return stop(state, TerminationType::DIVERGED, "the estimate of strip " + plan.strips[k].name + " became non-finite");
+      return stop(state, TerminationType::DIVERGED,
+                  "the estimate of strip " + plan.strips[k].name + " became non-finite");
   }
   state.sigma0 = sol.sigma0;
   state.qxx = sol.qxx;

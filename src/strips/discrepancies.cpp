@@ -1,9 +1,9 @@
 #include <pcl_ls3d/adjustment/pair_matcher.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
 #include <pcl_ls3d/rules/lnd_rule.h>
+#include <pcl_ls3d/search/flann_kd_tree.h>
 #include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/strips/discrepancies.h>
-#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/search/kdtree.h>
 
@@ -21,7 +21,8 @@ namespace {
 class LeaveOneOutSurface : public TargetSurface
 {
 public:
-  explicit LeaveOneOutSurface(const TargetSurface& base) : base_(base) {}
+  explicit LeaveOneOutSurface(const TargetSurface& base) : base_(base)
+  {}
   std::size_t
   size() const override
   {
@@ -71,9 +72,8 @@ struct Surface
 
 // LND distances of `points` (source-local) on `target`, signed "source above target".
 void
-measure(const std::vector<Eigen::Vector3d>& points, const TargetSurface& target,
-        const ParameterBlock& source, const ParameterBlock& target_block, double max_distance,
-        double sign, DiscrepancySamples& out)
+measure(const std::vector<Eigen::Vector3d>& points, const TargetSurface& target, const ParameterBlock& source,
+        const ParameterBlock& target_block, double max_distance, double sign, DiscrepancySamples& out)
 {
   const LndRule rule;
   PairMatcher matcher;
@@ -96,12 +96,12 @@ struct DiscrepancyEvaluator::Impl
   Surface on_j, on_i;  // surface of j (forward target), of i (backward target)
 
   Impl(const OverlapSelection& s, double d)
-  : selection(s), max_distance(d), on_j(s.forward.surface), on_i(s.backward.surface)
+      : selection(s), max_distance(d), on_j(s.forward.surface), on_i(s.backward.surface)
   {}
 };
 
 DiscrepancyEvaluator::DiscrepancyEvaluator(const OverlapSelection& selection, double max_distance)
-: impl_(std::make_unique<Impl>(selection, max_distance))
+    : impl_(std::make_unique<Impl>(selection, max_distance))
 {}
 
 DiscrepancyEvaluator::~DiscrepancyEvaluator() = default;

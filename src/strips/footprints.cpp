@@ -1,9 +1,9 @@
 #include <pcl_ls3d/strips/footprints.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <limits>
-#include <cmath>
 #include <numeric>
 #include <unordered_map>
 
@@ -138,8 +138,8 @@ findOverlaps(const Footprints& f, double min_area)
       if (o.area < min_area) {
         o.used = false;
         char buf[160];
-        std::snprintf(buf, sizeof(buf), "common area %.1f below the minimum %.1f (%zu cells of %.3g)",
-                      o.area, min_area, o.common_cells, f.cell());
+        std::snprintf(buf, sizeof(buf), "common area %.1f below the minimum %.1f (%zu cells of %.3g)", o.area,
+                      min_area, o.common_cells, f.cell());
         o.skip_reason = buf;
       }
       out.push_back(std::move(o));
@@ -154,7 +154,8 @@ connectedParts(std::size_t strips, const std::vector<Overlap>& overlaps)
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int a) {
     while (parent[static_cast<std::size_t>(a)] != a)
-      a = parent[static_cast<std::size_t>(a)] = parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
+      a = parent[static_cast<std::size_t>(a)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(a)])];
     return a;
   };
   std::vector<bool> linked(strips, false);

@@ -100,15 +100,16 @@ softWeights(const FreedModel& f)
 // middle term when the report's σ come from it, else the formal σ0² (N + P_e) — always the
 // variance behind the report's own σ.
 MiddleTermFn
-middleTerm(const BlockState& state, const std::vector<OverlapContribution>& final_pass, const Eigen::MatrixXd& N,
-           const FreedModel& freed, bool sandwich)
+middleTerm(const BlockState& state, const std::vector<OverlapContribution>& final_pass,
+           const Eigen::MatrixXd& N, const FreedModel& freed, bool sandwich)
 {
   if (sandwich)
     return [&](const Eigen::VectorXd& step, const Eigen::MatrixXd& q) {
       return blockMiddleTerm(final_pass, q, state.sigma0, freed.weights, freed.estimated, &step);
     };
   return [&](const Eigen::VectorXd&, const Eigen::MatrixXd&) {
-    return Eigen::MatrixXd(state.sigma0 * state.sigma0 * (N + Eigen::MatrixXd(softWeights(freed).asDiagonal())));
+    return Eigen::MatrixXd(state.sigma0 * state.sigma0 *
+                           (N + Eigen::MatrixXd(softWeights(freed).asDiagonal())));
   };
 }
 
@@ -133,14 +134,16 @@ ownNoiseOf(const StripAdjustmentReport& report, int k)
 
 // Why the block is not tested (empty: it is).
 std::string
-notTestable(const StripPlan& plan, const BlockState& state, const std::vector<OverlapContribution>& final_pass)
+notTestable(const StripPlan& plan, const BlockState& state,
+            const std::vector<OverlapContribution>& final_pass)
 {
   if (!plan.settings.test_held_out || std::isinf(plan.settings.adjustment.held_out_z))
     return "switched off";
   if (plan.settings.model != ParameterModel::RIGID_6)
     return plan.settings.model == ParameterModel::SIMILARITY_7
                ? "nothing held out (7 parameters)"
-               : "only the rigid model's held-out scale is tested (-params " + parameterModelName(plan.settings.model) + ")";
+               : "only the rigid model's held-out scale is tested (-params " +
+                     parameterModelName(plan.settings.model) + ")";
   if (final_pass.empty() || state.redundancy <= 0 || !(state.sigma0 > 0.0))
     return "no final evaluation";
   return {};
@@ -157,7 +160,8 @@ heldOutResult(const StripPlan& plan, const StripAdjustmentReport& report, const 
   h.sigma = p.sigma;
   h.sigma_formal = p.sigma_formal;
   h.z = p.z;
-  h.effect = std::abs(p.estimate) * (h.parameter >= PHI ? plan.strips[static_cast<std::size_t>(k)].radius : 1.0);
+  h.effect =
+      std::abs(p.estimate) * (h.parameter >= PHI ? plan.strips[static_cast<std::size_t>(k)].radius : 1.0);
   h.noise = ownNoiseOf(report, k);
   h.significant = std::abs(h.z) > plan.settings.adjustment.held_out_z;
   h.flagged = h.significant && h.effect > plan.settings.adjustment.held_out_noise_factor * h.noise;
@@ -213,7 +217,8 @@ confirmModel(StripAdjustmentReport& report)
 {
   const TerminationType t = report.termination;
   if (report.held_out.flagged == 0 ||
-      (t != TerminationType::CONVERGED && t != TerminationType::MAX_ITERATIONS && t != TerminationType::UNRELIABLE))
+      (t != TerminationType::CONVERGED && t != TerminationType::MAX_ITERATIONS &&
+       t != TerminationType::UNRELIABLE))
     return;
   std::string strips;
   for (const StripResult& s : report.strips)
@@ -221,7 +226,8 @@ confirmModel(StripAdjustmentReport& report)
       if (!h.flagged)
         continue;
       char buf[256];
-      std::snprintf(buf, sizeof(buf), "%s (m-1 %+.1f ppm +- %.1f, z %.1f, moves its edge by %.3g; own noise %.3g)",
+      std::snprintf(buf, sizeof(buf),
+                    "%s (m-1 %+.1f ppm +- %.1f, z %.1f, moves its edge by %.3g; own noise %.3g)",
                     s.name.c_str(), 1e6 * h.estimate, 1e6 * h.sigma, h.z, h.effect, h.noise);
       strips += (strips.empty() ? "" : ", ") + std::string(buf);
     }

@@ -1,7 +1,7 @@
 #include <pcl_ls3d/adjustment/noise_floor.h>
 #include <pcl_ls3d/registration/pcl_target_surface.h>
-#include <pcl_ls3d/strips/overlap_matcher.h>
 #include <pcl_ls3d/search/flann_kd_tree.h>
+#include <pcl_ls3d/strips/overlap_matcher.h>
 
 #include <pcl/search/kdtree.h>
 
@@ -34,7 +34,8 @@ struct OverlapMatcher::Direction
   ScaleColumnCorrection eiv;
   bool ready = false;
 
-  explicit Direction(const DirectionSelection& s) : selection(s) {}
+  explicit Direction(const DirectionSelection& s) : selection(s)
+  {}
 
   // The design row [a_i | a_j] of observation k (with the errors-in-variables correction).
   Row14
@@ -58,7 +59,8 @@ struct OverlapMatcher::Direction
   double spacing = 1.0;  // thinning cell edge of the overlap
 
   const ObservationSet&
-  match(const ParameterBlock& src, const ParameterBlock& tgt, const MatchInput& in, std::size_t coarse_observations);
+  match(const ParameterBlock& src, const ParameterBlock& tgt, const MatchInput& in,
+        std::size_t coarse_observations);
   void
   addNormalEquations(const ObservationSet& set, const Eigen::VectorXd& p, PairNormalEquations& sum) const;
   void
@@ -177,10 +179,9 @@ OverlapMatcher::noiseFloor(const Direction& D, const ObservationSet& set, const 
 }
 
 OverlapMatcher::OverlapMatcher(const OverlapSelection& selection, const ConjugateRule& rule,
-                               const RobustEstimator& estimator,
-                               const StripAdjustmentSettings& settings, double noise_i,
-                               double noise_j)
-: settings_(settings), rule_(rule), estimator_(estimator)
+                               const RobustEstimator& estimator, const StripAdjustmentSettings& settings,
+                               double noise_i, double noise_j)
+    : settings_(settings), rule_(rule), estimator_(estimator)
 {
   const DirectionSelection* sel[2] = {&selection.forward, &selection.backward};
   const double noise[2] = {noise_i, noise_j};
@@ -206,22 +207,21 @@ OverlapMatcher::OverlapMatcher(const OverlapSelection& selection, const Conjugat
 OverlapMatcher::~OverlapMatcher() = default;
 
 OverlapContribution
-OverlapMatcher::contribute(const ParameterBlock& block_i, const ParameterBlock& block_j,
-                           const MatchInput& in)
+OverlapMatcher::contribute(const ParameterBlock& block_i, const ParameterBlock& block_j, const MatchInput& in)
 {
   return run(block_i, block_j, in, 0.0);
 }
 
 OverlapContribution
-OverlapMatcher::evaluate(const ParameterBlock& block_i, const ParameterBlock& block_j,
-                         const MatchInput& in, double cell)
+OverlapMatcher::evaluate(const ParameterBlock& block_i, const ParameterBlock& block_j, const MatchInput& in,
+                         double cell)
 {
   return run(block_i, block_j, in, cell);
 }
 
 OverlapContribution
-OverlapMatcher::run(const ParameterBlock& block_i, const ParameterBlock& block_j,
-                    const MatchInput& in, double cell)
+OverlapMatcher::run(const ParameterBlock& block_i, const ParameterBlock& block_j, const MatchInput& in,
+                    double cell)
 {
   OverlapContribution out;
   out.i = dir_[0]->selection.source;
@@ -233,8 +233,9 @@ OverlapMatcher::run(const ParameterBlock& block_i, const ParameterBlock& block_j
     DirectionCounts& counts = d == 0 ? out.forward : out.backward;
     if (!D.ready)
       continue;
-    const ObservationSet& set = D.forward ? D.match(block_i, block_j, in, settings_.adjustment.coarse_observations)
-                                          : D.match(block_j, block_i, in, settings_.adjustment.coarse_observations);
+    const ObservationSet& set = D.forward
+                                    ? D.match(block_i, block_j, in, settings_.adjustment.coarse_observations)
+                                    : D.match(block_j, block_i, in, settings_.adjustment.coarse_observations);
     counts.observations = set.size();
     if (set.empty())
       continue;

@@ -1,5 +1,5 @@
-#include <pcl_ls3d/strips/overlap_selection.h>
 #include <pcl_ls3d/stats/descriptive.h>
+#include <pcl_ls3d/strips/overlap_selection.h>
 
 #include <pcl/kdtree/kdtree_flann.h>
 
@@ -29,7 +29,8 @@ dilate(const std::vector<std::uint64_t>& cells, const maps::GridGeometry& g, int
     const long col = static_cast<long>(id % static_cast<std::uint64_t>(g.cols));
     for (long r = std::max(0L, row - radius); r <= std::min<long>(g.rows - 1, row + radius); ++r)
       for (long c = std::max(0L, col - radius); c <= std::min<long>(g.cols - 1, col + radius); ++c)
-        out.insert(static_cast<std::uint64_t>(r) * static_cast<std::uint64_t>(g.cols) + static_cast<std::uint64_t>(c));
+        out.insert(static_cast<std::uint64_t>(r) * static_cast<std::uint64_t>(g.cols) +
+                   static_cast<std::uint64_t>(c));
   }
   return out;
 }
@@ -61,7 +62,8 @@ roughness(const Strip& s, const std::vector<std::size_t>& region)
       mean /= 10.0;
       Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
       for (int q : nn) {
-        const Eigen::Vector3d d = (*cloud)[static_cast<std::size_t>(q)].getVector3fMap().cast<double>() - mean;
+        const Eigen::Vector3d d =
+            (*cloud)[static_cast<std::size_t>(q)].getVector3fMap().cast<double>() - mean;
         cov += d * d.transpose();
       }
       const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(cov / 10.0, Eigen::EigenvaluesOnly);
@@ -73,9 +75,9 @@ roughness(const Strip& s, const std::vector<std::size_t>& region)
 
 struct StripPart
 {
-  std::vector<std::size_t> region;     // observable points in the grown common cells
-  std::vector<std::uint8_t> stable;    // per region point
-  std::vector<std::size_t> candidates; // stable region points inside the common cells
+  std::vector<std::size_t> region;      // observable points in the grown common cells
+  std::vector<std::uint8_t> stable;     // per region point
+  std::vector<std::size_t> candidates;  // stable region points inside the common cells
 };
 
 StripPart
@@ -192,7 +194,8 @@ selectObservations(const std::vector<Strip>& strips, const Overlap& o, const Foo
 {
   OverlapSelection sel;
   const CellSet common(o.cells.begin(), o.cells.end());
-  const int radius = static_cast<int>(std::ceil(std::min(settings.max_distance, 8.0 * f.cell()) / f.cell())) + 1;
+  const int radius =
+      static_cast<int>(std::ceil(std::min(settings.max_distance, 8.0 * f.cell()) / f.cell())) + 1;
   const CellSet grown = dilate(o.cells, f.grid(), radius);
   const StripPart a = partOf(strips, o.i, common, grown, f, settings);
   const StripPart b = partOf(strips, o.j, common, grown, f, settings);

@@ -40,7 +40,10 @@ matrix(const Eigen::MatrixXd& m)
 json
 stats(const DiscrepancyStatistics& s)
 {
-  return {{"count", s.count}, {"mean", s.mean}, {"rms", s.rms}, {"sigma_mad", s.sigma_mad},
+  return {{"count", s.count},
+          {"mean", s.mean},
+          {"rms", s.rms},
+          {"sigma_mad", s.sigma_mad},
           {"percentiles", {{"5", s.p05}, {"16", s.p16}, {"50", s.p50}, {"84", s.p84}, {"95", s.p95}}}};
 }
 
@@ -92,7 +95,8 @@ strip(const StripResult& s)
 json
 overlap(const OverlapResult& o, const StripAdjustmentReport& r)
 {
-  json j = {{"strips", {r.strips[static_cast<std::size_t>(o.i)].name, r.strips[static_cast<std::size_t>(o.j)].name}},
+  json j = {{"strips",
+             {r.strips[static_cast<std::size_t>(o.i)].name, r.strips[static_cast<std::size_t>(o.j)].name}},
             {"indices", {o.i, o.j}},
             {"area", o.area},
             {"common_cells", o.common_cells},
@@ -162,10 +166,15 @@ reportJson(const StripAdjustmentReport& r, int indent, double plan_units_per_hei
     j["overlaps"].push_back(overlap(o, r));
   j["log"] = json::array();
   for (const BlockIterationRecord& l : r.log)
-    j["log"].push_back({{"iteration", l.iteration}, {"observations", l.observations}, {"used", l.used},
-                        {"sigma0", l.sigma0}, {"max_angle_change", l.max_angle_change},
+    j["log"].push_back({{"iteration", l.iteration},
+                        {"observations", l.observations},
+                        {"used", l.used},
+                        {"sigma0", l.sigma0},
+                        {"max_angle_change", l.max_angle_change},
                         {"max_translation_change", l.max_translation_change},
-                        {"max_scale_change", l.max_scale_change}, {"coarse", l.coarse}, {"frozen", l.frozen}});
+                        {"max_scale_change", l.max_scale_change},
+                        {"coarse", l.coarse},
+                        {"frozen", l.frozen}});
   j["covariance"] = matrix(r.covariance);
   j["timings_s"] = r.timings_s;
   return j.dump(indent);

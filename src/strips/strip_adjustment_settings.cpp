@@ -36,7 +36,8 @@ StripAdjustmentSettings::isValid(std::string* why) const
     return fail("max_distance must be a finite positive length");
   if (adjustment.max_iterations < 1)
     return fail("max_iterations must be >= 1");
-  if (!(adjustment.angle_epsilon > 0.0 && adjustment.translation_epsilon > 0.0 && adjustment.scale_epsilon > 0.0))
+  if (!(adjustment.angle_epsilon > 0.0 && adjustment.translation_epsilon > 0.0 &&
+        adjustment.scale_epsilon > 0.0))
     return fail("the convergence epsilons must be > 0");
   if (!(adjustment.freeze_sigma_fraction > 0.0))
     return fail("freeze_sigma_fraction must be > 0");

@@ -45,10 +45,9 @@ using Say = std::function<void(const std::string&)>;
 /// Stage "observations": per overlap its stable surfaces, thinned, in both directions, and the
 /// matcher and discrepancy evaluator that keep them across the iterations.
 std::vector<OverlapWork>
-prepareOverlaps(const std::vector<Strip>& strips, const StripPlan& plan,
-                const std::vector<int>& jobs, const Footprints& footprints,
-                const StripAdjustmentSettings& settings, const ConjugateRule& rule,
-                const RobustEstimator& estimator, const Say& say)
+prepareOverlaps(const std::vector<Strip>& strips, const StripPlan& plan, const std::vector<int>& jobs,
+                const Footprints& footprints, const StripAdjustmentSettings& settings,
+                const ConjugateRule& rule, const RobustEstimator& estimator, const Say& say)
 {
   std::vector<OverlapWork> work(jobs.size());
   for (std::size_t k = 0; k < jobs.size(); ++k) {
@@ -94,8 +93,8 @@ labelled(OverlapContribution c, const OverlapWork& w, const Overlap& o)
 
 /// Discrepancies of every overlap at the initial poses.
 void
-discrepanciesBefore(const std::vector<OverlapWork>& work, const StripPlan& plan,
-                    const BlockState& state, std::vector<OverlapSamples>& samples)
+discrepanciesBefore(const std::vector<OverlapWork>& work, const StripPlan& plan, const BlockState& state,
+                    std::vector<OverlapSamples>& samples)
 {
   const std::vector<ParameterBlock> blocks = state.blocks(plan);
   for (const OverlapWork& w : work) {
@@ -107,8 +106,8 @@ discrepanciesBefore(const std::vector<OverlapWork>& work, const StripPlan& plan,
 /// Stage "iterate": match every overlap at the current poses, solve, decide (Zuo §4), until
 /// the state leaves its iterating phase.
 void
-iterate(std::vector<OverlapWork>& work, const StripPlan& plan, BlockState& state,
-        const pcl::StopWatch& watch, const Say& say)
+iterate(std::vector<OverlapWork>& work, const StripPlan& plan, BlockState& state, const pcl::StopWatch& watch,
+        const Say& say)
 {
   while (state.phase == BlockState::Phase::ITERATE) {
     const std::vector<ParameterBlock> blocks = state.blocks(plan);
@@ -122,9 +121,10 @@ iterate(std::vector<OverlapWork>& work, const StripPlan& plan, BlockState& state
     solveIteration(plan, contributions, state);
     if (!state.log.empty() && state.log.back().iteration == state.iteration) {
       const BlockIterationRecord& r = state.log.back();
-      say(format("iteration %d: sigma0 %.4g, %zu of %zu observations used, max change %.2e rad / %.2e%s%s, %.1f s",
-                 r.iteration, r.sigma0, r.used, r.observations, r.max_angle_change, r.max_translation_change,
-                 r.coarse ? ", coarse" : "", r.frozen ? ", frozen" : "", watch.getTimeSeconds()));
+      say(format(
+          "iteration %d: sigma0 %.4g, %zu of %zu observations used, max change %.2e rad / %.2e%s%s, %.1f s",
+          r.iteration, r.sigma0, r.used, r.observations, r.max_angle_change, r.max_translation_change,
+          r.coarse ? ", coarse" : "", r.frozen ? ", frozen" : "", watch.getTimeSeconds()));
     }
   }
 }
@@ -142,8 +142,8 @@ finalPass(std::vector<OverlapWork>& work, const StripPlan& plan, BlockState& sta
   for (OverlapWork& w : work) {
     const Overlap& o = plan.overlaps[static_cast<std::size_t>(w.index)];
     const auto [bi, bj] = blocksOf(blocks, o);
-    final_pass.push_back(labelled(
-        w.matcher->evaluate(bi, bj, matchInput(plan, state, o.i, o.j), plan.precision_cell), w, o));
+    final_pass.push_back(
+        labelled(w.matcher->evaluate(bi, bj, matchInput(plan, state, o.i, o.j), plan.precision_cell), w, o));
     OverlapSamples& s = samples[static_cast<std::size_t>(w.index)];
     s.after = w.evaluator->evaluate(bi, bj);
     s.noise = w.evaluator->ownNoise(bi, bj);
@@ -158,8 +158,7 @@ StripBlockAdjustment::StripBlockAdjustment() = default;
 StripBlockAdjustment::~StripBlockAdjustment() = default;
 
 bool
-StripBlockAdjustment::run(const std::vector<Strip>& strips, StripAdjustmentReport& report,
-                          std::string& error)
+StripBlockAdjustment::run(const std::vector<Strip>& strips, StripAdjustmentReport& report, std::string& error)
 {
   const Say say = [this](const std::string& line) {
     if (progress_)
@@ -175,8 +174,8 @@ StripBlockAdjustment::run(const std::vector<Strip>& strips, StripAdjustmentRepor
   const RobustEstimator::Ptr estimator = makeRobustEstimator(settings_.estimator);
   const ConjugateRule::Ptr rule = makeConjugateRule(settings_.rule);
   const std::vector<int> jobs = plan_.jobs();
-  say(format("plan: %zu strips, %zu overlaps used of %zu, footprint cell %.3g", strips.size(),
-             jobs.size(), plan_.overlaps.size(), plan_.grid.cell));
+  say(format("plan: %zu strips, %zu overlaps used of %zu, footprint cell %.3g", strips.size(), jobs.size(),
+             plan_.overlaps.size(), plan_.grid.cell));
   timings.push_back(watch.getTimeSeconds());
 
   std::vector<OverlapWork> work =

@@ -41,7 +41,8 @@ public:
   putMatrix(const Eigen::MatrixBase<Derived>& m)
   {
     const typename Derived::PlainObject p = m;
-    out_.write(reinterpret_cast<const char*>(p.data()), static_cast<std::streamsize>(p.size() * sizeof(double)));
+    out_.write(reinterpret_cast<const char*>(p.data()),
+               static_cast<std::streamsize>(p.size() * sizeof(double)));
   }
   bool
   finish(const std::string& path, std::string& error)

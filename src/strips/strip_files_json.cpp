@@ -37,22 +37,33 @@ fixed(const json& j)
 json
 settingsJson(const StripAdjustmentSettings& s)
 {
-  return {{"footprint_cell", s.footprint_cell}, {"min_overlap_area", s.min_overlap_area},
+  return {{"footprint_cell", s.footprint_cell},
+          {"min_overlap_area", s.min_overlap_area},
           {"min_overlap_observations", s.min_overlap_observations},
           {"stable_classes", std::vector<int>(s.stable_classes.begin(), s.stable_classes.end())},
-          {"roughness_factor", s.roughness_factor}, {"observation_spacing", s.observation_spacing},
-          {"max_observations", s.max_observations}, {"both_directions", s.both_directions},
-          {"model", parameterModelName(s.model)}, {"rule", static_cast<int>(s.rule)},
-          {"estimator", toString(s.estimator)}, {"max_distance", s.max_distance},
-          {"reference_strips", s.reference_strips}, {"soft_datum", s.soft_datum},
-          {"soft_sigmas", vec(s.soft_sigmas)}, {"max_iterations", s.adjustment.max_iterations},
-          {"angle_epsilon", s.adjustment.angle_epsilon}, {"translation_epsilon", s.adjustment.translation_epsilon},
-          {"scale_epsilon", s.adjustment.scale_epsilon}, {"freeze_sigma_fraction", s.adjustment.freeze_sigma_fraction},
+          {"roughness_factor", s.roughness_factor},
+          {"observation_spacing", s.observation_spacing},
+          {"max_observations", s.max_observations},
+          {"both_directions", s.both_directions},
+          {"model", parameterModelName(s.model)},
+          {"rule", static_cast<int>(s.rule)},
+          {"estimator", toString(s.estimator)},
+          {"max_distance", s.max_distance},
+          {"reference_strips", s.reference_strips},
+          {"soft_datum", s.soft_datum},
+          {"soft_sigmas", vec(s.soft_sigmas)},
+          {"max_iterations", s.adjustment.max_iterations},
+          {"angle_epsilon", s.adjustment.angle_epsilon},
+          {"translation_epsilon", s.adjustment.translation_epsilon},
+          {"scale_epsilon", s.adjustment.scale_epsilon},
+          {"freeze_sigma_fraction", s.adjustment.freeze_sigma_fraction},
           {"coarse_observations", s.adjustment.coarse_observations},
           {"determinability_threshold", s.adjustment.determinability_threshold},
-          {"spatial_precision", s.adjustment.spatial_precision}, {"precision_cell", s.adjustment.precision_cell},
+          {"spatial_precision", s.adjustment.spatial_precision},
+          {"precision_cell", s.adjustment.precision_cell},
           {"test_held_out", s.test_held_out},
-          {"held_out_z", std::isfinite(s.adjustment.held_out_z) ? json(s.adjustment.held_out_z) : json(nullptr)},  // null: inf
+          {"held_out_z", std::isfinite(s.adjustment.held_out_z) ? json(s.adjustment.held_out_z)
+                                                                : json(nullptr)},  // null: inf
           {"held_out_noise_factor", s.adjustment.held_out_noise_factor}};
 }
 
@@ -91,7 +102,7 @@ settingsOf(const json& j)
   s.test_held_out = j.value("test_held_out", s.test_held_out);
   if (j.contains("held_out_z"))
     s.adjustment.held_out_z = j.at("held_out_z").is_null() ? std::numeric_limits<double>::infinity()
-                                                 : j.at("held_out_z").get<double>();
+                                                           : j.at("held_out_z").get<double>();
   s.adjustment.held_out_noise_factor = j.value("held_out_noise_factor", s.adjustment.held_out_noise_factor);
   return s;
 }
@@ -101,21 +112,40 @@ planJson(const StripPlan& p)
 {
   json strips = json::array();
   for (const PlannedStrip& s : p.strips)
-    strips.push_back({{"name", s.name}, {"point_source_id", s.point_source_id}, {"origin", vec(s.origin)},
-                      {"points", s.points}, {"observable", s.observable},
-                      {"withheld", s.excluded.withheld}, {"synthetic", s.excluded.synthetic},
-                      {"density", s.density}, {"radius", s.radius}, {"part", s.part},
-                      {"reference", s.reference}, {"classified", s.classified}});
+    strips.push_back({{"name", s.name},
+                      {"point_source_id", s.point_source_id},
+                      {"origin", vec(s.origin)},
+                      {"points", s.points},
+                      {"observable", s.observable},
+                      {"withheld", s.excluded.withheld},
+                      {"synthetic", s.excluded.synthetic},
+                      {"density", s.density},
+                      {"radius", s.radius},
+                      {"part", s.part},
+                      {"reference", s.reference},
+                      {"classified", s.classified}});
   json overlaps = json::array();
   for (const Overlap& o : p.overlaps)
-    overlaps.push_back({{"i", o.i}, {"j", o.j}, {"common_cells", o.common_cells}, {"area", o.area},
-                        {"points_i", o.points_i}, {"points_j", o.points_j}, {"used", o.used},
+    overlaps.push_back({{"i", o.i},
+                        {"j", o.j},
+                        {"common_cells", o.common_cells},
+                        {"area", o.area},
+                        {"points_i", o.points_i},
+                        {"points_j", o.points_j},
+                        {"used", o.used},
                         {"skip_reason", o.skip_reason}});
-  return {{"settings", settingsJson(p.settings)}, {"block_origin", vec(p.block_origin)},
+  return {{"settings", settingsJson(p.settings)},
+          {"block_origin", vec(p.block_origin)},
           {"strips", strips},
-          {"grid", {{"min_x", p.grid.min_x}, {"max_y", p.grid.max_y}, {"cell", p.grid.cell},
-                    {"cols", p.grid.cols}, {"rows", p.grid.rows}}},
-          {"overlaps", overlaps}, {"precision_cell", p.precision_cell}, {"notes", p.notes}};
+          {"grid",
+           {{"min_x", p.grid.min_x},
+            {"max_y", p.grid.max_y},
+            {"cell", p.grid.cell},
+            {"cols", p.grid.cols},
+            {"rows", p.grid.rows}}},
+          {"overlaps", overlaps},
+          {"precision_cell", p.precision_cell},
+          {"notes", p.notes}};
 }
 
 StripPlan
@@ -186,8 +216,7 @@ readJson(const std::string& path, json& j, std::string& error)
     in >> j;
     if (j.at("version").get<int>() != kVersion)
       throw std::runtime_error("unsupported version");
-  }
-  catch (const std::exception& e) {
+  } catch (const std::exception& e) {
     error = path + ": " + e.what();
     return false;
   }
@@ -217,20 +246,33 @@ writePlanFile(const std::string& path, const PlanFile& f, std::string& error)
     json ps = json::array();
     for (const auto& kv : in.point_sources)
       ps.push_back({kv.first, kv.second});
-    inputs.push_back({{"path", in.path}, {"format", in.format}, {"crs_wkt", in.crs_wkt},
-                      {"points", in.points}, {"point_sources", ps}});
+    inputs.push_back({{"path", in.path},
+                      {"format", in.format},
+                      {"crs_wkt", in.crs_wkt},
+                      {"points", in.points},
+                      {"point_sources", ps}});
   }
   for (const StripSource& s : f.sources)
-    sources.push_back({{"name", s.name}, {"point_source_id", s.point_source_id}, {"files", s.files},
+    sources.push_back({{"name", s.name},
+                       {"point_source_id", s.point_source_id},
+                       {"files", s.files},
                        {"file_origin", vec(s.file_origin)}});
   const json j = {{"version", kVersion},
                   {"plan", planJson(f.plan)},
-                  {"load", {{"split", f.load.split_by_point_source}, {"exclude_withheld", f.load.exclude_withheld},
-                            {"exclude_synthetic", f.load.exclude_synthetic}}},
-                  {"inputs", inputs}, {"sources", sources}, {"crs_wkt", f.crs_wkt},
-                  {"unassigned", f.unassigned}, {"load_notes", f.load_notes},
-                  {"output_dir", f.output_dir}, {"keep_files", f.keep_files}, {"json_path", f.json_path},
-                  {"maps_dir", f.maps_dir}, {"bands", {f.band_inner, f.band_outer}},
+                  {"load",
+                   {{"split", f.load.split_by_point_source},
+                    {"exclude_withheld", f.load.exclude_withheld},
+                    {"exclude_synthetic", f.load.exclude_synthetic}}},
+                  {"inputs", inputs},
+                  {"sources", sources},
+                  {"crs_wkt", f.crs_wkt},
+                  {"unassigned", f.unassigned},
+                  {"load_notes", f.load_notes},
+                  {"output_dir", f.output_dir},
+                  {"keep_files", f.keep_files},
+                  {"json_path", f.json_path},
+                  {"maps_dir", f.maps_dir},
+                  {"bands", {f.band_inner, f.band_outer}},
                   {"map_format", maps::mapFormatName(f.map_format)}};
   return writeJson(path, j, error);
 }
@@ -271,10 +313,10 @@ readPlanFile(const std::string& path, PlanFile& f, std::string& error)
     f.band_inner = j.at("bands").at(0);
     f.band_outer = j.at("bands").at(1);
     // Plan files written before the option existed drew PNG.
-    if (j.contains("map_format") && !maps::parseMapFormat(j.at("map_format").get<std::string>(), f.map_format))
+    if (j.contains("map_format") &&
+        !maps::parseMapFormat(j.at("map_format").get<std::string>(), f.map_format))
       throw std::runtime_error("unknown map_format " + j.at("map_format").dump());
-  }
-  catch (const std::exception& e) {
+  } catch (const std::exception& e) {
     error = path + ": " + e.what();
     return false;
   }
@@ -292,12 +334,21 @@ writeState(const std::string& path, const BlockState& s, std::string& error)
                    r.max_translation_change, r.max_scale_change, r.coarse, r.frozen});
   if (!writeMatrix(path + ".qxx", s.qxx, error))  // 7N × 7N: binary, beside the JSON
     return false;
-  const json j = {{"version", kVersion}, {"phase", static_cast<int>(s.phase)}, {"iteration", s.iteration},
-                  {"values", values}, {"sigma0", s.sigma0}, {"soft_sigma_obs", s.soft_sigma_obs},
-                  {"fixed", s.fixed}, {"determinable", s.determinable},
-                  {"redundancy", s.redundancy}, {"observations", s.observations}, {"coarse", s.coarse},
-                  {"frozen", s.frozen}, {"termination", static_cast<int>(s.termination)},
-                  {"message", s.message}, {"log", log}};
+  const json j = {{"version", kVersion},
+                  {"phase", static_cast<int>(s.phase)},
+                  {"iteration", s.iteration},
+                  {"values", values},
+                  {"sigma0", s.sigma0},
+                  {"soft_sigma_obs", s.soft_sigma_obs},
+                  {"fixed", s.fixed},
+                  {"determinable", s.determinable},
+                  {"redundancy", s.redundancy},
+                  {"observations", s.observations},
+                  {"coarse", s.coarse},
+                  {"frozen", s.frozen},
+                  {"termination", static_cast<int>(s.termination)},
+                  {"message", s.message},
+                  {"log", log}};
   return writeJson(path, j, error);
 }
 
@@ -327,8 +378,7 @@ readState(const std::string& path, BlockState& s, std::string& error)
     s.message = j.at("message");
     for (const json& r : j.at("log"))
       s.log.push_back({r.at(0), r.at(1), r.at(2), r.at(3), r.at(4), r.at(5), r.at(6), r.at(7), r.at(8)});
-  }
-  catch (const std::exception& e) {
+  } catch (const std::exception& e) {
     error = path + ": " + e.what();
     return false;
   }

@@ -123,8 +123,8 @@ forEachPoint(const std::vector<OpenInput>& open, const StripSource& source,
 
 // Pass 2: local coordinates about the file-space origin F_k = O + o_k.
 Strip
-buildStrip(const std::vector<OpenInput>& open, const StripSource& source,
-           const Eigen::Vector3d& block_origin, const StripLoadOptions& options)
+buildStrip(const std::vector<OpenInput>& open, const StripSource& source, const Eigen::Vector3d& block_origin,
+           const StripLoadOptions& options)
 {
   Strip s;
   s.name = source.name;
@@ -135,7 +135,8 @@ buildStrip(const std::vector<OpenInput>& open, const StripSource& source,
     s.classification.push_back(v.classification);
     const bool out = (options.exclude_withheld && v.withheld) || (options.exclude_synthetic && v.synthetic);
     s.excluded.withheld += options.exclude_withheld && v.withheld;
-    s.excluded.synthetic += options.exclude_synthetic && v.synthetic && !(options.exclude_withheld && v.withheld);
+    s.excluded.synthetic +=
+        options.exclude_synthetic && v.synthetic && !(options.exclude_withheld && v.withheld);
     s.observable.push_back(out ? 0 : 1);
   });
   return s;
@@ -178,8 +179,8 @@ setHeightFactors(const std::vector<std::string>& paths, std::vector<OpenInput>& 
   for (std::size_t f = 0; f < paths.size(); ++f) {
     open[f].height_factor = heightFactor(out.inputs, f);
     const bool declared = maps::crsLinearUnit(out.inputs[f].crs_wkt) > 0.0;
-    if (std::string note = maps::heightConversionNote(paths[f], heightCrs(out.inputs, f), declared,
-                                                      "the adjustment");
+    if (std::string note =
+            maps::heightConversionNote(paths[f], heightCrs(out.inputs, f), declared, "the adjustment");
         !note.empty())
       out.notes.push_back(std::move(note));
   }
@@ -235,7 +236,8 @@ placeOrigins(const std::vector<OpenInput>& open, LoadedStrips& out, std::string&
       return false;
     }
     const Eigen::Vector2d c = 0.5 * (slo + shi);
-    src.file_origin = Eigen::Vector3d(std::round(c.x()), std::round(c.y()), std::round(z / static_cast<double>(n)));
+    src.file_origin =
+        Eigen::Vector3d(std::round(c.x()), std::round(c.y()), std::round(z / static_cast<double>(n)));
     lo = lo.cwiseMin(slo);
     hi = hi.cwiseMax(shi);
   }
@@ -263,8 +265,8 @@ buildStrips(const std::vector<OpenInput>& open, const StripLoadOptions& options,
 }  // namespace
 
 bool
-loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& options,
-           LoadedStrips& out, std::string& error)
+loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& options, LoadedStrips& out,
+           std::string& error)
 {
   out = LoadedStrips();
   std::vector<OpenInput> open(paths.size());
@@ -274,8 +276,7 @@ loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& option
   if (options.split_by_point_source) {
     if (!splitByPointSource(out, error))
       return false;
-  }
-  else
+  } else
     for (std::size_t f = 0; f < out.inputs.size(); ++f)
       out.sources.push_back({stem(paths[f]), -1, {static_cast<int>(f)}, {}});
   if (!placeOrigins(open, out, error))

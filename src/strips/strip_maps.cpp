@@ -17,7 +17,7 @@ namespace {
 
 struct Units
 {
-  double per_metre = 1.0;    // data units per metre
+  double per_metre = 1.0;  // data units per metre
   std::string name = "m";
 };
 
@@ -47,9 +47,11 @@ std::string
 statsLine(const DiscrepancyStatistics& s, const std::string& unit)
 {
   char buf[256];
-  std::snprintf(buf, sizeof(buf), "n = %zu   mean %+.3f %s   RMS %.3f %s   \u03c3MAD %.3f %s   5\u201395 %%: %+.3f \u2026 %+.3f %s",
-                s.count, s.mean, unit.c_str(), s.rms, unit.c_str(), s.sigma_mad, unit.c_str(), s.p05, s.p95,
-                unit.c_str());
+  std::snprintf(
+      buf, sizeof(buf),
+      "n = %zu   mean %+.3f %s   RMS %.3f %s   \u03c3MAD %.3f %s   5\u201395 %%: %+.3f \u2026 %+.3f %s",
+      s.count, s.mean, unit.c_str(), s.rms, unit.c_str(), s.sigma_mad, unit.c_str(), s.p05, s.p95,
+      unit.c_str());
   return buf;
 }
 
@@ -78,8 +80,9 @@ class MapWriter
 {
 public:
   MapWriter(const std::string& dir, const StripMapSettings& settings, std::vector<std::string>& written)
-  : dir_(dir), settings_(settings), written_(written), units_(unitsOf(settings.crs_wkt))
-  , colours_(maps::ColourMap::bandedDiverging(settings.inner * units_.per_metre, settings.outer * units_.per_metre))
+      : dir_(dir), settings_(settings), written_(written), units_(unitsOf(settings.crs_wkt)),
+        colours_(maps::ColourMap::bandedDiverging(settings.inner * units_.per_metre,
+                                                  settings.outer * units_.per_metre))
   {}
 
   bool
@@ -101,8 +104,7 @@ public:
     const double i = settings_.inner * units_.per_metre, o = settings_.outer * units_.per_metre;
     style.legend = {"|d| < " + fmt("%.2f", i) + " " + units_.name + ": within tolerance",
                     fmt("%.2f", i) + "\u2013" + fmt("%.2f", o) + " " + units_.name + ": check",
-                    "> " + fmt("%.2f", o) + " " + units_.name + ": exceeds",
-                    sign};
+                    "> " + fmt("%.2f", o) + " " + units_.name + ": exceeds", sign};
     const std::string crs = maps::crsName(settings_.crs_wkt);
     char foot[256];
     std::snprintf(foot, sizeof(foot), "cell %.3g %s   E %.1f\u2013%.1f   N %.1f\u2013%.1f   %s", r.grid.cell,
@@ -147,10 +149,14 @@ histogram(MapWriter& w, const std::string& stem, const std::string& title, const
 {
   const DiscrepancyStatistics sb = discrepancyStatistics(before), sa = discrepancyStatistics(after);
   const std::string u = w.units().name;
-  maps::HistogramSeries b{"before: RMS " + fmt("%.3f", sb.rms) + " " + u + ", \u03c3MAD " + fmt("%.3f", sb.sigma_mad) + " " + u,
-                          std::vector<double>(before.begin(), before.end()), {214, 96, 77}};
-  maps::HistogramSeries a{"after: RMS " + fmt("%.3f", sa.rms) + " " + u + ", \u03c3MAD " + fmt("%.3f", sa.sigma_mad) + " " + u,
-                          std::vector<double>(after.begin(), after.end()), {33, 102, 172}};
+  maps::HistogramSeries b{"before: RMS " + fmt("%.3f", sb.rms) + " " + u + ", \u03c3MAD " +
+                              fmt("%.3f", sb.sigma_mad) + " " + u,
+                          std::vector<double>(before.begin(), before.end()),
+                          {214, 96, 77}};
+  maps::HistogramSeries a{"after: RMS " + fmt("%.3f", sa.rms) + " " + u + ", \u03c3MAD " +
+                              fmt("%.3f", sa.sigma_mad) + " " + u,
+                          std::vector<double>(after.begin(), after.end()),
+                          {33, 102, 172}};
   maps::HistogramStyle style;
   style.title = title;
   style.x_label = "signed normal discrepancy [" + u + "]";
@@ -174,7 +180,8 @@ writeStripMaps(const StripAdjustmentReport& report, const StripPlan& plan,
     const OverlapResult& o = report.overlaps[k];
     if (!o.used || samples[k].before.value.empty())
       continue;
-    const std::string a = report.strips[static_cast<std::size_t>(o.i)].name, b = report.strips[static_cast<std::size_t>(o.j)].name;
+    const std::string a = report.strips[static_cast<std::size_t>(o.i)].name,
+                      b = report.strips[static_cast<std::size_t>(o.j)].name;
     const double cell = settings.cell > 0.0 ? settings.cell : 2.0 * o.spacing;
     mosaic_cell = std::max(mosaic_cell, cell);
     const maps::GridGeometry grid = gridOf({&samples[k].before, &samples[k].after}, origin, cell);
@@ -182,11 +189,14 @@ writeStripMaps(const StripAdjustmentReport& report, const StripPlan& plan,
     const maps::Raster after = rasterOf(samples[k].after, grid, origin);
     const std::string sign = "positive: " + a + " above " + b;
     const std::string stem = "overlap_" + a + "_" + b;
-    if (!w.raster(stem + "_before", before, "Overlap " + a + " \u2013 " + b + ": normal discrepancy before adjustment",
+    if (!w.raster(stem + "_before", before,
+                  "Overlap " + a + " \u2013 " + b + ": normal discrepancy before adjustment",
                   {statsLine(o.before, w.units().name)}, sign, error) ||
-        !w.raster(stem + "_after", after, "Overlap " + a + " \u2013 " + b + ": normal discrepancy after adjustment",
+        !w.raster(stem + "_after", after,
+                  "Overlap " + a + " \u2013 " + b + ": normal discrepancy after adjustment",
                   {statsLine(o.after, w.units().name)}, sign, error) ||
-        !histogram(w, stem + "_histogram", "Overlap " + a + " \u2013 " + b + ": discrepancies before and after",
+        !histogram(w, stem + "_histogram",
+                   "Overlap " + a + " \u2013 " + b + ": discrepancies before and after",
                    samples[k].before.value, samples[k].after.value, settings, error))
       return false;
     all_before.insert(all_before.end(), samples[k].before.value.begin(), samples[k].before.value.end());
@@ -219,8 +229,8 @@ writeStripMaps(const StripAdjustmentReport& report, const StripPlan& plan,
                   "positive: lower-numbered strip above", error))
       return false;
   }
-  return histogram(w, "histogram", "All overlaps: discrepancies before and after adjustment", all_before, all_after,
-                   settings, error);
+  return histogram(w, "histogram", "All overlaps: discrepancies before and after adjustment", all_before,
+                   all_after, settings, error);
 }
 
 }  // namespace strips

@@ -31,8 +31,7 @@ struct StripLookup
       if (s.point_source_id >= 0) {
         split = true;
         by_id[s.point_source_id] = static_cast<int>(k);
-      }
-      else if (std::find(s.files.begin(), s.files.end(), file) != s.files.end())
+      } else if (std::find(s.files.begin(), s.files.end(), file) != s.files.end())
         file_strip = static_cast<int>(k);
     }
   }
@@ -146,7 +145,8 @@ stripsFromCloud(const pcl::PointCloud<PointLiDAR>& cloud, bool split)
       pts.push_back(cloud[static_cast<std::size_t>(i)].getVector3fMap().cast<double>());
       cls.push_back(cloud[static_cast<std::size_t>(i)].classification);
     }
-    out.push_back(makeStrip(split ? "psid" + std::to_string(kv.first) : "cloud", split ? kv.first : -1, pts, cls));
+    out.push_back(
+        makeStrip(split ? "psid" + std::to_string(kv.first) : "cloud", split ? kv.first : -1, pts, cls));
   }
   return out;
 }

@@ -58,9 +58,12 @@ chooseDatum(StripPlan& plan, std::string& error)
     if (has_reference || best < 0)
       continue;
     plan.strips[static_cast<std::size_t>(best)].reference = true;
-    plan.notes.push_back("reference strip " + plan.strips[static_cast<std::size_t>(best)].name +
-                         (s.reference_strips.empty() ? " (largest overlap area" : " (added: no reference in its part of the block, largest overlap area") +
-                         (parts > 1 ? ", part " + std::to_string(part + 1) + " of " + std::to_string(parts) + ")" : ")"));
+    plan.notes.push_back(
+        "reference strip " + plan.strips[static_cast<std::size_t>(best)].name +
+        (s.reference_strips.empty()
+             ? " (largest overlap area"
+             : " (added: no reference in its part of the block, largest overlap area") +
+        (parts > 1 ? ", part " + std::to_string(part + 1) + " of " + std::to_string(parts) + ")" : ")"));
   }
   return true;
 }
@@ -133,7 +136,8 @@ makePlan(const std::vector<Strip>& strips, const StripAdjustmentSettings& settin
     }
   const Footprints f = Footprints::build(strips, settings.footprint_cell);
   plan.grid = f.grid();
-  const double min_area = settings.min_overlap_area > 0.0 ? settings.min_overlap_area : 100.0 * f.cell() * f.cell();
+  const double min_area =
+      settings.min_overlap_area > 0.0 ? settings.min_overlap_area : 100.0 * f.cell() * f.cell();
   plan.overlaps = findOverlaps(f, min_area);
   double sparsest = kInf;
   for (std::size_t k = 0; k < strips.size(); ++k) {
@@ -162,7 +166,7 @@ makePlan(const std::vector<Strip>& strips, const StripAdjustmentSettings& settin
     if (p.part < 0)
       plan.notes.push_back("strip " + p.name + " has no usable overlap: left unchanged");
   plan.precision_cell = settings.adjustment.precision_cell > 0.0 ? settings.adjustment.precision_cell
-                                                      : 8.0 / std::sqrt(std::max(1e-12, sparsest));
+                                                                 : 8.0 / std::sqrt(std::max(1e-12, sparsest));
   if (!chooseDatum(plan, error))
     return false;
   if (footprints_out)

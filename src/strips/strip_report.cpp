@@ -33,8 +33,8 @@ fileTransformation(const Eigen::Matrix4d& block, const Eigen::Vector3d& origin)
 
 // Covariance behind the σ: the spatial sandwich from the final pass, or σ0² Qxx.
 Eigen::MatrixXd
-covarianceOf(const StripPlan& plan, const BlockState& state, const std::vector<OverlapContribution>& final_pass,
-             std::string& model)
+covarianceOf(const StripPlan& plan, const BlockState& state,
+             const std::vector<OverlapContribution>& final_pass, std::string& model)
 {
   model = "formal (eq. 14)";
   Eigen::MatrixXd C = state.sigma0 * state.sigma0 * state.qxx;
@@ -44,7 +44,8 @@ covarianceOf(const StripPlan& plan, const BlockState& state, const std::vector<O
   if (!plan.settings.adjustment.spatial_precision || !cells || state.redundancy <= 0)
     return C;
   const GaussMarkovProblem problem = plan.problem(state.blocks(plan));
-  C = blockSandwichCovariance(final_pass, state.qxx, state.sigma0, problem.apriori_weights, state.determinable);
+  C = blockSandwichCovariance(final_pass, state.qxx, state.sigma0, problem.apriori_weights,
+                              state.determinable);
   char buf[96];
   std::snprintf(buf, sizeof(buf), "spatial sandwich, cell %.3g", plan.precision_cell);
   model = buf;
@@ -118,10 +119,12 @@ overlapResult(const Overlap& o, const OverlapContribution* c, const OverlapSampl
     r.spacing = c->spacing;
     r.observations = c->forward.observations + c->backward.observations;
     r.used_observations = c->forward.used + c->backward.used;
-    r.sigma0 = r.used_observations ? std::sqrt((c->forward.vtpv + c->backward.vtpv) / r.used_observations) : 0.0;
-    r.sigma_surface = r.used_observations ? std::sqrt((c->forward.surface_variance + c->backward.surface_variance) /
-                                                      static_cast<double>(r.used_observations))
-                                          : 0.0;
+    r.sigma0 =
+        r.used_observations ? std::sqrt((c->forward.vtpv + c->backward.vtpv) / r.used_observations) : 0.0;
+    r.sigma_surface = r.used_observations
+                          ? std::sqrt((c->forward.surface_variance + c->backward.surface_variance) /
+                                      static_cast<double>(r.used_observations))
+                          : 0.0;
   }
   if (s) {
     r.before = discrepancyStatistics(s->before.value);
@@ -195,8 +198,8 @@ offsetNotConfirmed(const StripAdjustmentReport& report)
                   "after the corrections %s and %s are still offset by %.3g along the surface "
                   "normals (median of %zu discrepancies; the strips' own noise %.3g)",
                   report.strips[static_cast<std::size_t>(o.i)].name.c_str(),
-                  report.strips[static_cast<std::size_t>(o.j)].name.c_str(), o.after.p50,
-                  o.after.count, own_noise);
+                  report.strips[static_cast<std::size_t>(o.j)].name.c_str(), o.after.p50, o.after.count,
+                  own_noise);
     return buf;
   }
   return {};
@@ -242,7 +245,8 @@ lndNotAtRest(const StripAdjustmentReport& report, const StripPlan& plan)
 void
 confirmByDiscrepancies(StripAdjustmentReport& report, const StripPlan& plan)
 {
-  if (report.termination != TerminationType::CONVERGED && report.termination != TerminationType::MAX_ITERATIONS)
+  if (report.termination != TerminationType::CONVERGED &&
+      report.termination != TerminationType::MAX_ITERATIONS)
     return;
   std::string why = spreadNotConfirmed(report, plan);
   if (why.empty())
@@ -259,8 +263,7 @@ confirmByDiscrepancies(StripAdjustmentReport& report, const StripPlan& plan)
 }  // namespace
 
 StripAdjustmentReport
-makeReport(const StripPlan& plan, const BlockState& state,
-           const std::vector<OverlapContribution>& final_pass,
+makeReport(const StripPlan& plan, const BlockState& state, const std::vector<OverlapContribution>& final_pass,
            const std::vector<OverlapSamples>& samples)
 {
   StripAdjustmentReport report;
@@ -285,7 +288,8 @@ makeReport(const StripPlan& plan, const BlockState& state,
     report.strips.push_back(stripResult(plan, state, report.covariance, k, undeterminable));
   if (!undeterminable.empty() && report.observations > 0) {
     report.notes.push_back("undeterminable parameters: " + undeterminable);
-    report.message += std::string(report.message.empty() ? "" : "; ") + "undeterminable parameters: " + undeterminable;
+    report.message +=
+        std::string(report.message.empty() ? "" : "; ") + "undeterminable parameters: " + undeterminable;
   }
   for (std::size_t k = 0; k < plan.overlaps.size(); ++k) {
     const OverlapContribution* c = nullptr;

@@ -69,7 +69,8 @@ fileCorrections(const StripPlan& plan, const BlockState& state)
   back.topRightCorner<3, 1>() = plan.block_origin;
   for (const ParameterBlock& b : state.blocks(plan)) {
     const bool identity = b.values == identityParameters();
-    out.push_back(identity ? Eigen::Matrix4d::Identity() : Eigen::Matrix4d(back * blockTransformation(b) * in));
+    out.push_back(identity ? Eigen::Matrix4d::Identity()
+                           : Eigen::Matrix4d(back * blockTransformation(b) * in));
   }
   return out;
 }
@@ -119,18 +120,21 @@ stageMatch(const WorkDir& work, int job, std::string& error)
   const OverlapSelection selection = selectObservations(pair.strips, pair.overlap, pair.footprints, s);
   const RobustEstimator::Ptr estimator = makeRobustEstimator(s.estimator);
   const ConjugateRule::Ptr rule = makeConjugateRule(s.rule);
-  OverlapMatcher matcher(selection, *rule, *estimator, s, stripNoise(*selection.backward.surface, pair.footprints.density(0)),
+  OverlapMatcher matcher(selection, *rule, *estimator, s,
+                         stripNoise(*selection.backward.surface, pair.footprints.density(0)),
                          stripNoise(*selection.forward.surface, pair.footprints.density(1)));
   if (state.iteration > 0) {
     std::array<PairMatcher::State, 2> memory;
     if (!readMatcherState(work.matcher(job), memory, error) || !matcher.restore(std::move(memory))) {
-      error = error.empty() ? "matcher state of job " + std::to_string(job) + " does not fit its points" : error;
+      error =
+          error.empty() ? "matcher state of job " + std::to_string(job) + " does not fit its points" : error;
       return false;
     }
   }
   DiscrepancyEvaluator evaluator(selection, s.max_distance);
   const std::vector<ParameterBlock> blocks = state.blocks(f.plan);
-  const ParameterBlock &bi = blocks[static_cast<std::size_t>(o.i)], &bj = blocks[static_cast<std::size_t>(o.j)];
+  const ParameterBlock &bi = blocks[static_cast<std::size_t>(o.i)],
+                       &bj = blocks[static_cast<std::size_t>(o.j)];
   const MatchInput in = matchInput(f.plan, state, o.i, o.j);
   OverlapContribution c;
   OverlapSamples samples;
@@ -141,8 +145,7 @@ stageMatch(const WorkDir& work, int job, std::string& error)
         return false;
     }
     c = matcher.contribute(bi, bj, in);
-  }
-  else {
+  } else {
     c = matcher.evaluate(bi, bj, in, f.plan.precision_cell);
     if (!readSamples(work.samples(job), samples, error))
       return false;
@@ -155,8 +158,9 @@ stageMatch(const WorkDir& work, int job, std::string& error)
   c.i = o.i;
   c.j = o.j;
   c.spacing = selection.spacing;
-  const std::string path = state.phase == BlockState::Phase::ITERATE ? work.contribution(job, state.iteration + 1)
-                                                                     : work.finalContribution(job);
+  const std::string path = state.phase == BlockState::Phase::ITERATE
+                               ? work.contribution(job, state.iteration + 1)
+                               : work.finalContribution(job);
   return writeContribution(path, c, error) && writeMatcherState(work.matcher(job), matcher.state(), error);
 }
 
@@ -210,7 +214,8 @@ stageCounts(const WorkDir& work, int& jobs, int& units, std::string& error)
   if (!readPlanFile(work.plan(), f, error))
     return false;
   jobs = static_cast<int>(f.plan.jobs().size());
-  units = f.output_dir.empty() ? 0 : static_cast<int>(outputUnits(f.block(), f.output_dir, f.keep_files).size());
+  units =
+      f.output_dir.empty() ? 0 : static_cast<int>(outputUnits(f.block(), f.output_dir, f.keep_files).size());
   return true;
 }
 
@@ -228,7 +233,8 @@ stageApply(const WorkDir& work, int unit, std::string& error)
   const LoadedStrips block = f.block();
   const std::vector<OutputUnit> units = outputUnits(block, f.output_dir, f.keep_files);
   if (unit < 0 || static_cast<std::size_t>(unit) >= units.size()) {
-    error = "output unit " + std::to_string(unit) + " does not exist (" + std::to_string(units.size()) + " units)";
+    error = "output unit " + std::to_string(unit) + " does not exist (" + std::to_string(units.size()) +
+            " units)";
     return false;
   }
   std::error_code ec;

@@ -58,7 +58,7 @@ Building::radius() const
 }
 
 BuildingSet::BuildingSet(std::vector<Building> buildings, double cell)
-: buildings_(std::move(buildings)), cell_(cell)
+    : buildings_(std::move(buildings)), cell_(cell)
 {
   if (buildings_.empty())
     return;
@@ -107,9 +107,7 @@ BuildingSet::find(double x, double y, double margin) const
 }
 
 std::vector<Building>
-placeBuildings(const Terrain& terrain,
-               const Eigen::AlignedBox2d& region,
-               const BuildingSettings& s,
+placeBuildings(const Terrain& terrain, const Eigen::AlignedBox2d& region, const BuildingSettings& s,
                std::uint32_t seed)
 {
   std::vector<Building> out;
@@ -146,8 +144,7 @@ placeBuildings(const Terrain& terrain,
       for (int j = -2; j <= 2; ++j) {
         const double u = 0.25 * i * b.length, v = 0.25 * j * b.width;
         const double c = std::cos(b.heading), sn = std::sin(b.heading);
-        top = std::max(top, terrain.height(b.centre.x() + c * u - sn * v,
-                                           b.centre.y() + sn * u + c * v));
+        top = std::max(top, terrain.height(b.centre.x() + c * u - sn * v, b.centre.y() + sn * u + c * v));
       }
     b.eave_z = top + eave;
     b.ridge_rise = b.roof == RoofType::FLAT ? 0.0 : rise;

@@ -35,17 +35,17 @@ LandformSettings::isValid(std::string* why) const
   return true;
 }
 
-Ground::Ground(Terrain terrain, const LandformSettings& settings,
-               const Eigen::AlignedBox2d& region, std::uint32_t seed)
-: terrain_(std::move(terrain)), settings_(settings)
+Ground::Ground(Terrain terrain, const LandformSettings& settings, const Eigen::AlignedBox2d& region,
+               std::uint32_t seed)
+    : terrain_(std::move(terrain)), settings_(settings)
 {
   Random rng(seed, 0x5ca7u, 0u);
   for (int k = 0; k < settings.scarps; ++k) {
     Scarp s;
     const double a = rng.uniform(0.0, 2.0 * M_PI);
     s.normal = Eigen::Vector2d(std::cos(a), std::sin(a));
-    s.point = region.min() + Eigen::Vector2d(rng.uniform(0.2, 0.8), rng.uniform(0.2, 0.8))
-                                 .cwiseProduct(region.sizes());
+    s.point = region.min() +
+              Eigen::Vector2d(rng.uniform(0.2, 0.8), rng.uniform(0.2, 0.8)).cwiseProduct(region.sizes());
     s.height = rng.uniform(settings.min_scarp_height, settings.max_scarp_height);
     scarps_.push_back(s);
   }

@@ -65,8 +65,10 @@ struct Landscape::Trees
     for (int i = 0; i < static_cast<int>(crowns.size()); ++i) {
       const Crown& k = crowns[static_cast<std::size_t>(i)];
       const Eigen::Vector2d lo = (k.c - min).array() - k.r, hi = (k.c - min).array() + k.r;
-      for (int y = std::max(0, static_cast<int>(lo.y() / kCell)); y <= std::min(ny - 1, static_cast<int>(hi.y() / kCell)); ++y)
-        for (int x = std::max(0, static_cast<int>(lo.x() / kCell)); x <= std::min(nx - 1, static_cast<int>(hi.x() / kCell)); ++x)
+      for (int y = std::max(0, static_cast<int>(lo.y() / kCell));
+           y <= std::min(ny - 1, static_cast<int>(hi.y() / kCell)); ++y)
+        for (int x = std::max(0, static_cast<int>(lo.x() / kCell));
+             x <= std::min(nx - 1, static_cast<int>(hi.x() / kCell)); ++x)
           cells[static_cast<std::size_t>(y * nx + x)].push_back(i);
     }
   }
@@ -116,8 +118,8 @@ fitBuildings(std::vector<Building> in, const Landscape& scene, const Terrain& te
 Landscape::Landscape(const Terrain& terrain, const LandscapeSettings& settings, bool buildings,
                      const BuildingSettings& building_settings, const Eigen::AlignedBox2d& region,
                      std::uint32_t seed)
-: settings_(settings), ground_(terrain, settings.landforms, region, seed),
-  trees_(std::make_unique<Trees>())
+    : settings_(settings), ground_(terrain, settings.landforms, region, seed),
+      trees_(std::make_unique<Trees>())
 {
   std::vector<Building> placed;
   if (buildings)
@@ -128,7 +130,8 @@ Landscape::Landscape(const Terrain& terrain, const LandscapeSettings& settings, 
   if (settings.type == LandscapeType::ROLLING)
     return;
   Random rng(seed, 0x7ee5u, 0u);
-  const auto wanted = static_cast<std::size_t>(std::lround(settings.trees_per_hectare * region.volume() / 1e4));
+  const auto wanted =
+      static_cast<std::size_t>(std::lround(settings.trees_per_hectare * region.volume() / 1e4));
   for (std::size_t attempt = 0; attempt < 3 * wanted && trees_->crowns.size() < wanted; ++attempt) {
     const Eigen::Vector2d c(rng.uniform(region.min().x(), region.max().x()),
                             rng.uniform(region.min().y(), region.max().y()));
@@ -175,8 +178,7 @@ Landscape::hit(double x, double y, Random& rng) const
   int b = -1;
   if (settings_.type == LandscapeType::ROLLING) {
     h.z = surface_->height(x, y, &b);
-  }
-  else if (const Trees::Crown* k = trees_->find(x, y)) {
+  } else if (const Trees::Crown* k = trees_->find(x, y)) {
     if (rng.uniform(0.0, 1.0) >= settings_.penetration) {
       const double rho2 = (k->c - Eigen::Vector2d(x, y)).squaredNorm() / (k->r * k->r);
       h.z = k->centre_z + k->half_depth * std::sqrt(std::max(0.0, 1.0 - rho2)) - rng.uniform(0.0, 1.0);
@@ -186,8 +188,7 @@ Landscape::hit(double x, double y, Random& rng) const
     }
     h.z = groundHeight(x, y);
     return h;
-  }
-  else {
+  } else {
     b = surface_->buildings().find(x, y);
     h.z = b >= 0 ? surface_->buildings().buildings()[static_cast<std::size_t>(b)].roofHeight(x, y)
                  : groundHeight(x, y);

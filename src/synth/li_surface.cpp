@@ -14,9 +14,8 @@ namespace pcl_ls3d {
 namespace synth {
 
 namespace {
-const std::array<const char*, 9> kNames{"upper_left", "upper",      "upper_right",
-                                        "left",       "middle",     "right",
-                                        "lower_left", "lower",      "lower_right"};
+const std::array<const char*, 9> kNames{"upper_left", "upper",      "upper_right", "left",       "middle",
+                                        "right",      "lower_left", "lower",       "lower_right"};
 }  // namespace
 
 const char*
@@ -73,8 +72,8 @@ static std::vector<int>
 gatheredNodes(int n, DeformationPosition position, std::size_t k)
 {
   const int p = static_cast<int>(position);
-  const double ax = 0.5 * (n - 1) * (p % 3);        // left, centre, right column
-  const double ay = 0.5 * (n - 1) * (2 - p / 3);    // upper = last row (largest y)
+  const double ax = 0.5 * (n - 1) * (p % 3);      // left, centre, right column
+  const double ay = 0.5 * (n - 1) * (2 - p / 3);  // upper = last row (largest y)
   std::vector<int> order(static_cast<std::size_t>(n) * n);
   std::iota(order.begin(), order.end(), 0);
   auto key = [&](int i) {

@@ -40,8 +40,7 @@ RegistrationPairSettings::isValid(std::string* why) const
   const double n = size_x * size_y * (source_density + target_density);
   if (n > 2e9)
     return fail("too many points (more than 2e9)");
-  if (std::lround(size_x * size_y * source_density) < 1 ||
-      std::lround(size_x * size_y * target_density) < 1)
+  if (std::lround(size_x * size_y * source_density) < 1 || std::lround(size_x * size_y * target_density) < 1)
     return fail("density × area gives no points");
   return true;
 }
@@ -56,14 +55,8 @@ namespace {
 
 /// Uniform samples of `surface` in `box`, noisy, then mapped by (A, b): p' = A p + b.
 void
-samplePair(const SurfaceModel& surface,
-           const Eigen::AlignedBox2d& box,
-           std::size_t n,
-           double sigma,
-           const Eigen::Matrix4d& map,
-           std::uint32_t seed,
-           std::uint32_t stream,
-           std::uint16_t source_id,
+samplePair(const SurfaceModel& surface, const Eigen::AlignedBox2d& box, std::size_t n, double sigma,
+           const Eigen::Matrix4d& map, std::uint32_t seed, std::uint32_t stream, std::uint16_t source_id,
            pcl::PointCloud<PointLiDAR>& cloud)
 {
   cloud.resize(n);
@@ -120,10 +113,10 @@ makeRegistrationPair(const RegistrationPairSettings& s)
   const double area = s.size_x * s.size_y;
   const auto ns = static_cast<std::size_t>(std::lround(area * s.source_density));
   const auto nt = static_cast<std::size_t>(std::lround(area * s.target_density));
-  samplePair(*surface, pair.source_footprint, ns, s.noise_sigma, s.truth.matrix().inverse(),
-             s.seed, 1u, 1, *pair.source);
-  samplePair(*surface, pair.target_footprint, nt, s.noise_sigma, Eigen::Matrix4d::Identity(),
-             s.seed, 2u, 2, *pair.target);
+  samplePair(*surface, pair.source_footprint, ns, s.noise_sigma, s.truth.matrix().inverse(), s.seed, 1u, 1,
+             *pair.source);
+  samplePair(*surface, pair.target_footprint, nt, s.noise_sigma, Eigen::Matrix4d::Identity(), s.seed, 2u, 2,
+             *pair.target);
   return pair;
 }
 

@@ -35,8 +35,7 @@ forEachBlocked(std::size_t n, std::uint32_t seed, std::uint32_t stream, F&& f)
 inline PointLiDAR
 makePoint(const Eigen::Vector3d& p)
 {
-  return PointLiDAR(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                    static_cast<float>(p.z()));
+  return PointLiDAR(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
 }
 
 }  // namespace detail

@@ -15,7 +15,7 @@ const char*
 toString(ObjectType t)
 {
   static const std::array<const char*, 7> names{"building", "tree", "shrub", "car",
-                                                 "tower",    "wire", "ground"};
+                                                "tower",    "wire", "ground"};
   return names[static_cast<int>(t)];
 }
 
@@ -36,9 +36,10 @@ SceneSettings::isValid(std::string* why) const
     return fail("object densities must be >= 0");
   if (!(low_max > 0.0 && medium_max > low_max))
     return fail("need 0 < low_max < medium_max");
-  if (power_line && (towers < 2 || wires < 1 || !(tower_height > 3.0) || !(wire_sag > 0.0 && wire_sag < 0.3) ||
-                     !(line_spacing > 0.0)))
-    return fail("power line needs towers >= 2, wires >= 1, tower_height > 3, 0 < wire_sag < 0.3, line_spacing > 0");
+  if (power_line && (towers < 2 || wires < 1 || !(tower_height > 3.0) ||
+                     !(wire_sag > 0.0 && wire_sag < 0.3) || !(line_spacing > 0.0)))
+    return fail(
+        "power line needs towers >= 2, wires >= 1, tower_height > 3, 0 < wire_sag < 0.3, line_spacing > 0");
   if (!origin.allFinite())
     return fail("origin must be finite");
   if (size_x * size_y * density > 5e8)
@@ -63,9 +64,8 @@ class CrownGrid
 {
 public:
   CrownGrid(const std::vector<detail::Crown>& crowns, const Eigen::Vector2d& half)
-  : crowns_(crowns), min_(-half), nx_(static_cast<int>(2 * half.x() / kCell) + 1),
-    ny_(static_cast<int>(2 * half.y() / kCell) + 1),
-    cells_(static_cast<std::size_t>(nx_) * ny_)
+      : crowns_(crowns), min_(-half), nx_(static_cast<int>(2 * half.x() / kCell) + 1),
+        ny_(static_cast<int>(2 * half.y() / kCell) + 1), cells_(static_cast<std::size_t>(nx_) * ny_)
   {
     for (int i = 0; i < static_cast<int>(crowns.size()); ++i) {
       const auto& c = crowns[i];
@@ -127,8 +127,8 @@ vegetationClass(double above, const SceneSettings& s)
 /// One pulse from above at (x, y): crown returns (+ ground), else roof, car or terrain.
 void
 samplePulse(double x, double y, double time, Random& rng, const SceneSettings& s,
-            const detail::SceneLayout& layout, const SurfaceModel& surface,
-            const BuildingSet& cars, const CrownGrid& crowns, Collected& out)
+            const detail::SceneLayout& layout, const SurfaceModel& surface, const BuildingSet& cars,
+            const CrownGrid& crowns, Collected& out)
 {
   const double sig = s.noise_sigma;
   const double ground = surface.terrain().height(x, y);
@@ -148,20 +148,18 @@ samplePulse(double x, double y, double time, Random& rng, const SceneSettings& s
     const int total = n + (to_ground ? 1 : 0);
     for (int k = 0; k < n; ++k) {
       const Eigen::Vector3d p = Eigen::Vector3d(x, y, z[k]) + rng.normal3(sig);
-      out.add(p, vegetationClass(p.z() - surface.terrain().height(p.x(), p.y()), s), c.object,
-              time, k + 1, total);
+      out.add(p, vegetationClass(p.z() - surface.terrain().height(p.x(), p.y()), s), c.object, time, k + 1,
+              total);
     }
     if (to_ground)
-      out.add(Eigen::Vector3d(x, y, ground) + rng.normal3(sig), 2, layout.ground_object, time,
-              total, total);
+      out.add(Eigen::Vector3d(x, y, ground) + rng.normal3(sig), 2, layout.ground_object, time, total, total);
     return;
   }
   int b = -1;
   const double z = surface.height(x, y, &b);
   if (b >= 0) {
     const int plane = layout.first_plane[b] + layout.buildings[b].roofPlane(x, y);
-    out.add(Eigen::Vector3d(x, y, z) + rng.normal3(sig), 6, layout.building_object[b], time, 1, 1,
-            plane);
+    out.add(Eigen::Vector3d(x, y, z) + rng.normal3(sig), 6, layout.building_object[b], time, 1, 1, plane);
     return;
   }
   const int car = cars.find(x, y);
@@ -175,16 +173,15 @@ samplePulse(double x, double y, double time, Random& rng, const SceneSettings& s
 
 /// Sparse wall points: uniform on each wall face between terrain and roof edge.
 void
-sampleWalls(const SceneSettings& s, const detail::SceneLayout& layout, const Terrain& terrain,
-            Random& rng, double time, Collected& out)
+sampleWalls(const SceneSettings& s, const detail::SceneLayout& layout, const Terrain& terrain, Random& rng,
+            double time, Collected& out)
 {
   for (std::size_t i = 0; i < layout.buildings.size(); ++i) {
     const Building& b = layout.buildings[i];
     const double c = std::cos(b.heading), sn = std::sin(b.heading);
-    const std::array<Eigen::Vector2d, 4> uv{Eigen::Vector2d(-0.5 * b.length, -0.5 * b.width),
-                                            Eigen::Vector2d(0.5 * b.length, -0.5 * b.width),
-                                            Eigen::Vector2d(0.5 * b.length, 0.5 * b.width),
-                                            Eigen::Vector2d(-0.5 * b.length, 0.5 * b.width)};
+    const std::array<Eigen::Vector2d, 4> uv{
+        Eigen::Vector2d(-0.5 * b.length, -0.5 * b.width), Eigen::Vector2d(0.5 * b.length, -0.5 * b.width),
+        Eigen::Vector2d(0.5 * b.length, 0.5 * b.width), Eigen::Vector2d(-0.5 * b.length, 0.5 * b.width)};
     for (int e = 0; e < 4; ++e) {
       const Eigen::Vector2d a = uv[e], d = uv[(e + 1) % 4] - uv[e];
       // Gable end walls (odd edges, across the ridge) rise to the ridge: half of it on average.
@@ -197,8 +194,7 @@ sampleWalls(const SceneSettings& s, const detail::SceneLayout& layout, const Ter
         const double x = b.centre.x() + c * l.x() - sn * l.y();
         const double y = b.centre.y() + sn * l.x() + c * l.y();
         const double z = rng.uniform(terrain.height(x, y), b.roofHeight(x, y));
-        out.add(Eigen::Vector3d(x, y, z) + rng.normal3(s.noise_sigma), 6,
-                layout.building_object[i], time);
+        out.add(Eigen::Vector3d(x, y, z) + rng.normal3(s.noise_sigma), 6, layout.building_object[i], time);
       }
     }
   }
@@ -235,8 +231,7 @@ makeScene(const SceneSettings& s)
     const std::size_t end = std::min(pulses, static_cast<std::size_t>(b + 1) * detail::kBlock);
     for (std::size_t i = static_cast<std::size_t>(b) * detail::kBlock; i < end; ++i) {
       const double x = rng.uniform(-half.x(), half.x()), y = rng.uniform(-half.y(), half.y());
-      samplePulse(x, y, 1e-5 * static_cast<double>(i), rng, s, layout, *surface, cars, crowns,
-                  blocks[b]);
+      samplePulse(x, y, 1e-5 * static_cast<double>(i), rng, s, layout, *surface, cars, crowns, blocks[b]);
     }
   }
   // Walls, towers and wires: one sequential stream.

@@ -106,8 +106,10 @@ makeCorridor(const SceneSettings& s, const Eigen::Vector2d& half, Random& rng)
   cor.d = {std::cos(theta), std::sin(theta)};
   cor.p = {rng.uniform(-0.1, 0.1) * s.size_x, rng.uniform(-0.1, 0.1) * s.size_y};
   // Half length limited by the box along d.
-  const double tx = std::abs(cor.d.x()) > 1e-9 ? (half.x() - std::abs(cor.p.x()) - 5.0) / std::abs(cor.d.x()) : 1e300;
-  const double ty = std::abs(cor.d.y()) > 1e-9 ? (half.y() - std::abs(cor.p.y()) - 5.0) / std::abs(cor.d.y()) : 1e300;
+  const double tx =
+      std::abs(cor.d.x()) > 1e-9 ? (half.x() - std::abs(cor.p.x()) - 5.0) / std::abs(cor.d.x()) : 1e300;
+  const double ty =
+      std::abs(cor.d.y()) > 1e-9 ? (half.y() - std::abs(cor.p.y()) - 5.0) / std::abs(cor.d.y()) : 1e300;
   cor.half_length = std::max(0.0, 0.9 * std::min(tx, ty));
   cor.half_width = 0.5 * (s.wires - 1) * 4.0 + 8.0;
   return cor;
@@ -118,16 +120,15 @@ makeCorridor(const SceneSettings& s, const Eigen::Vector2d& half, Random& rng)
 class ObjectPlacer
 {
 public:
-  ObjectPlacer(const SceneSettings& s, const Terrain& terrain, Random& rng,
-               const Corridor& corridor, SceneLayout& out)
-  : s_(s), terrain_(terrain), rng_(rng), corridor_(corridor), out_(out),
-    half_(0.5 * s.size_x, 0.5 * s.size_y), region_(-half_, half_),
-    area_ha_(s.size_x * s.size_y / 1e4)
-  {
-  }
+  ObjectPlacer(const SceneSettings& s, const Terrain& terrain, Random& rng, const Corridor& corridor,
+               SceneLayout& out)
+      : s_(s), terrain_(terrain), rng_(rng), corridor_(corridor), out_(out),
+        half_(0.5 * s.size_x, 0.5 * s.size_y), region_(-half_, half_), area_ha_(s.size_x * s.size_y / 1e4)
+  {}
 
-  int add(ObjectType type, std::uint8_t cls, const Eigen::Vector3d& pos,
-          const Eigen::Vector3d& size, double heading)
+  int
+  add(ObjectType type, std::uint8_t cls, const Eigen::Vector3d& pos, const Eigen::Vector3d& size,
+      double heading)
   {
     SceneObject o;
     o.id = static_cast<int>(out_.objects.size());
@@ -141,7 +142,8 @@ public:
   }
 
   /// The buildings of placeBuildings() that find free ground, with their roof planes.
-  void buildings()
+  void
+  buildings()
   {
     for (const Building& b : placeBuildings(terrain_, region_, s_.building_settings, s_.seed)) {
       if (!take(b.centre, b.radius() + 1.0))
@@ -157,7 +159,8 @@ public:
   }
 
   /// Tree crowns (class 5) or shrubs (class 4 below medium_max deep, else 5), per hectare.
-  void crowns(double per_ha, bool shrub)
+  void
+  crowns(double per_ha, bool shrub)
   {
     const auto wanted = static_cast<std::size_t>(std::lround(per_ha * area_ha_));
     std::size_t placed = 0;
@@ -173,15 +176,16 @@ public:
       c.base = c.ground + base;
       c.top = c.base + depth;
       const std::uint8_t cls = shrub ? (depth < s_.medium_max ? 4 : 5) : 5;
-      c.object = add(shrub ? ObjectType::SHRUB : ObjectType::TREE, cls,
-                     {c.c.x(), c.c.y(), c.ground}, {2 * c.r, 2 * c.r, c.top - c.ground}, 0.0);
+      c.object = add(shrub ? ObjectType::SHRUB : ObjectType::TREE, cls, {c.c.x(), c.c.y(), c.ground},
+                     {2 * c.r, 2 * c.r, c.top - c.ground}, 0.0);
       out_.crowns.push_back(c);
       ++placed;
     }
   }
 
   /// Car-sized boxes standing on the highest terrain under their corners, per hectare.
-  void cars()
+  void
+  cars()
   {
     const auto wanted = static_cast<std::size_t>(std::lround(s_.cars_per_hectare * area_ha_));
     for (std::size_t k = 0, placed = 0; k < 30 * wanted && placed < wanted; ++k) {
@@ -203,7 +207,8 @@ public:
 
 private:
   /// Takes the circle if it is free (inside the scene, off the corridor and every taken one).
-  bool take(const Eigen::Vector2d& c, double r)
+  bool
+  take(const Eigen::Vector2d& c, double r)
   {
     if (corridor_.hits(c, r))
       return false;
@@ -216,15 +221,16 @@ private:
     return true;
   }
 
-  double highestTerrainUnder(const Building& box) const
+  double
+  highestTerrainUnder(const Building& box) const
   {
     double top = -1e300;
     const double c = std::cos(box.heading), sn = std::sin(box.heading);
     for (int i = -1; i <= 1; i += 2)
       for (int j = -1; j <= 1; j += 2) {
         const double u = 0.5 * i * box.length, v = 0.5 * j * box.width;
-        top = std::max(top, terrain_.height(box.centre.x() + c * u - sn * v,
-                                            box.centre.y() + sn * u + c * v));
+        top =
+            std::max(top, terrain_.height(box.centre.x() + c * u - sn * v, box.centre.y() + sn * u + c * v));
       }
     return top;
   }
@@ -267,8 +273,8 @@ layoutScene(const SceneSettings& s, const Terrain& terrain)
   placer.cars();
   if (corridor.active)
     addPowerLine(s, terrain, rng, corridor, out);
-  out.ground_object = placer.add(ObjectType::GROUND, 2, {0.0, 0.0, terrain.height(0.0, 0.0)},
-                                 {s.size_x, s.size_y, 0.0}, 0.0);
+  out.ground_object =
+      placer.add(ObjectType::GROUND, 2, {0.0, 0.0, terrain.height(0.0, 0.0)}, {s.size_x, s.size_y, 0.0}, 0.0);
   return out;
 }
 

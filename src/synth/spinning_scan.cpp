@@ -105,8 +105,8 @@ addStreetFurniture(StreetScene& scene, double side, Random& rng)
     if (rng.uniform() < 0.4)
       continue;
     const double y = side * 5.0, ground = scene.groundHeight(x, y);
-    scene.boxes.push_back({Eigen::Vector3d(x - 2.25, y - 0.9, ground - 0.2),
-                           Eigen::Vector3d(x + 2.25, y + 0.9, ground + 1.5)});
+    scene.boxes.push_back(
+        {Eigen::Vector3d(x - 2.25, y - 0.9, ground - 0.2), Eigen::Vector3d(x + 2.25, y + 0.9, ground + 1.5)});
   }
   for (double x = -90.0; x < 90.0; x += 20.0) {
     const double y = side * 7.5;

@@ -74,20 +74,17 @@ drawTruths(const StripSettings& s, std::vector<StripTruth>& strips)
     const Eigen::Vector3d& c = st.centre;
     // Draw first, so the sequence does not depend on fix_first.
     Vector7d p;
-    p << rng.normal(0.0, s.shift_sigma), rng.normal(0.0, s.shift_sigma),
-        rng.normal(0.0, s.shift_sigma), rng.normal(0.0, s.angle_sigma),
-        rng.normal(0.0, s.angle_sigma), rng.normal(0.0, s.angle_sigma),
+    p << rng.normal(0.0, s.shift_sigma), rng.normal(0.0, s.shift_sigma), rng.normal(0.0, s.shift_sigma),
+        rng.normal(0.0, s.angle_sigma), rng.normal(0.0, s.angle_sigma), rng.normal(0.0, s.angle_sigma),
         1.0 + rng.normal(0.0, s.scale_sigma);
     if (!s.errors.empty())
       p = s.errors[i];
     st.fixed = i == 0 && s.fix_first;
     if (!s.transforms.empty()) {
       st.transform = s.transforms[i];
-    }
-    else if (st.fixed) {
+    } else if (st.fixed) {
       st.transform = SimilarityTransform();
-    }
-    else {
+    } else {
       // x' = c + t_c + mR(x − c)  ⇒  t = c + t_c − mRc.
       st.transform = SimilarityTransform(p);
       st.transform.t = c + p.head<3>() - p[SCALE] * (st.transform.rotation() * c);
@@ -130,8 +127,7 @@ struct FlightLine
 
 /// The parallel strips, then the cross strips, with their truths' geometry filled in.
 std::vector<FlightLine>
-layOut(const StripSettings& s, StripBlock& block, double da, std::size_t n_c,
-       Eigen::AlignedBox2d& region)
+layOut(const StripSettings& s, StripBlock& block, double da, std::size_t n_c, Eigen::AlignedBox2d& region)
 {
   const Eigen::Vector2d d = block.direction, a(-d.y(), d.x());
   const double across = (s.num_strips - 1) * block.strip_spacing + s.swath_width;
@@ -191,8 +187,8 @@ makeStripBlock(const StripSettings& s)
   const auto phase = drawLinePhases(s, block.strips);
 
   const Terrain terrain(s.seed, s.relief, s.wavelength);
-  auto landscape = std::make_shared<Landscape>(terrain, s.landscape, s.buildings,
-                                               s.building_settings, region, s.seed);
+  auto landscape =
+      std::make_shared<Landscape>(terrain, s.landscape, s.buildings, s.building_settings, region, s.seed);
   block.surface = landscape->surface();
   block.landscape = landscape;
 
@@ -253,8 +249,7 @@ setScene(StripSettings& s, LandscapeType type)
     s.landscape.trees_per_hectare = 25.0;
     s.landscape.road_spacing = 120.0;
     s.landscape.road_width = 14.0;
-  }
-  else if (type == LandscapeType::MOUNTAIN) {
+  } else if (type == LandscapeType::MOUNTAIN) {
     s.relief = 60.0;
     s.wavelength = 350.0;
     s.buildings = true;
@@ -265,8 +260,7 @@ setScene(StripSettings& s, LandscapeType type)
     s.landscape.landforms.terrace_riser = 0.3;
     s.landscape.landforms.scarps = 4;
     s.landscape.trees_per_hectare = 8.0;
-  }
-  else {
+  } else {
     const StripSettings defaults;
     s.relief = defaults.relief;
     s.wavelength = defaults.wavelength;

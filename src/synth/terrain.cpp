@@ -7,7 +7,7 @@ namespace pcl_ls3d {
 namespace synth {
 
 Terrain::Terrain(std::uint32_t seed, double relief, double wavelength)
-: seed_(seed), relief_(relief), wavelength_(wavelength)
+    : seed_(seed), relief_(relief), wavelength_(wavelength)
 {
   Random rng(seed, 0x7e44a1u, 0u);
   constexpr int kShort = 6;
@@ -18,16 +18,15 @@ Terrain::Terrain(std::uint32_t seed, double relief, double wavelength)
     if (k < kShort) {
       direction = (k + rng.uniform(-0.5, 0.5)) * kPi / kShort;  // ±15° about k·30°
       lambda = wavelength * rng.uniform(0.6, 1.6);
-    }
-    else {
+    } else {
       direction = rng.uniform(0.0, kPi);
       lambda = 3.0 * wavelength * rng.uniform(0.9, 1.1);
     }
     // Longer waves get larger amplitudes, as in real terrain; slope stays bounded.
     const double amplitude = lambda * rng.uniform(0.7, 1.3);
     const double w = 2.0 * kPi / lambda;
-    waves_.push_back({w * std::cos(direction), w * std::sin(direction), amplitude,
-                      rng.uniform(0.0, 2.0 * kPi)});
+    waves_.push_back(
+        {w * std::cos(direction), w * std::sin(direction), amplitude, rng.uniform(0.0, 2.0 * kPi)});
     sum_sq += amplitude * amplitude;
   }
   // RMS height sqrt(Σa²/2) = relief/4, so ±2 RMS spans `relief`.

@@ -1,6 +1,6 @@
-#include <pcl_ls3d/synth/truth_json.h>
 #include <pcl_ls3d/evaluation/segmentation_classes.h>
 #include <pcl_ls3d/io/json_text.h>
+#include <pcl_ls3d/synth/truth_json.h>
 
 #include <nlohmann/json.hpp>
 
@@ -73,8 +73,7 @@ header(const char* generator, std::uint32_t seed, const Eigen::Vector3d& origin)
   j["generator"] = generator;
   j["seed"] = seed;
   j["origin"] = vec(origin);
-  j["convention"] =
-      "x' = t + m R_Y(phi) R_X(omega) R_Z(kappa) x; angles in rad; global = local + origin";
+  j["convention"] = "x' = t + m R_Y(phi) R_X(omega) R_Z(kappa) x; angles in rad; global = local + origin";
   return j;
 }
 
@@ -93,8 +92,7 @@ classCounts(const pcl::PointCloud<PointLiDAR>& cloud)
 json
 box(const Eigen::AlignedBox2d& b, const Eigen::Vector3d& o)
 {
-  return json::array({b.min().x() + o.x(), b.min().y() + o.y(), b.max().x() + o.x(),
-                      b.max().y() + o.y()});
+  return json::array({b.min().x() + o.x(), b.min().y() + o.y(), b.max().x() + o.x(), b.max().y() + o.y()});
 }
 
 }  // namespace
@@ -189,12 +187,11 @@ truthJson(const LiSurface& li, const LiSurfaceSettings& s)
   double mean = 0.0;
   for (int i : li.deformed_indices)
     mean += li.deformation[i];
-  j["deformation"] = {
-      {"percent", li.percent},
-      {"count", li.deformed_indices.size()},
-      {"mean", li.deformed_indices.empty() ? 0.0 : mean / li.deformed_indices.size()},
-      {"indices", li.deformed_indices},
-      {"mask", li.deformed}};
+  j["deformation"] = {{"percent", li.percent},
+                      {"count", li.deformed_indices.size()},
+                      {"mean", li.deformed_indices.empty() ? 0.0 : mean / li.deformed_indices.size()},
+                      {"indices", li.deformed_indices},
+                      {"mask", li.deformed}};
   j["counts"] = {{"reference", li.reference->size()}, {"mate", li.mate->size()}};
   return io::toJsonText(j, 2);
 }
@@ -235,8 +232,7 @@ truthJson(const LabelledScene& scene, const SceneSettings& s)
 }
 
 bool
-writeTextFile(const std::string& path, const std::string& text, bool overwrite,
-              std::string& error)
+writeTextFile(const std::string& path, const std::string& text, bool overwrite, std::string& error)
 {
   struct stat st;
   if (!overwrite && ::stat(path.c_str(), &st) == 0) {

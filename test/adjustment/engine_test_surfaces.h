@@ -18,15 +18,13 @@ namespace engine_test {
 inline double
 terrain(double x, double y)
 {
-  return 3.0 * std::sin(x / 15.0) * std::cos(y / 11.0) + 1.5 * std::sin((x + 2.0 * y) / 23.0) +
-         0.05 * x;
+  return 3.0 * std::sin(x / 15.0) * std::cos(y / 11.0) + 1.5 * std::sin((x + 2.0 * y) / 23.0) + 0.05 * x;
 }
 
 /// Jittered grid samples of the terrain over [x0, x1] × [y0, y1], spacing `step`, isotropic
 /// noise `sigma`.
 inline std::vector<Eigen::Vector3d>
-sampleTerrain(double x0, double x1, double y0, double y1, double step, double sigma,
-              unsigned seed)
+sampleTerrain(double x0, double x1, double y0, double y1, double step, double sigma, unsigned seed)
 {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> jitter(-0.3 * step, 0.3 * step);
@@ -45,11 +43,11 @@ class KdSurface
 {
 public:
   explicit KdSurface(const std::vector<Eigen::Vector3d>& points)
-  : cloud_(new pcl::PointCloud<pcl::PointXYZ>), tree_(new pcl::search::KdTree<pcl::PointXYZ>)
+      : cloud_(new pcl::PointCloud<pcl::PointXYZ>), tree_(new pcl::search::KdTree<pcl::PointXYZ>)
   {
     for (const auto& p : points)
-      cloud_->push_back(pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                      static_cast<float>(p.z())));
+      cloud_->push_back(
+          pcl::PointXYZ(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())));
     tree_->setInputCloud(cloud_);
     surface_ = std::make_unique<pcl_ls3d::PclTargetSurface<pcl::PointXYZ>>(cloud_, tree_);
   }

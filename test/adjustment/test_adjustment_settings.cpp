@@ -43,8 +43,8 @@ TEST(SourceBlockFromGuess, ReproducesTheGuessAboutTheReductionOrigin)
   EXPECT_EQ(b.values[TX], 0.0);
   EXPECT_EQ(b.values[TY], 0.0);
   EXPECT_EQ(b.values[TZ], 0.0);
-  for (const Eigen::Vector3d x : {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(-40, 7, 12),
-                                  Eigen::Vector3d(100, -50, -3)})
+  for (const Eigen::Vector3d x :
+       {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(-40, 7, 12), Eigen::Vector3d(100, -50, -3)})
     EXPECT_LT((mapByBlock(b, x) - (guess * x.homogeneous()).head<3>()).norm(), 1e-9) << x.transpose();
   // L_e from the guess (the default), P_e from the settings.
   EXPECT_TRUE(b.apriori_values.isApprox(b.values));
@@ -59,7 +59,7 @@ TEST(SourceBlockFromGuess, FixedParametersStartExactlyAtTheirAprioriValues)
   const ParameterBlock b = sourceBlockFromGuess(someGuess(), Eigen::Vector3d(1, 2, 3), rigid);
 
   ASSERT_TRUE(rigid.isFixed(SCALE));
-  EXPECT_EQ(b.values[SCALE], 1.0);  // the guess's scale is 1.02: fixed means L_e, exactly
+  EXPECT_EQ(b.values[SCALE], 1.0);           // the guess's scale is 1.02: fixed means L_e, exactly
   EXPECT_NEAR(b.values[KAPPA], 0.3, 1e-12);  // free parameters keep the guess
   EXPECT_EQ(b.values[TX], 0.0);              // ... and start at 0, not at L_e's 0.5
   EXPECT_TRUE(b.apriori_values.isApprox(rigid.apriori_values));

@@ -58,9 +58,8 @@ assemble(const std::vector<Strip>& strips, const std::vector<ParameterBlock>& bl
     PairMatcher matcher;
     matcher.reset(strips[static_cast<std::size_t>(i)].reduced,
                   strips[static_cast<std::size_t>(j)].surface->surface(), rule, 1.0);
-    const ObservationSet& set =
-        matcher.match(BlockLinearization(blocks[static_cast<std::size_t>(i)]),
-                      BlockLinearization(blocks[static_cast<std::size_t>(j)]), {});
+    const ObservationSet& set = matcher.match(BlockLinearization(blocks[static_cast<std::size_t>(i)]),
+                                              BlockLinearization(blocks[static_cast<std::size_t>(j)]), {});
     PairNormalEquations pair;
     for (const Observation& o : set) {
       PairNormalEquations::Row row;
@@ -139,7 +138,7 @@ randomBlockSystem(unsigned seed, bool flat_block_2)
       if (flat_block_2 && i == 1)
         a[7 + TX] = a[7 + TY] = 0.0;  // block 2 seen only through its first overlap ...
       if (flat_block_2 && i == 2)
-        a[TX] = a[TY] = 0.0;          // ... and its second: tx, ty of block 2 undeterminable
+        a[TX] = a[TY] = 0.0;  // ... and its second: tx, ty of block 2 undeterminable
       pair.add(a, g(rng), 1.0);
     }
     pair.symmetrize();

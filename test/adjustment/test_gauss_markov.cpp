@@ -149,8 +149,7 @@ TEST(SimilarityJacobian, MatchesFiniteDifferences)
     Vector7d p = X.vector(), q = X.vector();
     p[j] += h;
     q[j] -= h;
-    const Eigen::Vector3d fd =
-        (SimilarityTransform(p).apply(x) - SimilarityTransform(q).apply(x)) / (2 * h);
+    const Eigen::Vector3d fd = (SimilarityTransform(p).apply(x) - SimilarityTransform(q).apply(x)) / (2 * h);
     EXPECT_LT((J.col(j) - fd).norm(), 1e-7) << "column " << j;  // central differences, O(h²)
   }
   EXPECT_LT((lin.apply(x) - X.apply(x)).norm(), 1e-12);

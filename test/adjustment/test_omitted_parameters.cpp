@@ -82,7 +82,8 @@ TEST(OmittedParameters, EstimateAndFormalSigmaEqualTheFullRefit)
   const LinearProblem p = makeProblem(rng, 400, beta, 0.1);
   const Restricted r = restrictedFit(p, 3);
   const Eigen::MatrixXd formal_middle = r.sigma0 * r.sigma0 * r.N;
-  const OmittedParameterTest t = testOmittedParameters(r.N, r.gradient, r.qxx, fixedMiddle(formal_middle), r.sigma0, {3, 4});
+  const OmittedParameterTest t =
+      testOmittedParameters(r.N, r.gradient, r.qxx, fixedMiddle(formal_middle), r.sigma0, {3, 4});
   ASSERT_TRUE(t.ok) << t.message;
   ASSERT_EQ(t.parameters.size(), 2u);
   // Independent: the full least-squares solution and its inverse normal matrix.

@@ -45,8 +45,7 @@ TEST(OverlapGrid, NeverCullsAQueryWithATargetPointWithinReach)
       if (d <= reach) {
         ++near;
         EXPECT_TRUE(grid.mayOverlap(q)) << "reach " << reach << " distance " << d;
-      }
-      else if (d > 3.0 * reach + 1.0) {
+      } else if (d > 3.0 * reach + 1.0) {
         ++far;
         far_culled += !grid.mayOverlap(q);
       }
@@ -59,8 +58,8 @@ TEST(OverlapGrid, NeverCullsAQueryWithATargetPointWithinReach)
 
 TEST(OverlapGrid, UnlimitedReachOrEmptyTargetCullsNothing)
 {
-  const PointVectorTargetSurface target({Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0),
-                                          Eigen::Vector3d(0, 1, 0)});
+  const PointVectorTargetSurface target(
+      {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(0, 1, 0)});
   OverlapGrid grid;
   EXPECT_FALSE(grid.build(target, std::numeric_limits<double>::max()));
   EXPECT_TRUE(grid.mayOverlap(Eigen::Vector3d(1e6, 1e6, 1e6)));

@@ -66,8 +66,10 @@ TEST_P(PairMatcherRows, BothBlocksRowsEqualTheNumericalDerivative)
     // (towardsNearestSample, tin_rules.cpp): a bump the rows deliberately leave out.
     pcl::Indices nearest(1);
     std::vector<float> sq(1);
-    f.target.tree().nearestKSearch(pcl::PointXYZ(static_cast<float>(o.foot.x()), static_cast<float>(o.foot.y()),
-                                                 static_cast<float>(o.foot.z())), 1, nearest, sq);
+    f.target.tree().nearestKSearch(pcl::PointXYZ(static_cast<float>(o.foot.x()),
+                                                 static_cast<float>(o.foot.y()),
+                                                 static_cast<float>(o.foot.z())),
+                                   1, nearest, sq);
     if (sq[0] < 0.15f * 0.15f)
       continue;
     source_rows[o.point] = matcher.sourceRow(o);
@@ -122,7 +124,8 @@ TEST(PairMatcher, ObservationsAreOrderedBySourcePointAndCarryTheirGeometry)
     EXPECT_TRUE(std::isfinite(o.surface_variance));
   }
   // Every other point only: the same points keep their indices.
-  const ObservationSet& half = matcher.match(BlockLinearization(source), BlockLinearization(target), {2, false});
+  const ObservationSet& half =
+      matcher.match(BlockLinearization(source), BlockLinearization(target), {2, false});
   for (const Observation& o : half)
     EXPECT_EQ(o.point % 2, 0);
 }

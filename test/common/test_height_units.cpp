@@ -50,11 +50,11 @@ TEST(HeightUnits, TransformationsBetweenFilesOfDifferentUnits)
 // back.
 TEST(HeightUnits, PairToWorkingAndBack)
 {
-  const pcl_ls3d::HeightUnits h{kUsFoot, 1.0};  // target in feet, source in metres
+  const pcl_ls3d::HeightUnits h{kUsFoot, 1.0};                    // target in feet, source in metres
   const Eigen::Vector3d file_origin(500000.0, 5000000.0, 300.0);  // in the target's feet
   pcl::PointCloud<pcl::PointXYZ> target, source;
-  target.push_back(pcl::PointXYZ(1.0f, 2.0f, 28.0f));   // file height 328 ft
-  source.push_back(pcl::PointXYZ(3.0f, 4.0f, -199.0f)); // file height 101 m
+  target.push_back(pcl::PointXYZ(1.0f, 2.0f, 28.0f));    // file height 328 ft
+  source.push_back(pcl::PointXYZ(3.0f, 4.0f, -199.0f));  // file height 101 m
   const pcl::PointCloud<pcl::PointXYZ> target_in = target, source_in = source;
   const Eigen::Vector3d working_origin = pcl_ls3d::pairToWorking(h, file_origin, target, source);
   EXPECT_NEAR(working_origin.z(), 300.0 * kUsFoot, 1e-9);

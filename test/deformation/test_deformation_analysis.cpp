@@ -215,7 +215,8 @@ TEST(DeformationAnalysis, HysteresisRecoversTheLowTail)
 // 2. The whole patch is found (17.1 % of 20 % before LZD's re-centring was fixed).
 TEST(DeformationAnalysis, GridEpochSampleIsNotAliased)
 {
-  const synth::LiSurface li = denseGrid(25.0, synth::DeformationPosition::UPPER_LEFT); // the same 5000-unit extent
+  const synth::LiSurface li =
+      denseGrid(25.0, synth::DeformationPosition::UPPER_LEFT);  // the same 5000-unit extent
   const LiPair pair(li);
   DeformationSettings settings;
   settings.matching_points = 2000;  // 1 in 20 nodes
@@ -272,7 +273,7 @@ TEST(DeformationAnalysis, FlatTerrainFallsBackToTheTranslation)
   EXPECT_NE(r.model_note.find("translation only"), std::string::npos) << r.model_note;
   const Eigen::Matrix4d& T = r.matching.adjustment.transformation;
   EXPECT_TRUE((T.topLeftCorner<3, 3>().isIdentity(0.0))) << T;  // no rotation estimated
-  EXPECT_LT(std::abs(T(2, 3)), 0.01);  // the height is determined (noise 3 cm)
+  EXPECT_LT(std::abs(T(2, 3)), 0.01);                           // the height is determined (noise 3 cm)
   const Detection d = score(r, li);
   EXPECT_GE(d.precision, 0.8);
   EXPECT_GE(d.recall, 0.95);
@@ -347,8 +348,10 @@ TEST(DeformationAnalysis, MmStepHoldsOutTheStartsOutliers)
   s.matching.mm_hold_out_beyond_start = false;
   const DeformationResult all = pair.run(s);
   ASSERT_TRUE(all.ok()) << all.matching.message;
-  EXPECT_LT(pair.errorSigma(all.matching.high_breakdown_transformation), 0.5) << "the start is no longer good";
-  EXPECT_GT(pair.errorSigma(all.matching.adjustment.transformation), 3.0) << "the M-step no longer walks away";
+  EXPECT_LT(pair.errorSigma(all.matching.high_breakdown_transformation), 0.5)
+      << "the start is no longer good";
+  EXPECT_GT(pair.errorSigma(all.matching.adjustment.transformation), 3.0)
+      << "the M-step no longer walks away";
   s.matching.mm_hold_out_beyond_start = true;
   const DeformationResult held = pair.run(s);
   ASSERT_TRUE(held.ok()) << held.matching.message;

@@ -87,7 +87,8 @@ writeLiPairAtUtm(const Scratch& s)
   const synth::LiSurface li = synth::makeLiSurface(ls);
   const Eigen::Vector3d offset(500000.0, 5000000.0, 100.0);
   std::vector<Eigen::Vector3d> epoch;
-  for (const auto& [cloud, name] : {std::make_pair(li.reference, "ref.xyz"), std::make_pair(li.mate, "epoch.xyz")}) {
+  for (const auto& [cloud, name] :
+       {std::make_pair(li.reference, "ref.xyz"), std::make_pair(li.mate, "epoch.xyz")}) {
     std::ofstream out(s.file(name));
     out.precision(17);
     for (const auto& p : *cloud) {
@@ -108,7 +109,8 @@ jsonVector(const nlohmann::json& v)
 
 /// Largest distance between A(p) and B(p) over `points`.
 double
-largestDifference(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B, const std::vector<Eigen::Vector3d>& points)
+largestDifference(const Eigen::Matrix4d& A, const Eigen::Matrix4d& B,
+                  const std::vector<Eigen::Vector3d>& points)
 {
   double worst = 0.0;
   for (const Eigen::Vector3d& p : points)
@@ -137,11 +139,11 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
   const Scratch s;
   const synth::LiSurface li = writeLiPair(s, 20.0, 10.0, synth::DeformationPosition::LOWER_RIGHT);
 
-  const auto run = runTool("pcl_ls3d_deformation",
-                           s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -o " + s.file("res.pcd") +
-                               " -json " + s.file("report.json") + " -map " + s.file("map") +
-                               " -crs EPSG:26917",
-                           s.dir.string());
+  const auto run =
+      runTool("pcl_ls3d_deformation",
+              s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -o " + s.file("res.pcd") + " -json " +
+                  s.file("report.json") + " -map " + s.file("map") + " -crs EPSG:26917",
+              s.dir.string());
   ASSERT_EQ(run.code, 0) << run.err << run.out;
   std::ifstream in(s.file("report.json"));
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -160,7 +162,7 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
     pts.col(static_cast<Eigen::Index>(i)) = (*li.mate)[i].getVector3fMap().cast<double>();
   EXPECT_LT(evaluation::computeTransformError(T, li.truth.matrix(), pts).max, 0.5 * 20.0);
   EXPECT_NEAR(j["percent_deformed"].get<double>(), li.percent, 3.0);
-  EXPECT_FALSE(j["stable_part_ambiguous"].get<bool>());  // 20 % moved: clearly a minority
+  EXPECT_FALSE(j["stable_part_ambiguous"].get<bool>());        // 20 % moved: clearly a minority
   EXPECT_NEAR(j["neighbour_noise"].get<double>(), 20.0, 4.0);  // σ = 20 (√2 σ on the patch)
   // MM (the default) compared its three fits by the stable part's scatter (≈ σ for the good ones).
   ASSERT_TRUE(j.contains("start_choice"));
@@ -211,14 +213,14 @@ TEST(DeformationTool, FindsTruthAndWritesResidualsInEpochOrder)
   EXPECT_GT(tif.validCells(), 1000u);
 
   // Never overwrites an input or an existing output.
-  const auto clobber = runTool("pcl_ls3d_deformation",
-                               s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -o " + s.file("epoch.pcd"),
-                               s.dir.string());
+  const auto clobber =
+      runTool("pcl_ls3d_deformation",
+              s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -o " + s.file("epoch.pcd"), s.dir.string());
   EXPECT_NE(clobber.code, 0);
   EXPECT_EQ(lineCount(clobber.err), 1u) << clobber.err;
-  const auto again = runTool("pcl_ls3d_deformation",
-                             s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -json " + s.file("report.json"),
-                             s.dir.string());
+  const auto again = runTool(
+      "pcl_ls3d_deformation",
+      s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -json " + s.file("report.json"), s.dir.string());
   EXPECT_NE(again.code, 0);
   EXPECT_NE(again.err.find("exists"), std::string::npos) << again.err;
 }
@@ -313,10 +315,10 @@ TEST(DeformationTool, FlatTerrainIsMatchedByTheTranslation)
             std::string::npos)
       << rigid.out << rigid.err;
   // Asked for the translation, there is nothing to note.
-  const auto asked = runTool("pcl_ls3d_deformation",
-                             s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -params 3 -json " +
-                                 s.file("asked.json"),
-                             s.dir.string());
+  const auto asked =
+      runTool("pcl_ls3d_deformation",
+              s.file("ref.pcd") + " " + s.file("epoch.pcd") + " -params 3 -json " + s.file("asked.json"),
+              s.dir.string());
   ASSERT_EQ(asked.code, 0) << asked.err << asked.out;
   const nlohmann::json a = readJson(s.file("asked.json"));
   EXPECT_EQ(a.at("params").get<int>(), 3);
@@ -332,9 +334,10 @@ TEST(DeformationTool, IterationLimitExitsThreeWithOutputsMarked)
   const Scratch s;
   writeLiPair(s, 9.0, 10.0, synth::DeformationPosition::UPPER_LEFT);
   const std::string inputs = s.file("ref.pcd") + " " + s.file("epoch.pcd");
-  const auto limited = runTool("pcl_ls3d_deformation",
-                               inputs + " -max_iter 1 -json " + s.file("limited.json") + " -o " + s.file("limited.pcd"),
-                               s.dir.string());
+  const auto limited =
+      runTool("pcl_ls3d_deformation",
+              inputs + " -max_iter 1 -json " + s.file("limited.json") + " -o " + s.file("limited.pcd"),
+              s.dir.string());
   EXPECT_EQ(limited.code, 3) << limited.err << limited.out;
   EXPECT_NE((limited.out + limited.err).find("not CONVERGED"), std::string::npos) << limited.out;
   EXPECT_TRUE(fs::exists(s.file("limited.pcd")));
@@ -371,7 +374,8 @@ auto
 analyseUtmPair(const Scratch& s)
 {
   return runTool("pcl_ls3d_deformation",
-                 s.file("ref.xyz") + " " + s.file("epoch.xyz") + " -json " + s.file("report.json"), s.dir.string());
+                 s.file("ref.xyz") + " " + s.file("epoch.xyz") + " -json " + s.file("report.json"),
+                 s.dir.string());
 }
 
 }  // namespace
@@ -420,7 +424,8 @@ TEST(DeformationTool, JsonParametersRebuildTheTransformation)
     EXPECT_NE(note.find(key), std::string::npos) << note;
     ASSERT_TRUE(j.contains(key)) << key;
   }
-  const Eigen::Vector3d o_s = jsonVector(j["local_origin_source"]), o_t = jsonVector(j["local_origin_target"]);
+  const Eigen::Vector3d o_s = jsonVector(j["local_origin_source"]),
+                        o_t = jsonVector(j["local_origin_target"]);
   const nlohmann::json& p = j["parameters"];
   const Eigen::Matrix3d R = (Eigen::AngleAxisd(p["phi"].get<double>(), Eigen::Vector3d::UnitY()) *
                              Eigen::AngleAxisd(p["omega"].get<double>(), Eigen::Vector3d::UnitX()) *
@@ -443,8 +448,9 @@ TEST(DeformationTool, IdenticalInputsSayExactFit)
 {
   const Scratch s;
   writeLiPair(s, 20.0, 10.0, synth::DeformationPosition::LOWER_RIGHT);
-  const auto run = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("ref.pcd") + " -json " +
-                                                       s.file("report.json"), s.dir.string());
+  const auto run = runTool("pcl_ls3d_deformation",
+                           s.file("ref.pcd") + " " + s.file("ref.pcd") + " -json " + s.file("report.json"),
+                           s.dir.string());
   ASSERT_EQ(run.code, 0) << run.err << run.out;
   EXPECT_EQ(run.out.find("nan"), std::string::npos) << run.out;
   EXPECT_NE(run.out.find("sigma not estimable (exact fit)"), std::string::npos) << run.out;
@@ -459,7 +465,8 @@ TEST(DeformationTool, HelpStatesTheSubsetsARunDraws)
 {
   const Scratch s;
   writeLiPair(s, 20.0, 10.0, synth::DeformationPosition::LOWER_RIGHT);
-  const auto run = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("epoch.pcd"), s.dir.string());
+  const auto run =
+      runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("epoch.pcd"), s.dir.string());
   ASSERT_EQ(run.code, 0) << run.err << run.out;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(run.out, m, std::regex("(\\d+) subsets in (\\d+) round")));
@@ -501,10 +508,12 @@ TEST(DeformationTool, ConflictingOptionsAreRefused)
   }
   // Below -k, or off, hysteresis is accepted.
   for (const char* ok : {" -k 2 -grow_k 1.5", " -grow_k 0", " -lod95", " -lod95 -grow_k 1.3"}) {
-    const auto r = runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("ref.pcd") + ok, s.dir.string());
+    const auto r =
+        runTool("pcl_ls3d_deformation", s.file("ref.pcd") + " " + s.file("ref.pcd") + ok, s.dir.string());
     EXPECT_EQ(r.code, 0) << ok << ": " << r.err;
     // -lod95 with the default -grow_k 2 (above its 1.96): runs, and says the regions do not grow.
-    EXPECT_EQ(r.err.find("do not grow") != std::string::npos, std::string(ok) == " -lod95") << ok << ": " << r.err;
+    EXPECT_EQ(r.err.find("do not grow") != std::string::npos, std::string(ok) == " -lod95")
+        << ok << ": " << r.err;
   }
 }
 
@@ -537,9 +546,9 @@ TEST(DeformationTool, DegenerateReferenceIsNamed)
   ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("line.pcd"), line), 0);
   ASSERT_EQ(pcl::io::savePCDFileBinary(s.file("strip.pcd"), strip), 0);
   for (const char* estimator : {"mm", "lms", "md"}) {
-    const auto r = runTool("pcl_ls3d_deformation",
-                           s.file("line.pcd") + " " + s.file("strip.pcd") + " -estimator " + estimator,
-                           s.dir.string());
+    const auto r =
+        runTool("pcl_ls3d_deformation",
+                s.file("line.pcd") + " " + s.file("strip.pcd") + " -estimator " + estimator, s.dir.string());
     EXPECT_EQ(r.code, 1) << estimator << ": " << r.err;
     EXPECT_EQ(lineCount(r.err), 1u) << estimator << ": " << r.err;
     EXPECT_NE(r.err.find("degenerate: its points there are collinear"), std::string::npos)

@@ -85,9 +85,8 @@ namespace {
 struct LiCase : li_test::LiSurfacePair
 {
   LiCase(double percent, double c, synth::DeformationPosition position, std::uint32_t seed)
-    : LiSurfacePair(li_test::liSurface(percent, c, position, seed))
-  {
-  }
+      : LiSurfacePair(li_test::liSurface(percent, c, position, seed))
+  {}
   DeformationResult
   run(int rounds, bool hold_out = true) const
   {

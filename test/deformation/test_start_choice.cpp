@@ -50,7 +50,8 @@ TEST(StartChoice, BlockStartRescuesTheCompromise)
     const LiPair pair(liSurface(42.0, 5.0, c.first, c.second));
     const DeformationResult mm = pair.run(false);
     ASSERT_TRUE(mm.ok()) << mm.matching.message;
-    EXPECT_GT(pair.errorSigma(mm.matching.adjustment.transformation), 2.0) << "seed " << c.second << ": MM no longer compromises";
+    EXPECT_GT(pair.errorSigma(mm.matching.adjustment.transformation), 2.0)
+        << "seed " << c.second << ": MM no longer compromises";
     EXPECT_TRUE(mm.start_choice.candidates.empty());
     const DeformationResult chosen = pair.run(true);
     ASSERT_TRUE(chosen.ok()) << chosen.matching.message;
@@ -161,15 +162,15 @@ TEST(StartChoice, PointsGrownByHysteresisDoNotDecideTheMajority)
   DeformationSettings s;
   s.regions.plane_axis = 2;
   s.regions.grow_k = 0.5;
-  const ResidualField field = computeResidualField(pair.points, *pair.surface, *pair.rule, r.matching.adjustment,
-                                                   noise, s.residuals);
+  const ResidualField field =
+      computeResidualField(pair.points, *pair.surface, *pair.rule, r.matching.adjustment, noise, s.residuals);
   const RegionAnalysis grown = analyseRegions(pair.points, field, s.regions);
   std::size_t in_regions = 0;
   for (int id : grown.region)
     in_regions += id > 0 ? 1 : 0;
   ASSERT_GT(2 * in_regions, field.observed);  // the grown regions alone would refuse the fit
-  const double scatter = stablePartScatter(pair.points, *pair.surface, *pair.rule, r.matching.adjustment, noise,
-                                           s.residuals, s.regions);
+  const double scatter = stablePartScatter(pair.points, *pair.surface, *pair.rule, r.matching.adjustment,
+                                           noise, s.residuals, s.regions);
   EXPECT_TRUE(std::isfinite(scatter));
   EXPECT_LT(scatter, 1.2 * kSigma);
 }

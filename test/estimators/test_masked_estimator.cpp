@@ -41,11 +41,11 @@ TEST(MaskedEstimator, HeldOutPointsWeighZeroBeyondTheCut)
   Eigen::VectorXd w(4), inner(4);
   masked.weigh(input, w);
   tukey->weigh(input, inner);
-  EXPECT_EQ(w[0], 0.0);          // point 3: held out, 6 > 5
-  EXPECT_EQ(w[1], inner[1]);     // point 2: not held out, Tukey's weight (6 < 4.685 · 2)
+  EXPECT_EQ(w[0], 0.0);       // point 3: held out, 6 > 5
+  EXPECT_EQ(w[1], inner[1]);  // point 2: not held out, Tukey's weight (6 < 4.685 · 2)
   EXPECT_GT(w[1], 0.0);
-  EXPECT_EQ(w[2], inner[2]);     // point 1: held out but back within 2.5 ŝ
-  EXPECT_EQ(w[3], inner[3]);     // point 0
+  EXPECT_EQ(w[2], inner[2]);  // point 1: held out but back within 2.5 ŝ
+  EXPECT_EQ(w[3], inner[3]);  // point 0
   EXPECT_DOUBLE_EQ(masked.scale(input), kScale);
   EXPECT_NE(masked.name().find(tukey->name()), std::string::npos);
 }

@@ -34,7 +34,8 @@ struct Field
   double
   mad() const
   {
-    return madScale(Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(residuals.size())));
+    return madScale(
+        Eigen::Map<const Eigen::VectorXd>(residuals.data(), static_cast<Eigen::Index>(residuals.size())));
   }
   std::vector<Eigen::Vector3d> points;
   std::vector<double> residuals;
@@ -53,7 +54,9 @@ TEST(NeighbourNoise, WhiteNoiseAlone)
 // A tilt of 20 σ across the grid and a third of it raised by 5 σ: the MAD sees them, σ_d does not.
 TEST(NeighbourNoise, SmoothPartsCancel)
 {
-  const Field f([](int x, int y) { return (x < 30 && y < 40 ? 5.0 * kSigma : 0.0) + 20.0 * kSigma * (x + y) / 118.0; }, 4);
+  const Field f(
+      [](int x, int y) { return (x < 30 && y < 40 ? 5.0 * kSigma : 0.0) + 20.0 * kSigma * (x + y) / 118.0; },
+      4);
   const double sd = neighbourDifferenceScale(f.points, f.residuals);
   EXPECT_NEAR(sd, kSigma, 0.12 * kSigma);
   EXPECT_GT(f.mad(), 3.0 * kSigma);
@@ -76,8 +79,8 @@ TEST(NeighbourNoise, MissingResidualsAndTinyInputs)
   Field f([](int, int) { return 0.0; }, 6);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t i = 0; i < f.residuals.size(); i += 3)
-    f.residuals[i] = nan;                               // a third without a residual
-  f.points[1] = Eigen::Vector3d::Constant(nan);          // a non-finite point
+    f.residuals[i] = nan;                        // a third without a residual
+  f.points[1] = Eigen::Vector3d::Constant(nan);  // a non-finite point
   const double sd = neighbourDifferenceScale(f.points, f.residuals);
   EXPECT_TRUE(std::isfinite(sd));
   EXPECT_NEAR(sd, kSigma, 0.12 * kSigma);

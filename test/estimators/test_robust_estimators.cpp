@@ -74,7 +74,8 @@ TEST(RobustEstimatorFactory, ParsesNamesAndConstants)
   v << 3.0;
   parseRobustEstimator("huber:1.5")->computeWeights(v, Eigen::VectorXd(), 1.0, w);
   EXPECT_DOUBLE_EQ(w[0], 0.5);
-  for (const char* bad : {"", "median", "zuo:", "zuo:abc", "zuo:6x", "zuo:-1", "zuo:0", "ls:2", "huber:inf"}) {
+  for (const char* bad :
+       {"", "median", "zuo:", "zuo:abc", "zuo:6x", "zuo:-1", "zuo:0", "ls:2", "huber:inf"}) {
     why.clear();
     EXPECT_FALSE(parseRobustEstimator(bad, &why)) << bad;
     EXPECT_FALSE(why.empty()) << bad;
@@ -84,12 +85,14 @@ TEST(RobustEstimatorFactory, ParsesNamesAndConstants)
 // A choice is a value: its text reads back to the same type and constant, bit for bit.
 TEST(RobustEstimatorFactory, ChoiceTextRoundTrips)
 {
-  for (const std::string text : {"zuo", "zuo:7", "huber:1.5", "tukey", "M", "md:0.1", "ls", "gm:3.3333333333333335"}) {
+  for (const std::string text :
+       {"zuo", "zuo:7", "huber:1.5", "tukey", "M", "md:0.1", "ls", "gm:3.3333333333333335"}) {
     RobustEstimatorChoice choice, again;
     ASSERT_TRUE(parseRobustEstimatorChoice(text, choice)) << text;
     ASSERT_TRUE(parseRobustEstimatorChoice(toString(choice), again)) << toString(choice);
     EXPECT_EQ(again.type, choice.type) << text;
-    EXPECT_TRUE(std::isnan(choice.constant) ? std::isnan(again.constant) : again.constant == choice.constant) << text;
+    EXPECT_TRUE(std::isnan(choice.constant) ? std::isnan(again.constant) : again.constant == choice.constant)
+        << text;
     EXPECT_EQ(makeRobustEstimator(choice)->name(), parseRobustEstimator(text)->name()) << text;
   }
   EXPECT_EQ(toString(RobustEstimatorChoice{}), "zuo");

@@ -42,7 +42,7 @@ struct LiRun : li_test::LiSurfacePair
 struct HandMadePair
 {
   HandMadePair(const std::vector<Eigen::Vector3d>& reference, std::vector<Eigen::Vector3d> epoch)
-  : points(std::move(epoch))
+      : points(std::move(epoch))
   {
     pcl::PointCloud<PointLiDAR>::Ptr cloud(new pcl::PointCloud<PointLiDAR>);
     for (const Eigen::Vector3d& p : reference) {
@@ -146,8 +146,8 @@ TEST(RobustMatching, NoDeformationGivesTheLeastSquaresAnswer)
     Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(run.points.size()));
     for (std::size_t i = 0; i < run.points.size(); ++i)
       pts.col(static_cast<Eigen::Index>(i)) = run.points[i];
-    const double diff = evaluation::computeTransformError(r.adjustment.transformation,
-                                                          ls.adjustment.transformation, pts).max;
+    const double diff =
+        evaluation::computeTransformError(r.adjustment.transformation, ls.adjustment.transformation, pts).max;
     EXPECT_LT(diff, 0.1 * kSigma) << toString(m);
     // M-D's σ̂ is Baarda's σ0 of the Tukey-weighted solve, Σ w v² / (n − u): about 17 % below σ
     // (documented in md_estimator.h); the others are consistent.
@@ -316,15 +316,16 @@ TEST(RobustMatching, KeptScaleGateRefusesTheCompromise)
   const LiRun run(li);
   RobustMatchingSettings s;
   s.method = RobustMethod::LMS;
-  s.block_start = true;  // as the grid was measured (the analysis' default)
+  s.block_start = true;          // as the grid was measured (the analysis' default)
   s.max_kept_scale_ratio = 1.5;  // off by default (dense surfaces, robust_matching.h)
-  const RobustMatchingReport gated = robustMatching(run.points, run.indices, *run.surface, *run.rule, s,
-                                                    Eigen::Matrix4d::Identity());
+  const RobustMatchingReport gated =
+      robustMatching(run.points, run.indices, *run.surface, *run.rule, s, Eigen::Matrix4d::Identity());
   s.max_kept_scale_ratio = 0.0;
-  const RobustMatchingReport ungated = robustMatching(run.points, run.indices, *run.surface, *run.rule, s,
-                                                      Eigen::Matrix4d::Identity());
+  const RobustMatchingReport ungated =
+      robustMatching(run.points, run.indices, *run.surface, *run.rule, s, Eigen::Matrix4d::Identity());
   ASSERT_TRUE(ungated.isSolutionUsable()) << ungated.message;
-  EXPECT_GT(run.errorSigma(ungated.adjustment.transformation), 2.0) << "the case no longer shows the compromise";
+  EXPECT_GT(run.errorSigma(ungated.adjustment.transformation), 2.0)
+      << "the case no longer shows the compromise";
   EXPECT_GT(gated.kept_scale, 1.5 * gated.final_neighbour_noise);
   EXPECT_FALSE(gated.isSolutionUsable());
   EXPECT_EQ(gated.termination, TerminationType::UNRELIABLE);

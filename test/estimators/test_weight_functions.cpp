@@ -56,7 +56,7 @@ TEST(WeightFunctions, TukeyHandValues)
   EXPECT_DOUBLE_EQ(weightOf(t, 0.0, 1.0), 1.0);
   EXPECT_NEAR(weightOf(t, 4.685, 1.0), 0.5625, 1e-12);  // u = c/2
   EXPECT_NEAR(weightOf(t, -4.685, 1.0), 0.5625, 1e-12);
-  EXPECT_DOUBLE_EQ(weightOf(t, 9.37, 1.0), 0.0);        // u = c
+  EXPECT_DOUBLE_EQ(weightOf(t, 9.37, 1.0), 0.0);  // u = c
   EXPECT_DOUBLE_EQ(weightOf(t, 20.0, 1.0), 0.0);
   EXPECT_NEAR(tukeyWeight(1.0, 4.685), std::pow(1.0 - 1.0 / (4.685 * 4.685), 2), 1e-15);
 }
@@ -96,8 +96,8 @@ TEST(WeightFunctions, MdUsesRedundancyNumbers)
 TEST(WeightFunctions, ScaleEstimators)
 {
   EXPECT_NEAR(lmsScale(1.0, 107, 7), 1.4826 * 1.05, 1e-12);
-  EXPECT_NEAR(ltsScale(1.0, 0.5), 2.6482, 2e-3);   // 1 / √(1 − 2 q φ(q) / 0.5), q = 0.6745
-  EXPECT_NEAR(ltsScale(4.0, 1.0), 2.0, 1e-12);      // no trimming: plain RMS
+  EXPECT_NEAR(ltsScale(1.0, 0.5), 2.6482, 2e-3);  // 1 / √(1 − 2 q φ(q) / 0.5), q = 0.6745
+  EXPECT_NEAR(ltsScale(4.0, 1.0), 2.0, 1e-12);    // no trimming: plain RMS
   // N(0, 1) sample: every scale is consistent (±4 % on 20000 draws).
   synth::Random rng(3);
   Eigen::VectorXd z(20000);
@@ -159,8 +159,8 @@ TEST(WeightFunctions, IrlsOnPlantedOutlierRegression)
   };
   const Eigen::Vector2d ls = irls(LeastSquaresEstimator());
   EXPECT_GT(std::abs(ls[0] - 2.0), 0.5);  // pulled up by the outliers
-  for (const RobustEstimator::Ptr& e : {makeRobustEstimator(RobustEstimatorType::TUKEY),
-                                        makeRobustEstimator(RobustEstimatorType::MD)}) {
+  for (const RobustEstimator::Ptr& e :
+       {makeRobustEstimator(RobustEstimatorType::TUKEY), makeRobustEstimator(RobustEstimatorType::MD)}) {
     const Eigen::Vector2d b = irls(*e);
     EXPECT_NEAR(b[0], 2.0, 0.05) << e->name();
     EXPECT_NEAR(b[1], 0.5, 0.01) << e->name();

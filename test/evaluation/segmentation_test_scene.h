@@ -48,10 +48,18 @@ makeSmallScene(unsigned seed = 1)
   for (int i = 0; i < 700; ++i) {
     const float t = u(rng), z = 8.f * u(rng);
     switch (i % 4) {
-      case 0: add(5.f + 12.f * t, 5.f, z, 6); break;
-      case 1: add(5.f + 12.f * t, 15.f, z, 6); break;
-      case 2: add(5.f, 5.f + 10.f * t, z, 6); break;
-      default: add(17.f, 5.f + 10.f * t, z, 6); break;
+    case 0:
+      add(5.f + 12.f * t, 5.f, z, 6);
+      break;
+    case 1:
+      add(5.f + 12.f * t, 15.f, z, 6);
+      break;
+    case 2:
+      add(5.f, 5.f + 10.f * t, z, 6);
+      break;
+    default:
+      add(17.f, 5.f + 10.f * t, z, 6);
+      break;
     }
   }
   // Tree crowns: points in an ellipsoid (radius 3 m, 2.5 m half height, centre 6 m up).

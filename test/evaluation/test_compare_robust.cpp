@@ -48,8 +48,8 @@ TEST(CompareRobust, RobustRowsRecoverTheStablePart)
 
   const std::string out = (dir / "cmp.json").string();
   const std::string args = (dir / "mate.pcd").string() + " " + (dir / "ref.pcd").string() +
-                           " -methods ls3d-lzd,robust -max_corr 1000 -truth " + (dir / "truth.json").string() +
-                           " -json " + out;
+                           " -methods ls3d-lzd,robust -max_corr 1000 -truth " +
+                           (dir / "truth.json").string() + " -json " + out;
   ASSERT_EQ(pcl_ls3d_test::runToolMerged("pcl_ls3d_compare", args, dir.string()).code, 0);
   std::ifstream in(out);
   const auto j = nlohmann::json::parse(in);

@@ -31,7 +31,8 @@ const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_compare";
 int
 run(const std::string& args, const fs::path& log, std::string& output)
 {
-  const pcl_ls3d_test::ToolRun r = pcl_ls3d_test::runToolMerged("pcl_ls3d_compare", args, log.parent_path().string());
+  const pcl_ls3d_test::ToolRun r =
+      pcl_ls3d_test::runToolMerged("pcl_ls3d_compare", args, log.parent_path().string());
   output = r.out;
   return r.code;
 }
@@ -79,12 +80,9 @@ protected:
     s.origin = Eigen::Vector3d(512000.0, 5402000.0, 250.0);
     const auto pair = synth::makeRegistrationPair(s);
     std::string error;
-    ASSERT_TRUE(io::saveCloud((dir_ / "source.pcd").string(), *pair.source, pair.origin, error))
-        << error;
-    ASSERT_TRUE(io::saveCloud((dir_ / "target.pcd").string(), *pair.target, pair.origin, error))
-        << error;
-    ASSERT_TRUE(synth::writeTextFile((dir_ / "truth.json").string(), synth::truthJson(pair, s),
-                                     true, error))
+    ASSERT_TRUE(io::saveCloud((dir_ / "source.pcd").string(), *pair.source, pair.origin, error)) << error;
+    ASSERT_TRUE(io::saveCloud((dir_ / "target.pcd").string(), *pair.target, pair.origin, error)) << error;
+    ASSERT_TRUE(synth::writeTextFile((dir_ / "truth.json").string(), synth::truthJson(pair, s), true, error))
         << error;
   }
   static void
@@ -113,9 +111,7 @@ TEST_F(CompareTool, AllMethodsWithTruth)
     FAIL() << kTool << " not built";
   const fs::path out = dir_ / "result.json";
   fs::remove(out);
-  ASSERT_EQ(run(inputs() + " -truth " + (dir_ / "truth.json").string() + " -json " +
-                out.string()),
-            0);
+  ASSERT_EQ(run(inputs() + " -truth " + (dir_ / "truth.json").string() + " -json " + out.string()), 0);
   std::ifstream in(out);
   const auto j = nlohmann::json::parse(in);
   ASSERT_EQ(j["methods"].size(), 7u);
@@ -181,7 +177,7 @@ TEST_F(CompareTool, BadInputFails)
     nan_only << "nan nan nan\nnan nan nan\n";
   }
   EXPECT_NE(run((dir_ / "nan_only.xyz").string() + " " + (dir_ / "target.pcd").string()), 0);
-  EXPECT_NE(run(src), 0);  // one file only
+  EXPECT_NE(run(src), 0);                          // one file only
   EXPECT_NE(run(inputs() + " -truth " + src), 0);  // not JSON
   {
     std::ofstream bad(dir_ / "bad_truth.json");
@@ -194,7 +190,9 @@ TEST_F(CompareTool, BadInputFails)
   EXPECT_EQ(fs::file_size(src), size_before);
 
   const fs::path existing = dir_ / "existing.json";
-  { std::ofstream(existing) << "keep"; }
+  {
+    std::ofstream(existing) << "keep";
+  }
   EXPECT_NE(run(inputs() + " -methods icp -json " + existing.string()), 0);
   std::ifstream in(existing);
   std::string content;
@@ -266,14 +264,15 @@ TEST_F(CompareTool, FailedRunShowsNoFigures)
       for (int k = 0; k < 40; ++k)
         ft << i << " " << k << " " << 0.1 * std::sin(0.3 * i) * std::cos(0.2 * k) << "\n";
     for (int i = 0; i < 10; ++i)
-      fs_ << 10 + i << " " << 15 + i << " " << 0.1 * std::sin(0.3 * (10 + i)) * std::cos(0.2 * (15 + i)) << "\n";
+      fs_ << 10 + i << " " << 15 + i << " " << 0.1 * std::sin(0.3 * (10 + i)) * std::cos(0.2 * (15 + i))
+          << "\n";
     fj << R"({"transformation": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})";
   }
   const fs::path out = dir_ / "few.json";
   fs::remove(out);
   std::string text;
-  run(src.string() + " " + tgt.string() + " -methods ls3d-lnd -truth " + truth.string() +
-          " -json " + out.string(),
+  run(src.string() + " " + tgt.string() + " -methods ls3d-lnd -truth " + truth.string() + " -json " +
+          out.string(),
       dir_ / "few.log", text);
   const std::string row = tableRow(text, "LS3D-LND");
   ASSERT_NE(row.find("TOO_FEW"), std::string::npos) << text;
@@ -312,8 +311,8 @@ TEST_F(CompareTool, UnitsFollowTheCrs)
     io::CloudInfo info;
     std::string error;
     ASSERT_TRUE(io::loadCloud((dir_ / (std::string(name) + ".pcd")).string(), cloud, info, error));
-    ASSERT_TRUE(io::saveCloud((dir_ / (std::string(name) + ".las")).string(), cloud, info.origin,
-                              error, feet))
+    ASSERT_TRUE(
+        io::saveCloud((dir_ / (std::string(name) + ".las")).string(), cloud, info.origin, error, feet))
         << error;
   }
   std::string text;
@@ -347,12 +346,11 @@ TEST_F(CompareTool, UnitsFollowTheCrs)
     io::CloudInfo info;
     std::string error;
     ASSERT_TRUE(io::loadCloud((dir_ / (std::string(name) + ".las")).string(), cloud, info, error));
-    ASSERT_TRUE(io::saveCloud((dir_ / (std::string(name) + "_ft.pcd")).string(), cloud,
-                              info.origin, error, pcd_feet))
+    ASSERT_TRUE(
+        io::saveCloud((dir_ / (std::string(name) + "_ft.pcd")).string(), cloud, info.origin, error, pcd_feet))
         << error;
   }
-  run((dir_ / "source_ft.pcd").string() + " " + (dir_ / "target_ft.pcd").string() +
-          " -methods icp -iter 2",
+  run((dir_ / "source_ft.pcd").string() + " " + (dir_ / "target_ft.pcd").string() + " -methods icp -iter 2",
       dir_ / "ft_pcd.log", text);
   EXPECT_NE(text.find("RMS[ft]"), std::string::npos) << text;
 

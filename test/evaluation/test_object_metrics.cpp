@@ -249,8 +249,7 @@ TEST(ReferenceObjects, FromIdsTakeTheMajorityGroup)
   const std::vector<int> labels{5, 4, 3, 2, 6, 6, 2, 1};
   ReferenceObjects r;
   std::string err;
-  ASSERT_TRUE(referenceObjectsFromIds(ids, labels, defaultClassGroups(), defaultExcludedCodes(), r,
-                                      err));
+  ASSERT_TRUE(referenceObjectsFromIds(ids, labels, defaultClassGroups(), defaultExcludedCodes(), r, err));
   ASSERT_EQ(r.objects(), 2u);
   EXPECT_EQ(r.group_of_object[0], 2);  // vegetation
   EXPECT_EQ(r.size[0], 4u);

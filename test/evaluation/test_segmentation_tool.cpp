@@ -22,10 +22,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -56,8 +56,7 @@ shareWritten(const std::map<int, std::map<int, std::size_t>>& truth_to_code, int
   for (const auto& [c, n] : row->second)
     all += n;
   const auto hit = row->second.find(code);
-  return hit == row->second.end() ? 0.0
-                                  : static_cast<double>(hit->second) / static_cast<double>(all);
+  return hit == row->second.end() ? 0.0 : static_cast<double>(hit->second) / static_cast<double>(all);
 }
 
 std::size_t
@@ -72,13 +71,12 @@ countNonEmptyLines(const std::string& s)
 
 class SegmentTool : public ::testing::Test
 {
- protected:
+protected:
   void
   SetUp() override
   {
-    dir_ = fs::temp_directory_path() /
-           ("pcl_ls3d_segment_test_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() / ("pcl_ls3d_segment_test_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_segment";
@@ -96,7 +94,8 @@ class SegmentTool : public ::testing::Test
   ToolResult
   run(const std::string& args)
   {
-    return pcl_ls3d_test::runTool(tool_.filename().string(), args, dir_.string());  // tool_ is in the tool dir
+    return pcl_ls3d_test::runTool(tool_.filename().string(), args,
+                                  dir_.string());  // tool_ is in the tool dir
   }
 
   fs::path dir_, tool_, input_;
@@ -165,8 +164,8 @@ TEST_F(SegmentTool, WritesEveryPointInOrderWithConsistentLabels)
   EXPECT_EQ(mismatches, 0u);
   // Numbers of returns not one per point are refused with a reason, before any work.
   pcl_ls3d::evaluation::SegmentationRun refused;
-  EXPECT_FALSE(pcl_ls3d::evaluation::runSegmentation(
-      xyz, {}, refused, error, std::vector<std::uint8_t>(xyz->size() + 1, 1)));
+  EXPECT_FALSE(pcl_ls3d::evaluation::runSegmentation(xyz, {}, refused, error,
+                                                     std::vector<std::uint8_t>(xyz->size() + 1, 1)));
   EXPECT_NE(error.find("numbers of returns for"), std::string::npos) << error;
   EXPECT_TRUE(refused.segments.empty());
 
@@ -203,21 +202,21 @@ TEST_F(SegmentTool, BadInputExitsNonZeroWithOneErrorLine)
   const fs::path few = dir_ / "few.xyz";
   std::ofstream(few) << "0 0 0\n1 0 0\n0 1 0\n1 1 0.1\n2 0 0\n";
   const std::string cases[] = {
-      (dir_ / "missing.las").string(),               // missing file
-      nan_file.string(),                             // no finite point
-      input_.string() + " -bogus 3",                 // unknown option
-      input_.string() + " -mode fancy",              // unknown mode
-      input_.string() + " -Nt abc",                  // not a number
-      input_.string() + " -k 50,10",                 // impossible range
-      input_.string() + " -o " + input_.string(),    // output = input
-      input_.string() + " -classes ground",          // bad class spec
-      input_.string() + " -min_fragment -5",         // negative count (was silently the default)
-      input_.string() + " -threads 1 -threads abc",  // repeated option (was: first value used)
+      (dir_ / "missing.las").string(),                  // missing file
+      nan_file.string(),                                // no finite point
+      input_.string() + " -bogus 3",                    // unknown option
+      input_.string() + " -mode fancy",                 // unknown mode
+      input_.string() + " -Nt abc",                     // not a number
+      input_.string() + " -k 50,10",                    // impossible range
+      input_.string() + " -o " + input_.string(),       // output = input
+      input_.string() + " -classes ground",             // bad class spec
+      input_.string() + " -min_fragment -5",            // negative count (was silently the default)
+      input_.string() + " -threads 1 -threads abc",     // repeated option (was: first value used)
       input_.string() + " -mode pcl_rg -level planes",  // -level means nothing to pcl_rg
       input_.string() + " -o /proc/pcl_ls3d_seg.pcd",   // no file can be created there, even as root
       input_.string() + " -json /proc/pcl_ls3d_seg.json",
-      few.string(),                                  // fewer points than the smallest neighbourhood
-      "",                                            // no input at all -> help, exit 1
+      few.string(),  // fewer points than the smallest neighbourhood
+      "",            // no input at all -> help, exit 1
   };
   for (const auto& args : cases) {
     const ToolResult r = run(args);
@@ -314,8 +313,7 @@ TEST_F(SegmentTool, NonFinitePointsKeepTheirPlaceWithLabelZero)
 TEST_F(SegmentTool, EvaluatePrintsObjectTablesForFourMethods)
 {
   const fs::path js = dir_ / "eval.json";
-  const ToolResult r =
-      run(input_.string() + " -evaluate -object_radius 3 -json " + js.string());
+  const ToolResult r = run(input_.string() + " -evaluate -object_radius 3 -json " + js.string());
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* m : {"Object-based", "Fragmentation", "voxel |", "codes 0/1 excluded"})
     EXPECT_NE(r.out.find(m), std::string::npos) << m << "\n" << r.out;
@@ -339,8 +337,7 @@ TEST_F(SegmentTool, EvaluatePrintsObjectTablesForFourMethods)
 TEST_F(SegmentTool, ScoredCodeOneIsNotCalledExcluded)
 {
   // Issue 11 defect 6: with -classes naming code 1 the header must not claim it is excluded.
-  const ToolResult r =
-      run(input_.string() + " -evaluate -classes ground=2,building=6,vegetation=5,other=1");
+  const ToolResult r = run(input_.string() + " -evaluate -classes ground=2,building=6,vegetation=5,other=1");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.out.find("0/1 excluded"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("code 0 excluded"), std::string::npos) << r.out;
@@ -362,8 +359,8 @@ TEST_F(SegmentTool, FailedBaselineIsARowNotTheRunsFailure)
   }
   const fs::path in = dir_ / "line.pcd", out = dir_ / "line_seg.pcd", js = dir_ / "line.json";
   ASSERT_EQ(pcl::io::savePCDFileBinary(in.string(), line), 0);
-  const ToolResult r = run(in.string() + " -mode pcl_rg -evaluate -o " + out.string() +
-                           " -json " + js.string());
+  const ToolResult r =
+      run(in.string() + " -mode pcl_rg -evaluate -o " + out.string() + " -json " + js.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("failed:"), std::string::npos) << r.out;
   const auto report = nlohmann::json::parse(slurp(js));
@@ -441,7 +438,9 @@ TEST_F(SegmentTool, TopViewRefusesEmptyInputAndUnwritableOutput)
   std::string error;
   ASSERT_TRUE(pcl_ls3d::maps::readPng(png.string(), image, error)) << error;
   EXPECT_GT(image.width(), 10);
-  { std::ofstream(dir_ / "empty.pcd"); }
+  {
+    std::ofstream(dir_ / "empty.pcd");
+  }
   ToolResult r = run((dir_ / "empty.pcd").string() + " " + (dir_ / "empty.png").string());
   EXPECT_EQ(r.code, 1) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
@@ -626,8 +625,8 @@ TEST_F(SegmentTool, TopViewClassLegendShowsTheClassesPresent)
     GTEST_SKIP() << "render_top_view not built (PCL_LS3D_BUILD_BENCHMARKS=OFF)";
   tool_ = viewer;
   // The tool's ASPRS palette (render_top_view.cpp, classColour) of classes 2–6, 9, 14, 15, 64.
-  const std::map<int, std::uint32_t> palette = {{2, 0xa0785a}, {3, 0x9ad07a}, {4, 0x4caf50},
-                                                {5, 0x1b5e20}, {6, 0xd03030}, {9, 0x3070ff},
+  const std::map<int, std::uint32_t> palette = {{2, 0xa0785a},  {3, 0x9ad07a},  {4, 0x4caf50},
+                                                {5, 0x1b5e20},  {6, 0xd03030},  {9, 0x3070ff},
                                                 {14, 0xffe000}, {15, 0xff8c00}, {64, 0x2040c0}};
   auto marginColours = [&](const fs::path& cloud) -> std::set<int> {
     const fs::path png = dir_ / "classes.png";
@@ -683,9 +682,9 @@ TEST_F(SegmentTool, TopViewScaleBarMatchesItsLabel)
     double length = 0.0;
     int pixels = 0, x = 0, y = 0;
     char unit[8] = {};
-    ASSERT_EQ(std::sscanf(r.out.c_str() + at, "Scale bar %lf %7s = %d px at %d,%d", &length, unit,
-                          &pixels, &x, &y),
-              5)
+    ASSERT_EQ(
+        std::sscanf(r.out.c_str() + at, "Scale bar %lf %7s = %d px at %d,%d", &length, unit, &pixels, &x, &y),
+        5)
         << r.out;
     EXPECT_STREQ(unit, "m");  // a PCD declares no CRS: metres
     EXPECT_EQ(pixels, std::lround(length / pixel)) << length << " m at " << pixel;
@@ -755,7 +754,8 @@ TEST_F(SegmentTool, SegmentsFileCarriesObjectClasses)
     EXPECT_NE(described.out.find(" " + std::to_string(code.at(name)) + ":" +
                                  std::to_string(counts["points"].get<std::size_t>())),
               std::string::npos)
-        << name << "\n" << described.out;
+        << name << "\n"
+        << described.out;
   tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_convert";
   ASSERT_EQ(run(seg.string() + " " + las.string()).code, 0);
   pcl::PointCloud<pcl_ls3d::PointLiDAR> converted;
@@ -829,8 +829,7 @@ TEST_F(SegmentTool, SegmentsFileKeepsTheInputCrs)
 
   tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_info";
   const ToolResult described = run(seg.string());
-  EXPECT_NE(described.out.find("crs RGF93 v1 / Lambert-93 (recorded in the header)"),
-            std::string::npos)
+  EXPECT_NE(described.out.find("crs RGF93 v1 / Lambert-93 (recorded in the header)"), std::string::npos)
       << described.out;
   tool_ = fs::path(PCL_LS3D_TOOL_DIR) / "pcl_ls3d_convert";
   ASSERT_EQ(run(seg.string() + " " + back.string()).code, 0);
@@ -868,8 +867,8 @@ TEST_F(SegmentTool, FeetAreSegmentedInMetres)
   options.las_minor_version = 4;
   const fs::path las = dir_ / "feet.las", seg = dir_ / "SEGMENTS.pcd", js = dir_ / "r.json";
   std::string error;
-  ASSERT_TRUE(pcl_ls3d::io::saveCloud(las.string(), feet, Eigen::Vector3d(2000000.0, 800000.0, 0.0),
-                                      error, options))
+  ASSERT_TRUE(
+      pcl_ls3d::io::saveCloud(las.string(), feet, Eigen::Vector3d(2000000.0, 800000.0, 0.0), error, options))
       << error;
   const ToolResult r = run(las.string() + " -o " + seg.string() + " -json " + js.string());
   ASSERT_EQ(r.code, 0) << r.err;
@@ -885,8 +884,7 @@ TEST_F(SegmentTool, FeetAreSegmentedInMetres)
   std::map<int, std::map<int, std::size_t>> truth_to_class;  // generator code -> written code
   for (std::size_t i = 0; i < written.size(); ++i) {
     ASSERT_NEAR(written[i].x, feet[i].x, 0.02f) << i;  // the file's unit, not metres
-    const int truth = feet[i].classification >= 3 && feet[i].classification <= 5
-                          ? 5 : feet[i].classification;
+    const int truth = feet[i].classification >= 3 && feet[i].classification <= 5 ? 5 : feet[i].classification;
     ++truth_to_class[truth][written[i].classification];
   }
   EXPECT_GE(shareWritten(truth_to_class, 2, 2), 0.95);
@@ -908,8 +906,7 @@ TEST_F(SegmentTool, DegreesAreRefused)
   options.las_vlrs = {pcl_ls3d::maps::wktVlr(wkt)};
   const fs::path las = dir_ / "degrees.las", seg = dir_ / "SEGMENTS.pcd";
   std::string error;
-  ASSERT_TRUE(pcl_ls3d::io::saveCloud(las.string(), lidar, Eigen::Vector3d(2.0, 48.0, 0.0), error,
-                                      options))
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(las.string(), lidar, Eigen::Vector3d(2.0, 48.0, 0.0), error, options))
       << error;
   const ToolResult r = run(las.string() + " -o " + seg.string());
   EXPECT_EQ(r.code, 1);

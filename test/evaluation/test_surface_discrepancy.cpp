@@ -20,8 +20,7 @@ grid(F h)
   for (int i = -20; i <= 20; ++i)
     for (int j = -20; j <= 20; ++j) {
       const double x = 0.5 * i, y = 0.5 * j;
-      c->push_back(pcl::PointXYZ(static_cast<float>(x), static_cast<float>(y),
-                                 static_cast<float>(h(x, y))));
+      c->push_back(pcl::PointXYZ(static_cast<float>(x), static_cast<float>(y), static_cast<float>(h(x, y))));
     }
   return c;
 }
@@ -61,8 +60,7 @@ TEST(SurfaceDiscrepancy, LiftedPlane)
 // curved grid whose points correspond one to one; the rigid PCL-ICP cannot (scale stays 1).
 TEST(SurfaceDiscrepancy, PclIcpWithScaleRow)
 {
-  const auto target =
-      grid([](double x, double y) { return 0.5 * std::sin(0.4 * x) * std::cos(0.3 * y); });
+  const auto target = grid([](double x, double y) { return 0.5 * std::sin(0.4 * x) * std::cos(0.3 * y); });
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
   truth.topLeftCorner<3, 3>() *= 1.01;
   truth(0, 3) = 0.05;
@@ -70,8 +68,8 @@ TEST(SurfaceDiscrepancy, PclIcpWithScaleRow)
   const Eigen::Matrix4d inv = truth.inverse();
   for (const auto& p : *target) {
     const Eigen::Vector4d x = inv * Eigen::Vector4d(p.x, p.y, p.z, 1.0);
-    source->push_back(pcl::PointXYZ(static_cast<float>(x.x()), static_cast<float>(x.y()),
-                                    static_cast<float>(x.z())));
+    source->push_back(
+        pcl::PointXYZ(static_cast<float>(x.x()), static_cast<float>(x.y()), static_cast<float>(x.z())));
   }
   EXPECT_EQ(pclMethodName(PclMethod::ICP_SCALE), "PCL-ICP-S");
   const RegistrationRun scaled = runPclMethod(PclMethod::ICP_SCALE, source, target);

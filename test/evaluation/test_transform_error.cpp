@@ -47,8 +47,8 @@ TEST(TransformError, TranslationOnly)
 {
   Eigen::Matrix4d T_est = Eigen::Matrix4d::Identity();
   T_est.block<3, 1>(0, 3) = Eigen::Vector3d(0.3, 0.0, 0.4);
-  const auto e = computeTransformError(T_est, Eigen::Matrix4d::Identity(),
-                                       points({{0, 0, 0}, {10, 0, 0}, {0, 50, -7}}));
+  const auto e =
+      computeTransformError(T_est, Eigen::Matrix4d::Identity(), points({{0, 0, 0}, {10, 0, 0}, {0, 50, -7}}));
   ASSERT_TRUE(e.valid);
   EXPECT_NEAR(e.mean, 0.5, 1e-12);
   EXPECT_NEAR(e.rms, 0.5, 1e-12);
@@ -77,8 +77,7 @@ TEST(TransformError, RotationAboutZ)
   EXPECT_NEAR(e.parameters[pcl_ls3d::KAPPA], 0.01, 1e-12);
   EXPECT_NEAR(e.parameters[pcl_ls3d::PHI], 0.0, 1e-12);
   EXPECT_NEAR(e.parameters[pcl_ls3d::OMEGA], 0.0, 1e-12);
-  EXPECT_NEAR(displacementError(est.matrix(), Eigen::Matrix4d::Identity(), {0, 20, 0}),
-              20.0 * chord, 1e-12);
+  EXPECT_NEAR(displacementError(est.matrix(), Eigen::Matrix4d::Identity(), {0, 20, 0}), 20.0 * chord, 1e-12);
 }
 
 // A scale error dm displaces x by dm·|x| (both transforms otherwise equal, about the origin).
@@ -88,8 +87,7 @@ TEST(TransformError, ScaleOnly)
   truth.phi = 0.2;  // common rotation must not matter
   est.phi = 0.2;
   est.m = 1.001;
-  const auto e = computeTransformError(est.matrix(), truth.matrix(),
-                                       points({{3, 4, 0}, {0, 0, 100}}));
+  const auto e = computeTransformError(est.matrix(), truth.matrix(), points({{3, 4, 0}, {0, 0, 100}}));
   ASSERT_TRUE(e.valid);
   EXPECT_NEAR(e.mean, 0.001 * (5.0 + 100.0) / 2.0, 1e-12);
   EXPECT_NEAR(e.max, 0.1, 1e-12);

@@ -24,8 +24,8 @@ inline std::string
 pcdHeader(const std::string& width, const std::string& points, const std::string& data)
 {
   return "# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\n"
-         "TYPE F F F\nCOUNT 1 1 1\nWIDTH " + width + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " +
-         points + "\nDATA " + data + "\n";
+         "TYPE F F F\nCOUNT 1 1 1\nWIDTH " +
+         width + "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " + points + "\nDATA " + data + "\n";
 }
 
 inline std::string
@@ -80,22 +80,18 @@ hostileFiles()
            uint32Bytes(120) + lzf,
        "header says 1000000000 points"},
       {"hundred_million_compressed.pcd",
-       pcdHeader("100000000", "100000000", "binary_compressed") +
-           uint32Bytes(std::uint32_t(lzf.size())) + uint32Bytes(1200000000u) + lzf,
+       pcdHeader("100000000", "100000000", "binary_compressed") + uint32Bytes(std::uint32_t(lzf.size())) +
+           uint32Bytes(1200000000u) + lzf,
        "LZF bytes expand at most 100 times"},
       {"negative_width.pcd", pcdHeader("-5", "10", "ascii") + ascii_points, "WIDTH '-5'"},
-      {"width_points_mismatch.pcd", pcdHeader("11", "10", "ascii") + ascii_points,
-       "is not POINTS 10"},
-      {"negative_vertex.ply", plyHeader("ascii", "-5") + "1 2 3\n",
-       "count '-5' is not an integer in 0.."},
+      {"width_points_mismatch.pcd", pcdHeader("11", "10", "ascii") + ascii_points, "is not POINTS 10"},
+      {"negative_vertex.ply", plyHeader("ascii", "-5") + "1 2 3\n", "count '-5' is not an integer in 0.."},
       {"huge_vertex_ascii.ply", plyHeader("ascii", "4294967295") + "1 2 3\n4 5 6\n",
        "header says 4294967295 vertex items"},
-      {"huge_vertex_binary.ply",
-       plyHeader("binary_little_endian", "4294967295") + floatTriplets(2),
+      {"huge_vertex_binary.ply", plyHeader("binary_little_endian", "4294967295") + floatTriplets(2),
        "header says 4294967295 vertex items"},
-      {"huge_vertex_big_endian.ply", plyHeader("binary_big_endian", "18446744073709551615") +
-                                         floatTriplets(2),
-       "is not an integer in 0.."},
+      {"huge_vertex_big_endian.ply",
+       plyHeader("binary_big_endian", "18446744073709551615") + floatTriplets(2), "is not an integer in 0.."},
   };
 }
 

@@ -52,12 +52,15 @@ struct TempDir
   std::filesystem::path path;
   explicit TempDir(const std::string& name)
   {
-    path = std::filesystem::temp_directory_path() /
-           (name + "_" + std::to_string(std::random_device{}()));
+    path = std::filesystem::temp_directory_path() / (name + "_" + std::to_string(std::random_device{}()));
     std::filesystem::remove_all(path);
     std::filesystem::create_directories(path);
   }
-  ~TempDir() { std::error_code ec; std::filesystem::remove_all(path, ec); }
+  ~TempDir()
+  {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
   std::string
   file(const std::string& name) const
   {

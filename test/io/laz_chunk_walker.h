@@ -23,8 +23,7 @@ inline std::vector<std::uint8_t>
 readFile(const std::string& path)
 {
   std::ifstream in(path, std::ios::binary);
-  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in),
-                                   std::istreambuf_iterator<char>());
+  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 template <typename T>
@@ -70,8 +69,7 @@ struct LasFile
     const std::size_t n = static_cast<std::size_t>(point_count) * record_length;
     if (offset_to_points + n > bytes.size())
       return {};
-    return std::vector<std::uint8_t>(bytes.begin() + offset_to_points,
-                                     bytes.begin() + offset_to_points + n);
+    return std::vector<std::uint8_t>(bytes.begin() + offset_to_points, bytes.begin() + offset_to_points + n);
   }
 };
 
@@ -129,8 +127,8 @@ walkLaz(const LasFile& f)
     r.error = "no LASzip VLR";
     return r;
   }
-  if (!laz::parseLaszipVlr(f.bytes.data() + v->data, v->size, f.point_format, f.record_length,
-                           r.vlr, r.error))
+  if (!laz::parseLaszipVlr(f.bytes.data() + v->data, v->size, f.point_format, f.record_length, r.vlr,
+                           r.error))
     return r;
   const bool variable = r.vlr.chunk_size == laz::kVariableChunkSize;
   if (variable && r.vlr.compressor != laz::Compressor::LayeredChunked) {

@@ -23,8 +23,8 @@ sharedData(const std::string& relative)
 }
 
 /// GTEST_SKIP()s the calling test when the file is absent (the shared data is optional).
-#define PCL_LS3D_REQUIRE_DATA(path)                                                            \
-  if (!std::filesystem::exists(path))                                                          \
+#define PCL_LS3D_REQUIRE_DATA(path)                                                                          \
+  if (!std::filesystem::exists(path))                                                                        \
   GTEST_SKIP() << "shared data not found: " << (path)
 
 inline std::vector<std::uint8_t>

@@ -31,10 +31,10 @@ namespace pcl_ls3d_test {
 
 struct ProbeResult
 {
-  bool child_ok = false;       ///< the child ran to its end (no crash, no uncaught bad_alloc)
-  bool loaded = false;         ///< loadCloud() returned true
-  std::string error;           ///< its one-line reason otherwise
-  long peak_growth_kb = 0;     ///< child's peak RSS during the load minus its RSS before [KiB]
+  bool child_ok = false;    ///< the child ran to its end (no crash, no uncaught bad_alloc)
+  bool loaded = false;      ///< loadCloud() returned true
+  std::string error;        ///< its one-line reason otherwise
+  long peak_growth_kb = 0;  ///< child's peak RSS during the load minus its RSS before [KiB]
 };
 
 /// A "Vm...:" value of /proc/self/status in KiB (0 when absent).

@@ -57,8 +57,7 @@ TEST_P(UtmRoundTrip, EveryWriterKeepsOneMillimetre)
   std::string error;
   ASSERT_TRUE(io::saveCloud(path, cloud, kOrigin, error, so)) << error;
   if (ext == "pcd" || ext == "ply") {  // x stored in double, as required for a non-zero origin
-    EXPECT_NE(readText(path).find(ext == "pcd" ? "SIZE 8 8 8" : "property double x"),
-              std::string::npos);
+    EXPECT_NE(readText(path).find(ext == "pcd" ? "SIZE 8 8 8" : "property double x"), std::string::npos);
   }
   io::CloudInfo info;
   ASSERT_TRUE(io::loadCloud(path, back, info, error)) << error;
@@ -114,7 +113,8 @@ TEST(CloudIO, RecordedPcdOriginIsTheLocalFrame)
 {
   TempDir dir("ls3d_pcd_origin");
   const Eigen::Vector3d recorded(512000.25, 5412000.0, 0.1 + 0.2);  // not a short decimal
-  std::ofstream(dir.file("s.pcd")) << "# .PCD v0.7\n" << io::pcdOriginLine(recorded) << "\n"
+  std::ofstream(dir.file("s.pcd")) << "# .PCD v0.7\n"
+                                   << io::pcdOriginLine(recorded) << "\n"
                                    << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
                                       "WIDTH 2\nHEIGHT 1\nPOINTS 2\nDATA ascii\n"
                                       "-1.1 2.7 0.3\n300.123 -401.9 12\n";
@@ -139,24 +139,28 @@ TEST(CloudIO, RecordedPcdOriginIsTheLocalFrame)
   EXPECT_NEAR(back[1].x, 300.123 + recorded[0] - forced.origin[0], 1e-5);
 
   // An origin line that cannot be read would put the cloud in the wrong place: one error line.
-  for (const char* bad : {"# pcl_ls3d origin 1 2", "# pcl_ls3d origin 1 2 nan",
-                          "# pcl_ls3d origin 1 2 3 4"}) {
-    std::ofstream(dir.file("b.pcd")) << "# .PCD v0.7\n" << bad << "\nVERSION 0.7\nFIELDS x y z\n"
+  for (const char* bad :
+       {"# pcl_ls3d origin 1 2", "# pcl_ls3d origin 1 2 nan", "# pcl_ls3d origin 1 2 3 4"}) {
+    std::ofstream(dir.file("b.pcd")) << "# .PCD v0.7\n"
+                                     << bad
+                                     << "\nVERSION 0.7\nFIELDS x y z\n"
                                         "SIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
     EXPECT_FALSE(io::loadCloud(dir.file("b.pcd"), back, info, error)) << bad;
-    EXPECT_NE(error.find("'# pcl_ls3d origin' is not followed by three finite numbers"),
-              std::string::npos) << error;
+    EXPECT_NE(error.find("'# pcl_ls3d origin' is not followed by three finite numbers"), std::string::npos)
+        << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   }
   // A malformed origin line before a good one: the reader of SEGMENTS files agrees with
   // loadCloud (refused), and a zero origin is still a recorded one.
   std::ofstream(dir.file("m.pcd")) << "# .PCD v0.7\n# pcl_ls3d origin 1 2\n"
-                                   << io::pcdOriginLine(recorded) << "\nVERSION 0.7\nFIELDS x y z\n"
+                                   << io::pcdOriginLine(recorded)
+                                   << "\nVERSION 0.7\nFIELDS x y z\n"
                                       "SIZE 4 4 4\nTYPE F F F\nWIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
   Eigen::Vector3d from_segments;
   EXPECT_FALSE(io::loadCloud(dir.file("m.pcd"), back, info, error));
   EXPECT_FALSE(evaluation::readSegmentsOrigin(dir.file("m.pcd"), from_segments));
-  std::ofstream(dir.file("z.pcd")) << "# .PCD v0.7\n" << io::pcdOriginLine(Eigen::Vector3d::Zero())
+  std::ofstream(dir.file("z.pcd")) << "# .PCD v0.7\n"
+                                   << io::pcdOriginLine(Eigen::Vector3d::Zero())
                                    << "\nVERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\n"
                                       "WIDTH 1\nPOINTS 1\nDATA ascii\n1 2 3\n";
   ASSERT_TRUE(io::loadCloud(dir.file("z.pcd"), back, info, error)) << error;
@@ -219,7 +223,10 @@ TEST(CloudIO, PclPointTypesMapLabelAndIntensity)
   TempDir dir("ls3d_pcl");
   pcl::PointCloud<pcl::PointXYZL> labelled;
   pcl::PointXYZL p;
-  p.x = 1.f; p.y = 2.f; p.z = 3.f; p.label = 6;
+  p.x = 1.f;
+  p.y = 2.f;
+  p.z = 3.f;
+  p.label = 6;
   labelled.push_back(p);
   pcl::io::savePCDFileASCII(dir.file("l.pcd"), labelled);
   pcl::PointCloud<PointLiDAR> cloud;
@@ -239,16 +246,19 @@ TEST(CloudIO, SegmentsFileLabelIsNoClass)
   TempDir dir("ls3d_segments_marker");
   pcl::PointCloud<pcl::PointXYZL> labelled;
   pcl::PointXYZL p;
-  p.x = 1.f; p.y = 2.f; p.z = 3.f; p.label = 300;
+  p.x = 1.f;
+  p.y = 2.f;
+  p.z = 3.f;
+  p.label = 300;
   labelled.push_back(p);
   pcl::PCLPointCloud2 blob;
   pcl::toPCLPointCloud2(labelled, blob);
   std::string error;
   const std::string marker = std::string(io::kPcdSegmentsMarker) + "\n";
-  ASSERT_TRUE(io::savePcdBinaryWithOrigin(dir.file("s.pcd"), blob, Eigen::Vector3d::Zero(),
-                                          marker, error)) << error;
-  ASSERT_TRUE(io::savePcdBinaryWithOrigin(dir.file("plain.pcd"), blob, Eigen::Vector3d::Zero(),
-                                          "", error)) << error;
+  ASSERT_TRUE(io::savePcdBinaryWithOrigin(dir.file("s.pcd"), blob, Eigen::Vector3d::Zero(), marker, error))
+      << error;
+  ASSERT_TRUE(io::savePcdBinaryWithOrigin(dir.file("plain.pcd"), blob, Eigen::Vector3d::Zero(), "", error))
+      << error;
   pcl::PCLPointCloud2 classed;  // label 300, and a classification byte 6
   pcl::toPCLPointCloud2(labelled, classed);
   pcl::PCLPointField f;
@@ -263,8 +273,8 @@ TEST(CloudIO, SegmentsFileLabelIsNoClass)
   classed.point_step += 1;
   classed.row_step = classed.point_step;
   classed.data = data;
-  ASSERT_TRUE(io::savePcdBinaryWithOrigin(dir.file("c.pcd"), classed, Eigen::Vector3d::Zero(),
-                                          marker, error)) << error;
+  ASSERT_TRUE(io::savePcdBinaryWithOrigin(dir.file("c.pcd"), classed, Eigen::Vector3d::Zero(), marker, error))
+      << error;
 
   pcl::PointCloud<PointLiDAR> cloud;
   io::CloudInfo info;
@@ -338,8 +348,8 @@ TEST(CloudIO, FormatDetectionAndWriterRefusals)
   EXPECT_EQ(error.find('\n'), std::string::npos);
   EXPECT_FALSE(io::saveCloud(dir.file("c.las7"), cloud, Eigen::Vector3d::Zero(), error));
   EXPECT_NE(error.find("cannot write"), std::string::npos) << error;
-  EXPECT_FALSE(io::saveCloud(dir.file("c.pcd"), pcl::PointCloud<PointLiDAR>(),
-                             Eigen::Vector3d::Zero(), error));
+  EXPECT_FALSE(
+      io::saveCloud(dir.file("c.pcd"), pcl::PointCloud<PointLiDAR>(), Eigen::Vector3d::Zero(), error));
   EXPECT_NE(error.find("empty cloud"), std::string::npos) << error;
 }
 

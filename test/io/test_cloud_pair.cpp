@@ -46,12 +46,14 @@ TEST(CloudPair, SourceLandsInTheTargetsOrigin)
   // Both clouds around the one origin the target was loaded with.
   for (std::size_t i = 0; i < source.size(); ++i) {
     const Eigen::Vector3d global = source_origin + source[i].getVector3fMap().cast<double>();
-    const Eigen::Vector3d loaded = pair.target_info.origin + (*pair.source)[i].getVector3fMap().cast<double>();
+    const Eigen::Vector3d loaded =
+        pair.target_info.origin + (*pair.source)[i].getVector3fMap().cast<double>();
     EXPECT_LT((loaded - global).norm(), 1e-4) << "point " << i;
   }
   for (std::size_t i = 0; i < target.size(); ++i) {
     const Eigen::Vector3d global = target_origin + target[i].getVector3fMap().cast<double>();
-    const Eigen::Vector3d loaded = pair.target_info.origin + (*pair.target)[i].getVector3fMap().cast<double>();
+    const Eigen::Vector3d loaded =
+        pair.target_info.origin + (*pair.target)[i].getVector3fMap().cast<double>();
     EXPECT_LT((loaded - global).norm(), 1e-4) << "point " << i;
   }
 }

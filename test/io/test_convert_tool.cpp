@@ -17,9 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
-
 #include <algorithm>
-#include <set>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,6 +26,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <vector>
 
@@ -39,7 +38,6 @@ namespace {
 const std::string kTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_convert";
 const std::string kInfoTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_info";
 const std::string kSegmentTool = std::string(PCL_LS3D_TOOL_DIR) + "/pcl_ls3d_segment";
-
 
 std::size_t
 occurrences(const std::string& text, const std::string& what)
@@ -76,10 +74,9 @@ rawLasCoordinates(const std::string& path)
   const std::uint32_t n = get(107, std::uint32_t());
   std::vector<Eigen::Vector3d> out;
   for (std::uint32_t i = 0; i < n; ++i)
-    out.emplace_back(
-        get(first + i * record, std::int32_t()) * get(131, 0.0) + get(155, 0.0),
-        get(first + i * record + 4, std::int32_t()) * get(139, 0.0) + get(163, 0.0),
-        get(first + i * record + 8, std::int32_t()) * get(147, 0.0) + get(171, 0.0));
+    out.emplace_back(get(first + i * record, std::int32_t()) * get(131, 0.0) + get(155, 0.0),
+                     get(first + i * record + 4, std::int32_t()) * get(139, 0.0) + get(163, 0.0),
+                     get(first + i * record + 8, std::int32_t()) * get(147, 0.0) + get(171, 0.0));
   return out;
 }
 
@@ -90,8 +87,7 @@ recordedOrigin(const std::string& path, Eigen::Vector3d& origin)
   std::ifstream in(path, std::ios::binary);
   std::string line;
   while (std::getline(in, line) && line.rfind("DATA", 0) != 0)
-    if (std::sscanf(line.c_str(), "# pcl_ls3d origin %lf %lf %lf", &origin[0], &origin[1],
-                    &origin[2]) == 3)
+    if (std::sscanf(line.c_str(), "# pcl_ls3d origin %lf %lf %lf", &origin[0], &origin[1], &origin[2]) == 3)
       return true;
   return false;
 }
@@ -165,8 +161,7 @@ TEST_F(ConvertTool, ConvertsAndRefusesToOverwrite)
 
   EXPECT_NE(run(dir_.file("in.las") + " " + dir_.file("out.pcd"), out, dir_), 0);
   EXPECT_NE(out.find("exists already"), std::string::npos) << out;
-  EXPECT_EQ(run(dir_.file("in.las") + " " + dir_.file("out.pcd") + " -overwrite", out, dir_), 0)
-      << out;
+  EXPECT_EQ(run(dir_.file("in.las") + " " + dir_.file("out.pcd") + " -overwrite", out, dir_), 0) << out;
 
   const auto size_before = fs::file_size(dir_.file("in.las"));
   EXPECT_NE(run(dir_.file("in.las") + " " + dir_.path.string() + "/./in.las -overwrite", out, dir_), 0);
@@ -178,8 +173,7 @@ TEST_F(ConvertTool, SplitStripsAndFilterClasses)
 {
   std::string out;
   const std::string strips = dir_.file("strips");
-  ASSERT_EQ(run(dir_.file("in.las") + " -split_strips " + strips + " -classes 2,6", out, dir_), 0)
-      << out;
+  ASSERT_EQ(run(dir_.file("in.las") + " -split_strips " + strips + " -classes 2,6", out, dir_), 0) << out;
   // psid = 10 + i%3 and the class follows i%3 too: strips 10 (class 2) and 11 (class 6) keep all
   // 100 points; strip 12 (class 5) is filtered out before splitting and gets no file.
   for (int id : {10, 11}) {
@@ -198,11 +192,10 @@ TEST_F(ConvertTool, SplitStripsAndFilterClasses)
 TEST_F(ConvertTool, ForcedOriginAndFormats)
 {
   std::string out;
-  ASSERT_EQ(run(dir_.file("in.las") + " " + dir_.file("out.xyz") + " -origin 600100,5000100,0",
-                out, dir_), 0) << out;
-  EXPECT_NE(out.find("Local origin (forced): 600100.000 5000100.000 0.000"), std::string::npos) << out;
-  ASSERT_EQ(run(dir_.file("out.xyz") + " " + dir_.file("back.las") + " -las_format 6", out, dir_), 0)
+  ASSERT_EQ(run(dir_.file("in.las") + " " + dir_.file("out.xyz") + " -origin 600100,5000100,0", out, dir_), 0)
       << out;
+  EXPECT_NE(out.find("Local origin (forced): 600100.000 5000100.000 0.000"), std::string::npos) << out;
+  ASSERT_EQ(run(dir_.file("out.xyz") + " " + dir_.file("back.las") + " -las_format 6", out, dir_), 0) << out;
   pcl::PointCloud<PointLiDAR> back;
   io::CloudInfo info;
   std::string error;
@@ -246,8 +239,7 @@ TEST_F(ConvertTool, InfoToolReportsCountsStripsAndErrors)
   };
   std::string out;
   ASSERT_EQ(runInfo("-json " + dir_.file("in.las"), out), 0) << out;
-  EXPECT_NE(out.find("\"point_source_ids\":{\"10\":100,\"11\":100,\"12\":100}"), std::string::npos)
-      << out;
+  EXPECT_NE(out.find("\"point_source_ids\":{\"10\":100,\"11\":100,\"12\":100}"), std::string::npos) << out;
   EXPECT_NE(out.find("\"classes\":{\"2\":100,\"5\":100,\"6\":100}"), std::string::npos) << out;
   EXPECT_NE(out.find("\"points_loaded\":300"), std::string::npos) << out;
   EXPECT_NE(runInfo(dir_.file("in.las") + " -bogus", out), 0);
@@ -278,8 +270,7 @@ TEST_F(ConvertTool, InfoReportsEveryFile)
     bad << "not a LAS file\n";
   }
   std::string out;
-  EXPECT_EQ(runInfo(dir_.file("in.las") + " " + dir_.file("bad.las") + " " + dir_.file("in.las"),
-                    out, dir_),
+  EXPECT_EQ(runInfo(dir_.file("in.las") + " " + dir_.file("bad.las") + " " + dir_.file("in.las"), out, dir_),
             1)
       << out;
   EXPECT_EQ(occurrences(out, "points in file 300, loaded 300"), 2u) << out;
@@ -302,8 +293,7 @@ TEST_F(ConvertTool, InfoCountsSegmentsOfASegmentsFile)
   layout.points_in_file = xyz.size();
   layout.origin = origin_;
   std::string error;
-  ASSERT_TRUE(evaluation::saveSegmentsPcd(dir_.file("SEGMENTS.pcd"), xyz, segments, layout, error))
-      << error;
+  ASSERT_TRUE(evaluation::saveSegmentsPcd(dir_.file("SEGMENTS.pcd"), xyz, segments, layout, error)) << error;
   std::string out;
   ASSERT_EQ(runInfo(dir_.file("SEGMENTS.pcd"), out, dir_), 0) << out;
   EXPECT_NE(out.find("segment ids"), std::string::npos) << out;
@@ -344,7 +334,8 @@ TEST_F(ConvertTool, InfoGivesASegmentsFileBoxInTheInputFrame)
   const std::size_t at = out.find("bounds min ");
   ASSERT_NE(at, std::string::npos) << out;
   Eigen::Vector3d text_lo;
-  ASSERT_EQ(std::sscanf(out.c_str() + at, "bounds min %lf %lf %lf", &text_lo[0], &text_lo[1], &text_lo[2]), 3);
+  ASSERT_EQ(std::sscanf(out.c_str() + at, "bounds min %lf %lf %lf", &text_lo[0], &text_lo[1], &text_lo[2]),
+            3);
   EXPECT_LT((text_lo - lo).cwiseAbs().maxCoeff(), 2e-3) << out;
 
   // A file without a recorded origin is reported as it is, and says nothing of one.
@@ -369,7 +360,7 @@ TEST_F(ConvertTool, SegmentsFileLoadsInTheInputFrame)
   std::string error;
   ASSERT_TRUE(io::loadCloud(seg, loaded, info, error)) << error;
   EXPECT_EQ(info.origin, recorded);
-  ASSERT_EQ(loaded.size(), las.size());  // every point finite: input order, one for one
+  ASSERT_EQ(loaded.size(), las.size());       // every point finite: input order, one for one
   pcl::PointCloud<pcl::PointXYZRGBL> stored;  // what plain PCL reads
   ASSERT_EQ(pcl::io::loadPCDFile(seg, stored), 0);
   ASSERT_EQ(stored.size(), las.size());
@@ -381,8 +372,8 @@ TEST_F(ConvertTool, SegmentsFileLoadsInTheInputFrame)
       // The floats' rounding: half a step, at most 3e-5 within 400 m.
       const double tolerance = std::max(std::abs(local[k]), 1.0) * std::numeric_limits<float>::epsilon();
       if (!(std::abs(local[k] + info.origin[k] - las[i][k]) <= tolerance) && off++ == 0)
-        ADD_FAILURE() << "point " << i << " axis " << k << ": " << local[k] + info.origin[k]
-                      << " loaded, " << las[i][k] << " in the LAS";
+        ADD_FAILURE() << "point " << i << " axis " << k << ": " << local[k] + info.origin[k] << " loaded, "
+                      << las[i][k] << " in the LAS";
     }
   }
   EXPECT_EQ(changed, 0u) << "points whose loaded floats differ from the stored ones";
@@ -414,7 +405,8 @@ TEST_F(ConvertTool, SegmentsFileGivesObjectClassesNeverSegmentIds)
   const std::string seg = segmentsFile(), mrg = dir_.file("MRG.pcd");
   ASSERT_FALSE(HasFailure());
   std::string out;
-  ASSERT_EQ(runProgram("pcl_ls3d_segment", dir_.file("in.las") + " -mode mrg -o " + mrg, out, dir_), 0) << out;
+  ASSERT_EQ(runProgram("pcl_ls3d_segment", dir_.file("in.las") + " -mode mrg -o " + mrg, out, dir_), 0)
+      << out;
   const std::set<int> object_codes = {1, 2, 5, 6, 14, 15, 64};
   for (const auto& [file, expect_classes] : {std::pair{seg, true}, std::pair{mrg, false}}) {
     const std::string las = file + ".las";
@@ -430,8 +422,7 @@ TEST_F(ConvertTool, SegmentsFileGivesObjectClassesNeverSegmentIds)
     if (expect_classes) {
       EXPECT_TRUE(std::includes(object_codes.begin(), object_codes.end(), codes.begin(), codes.end()))
           << *codes.begin() << " .. " << *codes.rbegin();
-    }
-    else {
+    } else {
       EXPECT_EQ(codes, std::set<int>{0});
     }
   }
@@ -449,8 +440,9 @@ TEST_F(ConvertTool, CrsGoesWithThePoints)
   ASSERT_TRUE(io::saveCloud(dir_.file("utm.las"), cloud_, origin_, error, with_crs)) << error;
   ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("b.pcd"), out, dir_), 0) << out;
   ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("a.pcd") + " -ascii", out, dir_), 0) << out;
-  ASSERT_EQ(run(dir_.file("utm.las") + " -split_strips " + dir_.file("strips") + " -format pcd",
-                out, dir_), 0) << out;
+  ASSERT_EQ(run(dir_.file("utm.las") + " -split_strips " + dir_.file("strips") + " -format pcd", out, dir_),
+            0)
+      << out;
   ASSERT_EQ(run(dir_.file("b.pcd") + " " + dir_.file("back.las"), out, dir_), 0) << out;
   ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("copy.las"), out, dir_), 0) << out;
   ASSERT_EQ(run(dir_.file("utm.las") + " " + dir_.file("b.ply"), out, dir_), 0) << out;
@@ -466,8 +458,8 @@ TEST_F(ConvertTool, CrsGoesWithThePoints)
                             [](const io::LasVlr& v) { return v.record_id == 2112; }),
               1);
   }
-  for (const std::string name : {"b.pcd", "a.pcd", "strips/utm_psid11.pcd", "back.las", "b.ply",
-                                  "a.ply", "back_ply.las"}) {
+  for (const std::string name :
+       {"b.pcd", "a.pcd", "strips/utm_psid11.pcd", "back.las", "b.ply", "a.ply", "back_ply.las"}) {
     SCOPED_TRACE(name);
     pcl::PointCloud<PointLiDAR> c;
     io::CloudInfo info;

@@ -3,8 +3,8 @@
 ///        nest; box selection agrees with a brute-force check; hostile hierarchies (loops, pages
 ///        or chunks outside the file, keys outside the octree, too many points) are refused.
 
-#include "io/laz/copc_hierarchy.h"
 #include "io/las_format.h"
+#include "io/laz/copc_hierarchy.h"
 
 #include <gtest/gtest.h>
 
@@ -38,8 +38,8 @@ copcInfoOf(const std::vector<std::uint8_t>& f, CopcInfo& info, std::uint64_t& co
 }
 
 void
-putEntry(std::vector<std::uint8_t>& f, std::size_t at, VoxelKey k, std::uint64_t offset,
-         std::int32_t size, std::int32_t count)
+putEntry(std::vector<std::uint8_t>& f, std::size_t at, VoxelKey k, std::uint64_t offset, std::int32_t size,
+         std::int32_t count)
 {
   las::put<std::int32_t>(f.data() + at, k.level);
   las::put<std::int32_t>(f.data() + at + 4, k.x);
@@ -73,8 +73,8 @@ struct FakeCopc
 
 TEST(CopcHierarchy, RealFilesAccountForEveryPoint)
 {
-  for (const char* name : {"pdal/lone-star.copc.laz", "laspy/simple.copc.laz",
-                           "pdal/1.2-with-color.copc.laz"}) {
+  for (const char* name :
+       {"pdal/lone-star.copc.laz", "laspy/simple.copc.laz", "pdal/1.2-with-color.copc.laz"}) {
     const std::vector<std::uint8_t> f = readBytes(kLaz + name);
     if (f.empty())
       GTEST_SKIP() << "shared data absent: " << kLaz + name;

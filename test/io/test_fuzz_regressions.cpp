@@ -20,11 +20,10 @@ namespace {
 /// Written by every writer and loaded again with the same origin: as many points, or the writer
 /// refuses with a reason (e.g. LAS cannot quantise 1e72).
 void
-expectEveryWriterRoundTrips(const pcl::PointCloud<pcl_ls3d::PointLiDAR>& cloud,
-                            const Eigen::Vector3d& origin)
+expectEveryWriterRoundTrips(const pcl::PointCloud<pcl_ls3d::PointLiDAR>& cloud, const Eigen::Vector3d& origin)
 {
-  const std::pair<const char*, bool> writers[] = {{"pcd", true}, {"pcd", false}, {"ply", true},
-                                                  {"ply", false}, {"las", true}, {"xyz", false}};
+  const std::pair<const char*, bool> writers[] = {{"pcd", true},  {"pcd", false}, {"ply", true},
+                                                  {"ply", false}, {"las", true},  {"xyz", false}};
   for (const auto& [ext, binary] : writers) {
     SCOPED_TRACE(std::string(ext) + (binary ? " binary" : " ascii"));
     const std::string path = ::testing::TempDir() + "ls3d_fuzz_regression." + ext;

@@ -32,7 +32,8 @@ std::string
 stanfordPly(const std::string& cols, const std::string& rows)
 {
   std::string s = "ply\nformat ascii 1.0\nobj_info is_cyberware_data 1\nobj_info is_mesh 0\n"
-                  "obj_info num_cols " + cols + "\nobj_info num_rows " + rows +
+                  "obj_info num_cols " +
+                  cols + "\nobj_info num_rows " + rows +
                   "\nelement vertex 6\nproperty float x\nproperty float y\nproperty float z\n"
                   "element range_grid 12\nproperty list uchar int vertex_indices\nend_header\n";
   for (int i = 0; i < 6; ++i)
@@ -102,8 +103,8 @@ TEST(HostileFiles, PcdCompressedBlocksAreChecked)
     pcl::PointCloud<PointLiDAR> cloud;
     io::CloudInfo info;
     std::string error;
-    EXPECT_FALSE(io::readPcd(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
-                             cloud, info, error));
+    EXPECT_FALSE(
+        io::readPcd(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), cloud, info, error));
     EXPECT_NE(error.find(expect), std::string::npos) << error;
   }
 }
@@ -124,8 +125,8 @@ TEST(HostileFiles, PlyListCountsAreChecked)
     pcl::PointCloud<PointLiDAR> cloud;
     io::CloudInfo info;
     std::string error;
-    const bool ok = io::readPly(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(),
-                                cloud, info, error);
+    const bool ok =
+        io::readPly(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size(), cloud, info, error);
     EXPECT_EQ(ok, expect.empty()) << error;
     EXPECT_NE(error.find(expect), std::string::npos) << error;
     if (ok) {

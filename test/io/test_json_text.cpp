@@ -88,14 +88,14 @@ TEST(JsonText, CompareAndSegmentWriteValidJsonForANonUtf8FileName)
   TempDir dir("ls3d_json_tools");
   const std::string input = dir.file("r\xE9sum\xE9.pcd");
   writeSurface(input);
-  const auto c = runTool("pcl_ls3d_compare", "'" + input + "' '" + input + "' -methods icp -json " +
-                                                 dir.file("compare.json"),
+  const auto c = runTool("pcl_ls3d_compare",
+                         "'" + input + "' '" + input + "' -methods icp -json " + dir.file("compare.json"),
                          dir.path.string());
   ASSERT_EQ(c.code, 0) << c.out << c.err;
   const json jc = json::parse(pcl_ls3d_test::slurp(dir.file("compare.json")));
   EXPECT_NE(jc.dump().find("r" + kReplacement + "sum" + kReplacement + ".pcd"), std::string::npos);
-  const auto s = runTool("pcl_ls3d_segment", "'" + input + "' -json " + dir.file("seg.json"),
-                         dir.path.string());
+  const auto s =
+      runTool("pcl_ls3d_segment", "'" + input + "' -json " + dir.file("seg.json"), dir.path.string());
   ASSERT_EQ(s.code, 0) << s.out << s.err;
   const json js = json::parse(pcl_ls3d_test::slurp(dir.file("seg.json")));
   EXPECT_EQ(js["input"], dir.file("r" + kReplacement + "sum" + kReplacement + ".pcd"));
@@ -116,10 +116,9 @@ TEST(StanfordPlyTools, InfoAndConvertDoNotReportGridCellsAsDropped)
   std::ofstream(dir.file("bun000.ply")) << ply;
   const auto info = runTool("pcl_ls3d_info", dir.file("bun000.ply"), dir.path.string());
   ASSERT_EQ(info.code, 0) << info.err;
-  EXPECT_NE(info.out.find("points in file 6, loaded 6, NaN/inf dropped 0"), std::string::npos)
-      << info.out;
-  const auto conv = runTool("pcl_ls3d_convert", dir.file("bun000.ply") + " " + dir.file("b.pcd"),
-                            dir.path.string());
+  EXPECT_NE(info.out.find("points in file 6, loaded 6, NaN/inf dropped 0"), std::string::npos) << info.out;
+  const auto conv =
+      runTool("pcl_ls3d_convert", dir.file("bun000.ply") + " " + dir.file("b.pcd"), dir.path.string());
   ASSERT_EQ(conv.code, 0) << conv.err;
   EXPECT_NE(conv.out.find("(ply, 6 points)"), std::string::npos) << conv.out;
   EXPECT_EQ(conv.out.find("dropped"), std::string::npos) << conv.out;

@@ -24,8 +24,8 @@ validLas(int minor = 2, int format = 3)
 {
   pcl::PointCloud<PointLiDAR> cloud;
   std::vector<Eigen::Vector3d> truth;
-  pcl_ls3d_test::makeUtmCloud(5, format, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0},
-                              cloud, truth);
+  pcl_ls3d_test::makeUtmCloud(5, format, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0}, cloud,
+                              truth);
   io::SaveOptions so;
   so.las_minor_version = static_cast<std::uint8_t>(minor);
   so.las_point_format = static_cast<std::uint8_t>(format);
@@ -117,7 +117,8 @@ TEST(LasBroken, LazExtensionAndEmptyFileThroughLoadCloud)
 {
   pcl_ls3d_test::TempDir dir("ls3d_las_broken");
   auto b = validLas();
-  std::ofstream(dir.file("plain.laz"), std::ios::binary).write(reinterpret_cast<const char*>(b.data()), b.size());
+  std::ofstream(dir.file("plain.laz"), std::ios::binary)
+      .write(reinterpret_cast<const char*>(b.data()), b.size());
   b[104] |= 0x80;
   std::ofstream(dir.file("a.laz"), std::ios::binary).write(reinterpret_cast<const char*>(b.data()), b.size());
   std::ofstream(dir.file("empty.las"));

@@ -20,7 +20,7 @@ namespace {
 /// One coded item: what kind of call, its model (if any), its value.
 struct Op
 {
-  int kind;             // 0 bit model, 1 symbol model, 2 raw bits, 3 short, 4 int, 5 int64, 6 int compressor
+  int kind;  // 0 bit model, 1 symbol model, 2 raw bits, 3 short, 4 int, 5 int64, 6 int compressor
   int model;
   std::uint64_t value;
   std::int32_t pred = 0;
@@ -35,18 +35,36 @@ randomOps(std::mt19937_64& rng, std::size_t n)
   for (std::size_t i = 0; i < n; ++i) {
     Op op{kind(rng), 0, 0};
     switch (op.kind) {
-      case 0: op.model = rng() % 3; op.value = (rng() % 10) < 8 ? 0 : 1; break;  // skewed bits
-      case 1: op.model = rng() % 4; op.value = rng() % (op.model == 0 ? 2 : op.model == 1 ? 17 : op.model == 2 ? 256 : 2048);
-        if (rng() % 2) op.value %= 3;  // skew so the models adapt
-        break;
-      case 2: op.bits = 1 + rng() % 32; op.value = rng() & (op.bits == 32 ? 0xFFFFFFFFull : ((1ull << op.bits) - 1)); break;
-      case 3: op.value = rng() & 0xFFFF; break;
-      case 4: op.value = rng() & 0xFFFFFFFF; break;
-      case 5: op.value = rng(); break;
-      case 6: op.model = rng() % 3; op.pred = static_cast<std::int32_t>(rng());
-        op.value = static_cast<std::uint32_t>(op.pred + static_cast<std::int32_t>(rng() % 2001) - 1000);
-        if (rng() % 8 == 0) op.value = static_cast<std::uint32_t>(rng());
-        break;
+    case 0:
+      op.model = rng() % 3;
+      op.value = (rng() % 10) < 8 ? 0 : 1;
+      break;  // skewed bits
+    case 1:
+      op.model = rng() % 4;
+      op.value = rng() % (op.model == 0 ? 2 : op.model == 1 ? 17 : op.model == 2 ? 256 : 2048);
+      if (rng() % 2)
+        op.value %= 3;  // skew so the models adapt
+      break;
+    case 2:
+      op.bits = 1 + rng() % 32;
+      op.value = rng() & (op.bits == 32 ? 0xFFFFFFFFull : ((1ull << op.bits) - 1));
+      break;
+    case 3:
+      op.value = rng() & 0xFFFF;
+      break;
+    case 4:
+      op.value = rng() & 0xFFFFFFFF;
+      break;
+    case 5:
+      op.value = rng();
+      break;
+    case 6:
+      op.model = rng() % 3;
+      op.pred = static_cast<std::int32_t>(rng());
+      op.value = static_cast<std::uint32_t>(op.pred + static_cast<std::int32_t>(rng() % 2001) - 1000);
+      if (rng() % 8 == 0)
+        op.value = static_cast<std::uint32_t>(rng());
+      break;
     }
     ops.push_back(op);
   }
@@ -73,17 +91,33 @@ TEST(LazCoder, EveryKindOfSymbolRoundTrips)
   enc.start();
   for (const Op& op : ops) {
     switch (op.kind) {
-      case 0: enc.encodeBit(em.bits[op.model], static_cast<std::uint32_t>(op.value)); break;
-      case 1: enc.encodeSymbol(em.symbols[op.model], static_cast<std::uint32_t>(op.value)); break;
-      case 2: enc.writeBits(op.bits, static_cast<std::uint32_t>(op.value)); break;
-      case 3: enc.writeShort(static_cast<std::uint32_t>(op.value)); break;
-      case 4: enc.writeInt(static_cast<std::uint32_t>(op.value)); break;
-      case 5: enc.writeInt64(op.value); break;
-      case 6:
-        if (op.model == 0) em.ic32.compress(enc, op.pred, static_cast<std::int32_t>(op.value), 1);
-        else if (op.model == 1) em.ic16.compress(enc, op.pred & 0xFFFF, static_cast<std::int32_t>(op.value & 0xFFFF));
-        else em.ic_range.compress(enc, op.pred % 1000 < 0 ? -(op.pred % 1000) : op.pred % 1000, static_cast<std::int32_t>(op.value % 1000));
-        break;
+    case 0:
+      enc.encodeBit(em.bits[op.model], static_cast<std::uint32_t>(op.value));
+      break;
+    case 1:
+      enc.encodeSymbol(em.symbols[op.model], static_cast<std::uint32_t>(op.value));
+      break;
+    case 2:
+      enc.writeBits(op.bits, static_cast<std::uint32_t>(op.value));
+      break;
+    case 3:
+      enc.writeShort(static_cast<std::uint32_t>(op.value));
+      break;
+    case 4:
+      enc.writeInt(static_cast<std::uint32_t>(op.value));
+      break;
+    case 5:
+      enc.writeInt64(op.value);
+      break;
+    case 6:
+      if (op.model == 0)
+        em.ic32.compress(enc, op.pred, static_cast<std::int32_t>(op.value), 1);
+      else if (op.model == 1)
+        em.ic16.compress(enc, op.pred & 0xFFFF, static_cast<std::int32_t>(op.value & 0xFFFF));
+      else
+        em.ic_range.compress(enc, op.pred % 1000 < 0 ? -(op.pred % 1000) : op.pred % 1000,
+                             static_cast<std::int32_t>(op.value % 1000));
+      break;
     }
   }
   const std::vector<std::uint8_t> bytes = enc.finish();
@@ -94,17 +128,36 @@ TEST(LazCoder, EveryKindOfSymbolRoundTrips)
   for (const Op& op : ops) {
     std::uint64_t got = 0, want = op.value;
     switch (op.kind) {
-      case 0: got = dec.decodeBit(dm.bits[op.model]); break;
-      case 1: got = dec.decodeSymbol(dm.symbols[op.model]); break;
-      case 2: got = dec.readBits(op.bits); break;
-      case 3: got = dec.readShort(); break;
-      case 4: got = dec.readInt(); break;
-      case 5: got = dec.readInt64(); break;
-      case 6:
-        if (op.model == 0) got = static_cast<std::uint32_t>(dm.ic32.decompress(dec, op.pred, 1));
-        else if (op.model == 1) { got = static_cast<std::uint32_t>(dm.ic16.decompress(dec, op.pred & 0xFFFF)); want &= 0xFFFF; }
-        else { got = static_cast<std::uint32_t>(dm.ic_range.decompress(dec, op.pred % 1000 < 0 ? -(op.pred % 1000) : op.pred % 1000)); want %= 1000; }
-        break;
+    case 0:
+      got = dec.decodeBit(dm.bits[op.model]);
+      break;
+    case 1:
+      got = dec.decodeSymbol(dm.symbols[op.model]);
+      break;
+    case 2:
+      got = dec.readBits(op.bits);
+      break;
+    case 3:
+      got = dec.readShort();
+      break;
+    case 4:
+      got = dec.readInt();
+      break;
+    case 5:
+      got = dec.readInt64();
+      break;
+    case 6:
+      if (op.model == 0)
+        got = static_cast<std::uint32_t>(dm.ic32.decompress(dec, op.pred, 1));
+      else if (op.model == 1) {
+        got = static_cast<std::uint32_t>(dm.ic16.decompress(dec, op.pred & 0xFFFF));
+        want &= 0xFFFF;
+      } else {
+        got = static_cast<std::uint32_t>(
+            dm.ic_range.decompress(dec, op.pred % 1000 < 0 ? -(op.pred % 1000) : op.pred % 1000));
+        want %= 1000;
+      }
+      break;
     }
     wrong += (got != want);
   }

@@ -30,8 +30,8 @@ validLaz(std::vector<std::uint8_t>& las, std::vector<std::uint8_t>& laz, int min
 {
   pcl::PointCloud<PointLiDAR> cloud;
   std::vector<Eigen::Vector3d> truth;
-  pcl_ls3d_test::makeUtmCloud(kPoints, 3, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0},
-                              cloud, truth);
+  pcl_ls3d_test::makeUtmCloud(kPoints, 3, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0}, cloud,
+                              truth);
   io::SaveOptions so;
   so.las_minor_version = static_cast<std::uint8_t>(minor);
   std::string error;
@@ -92,8 +92,7 @@ expectError(const std::vector<std::uint8_t>& bytes, const std::string& expected,
 
 /// decompressLaz() must give back exactly `las` (the chunks found without the table).
 void
-expectDecodes(const std::vector<std::uint8_t>& laz, const std::vector<std::uint8_t>& las,
-              bool with_table)
+expectDecodes(const std::vector<std::uint8_t>& laz, const std::vector<std::uint8_t>& las, bool with_table)
 {
   std::vector<std::uint8_t> back;
   std::string error;
@@ -282,8 +281,8 @@ TEST(LazHostile, MemoryStaysBounded)
       {"huge_count14.laz", patched<std::uint64_t>(patched<std::uint32_t>(laz14, 107, 0), 247, 1ull << 60)},
       {"huge_chunk.laz", patched<std::uint32_t>(patched<std::uint32_t>(laz, 107, 4000000000u),
                                                 laszipPayload(laz) + 12, 4000000000u)},
-      {"huge_table.laz", patched<std::uint32_t>(laz, static_cast<std::size_t>(tableOffset(laz)) + 4,
-                                                4000000000u)},
+      {"huge_table.laz",
+       patched<std::uint32_t>(laz, static_cast<std::size_t>(tableOffset(laz)) + 4, 4000000000u)},
   };
   for (const auto& f : files) {
     SCOPED_TRACE(f.first);
@@ -383,8 +382,7 @@ TEST(LazHostile, CopcHierarchiesAreRefusedThroughLoadCloud)
       {"a loop", loop, "referenced twice (a loop", false},
       {"a node beyond the file", patched<std::uint64_t>(f.bytes, e0 + 16, 1ull << 40),
        "points at bytes outside the file", false},
-      {"a key outside the octree", patched<std::int32_t>(f.bytes, e0 + 4, 5), "outside the octree",
-       false},
+      {"a key outside the octree", patched<std::int32_t>(f.bytes, e0 + 4, 5), "outside the octree", false},
       {"more points than the header", patched<std::int32_t>(f.bytes, e0 + 28, 2000000000),
        "more points than the header", false},
       {"a node one byte short", patched<std::int32_t>(f.bytes, e0 + 24, size0 - 1), "COPC node 0-0-0-0",

@@ -58,8 +58,8 @@ baseRecordLength(int format)
 /// Encodes `records` in chunks of `chunk_size` (the last one partial) and returns the chunk
 /// bytes, with each chunk's size in `sizes`.
 std::vector<std::uint8_t>
-encodeChunks(const laz::LaszipVlr& vlr, const std::vector<std::uint8_t>& records,
-             std::size_t chunk_size, std::vector<std::size_t>* sizes = nullptr)
+encodeChunks(const laz::LaszipVlr& vlr, const std::vector<std::uint8_t>& records, std::size_t chunk_size,
+             std::vector<std::size_t>* sizes = nullptr)
 {
   std::string error;
   auto encoder = laz::makeChunkEncoder(vlr, error);
@@ -164,7 +164,8 @@ generateRecords(const Scene& s, std::size_t n, std::uint64_t seed)
     r[15] = static_cast<std::uint8_t>(flags | (channel << 4));
     r[16] = static_cast<std::uint8_t>(s.constant_attributes ? 2 : (rng() % 10 < 7 ? 2 : 6));
     r[17] = static_cast<std::uint8_t>(s.constant_attributes ? 0 : rng() % 3);
-    setField<std::int16_t>(r, 18, static_cast<std::int16_t>(s.constant_attributes ? 0 : (x / 7) % 3000 - 1500));
+    setField<std::int16_t>(r, 18,
+                           static_cast<std::int16_t>(s.constant_attributes ? 0 : (x / 7) % 3000 - 1500));
     setField<std::uint16_t>(r, 20, static_cast<std::uint16_t>(s.constant_attributes ? 706 : 706 + channel));
     setField<double>(r, 22, t);
     if (s.format >= 7) {
@@ -198,14 +199,22 @@ const std::vector<Twin>&
 twins()
 {
   static const std::vector<Twin> list = {
-      {"laz/ign/test_data_77050_627755_LA93_IGN69.laz", "registration/ign_lidarhd/test_data_77050_627755_LA93_IGN69.las", 8},
-      {"laz/ign/test_data_77050_627760_LA93_IGN69.laz", "registration/ign_lidarhd/test_data_77050_627760_LA93_IGN69.las", 8},
-      {"laz/ign/test_data_77055_627755_LA93_IGN69.laz", "registration/ign_lidarhd/test_data_77055_627755_LA93_IGN69.las", 8},
-      {"laz/ign/test_data_77055_627760_LA93_IGN69.laz", "registration/ign_lidarhd/test_data_77055_627760_LA93_IGN69.las", 8},
-      {"laz/ign/test_data_77060_627760_LA93_IGN69.laz", "registration/ign_lidarhd/test_data_77060_627760_LA93_IGN69.las", 8},
-      {"laz/ign/test_semis_2023_0292_6833_LA93_IGN69.laz", "registration/ign_lidarhd/test_semis_2023_0292_6833_LA93_IGN69.las", 6},
-      {"laz/ign/test_semis_2021_0382_6565_LA93_IGN69_cropped.laz", "registration/ign_lidarhd/test_semis_2021_0382_6565_LA93_IGN69_cropped.las", 7},
-      {"laz/ign/Semis_2022_0906_6665_LA93_IGN69_ok.laz", "registration/ign_lidarhd/Semis_2022_0906_6665_LA93_IGN69_ok.las", 7},
+      {"laz/ign/test_data_77050_627755_LA93_IGN69.laz",
+       "registration/ign_lidarhd/test_data_77050_627755_LA93_IGN69.las", 8},
+      {"laz/ign/test_data_77050_627760_LA93_IGN69.laz",
+       "registration/ign_lidarhd/test_data_77050_627760_LA93_IGN69.las", 8},
+      {"laz/ign/test_data_77055_627755_LA93_IGN69.laz",
+       "registration/ign_lidarhd/test_data_77055_627755_LA93_IGN69.las", 8},
+      {"laz/ign/test_data_77055_627760_LA93_IGN69.laz",
+       "registration/ign_lidarhd/test_data_77055_627760_LA93_IGN69.las", 8},
+      {"laz/ign/test_data_77060_627760_LA93_IGN69.laz",
+       "registration/ign_lidarhd/test_data_77060_627760_LA93_IGN69.las", 8},
+      {"laz/ign/test_semis_2023_0292_6833_LA93_IGN69.laz",
+       "registration/ign_lidarhd/test_semis_2023_0292_6833_LA93_IGN69.las", 6},
+      {"laz/ign/test_semis_2021_0382_6565_LA93_IGN69_cropped.laz",
+       "registration/ign_lidarhd/test_semis_2021_0382_6565_LA93_IGN69_cropped.las", 7},
+      {"laz/ign/Semis_2022_0906_6665_LA93_IGN69_ok.laz",
+       "registration/ign_lidarhd/Semis_2022_0906_6665_LA93_IGN69_ok.las", 7},
       {"laz/ign/sample_lareunion_epsg2975.laz", "registration/ign_lidarhd/sample_lareunion_epsg2975.las", 8},
       {"laz/ign/las_with_origin_dsmMarker.laz", "registration/ign_lidarhd/las_with_origin_dsmMarker.las", 8},
       {"laz/ign/target_cloud_crop.laz", "registration/ign_lidarhd/target_cloud_crop.las", 7},
@@ -322,7 +331,9 @@ TEST(LazLayeredReal, SeveralExtraByteBlocksDecodePlausibly)
   EXPECT_EQ(declared, r.vlr.items.back().size);
   const auto scale = [&](int k) { return laz_test::get<double>(file.bytes, 131 + 8 * k); };
   const auto offset = [&](int k) { return laz_test::get<double>(file.bytes, 155 + 8 * k); };
-  const auto bound = [&](int k, bool max) { return laz_test::get<double>(file.bytes, 179 + 16 * k + (max ? 0 : 8)); };
+  const auto bound = [&](int k, bool max) {
+    return laz_test::get<double>(file.bytes, 179 + 16 * k + (max ? 0 : 8));
+  };
   std::size_t outside = 0, bad_returns = 0;
   for (std::size_t i = 0; i < file.point_count; ++i) {
     const std::uint8_t* p = r.records.data() + i * file.record_length;
@@ -364,12 +375,12 @@ TEST(LazLayeredReal, CopcNodesDecodeToTheSourcePoints)
     const std::uint8_t* p = r.records.data() + i * copc.record_length;
     a.emplace_back(field<std::int32_t>(p, 0) + shift[0], field<std::int32_t>(p, 4) + shift[1],
                    field<std::int32_t>(p, 8) + shift[2], field<std::uint16_t>(p, 12),
-                   field<std::uint16_t>(p, 30), field<std::uint16_t>(p, 32),
-                   field<std::uint16_t>(p, 34), field<double>(p, 22));
+                   field<std::uint16_t>(p, 30), field<std::uint16_t>(p, 32), field<std::uint16_t>(p, 34),
+                   field<double>(p, 22));
     const std::uint8_t* q = las.bytes.data() + las.offset_to_points + i * las.record_length;
     b.emplace_back(field<std::int32_t>(q, 0), field<std::int32_t>(q, 4), field<std::int32_t>(q, 8),
-                   field<std::uint16_t>(q, 12), field<std::uint16_t>(q, 28),
-                   field<std::uint16_t>(q, 30), field<std::uint16_t>(q, 32), field<double>(q, 20));
+                   field<std::uint16_t>(q, 12), field<std::uint16_t>(q, 28), field<std::uint16_t>(q, 30),
+                   field<std::uint16_t>(q, 32), field<double>(q, 20));
   }
   std::sort(a.begin(), a.end());
   std::sort(b.begin(), b.end());
@@ -388,8 +399,8 @@ TEST(LazLayeredReal, ReencodingGivesTheOriginalChunkBytes)
     ASSERT_TRUE(r.ok) << t.laz << ": " << r.error;
     std::vector<std::size_t> sizes;
     const std::vector<std::uint8_t> bytes = encodeChunks(r.vlr, r.records, r.vlr.chunk_size, &sizes);
-    EXPECT_LE(std::fabs(double(bytes.size()) - double(r.point_data_bytes)),
-              0.01 * double(r.point_data_bytes)) << t.laz;
+    EXPECT_LE(std::fabs(double(bytes.size()) - double(r.point_data_bytes)), 0.01 * double(r.point_data_bytes))
+        << t.laz;
     EXPECT_EQ(sizes, r.chunk_bytes) << t.laz;
     const std::uint8_t* original = file.bytes.data() + file.offset_to_points + 8;
     EXPECT_TRUE(std::equal(bytes.begin(), bytes.end(), original)) << t.laz;
@@ -416,8 +427,8 @@ TEST(LazLayeredLaszip, MultiChannelFilesMatchLaszip)
     std::vector<std::size_t> sizes;
     const std::vector<std::uint8_t> bytes = encodeChunks(r.vlr, r.records, r.vlr.chunk_size, &sizes);
     EXPECT_EQ(sizes, r.chunk_bytes) << name;
-    EXPECT_TRUE(std::equal(bytes.begin(), bytes.end(),
-                           laz_file.bytes.data() + laz_file.offset_to_points + 8)) << name;
+    EXPECT_TRUE(std::equal(bytes.begin(), bytes.end(), laz_file.bytes.data() + laz_file.offset_to_points + 8))
+        << name;
   }
 }
 
@@ -431,14 +442,13 @@ struct RoundTripCase
 };
 
 class LazLayeredRoundTrip : public ::testing::TestWithParam<RoundTripCase>
-{
-};
+{};
 
 TEST_P(LazLayeredRoundTrip, EncodeDecodeIsIdentity)
 {
   const RoundTripCase& c = GetParam();
-  laz::LaszipVlr vlr = laz::defaultLaszipVlr(c.scene.format, c.scene.extra,
-                                             static_cast<std::uint32_t>(c.chunk_size));
+  laz::LaszipVlr vlr =
+      laz::defaultLaszipVlr(c.scene.format, c.scene.extra, static_cast<std::uint32_t>(c.chunk_size));
   for (laz::Item& item : vlr.items)
     item.version = c.version;
   const std::vector<std::uint8_t> records = generateRecords(c.scene, c.points, 17 + c.points);
@@ -456,16 +466,15 @@ TEST_P(LazLayeredRoundTrip, EncodeDecodeIsIdentity)
 
 INSTANTIATE_TEST_SUITE_P(
     Formats, LazLayeredRoundTrip,
-    ::testing::Values(
-        RoundTripCase{{6, 0, 1, false}, 120000, 50000, 3},  // default chunks, partial last
-        RoundTripCase{{6, 0, 4, false}, 20000, 7, 3},       // 4 channels, tiny chunks
-        RoundTripCase{{6, 0, 1, true}, 3000, 1, 3},         // one point per chunk
-        RoundTripCase{{7, 0, 2, false}, 60000, 50000, 3},
-        RoundTripCase{{7, 5, 3, false}, 9000, 1000, 4},     // version 4 items
-        RoundTripCase{{8, 0, 2, false}, 60000, 50000, 3},
-        RoundTripCase{{8, 12, 4, false}, 30000, 7000, 3},
-        RoundTripCase{{8, 3, 4, true}, 50001, 50000, 4},
-        RoundTripCase{{6, 9, 2, true}, 777, 50000, 3}));
+    ::testing::Values(RoundTripCase{{6, 0, 1, false}, 120000, 50000, 3},  // default chunks, partial last
+                      RoundTripCase{{6, 0, 4, false}, 20000, 7, 3},       // 4 channels, tiny chunks
+                      RoundTripCase{{6, 0, 1, true}, 3000, 1, 3},         // one point per chunk
+                      RoundTripCase{{7, 0, 2, false}, 60000, 50000, 3},
+                      RoundTripCase{{7, 5, 3, false}, 9000, 1000, 4},  // version 4 items
+                      RoundTripCase{{8, 0, 2, false}, 60000, 50000, 3},
+                      RoundTripCase{{8, 12, 4, false}, 30000, 7000, 3},
+                      RoundTripCase{{8, 3, 4, true}, 50001, 50000, 4},
+                      RoundTripCase{{6, 9, 2, true}, 777, 50000, 3}));
 
 // A field that never changes in a chunk leaves its layer empty (size 0), as LASzip writes it,
 // and decodes as "unchanged"; changing fields get bytes.
@@ -487,9 +496,9 @@ TEST(LazLayeredRoundTrip2, ConstantFieldsLeaveTheirLayersEmpty)
   EXPECT_EQ(sizes[6], 0u);
   EXPECT_EQ(sizes[7], 0u);
   EXPECT_GT(sizes[8], 0u);
-  EXPECT_GT(sizes[9], 0u);  // RGB varies
-  EXPECT_GT(sizes[10], 0u); // NIR varies
-  EXPECT_EQ(sizes[11], 0u); // extra bytes 0 and 2 are constant, 1 and 3 vary
+  EXPECT_GT(sizes[9], 0u);   // RGB varies
+  EXPECT_GT(sizes[10], 0u);  // NIR varies
+  EXPECT_EQ(sizes[11], 0u);  // extra bytes 0 and 2 are constant, 1 and 3 vary
   EXPECT_GT(sizes[12], 0u);
   EXPECT_EQ(sizes[13], 0u);
   EXPECT_GT(sizes[14], 0u);
@@ -538,7 +547,10 @@ struct HostileFixture
   std::vector<std::uint8_t> out = std::vector<std::uint8_t>(records.size());
   std::string error;
 
-  HostileFixture() { decoder = laz::makeChunkDecoder(vlr, error); }
+  HostileFixture()
+  {
+    decoder = laz::makeChunkDecoder(vlr, error);
+  }
 
   /// Decodes `bytes` as a chunk of 1000 points, from a copy of exactly that size (so ASan sees
   /// any read past it).

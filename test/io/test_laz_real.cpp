@@ -233,8 +233,8 @@ TEST(LazReal, ExtraBytesAreKept)
 // models, same flush. The header and VLRs differ only where the LASzip VLR does.
 TEST(LazReal, ReEncodingGivesTheOriginalChunksByteForByte)
 {
-  for (const char* name : {"laz/pdal/autzen_trim.laz", "laz/pdal/lone-star.laz",
-                           "laz/laspy/simple.laz", "laz/laspy/plane.laz", "laz/laspy/extra.laz"}) {
+  for (const char* name : {"laz/pdal/autzen_trim.laz", "laz/pdal/lone-star.laz", "laz/laspy/simple.laz",
+                           "laz/laspy/plane.laz", "laz/laspy/extra.laz"}) {
     SCOPED_TRACE(name);
     const std::string path = sharedData(name);
     PCL_LS3D_REQUIRE_DATA(path);
@@ -331,7 +331,8 @@ TEST(LazReal, EvlrsAfterTheChunkTable)
 {
   const std::string path = sharedData("laz/laspy/1_4_w_evlr.laz");
   PCL_LS3D_REQUIRE_DATA(path);
-  const std::vector<std::uint8_t> laz = readBytes(path), las = readBytes(sharedData("laz/laspy/1_4_w_evlr.las"));
+  const std::vector<std::uint8_t> laz = readBytes(path),
+                                  las = readBytes(sharedData("laz/laspy/1_4_w_evlr.las"));
   io::LasHeaderInfo hz, hs;
   std::string error;
   ASSERT_TRUE(io::readLasHeader(laz.data(), laz.size(), hz, error)) << error;

@@ -113,8 +113,8 @@ TEST(LazRegion, CopcQueriesEqualTheFullDecodeInsideTheBox)
   slab3d.use_z = true;
   const std::vector<Case> cases = {
       {"beside the extent", box2d(hi.x() + 10, hi.y() + 10, hi.x() + 20, hi.y() + 20), true, false},
-      {"a small box", box2d(mid.x(), mid.y(), mid.x() + 0.02 * size.x(), mid.y() + 0.02 * size.y()),
-       false, false},
+      {"a small box", box2d(mid.x(), mid.y(), mid.x() + 0.02 * size.x(), mid.y() + 0.02 * size.y()), false,
+       false},
       {"a quarter", box2d(lo.x(), lo.y(), mid.x(), mid.y()), false, false},
       {"a 3-D slab", slab3d, false, false},
       {"the whole extent", box2d(lo.x(), lo.y(), hi.x(), hi.y()), false, true},
@@ -242,8 +242,7 @@ TEST(LazRegion, GeneratedFilesAnswerTheSameQuery)
   so.las_point_format = 6;
   so.las_minor_version = 4;
   for (const char* ext : {"las", "laz", "pcd"})
-    ASSERT_TRUE(io::saveCloud(dir.file(std::string("cloud.") + ext), cloud, origin, error, so))
-        << error;
+    ASSERT_TRUE(io::saveCloud(dir.file(std::string("cloud.") + ext), cloud, origin, error, so)) << error;
   io::Region region = box2d(base.x() - 300.5, base.y() - 250.25, base.x() + 150.0, base.y() + 20.0);
   region.use_z = true;
   region.box.min().z() = base.z() - 10.0;
@@ -259,15 +258,13 @@ TEST(LazRegion, GeneratedFilesAnswerTheSameQuery)
     options.region = region;
     pcl::PointCloud<PointLiDAR> got;
     io::CloudInfo info;
-    ASSERT_TRUE(io::loadCloud(dir.file(std::string("cloud.") + ext), got, info, error, options))
-        << error;
+    ASSERT_TRUE(io::loadCloud(dir.file(std::string("cloud.") + ext), got, info, error, options)) << error;
     EXPECT_EQ(got.size(), expected);
     EXPECT_EQ(info.points_outside_region, truth.size() - expected);
     EXPECT_TRUE(info.region.applied);
     for (const PointLiDAR& p : got) {
       const Eigen::Vector3d x = info.origin + p.getVector3fMap().cast<double>();
-      EXPECT_TRUE(region.box.contains(x) ||
-                  (region.box.exteriorDistance(x) < 1e-3)) << x.transpose();
+      EXPECT_TRUE(region.box.contains(x) || (region.box.exteriorDistance(x) < 1e-3)) << x.transpose();
     }
   }
 }
@@ -278,12 +275,10 @@ TEST(LazRegion, BadRegionsAndEmptyAnswers)
   pcl_ls3d_test::TempDir dir("ls3d_region_bad");
   pcl::PointCloud<PointLiDAR> cloud;
   std::vector<Eigen::Vector3d> truth;
-  pcl_ls3d_test::makeUtmCloud(500, 3, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0},
-                              cloud, truth);
+  pcl_ls3d_test::makeUtmCloud(500, 3, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0}, cloud, truth);
   std::string error;
   for (const char* ext : {"las", "laz", "pcd"})
-    ASSERT_TRUE(io::saveCloud(dir.file(std::string("c.") + ext), cloud,
-                              {500000.0, 5000000.0, 0.0}, error));
+    ASSERT_TRUE(io::saveCloud(dir.file(std::string("c.") + ext), cloud, {500000.0, 5000000.0, 0.0}, error));
   const auto refuse = [&](const std::string& file, const io::Region& region, const char* expect,
                           bool allow_empty = false) {
     io::LoadOptions options;

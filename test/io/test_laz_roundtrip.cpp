@@ -95,8 +95,7 @@ vlrFor(int format, std::size_t extra, int version)
 /// Encodes `records` in chunks of `chunk` points and decodes them back; every chunk must decode
 /// to its records and report the bytes it was written in.
 void
-expectChunksRoundTrip(const LaszipVlr& vlr, const std::vector<std::uint8_t>& records,
-                      std::size_t chunk)
+expectChunksRoundTrip(const LaszipVlr& vlr, const std::vector<std::uint8_t>& records, std::size_t chunk)
 {
   const std::size_t length = vlr.recordLength(), n = records.size() / length;
   std::string error;
@@ -114,8 +113,7 @@ expectChunksRoundTrip(const LaszipVlr& vlr, const std::vector<std::uint8_t>& rec
   for (std::size_t first = 0; first < n; first += chunk, ++c) {
     const std::size_t count = std::min(chunk, n - first);
     const std::uint8_t* begin = stream.data() + pos;
-    const std::size_t used =
-        dec->decode(begin, begin + sizes[c], count, back.data() + first * length, error);
+    const std::size_t used = dec->decode(begin, begin + sizes[c], count, back.data() + first * length, error);
     ASSERT_EQ(used, sizes[c]) << "chunk " << c << ": " << error;
     pos += used;
   }
@@ -133,8 +131,8 @@ TEST(LazRoundTrip, ChunkCodersGiveBackEveryRecord)
   for (int format = 0; format <= 3; ++format)
     for (std::size_t extra : {std::size_t(0), std::size_t(5)})
       for (int version : {1, 2}) {
-        SCOPED_TRACE("format " + std::to_string(format) + " extra " + std::to_string(extra) +
-                     " version " + std::to_string(version));
+        SCOPED_TRACE("format " + std::to_string(format) + " extra " + std::to_string(extra) + " version " +
+                     std::to_string(version));
         const auto records = plausibleRecords(format, extra, 7000, 11u * format + extra + version);
         for (std::size_t chunk : {std::size_t(50000), std::size_t(3000), std::size_t(999)})
           expectChunksRoundTrip(vlrFor(format, extra, version), records, chunk);
@@ -188,8 +186,8 @@ TEST(LazRoundTrip, CompressThenDecompressGivesTheLasFileBack)
     SCOPED_TRACE("format " + std::to_string(format));
     pcl::PointCloud<PointLiDAR> cloud;
     std::vector<Eigen::Vector3d> truth;
-    pcl_ls3d_test::makeUtmCloud(2345, format, {500100.0, 5000100.0, 50.0},
-                                {500000.0, 5000000.0, 0.0}, cloud, truth);
+    pcl_ls3d_test::makeUtmCloud(2345, format, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0}, cloud,
+                                truth);
     io::SaveOptions so;
     so.las_point_format = static_cast<std::uint8_t>(format);
     so.las_vlrs.push_back({"someone", 7, "a VLR to keep", {1, 2, 3, 4}});
@@ -220,8 +218,7 @@ TEST(LazRoundTrip, SaveCloudWritesLazThatLoadsAsTheLasDoes)
   pcl_ls3d_test::TempDir dir("ls3d_laz_roundtrip");
   pcl::PointCloud<PointLiDAR> cloud, a, b;
   std::vector<Eigen::Vector3d> truth;
-  pcl_ls3d_test::makeUtmCloud(3000, 3, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0},
-                              cloud, truth);
+  pcl_ls3d_test::makeUtmCloud(3000, 3, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0}, cloud, truth);
   std::string error;
   io::SaveOptions so;
   ASSERT_TRUE(io::saveCloud(dir.file("c.laz"), cloud, {500000.0, 5000000.0, 0.0}, error, so)) << error;
@@ -233,9 +230,8 @@ TEST(LazRoundTrip, SaveCloudWritesLazThatLoadsAsTheLasDoes)
   ASSERT_TRUE(io::loadCloud(dir.file("c.las"), b, ib, error)) << error;
   ASSERT_EQ(a.size(), b.size());
   for (std::size_t i = 0; i < a.size(); ++i)
-    ASSERT_TRUE(a[i].x == b[i].x && a[i].y == b[i].y && a[i].z == b[i].z &&
-                a[i].gps_time == b[i].gps_time && a[i].intensity == b[i].intensity &&
-                a[i].classification == b[i].classification)
+    ASSERT_TRUE(a[i].x == b[i].x && a[i].y == b[i].y && a[i].z == b[i].z && a[i].gps_time == b[i].gps_time &&
+                a[i].intensity == b[i].intensity && a[i].classification == b[i].classification)
         << "point " << i;
   EXPECT_EQ(ia.origin, ib.origin);
   EXPECT_TRUE(ia.las.laz.compressed);
@@ -256,8 +252,7 @@ TEST(LazRoundTrip, RefusalsAndEmptyFiles)
   EXPECT_NE(error.find("waveform"), std::string::npos) << error;
   so.las_point_format = 1;
   so.las_minor_version = 2;
-  ASSERT_TRUE(io::writeLaz(pcl::PointCloud<PointLiDAR>(), Eigen::Vector3d::Zero(), out, error, so))
-      << error;
+  ASSERT_TRUE(io::writeLaz(pcl::PointCloud<PointLiDAR>(), Eigen::Vector3d::Zero(), out, error, so)) << error;
   pcl::PointCloud<PointLiDAR> back;
   io::CloudInfo info;
   io::LoadOptions lo;
@@ -275,8 +270,8 @@ TEST(LazRoundTrip, LayeredFormatsRoundTripOrRefuseCleanly)
     SCOPED_TRACE("format " + std::to_string(format));
     pcl::PointCloud<PointLiDAR> cloud;
     std::vector<Eigen::Vector3d> truth;
-    pcl_ls3d_test::makeUtmCloud(3000, format, {500100.0, 5000100.0, 50.0},
-                                {500000.0, 5000000.0, 0.0}, cloud, truth);
+    pcl_ls3d_test::makeUtmCloud(3000, format, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0}, cloud,
+                                truth);
     io::SaveOptions so;
     so.las_point_format = static_cast<std::uint8_t>(format);
     so.las_minor_version = 4;

@@ -53,8 +53,7 @@ partsOf(const std::string& path)
   std::string error;
   EXPECT_TRUE(io::readLasHeader(bytes.data(), bytes.size(), h, error)) << path << ": " << error;
   p.compressed = h.laz.compressed;
-  p.records = h.laz.compressed ? pcl_ls3d_test::lazRecords(bytes, h)
-                               : pcl_ls3d_test::lasRecords(bytes, h);
+  p.records = h.laz.compressed ? pcl_ls3d_test::lazRecords(bytes, h) : pcl_ls3d_test::lasRecords(bytes, h);
   for (const io::LasVlr& v : h.vlrs)
     if (v.user_id != "laszip encoded")
       p.vlrs.push_back(vlrKey(v));
@@ -103,8 +102,8 @@ TEST(LazTools, ConvertLasLazLasIsLosslessOnGeneratedFiles)
     SCOPED_TRACE("format " + std::to_string(format));
     pcl::PointCloud<PointLiDAR> cloud;
     std::vector<Eigen::Vector3d> truth;
-    pcl_ls3d_test::makeUtmCloud(2500, format, {500100.0, 5000100.0, 50.0},
-                                {500000.0, 5000000.0, 0.0}, cloud, truth);
+    pcl_ls3d_test::makeUtmCloud(2500, format, {500100.0, 5000100.0, 50.0}, {500000.0, 5000000.0, 0.0}, cloud,
+                                truth);
     io::SaveOptions so;
     so.las_point_format = static_cast<std::uint8_t>(format);
     so.las_minor_version = format >= 6 ? 4 : 2;
@@ -141,12 +140,11 @@ TEST(LazTools, ConvertSelectsRecordsLosslessly)
   std::vector<std::uint8_t> expected;
   for (std::size_t i = 0; i < cloud.size(); ++i)
     if (cloud[i].classification == 2 && truth[i].x() >= x0 && truth[i].x() <= x1)
-      expected.insert(expected.end(), in.records.begin() + i * length,
-                      in.records.begin() + (i + 1) * length);
+      expected.insert(expected.end(), in.records.begin() + i * length, in.records.begin() + (i + 1) * length);
   ASSERT_GT(expected.size(), 50 * length);
   const std::string args = " -classes 2 -bounds " + std::to_string(x0) + ",0," + std::to_string(x1) + ",1e8";
-  for (const auto& [from, to] : {std::pair<const char*, const char*>{"in.las", "a.laz"},
-                                 {"in.laz", "b.las"}, {"in.laz", "c.laz"}}) {
+  for (const auto& [from, to] :
+       {std::pair<const char*, const char*>{"in.las", "a.laz"}, {"in.laz", "b.las"}, {"in.laz", "c.laz"}}) {
     SCOPED_TRACE(std::string(from) + " -> " + to);
     const auto r = runTool("pcl_ls3d_convert", quoted(dir.file(from)) + " " + quoted(dir.file(to)) + args,
                            dir.path.string());
@@ -175,8 +173,8 @@ TEST(LazTools, ConvertLasLazLasIsLosslessOnRealTwins)
     roundTrip(las, dir, stem);
     const std::string out = dir.file(std::string(stem) + "_from_laszip.las");
     const auto r = runTool("pcl_ls3d_convert",
-                           quoted(sharedData(std::string("laz/laspy/") + stem + ".laz")) + " " +
-                               quoted(out), dir.path.string());
+                           quoted(sharedData(std::string("laz/laspy/") + stem + ".laz")) + " " + quoted(out),
+                           dir.path.string());
     ASSERT_EQ(r.code, 0) << r.err;
     const LasParts a = partsOf(las), b = partsOf(out);
     EXPECT_TRUE(a.records == b.records);
@@ -202,19 +200,21 @@ TEST(LazTools, ConvertBoundsOnCopcDecodesOnlyTheNodesItNeeds)
   char bounds[256];
   std::snprintf(bounds, sizeof(bounds), "%.3f,%.3f,%.3f,%.3f", lo.x(), lo.y(), mid.x(), mid.y());
   const std::string out = dir.file("crop.laz");
-  auto r = runTool("pcl_ls3d_convert", quoted(copc) + " " + quoted(out) + " -bounds " + bounds,
-                   dir.path.string());
+  auto r =
+      runTool("pcl_ls3d_convert", quoted(copc) + " " + quoted(out) + " -bounds " + bounds, dir.path.string());
   ASSERT_EQ(r.code, 0) << r.err;
   std::size_t read = 0, nodes = 0;
-  ASSERT_EQ(std::sscanf(r.out.substr(r.out.find("Decoded")).c_str(), "Decoded %zu of %zu COPC", &read,
-                        &nodes), 2) << r.out;
+  ASSERT_EQ(
+      std::sscanf(r.out.substr(r.out.find("Decoded")).c_str(), "Decoded %zu of %zu COPC", &read, &nodes), 2)
+      << r.out;
   EXPECT_LT(read, nodes);
   EXPECT_EQ(nodes, h.copc.nodes);
   // The truth: every record of the whole file inside the box (read to 1e-3 file units: the
   // printed bounds are rounded so, and the reader compares in double).
   io::Region region;
   ASSERT_EQ(std::sscanf(bounds, "%lf,%lf,%lf,%lf", &region.box.min().x(), &region.box.min().y(),
-                        &region.box.max().x(), &region.box.max().y()), 4);
+                        &region.box.max().x(), &region.box.max().y()),
+            4);
   std::vector<std::uint8_t> las;
   ASSERT_TRUE(io::decompressLaz(bytes.data(), bytes.size(), las, error)) << error;
   io::LasHeaderInfo plain;
@@ -240,8 +240,9 @@ TEST(LazTools, ConvertBoundsOnCopcDecodesOnlyTheNodesItNeeds)
     EXPECT_NE(v.rfind("copc|", 0), 0u);
   EXPECT_TRUE(cropped.evlrs.empty());
   // The pointwise LAZ twin (PF1), cropped by the same box into a PCD: as many points.
-  r = runTool("pcl_ls3d_convert", quoted(sharedData("laz/pdal/lone-star.laz")) + " " +
-                                      quoted(dir.file("crop.pcd")) + " -bounds " + bounds,
+  r = runTool("pcl_ls3d_convert",
+              quoted(sharedData("laz/pdal/lone-star.laz")) + " " + quoted(dir.file("crop.pcd")) +
+                  " -bounds " + bounds,
               dir.path.string());
   ASSERT_EQ(r.code, 0) << r.err;
   pcl::PointCloud<PointLiDAR> cloud;
@@ -293,8 +294,7 @@ TEST(LazTools, InfoReportsCompressionAndTheCopcOctree)
   EXPECT_FALSE(z.contains("copc"));
   r = runTool("pcl_ls3d_info", quoted(copc), dir.path.string());
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find("COPC octree: " + std::to_string(nodes) + " nodes"), std::string::npos)
-      << r.out;
+  EXPECT_NE(r.out.find("COPC octree: " + std::to_string(nodes) + " nodes"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("LAZ layered-chunked, variable-size chunks"), std::string::npos) << r.out;
 }
 
@@ -339,23 +339,25 @@ TEST(LazTools, EveryToolReadsLaz)
   const std::vector<Run> runs = {
       {"pcl_ls3d_info", quoted(copc) + " " + quoted(tile), {0}},
       {"pcl_ls3d_convert", quoted(copc) + " " + quoted(dir.file("c.pcd")), {0}},
-      {"pcl_ls3d_register", quoted(small) + " " + quoted(small) + " -max_iter 3 -o " +
-                                quoted(dir.file("aligned.laz")), {0}},
+      {"pcl_ls3d_register",
+       quoted(small) + " " + quoted(small) + " -max_iter 3 -o " + quoted(dir.file("aligned.laz")),
+       {0}},
       {"pcl_ls3d_compare", quoted(small) + " " + quoted(small) + " -methods ls3d-lnd -iter 3", {0}},
       {"pcl_ls3d_deformation", quoted(small) + " " + quoted(small), {0}},
       {"pcl_ls3d_segment", quoted(small) + " -o " + quoted(dir.file("SEGMENTS.pcd")), {0}},
-      {"pcl_ls3d_strip_adjust", quoted(tile) + " -split psid -q -o " + quoted(dir.file("strips")),
-       {0, 3}},
+      {"pcl_ls3d_strip_adjust", quoted(tile) + " -split psid -q -o " + quoted(dir.file("strips")), {0, 3}},
       {"pcl_ls3d_synth", "pair -o " + quoted(dir.file("synth")) + " -format laz", {0}},
   };
   for (const Run& run : runs) {
     SCOPED_TRACE(run.tool);
     const auto r = runTool(run.tool, run.args, d);
     EXPECT_NE(std::find(run.codes.begin(), run.codes.end(), r.code), run.codes.end())
-        << "exit " << r.code << "\n" << r.err << r.out.substr(0, 2000);
+        << "exit " << r.code << "\n"
+        << r.err << r.out.substr(0, 2000);
   }
   // What they wrote as LAZ is LAZ, and loads.
-  for (const std::string& f : {dir.file("aligned.laz"), dir.file("strips/las_with_origin_dsmMarker_psid3025.laz")}) {
+  for (const std::string& f :
+       {dir.file("aligned.laz"), dir.file("strips/las_with_origin_dsmMarker_psid3025.laz")}) {
     SCOPED_TRACE(f);
     pcl::PointCloud<PointLiDAR> cloud;
     io::CloudInfo info;
@@ -388,6 +390,5 @@ TEST(LazTools, CorrectedCopcStripsAreNamedLaz)
   for (const auto& u : strips::outputUnits(block, "out", false))
     split.push_back(u.path);
   EXPECT_EQ(whole, (std::vector<std::string>{"out/a.laz", "out/b.laz", "out/c.copc.las"}));
-  EXPECT_EQ(split, (std::vector<std::string>{"out/a_psid7.laz", "out/b_psid7.laz",
-                                             "out/c.copc_psid7.las"}));
+  EXPECT_EQ(split, (std::vector<std::string>{"out/a_psid7.laz", "out/b_psid7.laz", "out/c.copc_psid7.las"}));
 }

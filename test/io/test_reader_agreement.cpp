@@ -39,14 +39,22 @@ valueOf(const pcl::PCLPointCloud2& c, std::size_t i, const std::string& name)
     return static_cast<double>(v);
   };
   switch (f.datatype) {
-  case pcl::PCLPointField::INT8: return get(std::int8_t());
-  case pcl::PCLPointField::UINT8: return get(std::uint8_t());
-  case pcl::PCLPointField::INT16: return get(std::int16_t());
-  case pcl::PCLPointField::UINT16: return get(std::uint16_t());
-  case pcl::PCLPointField::INT32: return get(std::int32_t());
-  case pcl::PCLPointField::UINT32: return get(std::uint32_t());
-  case pcl::PCLPointField::FLOAT32: return get(float());
-  default: return get(double());
+  case pcl::PCLPointField::INT8:
+    return get(std::int8_t());
+  case pcl::PCLPointField::UINT8:
+    return get(std::uint8_t());
+  case pcl::PCLPointField::INT16:
+    return get(std::int16_t());
+  case pcl::PCLPointField::UINT16:
+    return get(std::uint16_t());
+  case pcl::PCLPointField::INT32:
+    return get(std::int32_t());
+  case pcl::PCLPointField::UINT32:
+    return get(std::uint32_t());
+  case pcl::PCLPointField::FLOAT32:
+    return get(float());
+  default:
+    return get(double());
   }
 }
 
@@ -71,8 +79,8 @@ expectAgreement(const std::string& path, bool ply)
       continue;
     ASSERT_LT(j, cloud.size());
     const Eigen::Vector3d got = cloud[j].getVector3fMap().cast<double>() + info.origin;
-    EXPECT_LT((got - x).cwiseAbs().maxCoeff(), 1e-6 * (1.0 + x.cwiseAbs().maxCoeff()) +
-                                                   (info.origin.isZero() ? 0.0 : 1e-3));
+    EXPECT_LT((got - x).cwiseAbs().maxCoeff(),
+              1e-6 * (1.0 + x.cwiseAbs().maxCoeff()) + (info.origin.isZero() ? 0.0 : 1e-3));
     const double intensity = valueOf(ref, i, "intensity");
     if (std::isfinite(intensity)) {
       EXPECT_FLOAT_EQ(cloud[j].intensity, static_cast<float>(intensity));
@@ -93,9 +101,9 @@ mixedCloud()
 {
   pcl::PCLPointCloud2 c;
   const std::pair<const char*, std::uint8_t> fields[] = {
-      {"x", pcl::PCLPointField::FLOAT64},     {"y", pcl::PCLPointField::FLOAT32},
-      {"z", pcl::PCLPointField::FLOAT32},     {"intensity", pcl::PCLPointField::UINT16},
-      {"label", pcl::PCLPointField::UINT32},  {"normal", pcl::PCLPointField::FLOAT32},
+      {"x", pcl::PCLPointField::FLOAT64},    {"y", pcl::PCLPointField::FLOAT32},
+      {"z", pcl::PCLPointField::FLOAT32},    {"intensity", pcl::PCLPointField::UINT16},
+      {"label", pcl::PCLPointField::UINT32}, {"normal", pcl::PCLPointField::FLOAT32},
       {"flag", pcl::PCLPointField::INT8}};
   for (const auto& [name, type] : fields) {
     pcl::PCLPointField f;
@@ -136,8 +144,8 @@ TEST(ReaderAgreement, FilesWrittenByPclReadTheSameAsWithPcl)
   TempDir dir("ls3d_agree");
   const pcl::PCLPointCloud2 c = mixedCloud();
   pcl::PCDWriter pcd;
-  ASSERT_EQ(pcd.writeASCII(dir.file("a.pcd"), c, Eigen::Vector4f::Zero(),
-                           Eigen::Quaternionf::Identity(), 17), 0);
+  ASSERT_EQ(pcd.writeASCII(dir.file("a.pcd"), c, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity(), 17),
+            0);
   ASSERT_EQ(pcd.writeBinary(dir.file("b.pcd"), c), 0);
   ASSERT_EQ(pcd.writeBinaryCompressed(dir.file("c.pcd"), c), 0);
   pcl::PLYWriter ply;

@@ -20,7 +20,7 @@ using pcl_ls3d_test::TempDir;
 
 namespace {
 
-constexpr long kCapMb = 512;       // address-space headroom of the child (outside ASan)
+constexpr long kCapMb = 512;        // address-space headroom of the child (outside ASan)
 constexpr long kHostileKb = 32768;  // a refused 10-point file may cost at most 32 MiB
 
 void

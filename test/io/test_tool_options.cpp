@@ -72,34 +72,51 @@ protected:
 TEST_F(ToolOptions, NumericOptionsAreParsedStrictly)
 {
   const std::string pair = file("a.pcd") + " " + file("a.pcd");
-  const std::pair<std::string, std::string> register_cases[] = {
-      {"-params 6x", "-params"},  {"-params abc", "-params"}, {"-max_iter abc", "-max_iter"},
-      {"-max_iter 2.5", "-max_iter"}, {"-K 6x", "-K"},         {"-thin abc", "-thin"},
-      {"-max_dist 1e999", "-max_dist"}, {"-guess 1x", "-guess"}, {"-guess -1", "-guess must be > 0"}, {"-max_dist -1", "-max_dist must be > 0"}, {"-params 7 -params 6", "given twice"}};
+  const std::pair<std::string, std::string> register_cases[] = {{"-params 6x", "-params"},
+                                                                {"-params abc", "-params"},
+                                                                {"-max_iter abc", "-max_iter"},
+                                                                {"-max_iter 2.5", "-max_iter"},
+                                                                {"-K 6x", "-K"},
+                                                                {"-thin abc", "-thin"},
+                                                                {"-max_dist 1e999", "-max_dist"},
+                                                                {"-guess 1x", "-guess"},
+                                                                {"-guess -1", "-guess must be > 0"},
+                                                                {"-max_dist -1", "-max_dist must be > 0"},
+                                                                {"-params 7 -params 6", "given twice"}};
   for (const auto& [args, expect] : register_cases)
     expectRefusal("pcl_ls3d_register", pair + " " + args, expect);
-  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
-           {"-max_corr abc", "-max_corr"}, {"-iter 3x", "-iter"}, {"-ndt_res nan", "-ndt_res"},
-           {"-thinning -1", "-thinning"},  {"-gicp_grad x", "-gicp_grad"}})
+  for (const auto& [args, expect] :
+       std::vector<std::pair<std::string, std::string>>{{"-max_corr abc", "-max_corr"},
+                                                        {"-iter 3x", "-iter"},
+                                                        {"-ndt_res nan", "-ndt_res"},
+                                                        {"-thinning -1", "-thinning"},
+                                                        {"-gicp_grad x", "-gicp_grad"}})
     expectRefusal("pcl_ls3d_compare", pair + " " + args, expect);
-  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
-           {"-Nt abc", "-Nt"}, {"-threads 2x", "-threads"}, {"-eval_min_size 1x", "-eval_min_size"},
-           {"-min_fragment abc", "-min_fragment"}, {"-k 10,x", "-k"}})
+  for (const auto& [args, expect] :
+       std::vector<std::pair<std::string, std::string>>{{"-Nt abc", "-Nt"},
+                                                        {"-threads 2x", "-threads"},
+                                                        {"-eval_min_size 1x", "-eval_min_size"},
+                                                        {"-min_fragment abc", "-min_fragment"},
+                                                        {"-k 10,x", "-k"}})
     expectRefusal("pcl_ls3d_segment", file("a.pcd") + " " + args, expect);
   const std::string convert = file("a.pcd") + " " + file("b.las") + " ";
-  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
-           {"-las_format 3x", "-las_format"}, {"-las_scale abc", "-las_scale"},
-           {"-xyz_decimals 99", "-xyz_decimals"}, {"-origin 1,2,3x", "-origin"},
-           {"-classes 2,x", "-classes"}, {"-las_version 1.9", "-las_version"}})
+  for (const auto& [args, expect] :
+       std::vector<std::pair<std::string, std::string>>{{"-las_format 3x", "-las_format"},
+                                                        {"-las_scale abc", "-las_scale"},
+                                                        {"-xyz_decimals 99", "-xyz_decimals"},
+                                                        {"-origin 1,2,3x", "-origin"},
+                                                        {"-classes 2,x", "-classes"},
+                                                        {"-las_version 1.9", "-las_version"}})
     expectRefusal("pcl_ls3d_convert", convert + args, expect);
   for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
-           {"pair -seed 1x", "-seed"}, {"pair -overlap 0.5x", "-overlap"},
-           {"scene -trees abc", "-trees"}})
+           {"pair -seed 1x", "-seed"}, {"pair -overlap 0.5x", "-overlap"}, {"scene -trees abc", "-trees"}})
     expectRefusal("pcl_ls3d_synth", args + " -o " + file("synth"), expect);
-  for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
-           {"-max_iter abc", "-max_iter"}, {"-max_obs 6x", "-max_obs"},
-           {"-spacing x", "-spacing"}, {"-max_dist 1e999", "-max_dist"},
-           {"-min_area 2m", "-min_area"}})
+  for (const auto& [args, expect] :
+       std::vector<std::pair<std::string, std::string>>{{"-max_iter abc", "-max_iter"},
+                                                        {"-max_obs 6x", "-max_obs"},
+                                                        {"-spacing x", "-spacing"},
+                                                        {"-max_dist 1e999", "-max_dist"},
+                                                        {"-min_area 2m", "-min_area"}})
     expectRefusal("pcl_ls3d_strip_adjust", pair + " " + args + " -o " + file("strips"), expect);
   expectRefusal("pcl_ls3d_strip_adjust", "match -work " + file("work") + " -job 1x", "-job");
   expectRefusal("pcl_ls3d_strip_adjust", "apply -work " + file("work") + " -unit -1", "-unit");
@@ -111,8 +128,7 @@ TEST_F(ToolOptions, UnwritableOutputsAreRefusedBeforeAnyWork)
 {
   const std::string a = file("a.pcd"), missing = file("missing/x"), under_file = file("not_a_folder/x");
   expectRefusal("pcl_ls3d_register", a + " " + a + " -o " + missing + ".pcd", "does not exist");
-  expectRefusal("pcl_ls3d_register", a + " " + a + " -json " + under_file + ".json",
-                "is not a folder");
+  expectRefusal("pcl_ls3d_register", a + " " + a + " -json " + under_file + ".json", "is not a folder");
   expectRefusal("pcl_ls3d_compare", a + " " + a + " -json " + missing + ".json", "does not exist");
   expectRefusal("pcl_ls3d_segment", a + " -o " + under_file + ".pcd", "is not a folder");
   expectRefusal("pcl_ls3d_segment", a + " -json " + missing + ".json", "does not exist");
@@ -139,7 +155,7 @@ TEST_F(ToolOptions, CompareFailsWhenEveryMethodFailed)
   EXPECT_NE(r.out.find("failed"), std::string::npos) << r.out;
   EXPECT_TRUE(std::ifstream(file("compare.json")).good());  // the report is still written
   // The same clouds onto themselves: at least one method works, exit 0.
-  const auto ok = runTool("pcl_ls3d_compare", file("a.pcd") + " " + file("a.pcd") + " -methods icp",
-                          dir_.path.string());
+  const auto ok =
+      runTool("pcl_ls3d_compare", file("a.pcd") + " " + file("a.pcd") + " -methods icp", dir_.path.string());
   EXPECT_EQ(ok.code, 0) << ok.out << ok.err;
 }

@@ -16,8 +16,8 @@ using namespace pcl_ls3d;
 namespace {
 
 bool
-parse(const std::string& text, pcl::PointCloud<PointLiDAR>& cloud, io::CloudInfo& info,
-      std::string& error, const io::LoadOptions& options = {})
+parse(const std::string& text, pcl::PointCloud<PointLiDAR>& cloud, io::CloudInfo& info, std::string& error,
+      const io::LoadOptions& options = {})
 {
   std::istringstream in(text);
   return io::readXyz(in, cloud, info, error, options);
@@ -29,14 +29,13 @@ parse(const std::string& text, pcl::PointCloud<PointLiDAR>& cloud, io::CloudInfo
 // parse would quantise a 5.4e6 northing to 0.5 m). Tolerance: float rounding of |local| < 1 m.
 TEST(XyzIO, SpacesCommentsBlankLinesAndUtmPrecision)
 {
-  const std::string text =
-      "# a comment\n"
-      "// another comment\n"
-      "\n"
-      "512345.678 5412345.679 321.001\n"
-      "   \t\n"
-      "512345.679\t5412345.680  321.002\r\n"
-      "512344.000 5412344.000 320.000\n";
+  const std::string text = "# a comment\n"
+                           "// another comment\n"
+                           "\n"
+                           "512345.678 5412345.679 321.001\n"
+                           "   \t\n"
+                           "512345.679\t5412345.680  321.002\r\n"
+                           "512344.000 5412344.000 320.000\n";
   pcl::PointCloud<PointLiDAR> cloud;
   io::CloudInfo info;
   std::string error;
@@ -51,10 +50,9 @@ TEST(XyzIO, SpacesCommentsBlankLinesAndUtmPrecision)
 
 TEST(XyzIO, CommaSeparatedWithHeaderLineMapsNamedColumns)
 {
-  const std::string text =
-      "X,Y,Z,Intensity,Classification,R,G,B\n"
-      "1.5,2.5,3.5,120,6,255,0,0\n"
-      "-1,-2,-3,40,2,0,255,0\n";
+  const std::string text = "X,Y,Z,Intensity,Classification,R,G,B\n"
+                           "1.5,2.5,3.5,120,6,255,0,0\n"
+                           "-1,-2,-3,40,2,0,255,0\n";
   pcl::PointCloud<PointLiDAR> cloud;
   io::CloudInfo info;
   std::string error;

@@ -40,8 +40,7 @@ inline ToolRun
 runTool(const std::string& tool, const std::string& args, const std::string& scratch)
 {
   const std::string out = scratch + "/tool_stdout.txt", err = scratch + "/tool_stderr.txt";
-  const int status =
-      std::system((toolPath(tool) + " " + args + " > '" + out + "' 2> '" + err + "'").c_str());
+  const int status = std::system((toolPath(tool) + " " + args + " > '" + out + "' 2> '" + err + "'").c_str());
   ToolRun r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = slurp(out);

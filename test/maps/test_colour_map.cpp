@@ -31,7 +31,8 @@ TEST(ColourMap, InterpolatesBetweenStopsAndClampsOutside)
 
 TEST(ColourMap, TwoStopsAtOneValueMakeAStep)
 {
-  const ColourMap m(std::vector<ColourMap::Stop>{{0.0, {0, 0, 0}}, {1.0, {0, 0, 0}}, {1.0, {255, 255, 255}}, {2.0, {255, 255, 255}}});
+  const ColourMap m(std::vector<ColourMap::Stop>{
+      {0.0, {0, 0, 0}}, {1.0, {0, 0, 0}}, {1.0, {255, 255, 255}}, {2.0, {255, 255, 255}}});
   EXPECT_EQ(m.colour(0.999), (Rgb{0, 0, 0}));
   EXPECT_EQ(m.colour(1.0), (Rgb{255, 255, 255}));
   ASSERT_EQ(m.steps().size(), 1u);

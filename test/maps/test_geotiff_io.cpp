@@ -91,7 +91,7 @@ TEST(GeoTiff, RasterWithoutCrsAndBadPaths)
 TEST(CoordinateReference, GeoTiffKeysOfALasFile)
 {
   // Lambert-93 (ProjectedCSTypeGeoKey 3072 = 2154), metres, and NGF-IGN69 heights (4096 = 5720).
-  const std::vector<std::uint16_t> keys = {1, 1, 0, 5, 1024, 0, 1, 1, 1025, 0, 1, 1,
+  const std::vector<std::uint16_t> keys = {1,    1, 0, 5,    1024, 0, 1, 1,    1025, 0, 1, 1,
                                            3072, 0, 1, 2154, 3076, 0, 1, 9001, 4096, 0, 1, 5720};
   const std::string wkt = crsFromLasVlrs({geoKeyVlr(keys)});
   ASSERT_FALSE(wkt.empty());

@@ -29,7 +29,10 @@ namespace {
 struct Scratch
 {
   fs::path dir = fs::temp_directory_path() / ("pcl_ls3d_map_format_tools_" + std::to_string(::getpid()));
-  Scratch() { fs::create_directories(dir); }
+  Scratch()
+  {
+    fs::create_directories(dir);
+  }
   ~Scratch()
   {
     std::error_code ec;
@@ -65,7 +68,8 @@ TEST(MapFormatTools, DeformationWritesTheFormatAsked)
   const Scratch s;
   writeLiPair(s);
   const std::string pair = s.file("ref.pcd") + " " + s.file("epoch.pcd");
-  auto r = runTool("pcl_ls3d_deformation", pair + " -map " + s.file("m") + " -map_format pdf", s.dir.string());
+  auto r =
+      runTool("pcl_ls3d_deformation", pair + " -map " + s.file("m") + " -map_format pdf", s.dir.string());
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(slurpBytes(s.file("m.pdf")).compare(0, 5, "%PDF-"), 0);
   EXPECT_TRUE(fs::exists(s.file("m.tif")));
@@ -83,16 +87,17 @@ TEST(MapFormatTools, DeformationWritesTheFormatAsked)
   EXPECT_TRUE(pcl_ls3d_test::wellFormedXml(slurpBytes(s.file("v.svg")), why)) << why;
 
   // Refused before the inputs are read: one line, exit 1, nothing written.
-  for (const std::string& bad : {" -map " + s.file("x") + " -map_format jpg",
-                                 " -map " + s.file("x") + " -map_format",
-                                 " -map " + s.file("no_such_folder/x") + " -map_format svg"}) {
+  for (const std::string& bad :
+       {" -map " + s.file("x") + " -map_format jpg", " -map " + s.file("x") + " -map_format",
+        " -map " + s.file("no_such_folder/x") + " -map_format svg"}) {
     r = runTool("pcl_ls3d_deformation", pair + bad, s.dir.string());
     EXPECT_EQ(r.code, 1) << bad;
     EXPECT_EQ(lineCount(r.err), 1u) << bad << ": " << r.err;
   }
-  EXPECT_NE(runTool("pcl_ls3d_deformation", pair + " -map " + s.file("x") + " -map_format jpg", s.dir.string())
-                .err.find("-map_format"),
-            std::string::npos);
+  EXPECT_NE(
+      runTool("pcl_ls3d_deformation", pair + " -map " + s.file("x") + " -map_format jpg", s.dir.string())
+          .err.find("-map_format"),
+      std::string::npos);
   for (const char* name : {"x.png", "x.jpg", "x.tif", "x.svg"})
     EXPECT_FALSE(fs::exists(s.file(name))) << name;
   // An existing map is kept without -overwrite.
@@ -105,12 +110,14 @@ TEST(MapFormatTools, StripAdjustWritesEveryMapInTheFormatAsked)
 {
   const Scratch s;
   auto r = runTool("pcl_ls3d_synth",
-                   "strips -o '" + s.file("in") + "' -format las -split -strips 2 -length 160 -swath 100 "
-                   "-density 1 -seed 5 -shift_sigma 0.3 -angle_sigma 5e-4 -scale_sigma 0",
+                   "strips -o '" + s.file("in") +
+                       "' -format las -split -strips 2 -length 160 -swath 100 "
+                       "-density 1 -seed 5 -shift_sigma 0.3 -angle_sigma 5e-4 -scale_sigma 0",
                    s.dir.string());
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string input = "'" + s.file("in/strips.las") + "' -split psid -reference 1";
-  r = runTool("pcl_ls3d_strip_adjust", input + " -maps '" + s.file("maps") + "' -map_format svg", s.dir.string());
+  r = runTool("pcl_ls3d_strip_adjust", input + " -maps '" + s.file("maps") + "' -map_format svg",
+              s.dir.string());
   ASSERT_EQ(r.code, 0) << r.err;
   std::size_t svg = 0, png = 0, tif = 0;
   for (const auto& e : fs::directory_iterator(s.file("maps"))) {
@@ -125,7 +132,8 @@ TEST(MapFormatTools, StripAdjustWritesEveryMapInTheFormatAsked)
   std::string why;
   EXPECT_TRUE(pcl_ls3d_test::wellFormedXml(slurpBytes(s.file("maps/histogram.svg")), why)) << why;
 
-  r = runTool("pcl_ls3d_strip_adjust", input + " -maps '" + s.file("maps2") + "' -map_format tiff", s.dir.string());
+  r = runTool("pcl_ls3d_strip_adjust", input + " -maps '" + s.file("maps2") + "' -map_format tiff",
+              s.dir.string());
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(lineCount(r.err), 1u) << r.err;
   EXPECT_NE(r.err.find("-map_format"), std::string::npos) << r.err;

@@ -31,7 +31,10 @@ namespace {
 struct Scratch
 {
   fs::path dir = fs::temp_directory_path() / ("pcl_ls3d_map_formats_" + std::to_string(::getpid()));
-  Scratch() { fs::create_directories(dir); }
+  Scratch()
+  {
+    fs::create_directories(dir);
+  }
   ~Scratch()
   {
     std::error_code ec;
@@ -78,8 +81,8 @@ rampStyle()
 std::vector<std::string>
 rampTexts(const MapStyle& s)
 {
-  std::vector<std::string> t = {s.title, s.subtitle[0], s.legend[0], s.legend[1], s.footer, "no data",
-                                "N", s.unit, "0", "2 m"};
+  std::vector<std::string> t = {s.title,   s.subtitle[0], s.legend[0], s.legend[1], s.footer,
+                                "no data", "N",           s.unit,      "0",         "2 m"};
   for (const char* tick : {"\u2264 \u22121.00", "\u22120.50", "0.00", "+0.50", "\u2265 +1.00"})
     t.push_back(tick);
   return t;
@@ -107,7 +110,8 @@ firstRowOf(const Image& img, int x, Rgb c)
 bool
 near(Rgb a, Rgb b, int tolerance)
 {
-  return std::abs(a.r - b.r) <= tolerance && std::abs(a.g - b.g) <= tolerance && std::abs(a.b - b.b) <= tolerance;
+  return std::abs(a.r - b.r) <= tolerance && std::abs(a.g - b.g) <= tolerance &&
+         std::abs(a.b - b.b) <= tolerance;
 }
 
 }  // namespace
@@ -184,7 +188,7 @@ TEST(RasterMap, PngShowsEveryCellAndTheColourBarEnds)
   }
   ASSERT_GE(top, 0) << "no dark red in the colour bar";
   ASSERT_GE(bottom, 0) << "no dark blue in the colour bar";
-  EXPECT_GE(bottom - top, 150);  // the bar is at least 160 pixels high
+  EXPECT_GE(bottom - top, 150);                           // the bar is at least 160 pixels high
   EXPECT_EQ(img.get(bar_x, top - 1), (Rgb{90, 90, 90}));  // the bar's frame right above red
 }
 
@@ -263,7 +267,7 @@ TEST(RasterMap, OutlineSurroundsTheMarkedCells)
   EXPECT_EQ(outline, 384u);
   EXPECT_EQ(img.get(x0 + 120, y0 + 20), kOutlineColour);  // the block's top left pixel
   EXPECT_EQ(img.get(x0 + 121, y0 + 21), kOutlineColour);
-  EXPECT_EQ(img.get(x0 + 179, y0 + 59), kOutlineColour);  // its bottom right pixel
+  EXPECT_EQ(img.get(x0 + 179, y0 + 59), kOutlineColour);              // its bottom right pixel
   EXPECT_EQ(img.get(x0 + 122, y0 + 22), colours.colour(r.at(6, 1)));  // the cell inside
   EXPECT_EQ(img.get(x0 + 119, y0 + 20), colours.colour(r.at(5, 1)));  // the cell left of it
   EXPECT_EQ(img.get(x0 + 120, y0 + 19), colours.colour(r.at(6, 0)));  // the cell above it
@@ -273,7 +277,8 @@ TEST(RasterMap, OutlineSurroundsTheMarkedCells)
 TEST(Histogram, PdfHoldsTitleAxisAndLegend)
 {
   const Scratch s;
-  HistogramSeries before{"before: RMS 0.150 m", {}, {214, 96, 77}}, after{"after: RMS 0.030 m", {}, {33, 102, 172}};
+  HistogramSeries before{"before: RMS 0.150 m", {}, {214, 96, 77}},
+      after{"after: RMS 0.030 m", {}, {33, 102, 172}};
   for (int i = -50; i <= 50; ++i) {
     before.values.push_back(0.003 * i);
     after.values.push_back(0.0006 * i);
@@ -305,7 +310,9 @@ TEST(Drawing, RefusesUnwritableAndExistingFiles)
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
     EXPECT_FALSE(fs::exists(s.file("missing_dir")));
     const std::string path = s.file("m" + ext);
-    { std::ofstream(path) << "keep"; }
+    {
+      std::ofstream(path) << "keep";
+    }
     EXPECT_FALSE(d.write(path, f, error));
     EXPECT_NE(error.find("exists"), std::string::npos) << error;
     EXPECT_EQ(slurpBytes(path), "keep");

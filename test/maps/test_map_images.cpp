@@ -62,7 +62,9 @@ TEST(Image, TextIsDrawnAndMeasured)
   EXPECT_EQ(countDark(img, end + 2, 0, 200, 40), 0u);
   // Bytes that are no UTF-8 become '?', not nothing (cairo would refuse the whole text).
   EXPECT_EQ(Drawing::textWidth("\xff"), Drawing::textWidth("?"));
-  EXPECT_EQ(Drawing::textWidth("a\xc3" "b"), Drawing::textWidth("a?b"));  // truncated sequence
+  EXPECT_EQ(Drawing::textWidth("a\xc3"
+                               "b"),
+            Drawing::textWidth("a?b"));  // truncated sequence
   EXPECT_GT(Drawing::lineHeight(FontStyle::BOLD), Drawing::lineHeight());
 }
 
@@ -72,8 +74,9 @@ TEST(PngIo, WrittenPixelsReadBackExactly)
   std::mt19937 rng(3);
   for (int y = 0; y < img.height(); ++y)
     for (int x = 0; x < img.width(); ++x)
-      img.set(x, y, {static_cast<std::uint8_t>(rng()), static_cast<std::uint8_t>(rng()),
-                     static_cast<std::uint8_t>(rng())});
+      img.set(x, y,
+              {static_cast<std::uint8_t>(rng()), static_cast<std::uint8_t>(rng()),
+               static_cast<std::uint8_t>(rng())});
   const std::string path = tempPath("roundtrip.png");
   std::string error;
   ASSERT_TRUE(writePng(path, img, error)) << error;

@@ -47,8 +47,8 @@ TEST(RasterAccumulator, MeanAndLargestMagnitudePerCell)
     acc->add(0.5, 1.5, 0.1);
     acc->add(0.6, 1.4, -0.3);
     acc->add(2.5, 0.5, 0.2);
-    acc->add(99.0, 0.5, 5.0);   // outside: ignored
-    acc->add(1.5, 0.5, NAN);    // not finite: ignored
+    acc->add(99.0, 0.5, 5.0);  // outside: ignored
+    acc->add(1.5, 0.5, NAN);   // not finite: ignored
   }
   const Raster m = mean.result(), w = worst.result();
   EXPECT_FLOAT_EQ(m.at(0, 0), -0.1f);

@@ -38,15 +38,13 @@ writePatch(const std::string& path, const std::string& crs, double per_unit, flo
   pcl::PointCloud<pcl_ls3d::PointLiDAR> c;
   for (int i = 0; i < 30; ++i)
     for (int j = 0; j < 30; ++j)
-      c.push_back(pcl_ls3d::PointLiDAR(static_cast<float>(i / per_unit),
-                                       static_cast<float>(j / per_unit),
+      c.push_back(pcl_ls3d::PointLiDAR(static_cast<float>(i / per_unit), static_cast<float>(j / per_unit),
                                        std::sin(0.3f * i) + std::cos(0.2f * j) + dz));
   pcl_ls3d::io::SaveOptions o;
   pcl_ls3d::maps::recordCrs(pcl_ls3d::maps::crsFromUserInput(crs), o);  // "": none
   o.las_scale = {0.001 / per_unit, 0.001 / per_unit, 0.001};
   std::string error;
-  ASSERT_TRUE(pcl_ls3d::io::saveCloud(path, c, Eigen::Vector3d(2.0, 48.0, 0.0), error, o))
-      << error;
+  ASSERT_TRUE(pcl_ls3d::io::saveCloud(path, c, Eigen::Vector3d(2.0, 48.0, 0.0), error, o)) << error;
 }
 
 }  // namespace
@@ -78,8 +76,8 @@ TEST(ToolsRefuseDegrees, OneLineBeforeAnyWork)
   // Converted to PCD, the files keep their CRS in the header and are refused the same way.
   ASSERT_EQ(runTool("pcl_ls3d_convert", a + " " + dir.file("a.pcd"), dir.path.string()).code, 0);
   ASSERT_EQ(runTool("pcl_ls3d_convert", b + " " + dir.file("b.pcd"), dir.path.string()).code, 0);
-  const pcl_ls3d_test::ToolRun pcd = runTool(
-      "pcl_ls3d_register", dir.file("a.pcd") + " " + dir.file("b.pcd"), dir.path.string());
+  const pcl_ls3d_test::ToolRun pcd =
+      runTool("pcl_ls3d_register", dir.file("a.pcd") + " " + dir.file("b.pcd"), dir.path.string());
   EXPECT_EQ(pcd.code, 1);
   EXPECT_NE(pcd.err.find("is in degrees (WGS 84)"), std::string::npos) << pcd.err;
   // Earth-centred coordinates too; a projected CRS is read on.
@@ -102,18 +100,19 @@ TEST(ToolsKeepTheCrs, PcdOutputsRecordTheInputsCrs)
   const std::string c = dir.file("c.las"), d = dir.file("d.las");
   writePatch(c, "EPSG:2154", 1.0, 0.0f);
   writePatch(d, "EPSG:2154", 1.0, 0.2f);
-  ASSERT_EQ(runTool("pcl_ls3d_register", d + " " + c + " -o " + dir.file("aligned.pcd"),
-                    dir.path.string()).code, 0);
-  const pcl_ls3d_test::ToolRun def = runTool(
-      "pcl_ls3d_deformation", c + " " + d + " -o " + dir.file("residuals.pcd"), dir.path.string());
+  ASSERT_EQ(
+      runTool("pcl_ls3d_register", d + " " + c + " -o " + dir.file("aligned.pcd"), dir.path.string()).code,
+      0);
+  const pcl_ls3d_test::ToolRun def =
+      runTool("pcl_ls3d_deformation", c + " " + d + " -o " + dir.file("residuals.pcd"), dir.path.string());
   ASSERT_TRUE(def.code == 0 || def.code == 3) << def.err;
   // The strip adjustment's corrected strips, from PCD strips that record the CRS.
   for (const std::string& s : {c, d})
-    ASSERT_EQ(runTool("pcl_ls3d_convert", s + " " + s.substr(0, s.size() - 3) + "pcd",
-                      dir.path.string()).code, 0);
-  const pcl_ls3d_test::ToolRun strips = runTool(
-      "pcl_ls3d_strip_adjust", dir.file("c.pcd") + " " + dir.file("d.pcd") + " -o " + dir.file("out"),
-      dir.path.string());
+    ASSERT_EQ(
+        runTool("pcl_ls3d_convert", s + " " + s.substr(0, s.size() - 3) + "pcd", dir.path.string()).code, 0);
+  const pcl_ls3d_test::ToolRun strips =
+      runTool("pcl_ls3d_strip_adjust", dir.file("c.pcd") + " " + dir.file("d.pcd") + " -o " + dir.file("out"),
+              dir.path.string());
   ASSERT_EQ(strips.code, 0) << strips.err;
   const std::string lambert = pcl_ls3d::maps::crsFromUserInput("EPSG:2154");
   for (const char* name : {"aligned.pcd", "residuals.pcd", "out/c.pcd", "out/d.pcd"}) {
@@ -143,8 +142,7 @@ TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
   EXPECT_EQ(same.err.find("declares"), std::string::npos) << same.err;
   // The CRS read from a PCD header too; the strips' note names the first input that declares
   // one, not the first input.
-  ASSERT_EQ(runTool("pcl_ls3d_convert", utm + " " + dir.file("utm.pcd"), dir.path.string()).code,
-            0);
+  ASSERT_EQ(runTool("pcl_ls3d_convert", utm + " " + dir.file("utm.pcd"), dir.path.string()).code, 0);
   const std::string calls[][2] = {
       {"pcl_ls3d_register", utm + " " + lambert},
       {"pcl_ls3d_compare", utm + " " + lambert + " -methods ls3d-lnd"},
@@ -155,9 +153,10 @@ TEST(ToolsWarnOfDifferentCrs, OneWarningNotARefusal)
     SCOPED_TRACE(call[0]);
     const pcl_ls3d_test::ToolRun r = runTool(call[0], call[1], dir.path.string());
     EXPECT_NE(r.code, 1) << r.err;
-    EXPECT_NE((r.out + r.err).find("'" + utm + "' declares WGS 84 / UTM zone 31N, '" + lambert +
-                                   "' RGF93 v1 / Lambert-93"),
-              std::string::npos)
+    EXPECT_NE(
+        (r.out + r.err)
+            .find("'" + utm + "' declares WGS 84 / UTM zone 31N, '" + lambert + "' RGF93 v1 / Lambert-93"),
+        std::string::npos)
         << r.out << r.err;
   }
   const pcl_ls3d_test::ToolRun pcd =
@@ -325,25 +324,25 @@ TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
     double unit;      ///< metres per height unit
     const char* crs;  ///< "": none
   };
-  for (const TargetCase& c : {TargetCase{"target.las", kUsFoot, "EPSG:32631+6360"},
-                              TargetCase{"target_m.las", 1.0, "EPSG:32631+5703"},
-                              TargetCase{"target_nocrs.pcd", kUsFoot, ""}}) {
+  for (const TargetCase& c :
+       {TargetCase{"target.las", kUsFoot, "EPSG:32631+6360"},
+        TargetCase{"target_m.las", 1.0, "EPSG:32631+5703"}, TargetCase{"target_nocrs.pcd", kUsFoot, ""}}) {
     SCOPED_TRACE(c.file);
     const std::string target = dir.file(c.file), stem = fs::path(c.file).stem().string();
     writeWithHeights(target, *pair.target, pair.origin, c.unit, c.crs);
     // The truth in the files' coordinates: source feet to metres, the true move, metres to the
     // target's unit.
-    const Eigen::Matrix4d truth =
-        heightScale(1.0 / c.unit) * pair.globalTruthMatrix() * heightScale(kUsFoot);
+    const Eigen::Matrix4d truth = heightScale(1.0 / c.unit) * pair.globalTruthMatrix() * heightScale(kUsFoot);
     nlohmann::json truth_json;
     for (int r = 0; r < 4; ++r)
       truth_json["transformation"].push_back({truth(r, 0), truth(r, 1), truth(r, 2), truth(r, 3)});
     std::ofstream(dir.file(stem + "_truth.json")) << truth_json.dump();
 
-    const pcl_ls3d_test::ToolRun reg = runTool(
-        "pcl_ls3d_register", source + " " + target + " -json " + dir.file(stem + "_reg.json") +
-                                 " -o " + dir.file(stem + "_aligned.pcd"),
-        dir.path.string());
+    const pcl_ls3d_test::ToolRun reg =
+        runTool("pcl_ls3d_register",
+                source + " " + target + " -json " + dir.file(stem + "_reg.json") + " -o " +
+                    dir.file(stem + "_aligned.pcd"),
+                dir.path.string());
     ASSERT_EQ(reg.code, 0) << reg.err;
     EXPECT_EQ((reg.out + reg.err).find("mix the two units"), std::string::npos);
     EXPECT_EQ(std::string(c.crs).empty(),
@@ -351,31 +350,29 @@ TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
                   std::string::npos)
         << reg.out;
     const nlohmann::json reg_json = readJson(dir.file(stem + "_reg.json"));
-    EXPECT_LT(meanErrorInMetres(jsonMatrix(reg_json.at("transformation")), truth, source_ft,
-                                c.unit),
-              0.06);
-    EXPECT_NEAR(reg_json.at("heights").at("plan_units_per_height_unit").at("source").get<double>(),
-                kUsFoot, 1e-9);
+    EXPECT_LT(meanErrorInMetres(jsonMatrix(reg_json.at("transformation")), truth, source_ft, c.unit), 0.06);
+    EXPECT_NEAR(reg_json.at("heights").at("plan_units_per_height_unit").at("source").get<double>(), kUsFoot,
+                1e-9);
     // The aligned source in the target's frame and height unit where the truth puts it.
     EXPECT_LT(meanHeightErrorInMetres(dir.file(stem + "_aligned.pcd"), truth, source_ft, c.unit), 0.02);
 
-    const pcl_ls3d_test::ToolRun cmp = runTool(
-        "pcl_ls3d_compare", source + " " + target + " -methods ls3d-lnd -truth " +
-                                dir.file(stem + "_truth.json") + " -json " + dir.file(stem + "_cmp.json"),
-        dir.path.string());
+    const pcl_ls3d_test::ToolRun cmp =
+        runTool("pcl_ls3d_compare",
+                source + " " + target + " -methods ls3d-lnd -truth " + dir.file(stem + "_truth.json") +
+                    " -json " + dir.file(stem + "_cmp.json"),
+                dir.path.string());
     ASSERT_EQ(cmp.code, 0) << cmp.err;
     const nlohmann::json row = readJson(dir.file(stem + "_cmp.json")).at("methods").at(0);
     // compare's own error (metres: working coordinates) and the one of its transformation in the
     // files' coordinates agree.
     const double compare_error = row.at("error").at("mean").get<double>();
     EXPECT_LT(compare_error, 0.06);
-    EXPECT_NEAR(meanErrorInMetres(jsonMatrix(row.at("transformation")), truth, source_ft,
-                                  c.unit),
+    EXPECT_NEAR(meanErrorInMetres(jsonMatrix(row.at("transformation")), truth, source_ft, c.unit),
                 compare_error, 1e-4);
 
-    const pcl_ls3d_test::ToolRun def = runTool(
-        "pcl_ls3d_deformation", target + " " + source + " -json " + dir.file(stem + "_def.json"),
-        dir.path.string());
+    const pcl_ls3d_test::ToolRun def =
+        runTool("pcl_ls3d_deformation", target + " " + source + " -json " + dir.file(stem + "_def.json"),
+                dir.path.string());
     ASSERT_EQ(def.code, 0) << def.err;
     EXPECT_LT(meanErrorInMetres(jsonMatrix(readJson(dir.file(stem + "_def.json")).at("transformation")),
                                 truth, source_ft, c.unit),
@@ -383,9 +380,10 @@ TEST(ToolsWorkInThePlanUnit, HeightsInFeetOverMetres)
   }
   // A LAS source moved to LAS keeps its header and CRS, so its heights stay in feet, on a target
   // in metres as well.
-  ASSERT_EQ(runTool("pcl_ls3d_register", source + " " + dir.file("target_m.las") + " -o " +
-                                             dir.file("aligned_m.las"),
-                    dir.path.string()).code,
+  ASSERT_EQ(runTool("pcl_ls3d_register",
+                    source + " " + dir.file("target_m.las") + " -o " + dir.file("aligned_m.las"),
+                    dir.path.string())
+                .code,
             0);
   const Eigen::Matrix4d truth_in_feet =
       heightScale(1.0 / kUsFoot) * pair.globalTruthMatrix() * heightScale(kUsFoot);
@@ -423,9 +421,10 @@ largestDifference(const std::string& metres, const std::string& feet)
 TEST(ToolsWorkInThePlanUnit, StripsInFeetOverMetres)
 {
   const TempDir dir("ls3d_strips_plan_unit");
-  ASSERT_EQ(runTool("pcl_ls3d_synth", "strips -o " + dir.file("m") +
-                                          " -split -format las -strips 3 -length 200 -swath 100",
-                    dir.path.string()).code,
+  ASSERT_EQ(runTool("pcl_ls3d_synth",
+                    "strips -o " + dir.file("m") + " -split -format las -strips 3 -length 200 -swath 100",
+                    dir.path.string())
+                .code,
             0);
   std::string metres, feet;
   for (const char* name : {"strip_1.las", "strip_2.las", "strip_3.las"}) {
@@ -444,8 +443,8 @@ TEST(ToolsWorkInThePlanUnit, StripsInFeetOverMetres)
     const auto [plan_moved, height_moved] =
         largestDifference(dir.file(std::string("m/") + name), dir.file(std::string("out_ft/ft_") + name));
     EXPECT_GT(std::max(plan_moved, height_moved), 0.1);  // corrected: not the input
-    const auto [plan, height] = largestDifference(dir.file(std::string("out_m/") + name),
-                                                  dir.file(std::string("out_ft/ft_") + name));
+    const auto [plan, height] =
+        largestDifference(dir.file(std::string("out_m/") + name), dir.file(std::string("out_ft/ft_") + name));
     EXPECT_LT(plan, 0.005);
     EXPECT_LT(height, 0.003);
   }

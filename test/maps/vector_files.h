@@ -95,7 +95,9 @@ parseCMap(const std::string& s)
   std::smatch range;
   if (std::regex_search(s, range, std::regex(R"(begincodespacerange\s*<([0-9A-Fa-f]+)>)")))
     m.hex_digits = range[1].length();
-  const auto hex = [](const std::string& h) { return static_cast<std::uint32_t>(std::stoul(h, nullptr, 16)); };
+  const auto hex = [](const std::string& h) {
+    return static_cast<std::uint32_t>(std::stoul(h, nullptr, 16));
+  };
   const std::regex one(R"(<([0-9A-Fa-f]+)>\s*<([0-9A-Fa-f]{4})>)");
   for (std::size_t at = 0; (at = s.find("beginbfchar", at)) != std::string::npos; ++at) {
     const std::string block = s.substr(at, s.find("endbfchar", at) - at);
@@ -129,8 +131,7 @@ literalString(const std::string& content, std::size_t& i)
           v = 8 * v + (content[i] - '0');
         --i;
         c = static_cast<char>(v);
-      }
-      else if (c == 'n' || c == 'r' || c == 't')
+      } else if (c == 'n' || c == 'r' || c == 't')
         c = c == 'n' ? '\n' : c == 'r' ? '\r' : '\t';
       bytes += c;
       continue;
@@ -193,18 +194,17 @@ pdfText(const std::string& pdf)
           std::regex_search(content.begin() + static_cast<std::ptrdiff_t>(i), content.end(), m, select)) {
         font = fonts.count(m[1]) ? &fonts.at(m[1]) : nullptr;
         i += static_cast<std::size_t>(m.length());
-      }
-      else if (content[i] == '(')
+      } else if (content[i] == '(')
         text += decoded(literalString(content, i), font);
       else if (content[i] == '<' && i + 1 < content.size() && content[i + 1] != '<') {
         const std::size_t end = content.find('>', i);
         std::string bytes;
-        for (std::size_t k = i + 1; k + 1 < end && std::isxdigit(static_cast<unsigned char>(content[k])); k += 2)
+        for (std::size_t k = i + 1; k + 1 < end && std::isxdigit(static_cast<unsigned char>(content[k]));
+             k += 2)
           bytes += static_cast<char>(std::stoi(content.substr(k, 2), nullptr, 16));
         text += decoded(bytes, font);
         i = end + 1;
-      }
-      else
+      } else
         i += content[i] == '<' ? 2 : 1;
     }
     if (!text.empty())
@@ -246,7 +246,8 @@ wellFormedXml(const std::string& xml, std::string& why)
     if (!std::regex_search(tag, m, name))
       return (why = "bad tag <" + tag + ">").empty();
     const std::string element = m[0];
-    for (std::string rest = m.suffix(); !rest.empty() && rest.find_first_not_of(" \t\r\n") != std::string::npos;) {
+    for (std::string rest = m.suffix();
+         !rest.empty() && rest.find_first_not_of(" \t\r\n") != std::string::npos;) {
       std::smatch a;
       if (end || !std::regex_search(rest, a, attribute))
         return (why = "bad attributes in <" + tag + ">").empty();
@@ -254,10 +255,10 @@ wellFormedXml(const std::string& xml, std::string& why)
     }
     if (end) {
       if (open.empty() || open.back() != element)
-        return (why = "</" + element + "> closes " + (open.empty() ? "nothing" : "<" + open.back() + ">")).empty();
+        return (why = "</" + element + "> closes " + (open.empty() ? "nothing" : "<" + open.back() + ">"))
+            .empty();
       open.pop_back();
-    }
-    else if (open.empty() && root_seen)
+    } else if (open.empty() && root_seen)
       return (why = "a second root <" + element + ">").empty();
     else if (!empty)
       open.push_back(element);

@@ -15,9 +15,8 @@ using LS3D = pcl_ls3d::LeastSquaresSurfaceMatching<PointT, PointT>;
 
 /// A small terrain pair (no buildings unless asked), default truth of the generator.
 inline pcl_ls3d::synth::RegistrationPair
-smallPair(std::uint32_t seed, double size, double src_density, double tgt_density,
-          double overlap, double noise, double wavelength = 60.0, double relief = 10.0,
-          bool buildings = false)
+smallPair(std::uint32_t seed, double size, double src_density, double tgt_density, double overlap,
+          double noise, double wavelength = 60.0, double relief = 10.0, bool buildings = false)
 {
   pcl_ls3d::synth::RegistrationPairSettings s;
   s.seed = seed;
@@ -39,8 +38,7 @@ struct DisplacementError
 };
 
 inline DisplacementError
-displacementError(const Cloud& source, const Eigen::Matrix4d& estimate,
-                  const Eigen::Matrix4d& truth)
+displacementError(const Cloud& source, const Eigen::Matrix4d& estimate, const Eigen::Matrix4d& truth)
 {
   DisplacementError e;
   std::size_t n = 0;

@@ -28,7 +28,8 @@ pairWithScale(std::uint32_t seed, double m)
   s.overlap = 0.8;
   s.noise_sigma = 0.02;
   s.buildings = false;
-  s.truth = pcl_ls3d::SimilarityTransform((pcl_ls3d::Vector7d() << 0.4, -0.3, 0.2, 1e-3, -1e-3, 2e-3, m).finished());
+  s.truth = pcl_ls3d::SimilarityTransform(
+      (pcl_ls3d::Vector7d() << 0.4, -0.3, 0.2, 1e-3, -1e-3, 2e-3, m).finished());
   return pcl_ls3d::synth::makeRegistrationPair(s);
 }
 

@@ -28,7 +28,11 @@ struct Figures
 {
   pcl_ls3d::Vector7d spread_ratio, coverage;
   int used = 0;
-  double pooledCoverage() const { return coverage.mean(); }
+  double
+  pooledCoverage() const
+  {
+    return coverage.mean();
+  }
 };
 
 // One noise-free 100 m pair (1 pt/m², 80 % overlap); each draw adds fresh isotropic noise of
@@ -76,8 +80,8 @@ runDraws(double sigma_source, double sigma_target)
     f.coverage[i] = covered / n;
     std::printf("noise %.2f/%.2f %-6s bias %+.2e spread %.3e sigma %.3e ratio %.2f coverage %.2f\n",
                 sigma_source, sigma_target,
-                pcl_ls3d::similarityParameterNames()[static_cast<std::size_t>(i)].c_str(), mean,
-                spread, mean_sigma, f.spread_ratio[i], f.coverage[i]);
+                pcl_ls3d::similarityParameterNames()[static_cast<std::size_t>(i)].c_str(), mean, spread,
+                mean_sigma, f.spread_ratio[i], f.coverage[i]);
   }
   return f;
 }

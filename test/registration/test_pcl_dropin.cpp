@@ -49,24 +49,22 @@ loadBunnies(std::string& why)
       state = -1;
       reason = "PCL's bun0.pcd / bun4.pcd not found in " + dir.string() +
                " (configure with -DPCL_LS3D_SHARED_DATA_DIR=<shared data folder>); skipped";
-    }
-    else if (io::loadPCDFile(bun0.string(), cloud_source) < 0 ||
-             io::loadPCDFile(bun4.string(), cloud_target) < 0) {
+    } else if (io::loadPCDFile(bun0.string(), cloud_source) < 0 ||
+               io::loadPCDFile(bun4.string(), cloud_target) < 0) {
       state = -1;
       reason = "bun0.pcd / bun4.pcd in " + dir.string() + " could not be read; skipped";
-    }
-    else
+    } else
       state = 1;
   }
   why = reason;
   return state == 1;
 }
 
-#define REQUIRE_BUNNIES()                                                                      \
-  do {                                                                                         \
-    std::string why_;                                                                          \
-    if (!loadBunnies(why_))                                                                    \
-      GTEST_SKIP() << why_;                                                                    \
+#define REQUIRE_BUNNIES()                                                                                    \
+  do {                                                                                                       \
+    std::string why_;                                                                                        \
+    if (!loadBunnies(why_))                                                                                  \
+      GTEST_SKIP() << why_;                                                                                  \
   } while (0)
 
 // Published bun0 -> bun4 ground truth (PCL master, TEST PPFRegistration).
@@ -197,8 +195,8 @@ runBun0ToBun4()
   PointCloud<PointXYZ> out;
   reg.align(out);
   EXPECT_EQ(out.size(), cloud_source.size());
-  ASSERT_TRUE(reg.hasConverged()) << pcl_ls3d::terminationTypeToString(reg.getReport().termination)
-                                  << ": " << reg.getReport().message;
+  ASSERT_TRUE(reg.hasConverged()) << pcl_ls3d::terminationTypeToString(reg.getReport().termination) << ": "
+                                  << reg.getReport().message;
 
   const Eigen::Matrix4d transformation = reg.getFinalTransformation().template cast<double>();
   const Eigen::Matrix4d gt = bun0ToBun4GroundTruth();
@@ -260,8 +258,7 @@ TEST(PclDropin, IterativeClosestPointEveryRule)
     const auto& report = reg.getReport();
     const Eigen::Matrix4d t = reg.getFinalTransformation().cast<double>();
     const double angle = angleBetweenDeg(t, bun0ToBun4GroundTruth());
-    const double shift =
-        (t.topRightCorner<3, 1>() - bun0ToBun4GroundTruth().topRightCorner<3, 1>()).norm();
+    const double shift = (t.topRightCorner<3, 1>() - bun0ToBun4GroundTruth().topRightCorner<3, 1>()).norm();
     std::printf("%s: %s, %.2f deg / %.1f mm from the GT\n", report.rule_name.c_str(),
                 pcl_ls3d::terminationTypeToString(report.termination), angle, 1e3 * shift);
     if (rule == pcl_ls3d::ConjugateRuleType::LZD) {
@@ -304,9 +301,8 @@ TEST(PclDropin, WrongMinimumIsRefusedByEveryRule)
     const auto& report = reg.getReport();
     const double angle =
         angleBetweenDeg(reg.getFinalTransformation().cast<double>(), bun0ToBun4GroundTruth());
-    std::printf("%s from the wrong minimum: %s, %.1f deg from the GT: %s\n",
-                report.rule_name.c_str(), pcl_ls3d::terminationTypeToString(report.termination),
-                angle, report.message.c_str());
+    std::printf("%s from the wrong minimum: %s, %.1f deg from the GT: %s\n", report.rule_name.c_str(),
+                pcl_ls3d::terminationTypeToString(report.termination), angle, report.message.c_str());
     ASSERT_GT(angle, 20.0) << report.rule_name << " left the wrong minimum: the case is void";
     EXPECT_FALSE(reg.hasConverged()) << report.rule_name;
     // UNRELIABLE, or STALLED when the estimate stayed at the guess (the ICP rule).
@@ -327,8 +323,7 @@ sampleRandomTransform(Eigen::Affine3f& trans, float max_angle, float max_trans)
                        static_cast<float>(rand()) / RAND_MAX);
   axis.normalize();
   float angle = static_cast<float>(rand()) / RAND_MAX * max_angle;
-  Eigen::Vector3f translation(static_cast<float>(rand()) / RAND_MAX,
-                              static_cast<float>(rand()) / RAND_MAX,
+  Eigen::Vector3f translation(static_cast<float>(rand()) / RAND_MAX, static_cast<float>(rand()) / RAND_MAX,
                               static_cast<float>(rand()) / RAND_MAX);
   translation *= max_trans;
   Eigen::Affine3f rotation(Eigen::AngleAxis<float>(angle, axis));
@@ -556,8 +551,8 @@ TEST(PclDropin, ShiftedBeyondItsSizeIsNotRefused)
   PointCloud<PointXYZ> out;
   reg.align(out);
   EXPECT_NE(reg.getReport().termination, pcl_ls3d::TerminationType::NO_OVERLAP);
-  ASSERT_TRUE(reg.hasConverged()) << pcl_ls3d::terminationTypeToString(reg.getReport().termination)
-                                  << ": " << reg.getReport().message;
+  ASSERT_TRUE(reg.hasConverged()) << pcl_ls3d::terminationTypeToString(reg.getReport().termination) << ": "
+                                  << reg.getReport().message;
   const Eigen::Matrix4f t = reg.getFinalTransformation();
   std::printf("0.2 m shift: t = (%.6f, %.6f, %.6f)\n", t(0, 3), t(1, 3), t(2, 3));
   EXPECT_NEAR(t(2, 3), 0.2, 1e-3);
@@ -585,11 +580,12 @@ TEST(PclDropin, ExactGuessStays)
   reg.setInputTarget(tgt);
   PointCloud<PointXYZ> out;
   reg.align(out, truth.matrix());
-  ASSERT_TRUE(reg.hasConverged()) << pcl_ls3d::terminationTypeToString(reg.getReport().termination)
-                                  << ": " << reg.getReport().message;
+  ASSERT_TRUE(reg.hasConverged()) << pcl_ls3d::terminationTypeToString(reg.getReport().termination) << ": "
+                                  << reg.getReport().message;
   const Eigen::Matrix4d t = reg.getFinalTransformation().cast<double>();
   const double angle = angleBetweenDeg(t, truth.matrix().cast<double>());
-  const double shift = (t.topRightCorner<3, 1>() - truth.matrix().cast<double>().topRightCorner<3, 1>()).norm();
+  const double shift =
+      (t.topRightCorner<3, 1>() - truth.matrix().cast<double>().topRightCorner<3, 1>()).norm();
   std::printf("exact guess: moved %.2e deg, %.2e m\n", angle, shift);
   EXPECT_LT(angle, 1e-3);
   EXPECT_LT(shift, 1e-5);

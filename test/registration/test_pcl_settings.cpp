@@ -106,7 +106,10 @@ class OddIndexRejector : public pcl::registration::CorrespondenceRejector
 {
 public:
   using Ptr = std::shared_ptr<OddIndexRejector>;
-  OddIndexRejector() { rejection_name_ = "OddIndexRejector"; }
+  OddIndexRejector()
+  {
+    rejection_name_ = "OddIndexRejector";
+  }
   void
   getRemainingCorrespondences(const pcl::Correspondences& in, pcl::Correspondences& out) override
   {
@@ -320,8 +323,7 @@ TEST(PclSettings, EuclideanFitnessEpsilonEveryRule)
         unset = reg.iterations();
         EXPECT_GT(unset, 10) << who;
         EXPECT_LT(translationError(reg.getFinalTransformation().cast<double>()), tolerance) << who;
-      }
-      else {
+      } else {
         EXPECT_LE(reg.iterations(), previous) << who;
       }
       if (epsilon == 2.0) {
@@ -400,8 +402,8 @@ TEST(PclSettings, VisualizationCallbackPerIteration)
       [&](const Cloud& s, const pcl::Indices& si, const Cloud& t, const pcl::Indices& ti) {
         ++calls;
         pairs = si.size();
-        same_sizes = same_sizes && si.size() == ti.size() && s.size() == src->size() &&
-                     t.size() == tgt->size();
+        same_sizes =
+            same_sizes && si.size() == ti.size() && s.size() == src->size() && t.size() == tgt->size();
         last = s;
       };
   ASSERT_TRUE(reg.registerVisualizationCallback(cb));

@@ -71,8 +71,8 @@ TEST(QualityGate, RigidByDefaultAndTrustedOnAGoodFit)
   EXPECT_GT(r.quality.sigma0_ratio, 0.5);
   EXPECT_LT(r.quality.sigma0_ratio, 2.0);
   EXPECT_GT(r.quality.coverage, 0.7);  // 80 % of the source lies over the target
-  const auto err = displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
-                                     pair.truth.matrix());
+  const auto err =
+      displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(), pair.truth.matrix());
   EXPECT_LT(err.mean, 0.7 * 0.02);
 }
 
@@ -128,8 +128,8 @@ TEST(QualityGate, VerticalRuleOnSteepSurfacesIsValidAndCanBeFlagged)
   const auto r = register_(pair.source, pair.target, lzd);
   ASSERT_TRUE(lzd.hasConverged()) << r.fullReport();
   EXPECT_GT(r.quality.median_gradient, 1.3);
-  const auto lzd_err = displacementError(*pair.source, lzd.getFinalTransformation().cast<double>(),
-                                         pair.truth.matrix());
+  const auto lzd_err =
+      displacementError(*pair.source, lzd.getFinalTransformation().cast<double>(), pair.truth.matrix());
   EXPECT_LT(lzd_err.mean, 0.02);
 
   LS3D strict;
@@ -144,8 +144,8 @@ TEST(QualityGate, VerticalRuleOnSteepSurfacesIsValidAndCanBeFlagged)
   LS3D lnd;
   const auto g = register_(pair.source, pair.target, lnd);
   ASSERT_TRUE(lnd.hasConverged()) << g.fullReport();
-  const auto err = displacementError(*pair.source, lnd.getFinalTransformation().cast<double>(),
-                                     pair.truth.matrix());
+  const auto err =
+      displacementError(*pair.source, lnd.getFinalTransformation().cast<double>(), pair.truth.matrix());
   EXPECT_LT(err.mean, 0.7 * 0.02);
 }
 

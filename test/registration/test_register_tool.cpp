@@ -109,7 +109,7 @@ protected:
 TEST_F(RegisterTool, GoodRunWritesReport)
 {
   const ToolRun r = runTool(path("source.pcd") + " " + path("target.pcd") + " -json " + path("r.json") +
-                        " -truth " + path("truth.json") + " -o " + path("aligned.pcd"));
+                            " -truth " + path("truth.json") + " -o " + path("aligned.pcd"));
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(path("r.json"));
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -138,19 +138,19 @@ TEST_F(RegisterTool, BadInputGivesOneErrorLineAndNonZeroExit)
 {
   const std::string s = path("source.pcd"), t = path("target.pcd");
   const std::vector<std::string> bad = {
-      "",                                         // no files
-      s,                                          // one file
-      s + " " + path("missing.pcd"),              // missing target
-      s + " " + path("empty.pcd"),                // empty file
-      s + " " + t + " -rule nearest",             // unknown rule
-      s + " " + t + " -params 5",                 // impossible model
-      s + " " + t + " -fix tx,psi",               // unknown parameter
-      s + " " + t + " -fix \"\"",                  // empty list
-      s + " " + t + " -max_iter 0",               // impossible value
-      s + " " + t + " -bogus 3",                  // unknown option
-      s + " " + t + " -o " + s,                   // output would overwrite an input
+      "",                              // no files
+      s,                               // one file
+      s + " " + path("missing.pcd"),   // missing target
+      s + " " + path("empty.pcd"),     // empty file
+      s + " " + t + " -rule nearest",  // unknown rule
+      s + " " + t + " -params 5",      // impossible model
+      s + " " + t + " -fix tx,psi",    // unknown parameter
+      s + " " + t + " -fix \"\"",      // empty list
+      s + " " + t + " -max_iter 0",    // impossible value
+      s + " " + t + " -bogus 3",       // unknown option
+      s + " " + t + " -o " + s,        // output would overwrite an input
       s + " " + t + " -truth " + path("missing.json"),
-      s + " " + t + " -max_dist -1",              // no sentinel: a distance must be > 0
+      s + " " + t + " -max_dist -1",  // no sentinel: a distance must be > 0
       s + " " + t + " -guess 0",
       // Outputs refused before any input is read (no "Loaded" line): a format without a writer,
       // a place no file can be created (/proc, even as root), a report there, a device.
@@ -180,8 +180,8 @@ TEST_F(RegisterTool, BadInputGivesOneErrorLineAndNonZeroExit)
 TEST_F(RegisterTool, NanOnlyAndNoOverlapGiveOneErrorLine)
 {
   const std::string s = path("source.pcd"), t = path("target.pcd");
-  for (const std::string& args : {s + " " + path("nan.pcd"), path("nan.pcd") + " " + t,
-                                   s + " " + path("far.pcd")}) {
+  for (const std::string& args :
+       {s + " " + path("nan.pcd"), path("nan.pcd") + " " + t, s + " " + path("far.pcd")}) {
     const ToolRun r = runTool(args, true);
     EXPECT_NE(r.code, 0) << args;
     EXPECT_EQ(errorLines(r.output), 1) << args << "\n" << r.output;
@@ -286,8 +286,9 @@ TEST(RegisterToolRealData, AMoveTheDataDoNotDetermineIsRefused)
   const std::string pcl = std::string(PCL_LS3D_SHARED_DATA_DIR) + "/registration/pcl/";
   if (!std::ifstream(pdal + "thin-1.las").good() || !std::ifstream(pcl + "bun0.pcd").good())
     GTEST_SKIP() << "shared data not found under " << PCL_LS3D_SHARED_DATA_DIR << "; skipped";
-  const std::string json = (std::filesystem::temp_directory_path() /
-                            ("pcl_ls3d_thin_" + std::to_string(::getpid()) + ".json")).string();
+  const std::string json =
+      (std::filesystem::temp_directory_path() / ("pcl_ls3d_thin_" + std::to_string(::getpid()) + ".json"))
+          .string();
   const ToolRun thin = runTool(pdal + "thin-1.las " + pdal + "thin-2.las -json " + json + " -overwrite");
   EXPECT_EQ(thin.code, 3) << thin.output;
   {
@@ -318,7 +319,8 @@ TEST(RegisterToolRealData, LasOutputKeepsTheSourcesHeaderAndCrs)
   const fs::path dir = fs::temp_directory_path() / ("pcl_ls3d_las_out_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string out = (dir / "aligned.las").string(), json = (dir / "r.json").string();
-  const ToolRun r = runTool(pdal + "autzen_trim_7.las " + pdal + "autzen_trim.las -o " + out + " -json " + json);
+  const ToolRun r =
+      runTool(pdal + "autzen_trim_7.las " + pdal + "autzen_trim.las -o " + out + " -json " + json);
   ASSERT_EQ(r.code, 0) << r.output;
   pcl_ls3d::io::LasRecordFile in, moved;
   std::string error;
@@ -330,7 +332,8 @@ TEST(RegisterToolRealData, LasOutputKeepsTheSourcesHeaderAndCrs)
   EXPECT_EQ(b.number_of_vlrs, a.number_of_vlrs);
   ASSERT_EQ(b.offset_to_points, a.offset_to_points);
   ASSERT_EQ(moved.size(), in.size());
-  EXPECT_TRUE(std::equal(in.data() + a.header_size, in.data() + a.offset_to_points, moved.data() + b.header_size));
+  EXPECT_TRUE(
+      std::equal(in.data() + a.header_size, in.data() + a.offset_to_points, moved.data() + b.header_size));
   std::ifstream js(json);
   const nlohmann::json j = nlohmann::json::parse(js);
   Eigen::Matrix4d T;
@@ -339,7 +342,9 @@ TEST(RegisterToolRealData, LasOutputKeepsTheSourcesHeaderAndCrs)
       T(p, q) = j["transformation"][static_cast<std::size_t>(p)][static_cast<std::size_t>(q)].get<double>();
   double worst = 0.0;
   for (std::size_t i = 0; i < in.size(); i += 97)
-    worst = std::max(worst, ((T * in.coordinates(i).homogeneous()).head<3>() - moved.coordinates(i)).cwiseAbs().maxCoeff());
+    worst = std::max(
+        worst,
+        ((T * in.coordinates(i).homogeneous()).head<3>() - moved.coordinates(i)).cwiseAbs().maxCoeff());
   EXPECT_LE(worst, 0.5 * b.scale.maxCoeff() + 1e-9);
   fs::remove_all(dir);
 }
@@ -357,8 +362,8 @@ TEST_F(RegisterTool, EmptyFixListIsRefused)
 // coordinates overflowed before and put every point into one voxel (1 point, TOO_FEW_...).
 TEST_F(RegisterTool, ThinningFinerThanTheDataKeepsEveryPoint)
 {
-  const ToolRun r = runTool(path("source.pcd") + " " + path("target.pcd") + " -thin 1e-25 -json " +
-                            path("thin.json"));
+  const ToolRun r =
+      runTool(path("source.pcd") + " " + path("target.pcd") + " -thin 1e-25 -json " + path("thin.json"));
   ASSERT_EQ(r.code, 0) << r.output;
   std::ifstream in(path("thin.json"));
   const nlohmann::json j = nlohmann::json::parse(in);
@@ -406,8 +411,8 @@ TEST_F(RegisterTool, TruthErrorShowsSmallErrors)
     j["transformation"] = rows;
     std::ofstream(path("tiny_truth.json")) << j.dump();
   }
-  const ToolRun r = runTool(path("target.pcd") + " " + path("target.pcd") + " -truth " +
-                            path("tiny_truth.json"));
+  const ToolRun r =
+      runTool(path("target.pcd") + " " + path("target.pcd") + " -truth " + path("tiny_truth.json"));
   const std::string key = "Error vs truth: mean displacement ";
   const std::size_t at = r.output.find(key);
   ASSERT_NE(at, std::string::npos) << r.output;

@@ -64,8 +64,8 @@ TEST(Ls3dRegistration, SwapsWithIcpThroughBasePointer)
     EXPECT_EQ(out.size(), src->size());
     EXPECT_TRUE(std::isfinite(reg->getFitnessScore()));
     if (reg->getClassName() == "LeastSquaresSurfaceMatching") {
-      const auto e = displacementError(*pair.source, reg->getFinalTransformation().cast<double>(),
-                                       pair.truth.matrix());
+      const auto e =
+          displacementError(*pair.source, reg->getFinalTransformation().cast<double>(), pair.truth.matrix());
       EXPECT_LT(e.mean, 0.03);  // 2 cm noise + ~1 cm TIN interpolation bias on this relief
       // output = source transformed by the final transformation, as in ICP
       const Eigen::Vector4f p = reg->getFinalTransformation() * (*src)[0].getVector4fMap();
@@ -85,8 +85,9 @@ TEST(Ls3dRegistration, AlignWithGuess)
   Cloud out;
   ls3d.align(out, pair.truth.matrix().cast<float>());
   ASSERT_TRUE(ls3d.hasConverged());
-  EXPECT_LT(displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
-                              pair.truth.matrix()).mean, 0.02);
+  EXPECT_LT(
+      displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(), pair.truth.matrix()).mean,
+      0.02);
   EXPECT_LE(ls3d.getReport().iterations, 10);
 }
 
@@ -210,8 +211,9 @@ TEST(Ls3dRegistration, NoisyReliefKeepsEveryParameterDeterminable)
   ASSERT_TRUE(ls3d.hasConverged()) << r.fullReport();
   for (int q = 0; q < 6; ++q)
     EXPECT_TRUE(r.determinable[q]) << "parameter " << q << "\n" << r.fullReport();
-  EXPECT_LT(displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
-                              pair.truth.matrix()).mean, 0.03);
+  EXPECT_LT(
+      displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(), pair.truth.matrix()).mean,
+      0.03);
 }
 
 namespace {
@@ -249,8 +251,9 @@ TEST(Ls3dRegistration, CustomRuleIsUsedByTheEngine)
   ASSERT_TRUE(ls3d.hasConverged());
   EXPECT_EQ(ls3d.getReport().rule_name, "CountingLND");
   EXPECT_GE(rule->calls.load(), static_cast<long>(pair.source->size()));
-  EXPECT_LT(displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
-                              pair.truth.matrix()).mean, 0.03);
+  EXPECT_LT(
+      displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(), pair.truth.matrix()).mean,
+      0.03);
 }
 
 // Another instantiated point type (PointNormal) and source thinning.
@@ -269,8 +272,9 @@ TEST(Ls3dRegistration, OtherPointTypesAndThinning)
   ls3d.align(out);
   ASSERT_TRUE(ls3d.hasConverged());
   EXPECT_LT(ls3d.getReport().source_points, pair.source->size() * 3 / 4);
-  EXPECT_LT(displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
-                              pair.truth.matrix()).mean, 0.03);
+  EXPECT_LT(
+      displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(), pair.truth.matrix()).mean,
+      0.03);
 }
 
 // Bad input never crashes and leaves hasConverged() false.
@@ -555,12 +559,13 @@ TEST(Ls3dRegistration, AccelerationShortensACreepingIteration)
     ASSERT_TRUE(ls3d.getReport().hasEstimate()) << ls3d.getReport().message;
     EXPECT_FALSE(ls3d.hasConverged());
     const auto& log = ls3d.getReport().log;
-    const bool extrapolated =
-        std::any_of(log.begin(), log.end(), [](const pcl_ls3d::IterationRecord& r) { return r.extrapolated; });
+    const bool extrapolated = std::any_of(log.begin(), log.end(),
+                                          [](const pcl_ls3d::IterationRecord& r) { return r.extrapolated; });
     EXPECT_EQ(extrapolated, accelerate == 1);
     iterations[accelerate] = ls3d.getReport().iterations;
-    error[accelerate] = displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(),
-                                          pair.truth.matrix()).mean;
+    error[accelerate] =
+        displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(), pair.truth.matrix())
+            .mean;
   }
   std::printf("point-to-point: %d iterations, %.1f mm without acceleration; %d, %.1f mm with\n",
               iterations[0], 1e3 * error[0], iterations[1], 1e3 * error[1]);

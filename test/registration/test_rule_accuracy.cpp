@@ -19,10 +19,8 @@ struct Case
 };
 
 const Case kCases[] = {
-    {"EqualDensity", 1.0, 1.0, 0.7, 0.02},
-    {"Sparse1VsDense4", 1.0, 4.0, 0.7, 0.02},
-    {"Overlap30", 1.0, 1.0, 0.3, 0.02},
-    {"Overlap70", 1.0, 1.0, 0.7, 0.02},
+    {"EqualDensity", 1.0, 1.0, 0.7, 0.02}, {"Sparse1VsDense4", 1.0, 4.0, 0.7, 0.02},
+    {"Overlap30", 1.0, 1.0, 0.3, 0.02},    {"Overlap70", 1.0, 1.0, 0.7, 0.02},
     {"Noise5cm", 1.0, 1.0, 0.7, 0.05},
 };
 
@@ -62,8 +60,7 @@ TEST_P(RuleAccuracy, RecoversKnownSimilarity)
       displacementError(*pair.source, ls3d.getFinalTransformation().cast<double>(), pair.truth.matrix());
   const pcl_ls3d::Vector7d truth = truthInReducedFrame(r, pair.truth);
   std::printf("%s %s: iterations %d sigma0 %.4f observations %zu  displacement mean %.4f max %.4f\n",
-              r.rule_name.c_str(), c.name, r.iterations, r.sigma0, r.observations_used, err.mean,
-              err.max);
+              r.rule_name.c_str(), c.name, r.iterations, r.sigma0, r.observations_used, err.mean, err.max);
   if (rule == pcl_ls3d::ConjugateRuleType::ICP) {
     // Closest-point ICP matches sample to sample: q carries the target noise undamped (no local
     // surface averages it) plus a tangential sampling offset, which its error-axis weights
@@ -90,10 +87,9 @@ TEST_P(RuleAccuracy, RecoversKnownSimilarity)
         << pcl_ls3d::similarityParameterNames()[static_cast<std::size_t>(i)];
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Ls3d, RuleAccuracy,
-    ::testing::Combine(::testing::Values(pcl_ls3d::ConjugateRuleType::LND,
-                                         pcl_ls3d::ConjugateRuleType::LZD,
-                                         pcl_ls3d::ConjugateRuleType::ICP),
-                       ::testing::Range(0, 5)),
-    paramName);
+INSTANTIATE_TEST_SUITE_P(Ls3d, RuleAccuracy,
+                         ::testing::Combine(::testing::Values(pcl_ls3d::ConjugateRuleType::LND,
+                                                              pcl_ls3d::ConjugateRuleType::LZD,
+                                                              pcl_ls3d::ConjugateRuleType::ICP),
+                                            ::testing::Range(0, 5)),
+                         paramName);

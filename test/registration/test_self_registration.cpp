@@ -51,8 +51,7 @@ expectExactIdentity(const Cloud::Ptr& source, const Cloud::Ptr& target, Conjugat
   }
   EXPECT_NE(r.precision_model.find("not estimable"), std::string::npos) << r.precision_model;
   EXPECT_NE(r.fullReport().find("not estimable"), std::string::npos);
-  EXPECT_TRUE((ls3d.getFinalTransformation() - Eigen::Matrix4f::Identity()).cwiseAbs().maxCoeff() <
-              1e-6f);
+  EXPECT_TRUE((ls3d.getFinalTransformation() - Eigen::Matrix4f::Identity()).cwiseAbs().maxCoeff() < 1e-6f);
 }
 
 class SelfRegistration : public ::testing::TestWithParam<ConjugateRuleType>

@@ -56,8 +56,7 @@ halfResolutionScanner()
 
 TEST(SpinningScans, ScanStepAlongTheStreetIsRecovered)
 {
-  const synth::SpinningScanPair pair =
-      synth::makeSpinningScanPair(0.6, 2.0, 1, halfResolutionScanner());
+  const synth::SpinningScanPair pair = synth::makeSpinningScanPair(0.6, 2.0, 1, halfResolutionScanner());
   bool converged = false;
   const PoseError e = registerStreet(pair, converged);
   EXPECT_TRUE(converged);
@@ -68,8 +67,7 @@ TEST(SpinningScans, ScanStepAlongTheStreetIsRecovered)
 TEST(SpinningScans, TwiceTheStepAlongTheStreetIsRecoveredOnTwoStreets)
 {
   for (std::uint32_t seed : {1u, 2u}) {
-    const synth::SpinningScanPair pair =
-        synth::makeSpinningScanPair(1.2, 2.0, seed, halfResolutionScanner());
+    const synth::SpinningScanPair pair = synth::makeSpinningScanPair(1.2, 2.0, seed, halfResolutionScanner());
     bool converged = false;
     const PoseError e = registerStreet(pair, converged);
     EXPECT_TRUE(converged) << "seed " << seed;
@@ -84,8 +82,7 @@ TEST(SpinningScans, TwiceTheStepAlongTheStreetIsRecoveredOnTwoStreets)
 TEST(SpinningScans, NoRuleReportsAWrongStreetPoseAsConverged)
 {
   for (double step : {0.6, 1.2}) {
-    const synth::SpinningScanPair pair =
-        synth::makeSpinningScanPair(step, 2.0, 1, halfResolutionScanner());
+    const synth::SpinningScanPair pair = synth::makeSpinningScanPair(step, 2.0, 1, halfResolutionScanner());
     for (ConjugateRuleType rule : {ConjugateRuleType::LZD, ConjugateRuleType::ICP}) {
       bool converged = false;
       const PoseError e = registerStreet(pair, converged, rule);

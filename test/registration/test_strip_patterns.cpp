@@ -28,9 +28,9 @@ TEST_P(StripPatterns, RecoversStripDisplacement)
   s.seed = 3;
   s.num_strips = 2;
   s.pattern = std::get<1>(GetParam());
-  s.swath_width = 150.0;   // 300 points per scan line at 4 pts/m²
-  s.side_overlap = 0.4;    // 60 m shared band
-  s.strip_length = 150.0;  // 90 000 points per strip
+  s.swath_width = 150.0;               // 300 points per scan line at 4 pts/m²
+  s.side_overlap = 0.4;                // 60 m shared band
+  s.strip_length = 150.0;              // 90 000 points per strip
   const double noise = s.noise_sigma;  // 5 cm per axis
   const synth::StripBlock block = synth::makeStripBlock(s);
   ASSERT_EQ(block.strips.size(), 2u);
@@ -50,8 +50,8 @@ TEST_P(StripPatterns, RecoversStripDisplacement)
   const auto err = displacementError(*source, ls3d.getFinalTransformation().cast<double>(), truth);
   std::printf("%s %s: sigma0 %.4f observations %zu displacement mean %.4f max %.4f\n",
               ls3d.getReport().rule_name.c_str(),
-              s.pattern == synth::ScanPattern::ZIGZAG ? "zigzag" : "parallel",
-              ls3d.getReport().sigma0, ls3d.getReport().observations_used, err.mean, err.max);
+              s.pattern == synth::ScanPattern::ZIGZAG ? "zigzag" : "parallel", ls3d.getReport().sigma0,
+              ls3d.getReport().observations_used, err.mean, err.max);
   // ~3.5·10^4 observations in the band; the error is extrapolated over the whole 150 m swath.
   // Both patterns: below half a noise σ on average and one σ at worst (measured 9–11 / 17–21 mm;
   // before the conditioning check zig-zag gave 0.4–0.5 m on benchmark_scaling's strips, and with
@@ -62,9 +62,8 @@ TEST_P(StripPatterns, RecoversStripDisplacement)
   EXPECT_LT(ls3d.getReport().sigma0, 1.2 * noise);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Ls3d, StripPatterns,
-    ::testing::Combine(::testing::Values(pcl_ls3d::ConjugateRuleType::LND,
-                                         pcl_ls3d::ConjugateRuleType::LZD),
-                       ::testing::Values(pcl_ls3d::synth::ScanPattern::ZIGZAG,
-                                         pcl_ls3d::synth::ScanPattern::PARALLEL)));
+INSTANTIATE_TEST_SUITE_P(Ls3d, StripPatterns,
+                         ::testing::Combine(::testing::Values(pcl_ls3d::ConjugateRuleType::LND,
+                                                              pcl_ls3d::ConjugateRuleType::LZD),
+                                            ::testing::Values(pcl_ls3d::synth::ScanPattern::ZIGZAG,
+                                                              pcl_ls3d::synth::ScanPattern::PARALLEL)));

@@ -99,7 +99,8 @@ TEST(SurfaceSupport, LzdObservesSamplesOnTheTargetBorder)
   const auto target = halfPlane();
   const LzdRule lzd;
   const LndRule lnd;
-  for (const Eigen::Vector2d& xy : {Eigen::Vector2d(0.0, -12.0), Eigen::Vector2d(0.0, 3.5), Eigen::Vector2d(-12.0, 12.0)}) {
+  for (const Eigen::Vector2d& xy :
+       {Eigen::Vector2d(0.0, -12.0), Eigen::Vector2d(0.0, 3.5), Eigen::Vector2d(-12.0, 12.0)}) {
     const Eigen::Vector3d q(xy.x(), xy.y(), bowl(xy.x(), xy.y()) + 0.25);
     CorrespondenceCache cache;
     ConjugateObservations out;

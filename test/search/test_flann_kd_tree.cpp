@@ -119,7 +119,10 @@ TEST(FlannKdTree, SearchesLikeItsBaseWithACustomPointRepresentation)
   class HeightOnly : public pcl::PointRepresentation<pcl::PointXYZ>
   {
   public:
-    HeightOnly() { nr_dimensions_ = 1; }
+    HeightOnly()
+    {
+      nr_dimensions_ = 1;
+    }
     void
     copyToFloatArray(const pcl::PointXYZ& p, float* out) const override
     {

@@ -14,8 +14,7 @@ using Cloud = pcl::PointCloud<pcl::PointXYZ>;
 
 /// Grid on the plane z = z0 over [x0, x1] × [y0, y1] with step h and uniform noise ±noise in z.
 inline void
-addPlane(Cloud& c, float x0, float x1, float y0, float y1, float z0, float h, float noise,
-         std::mt19937& rng)
+addPlane(Cloud& c, float x0, float x1, float y0, float y1, float z0, float h, float noise, std::mt19937& rng)
 {
   std::uniform_real_distribution<float> u(-noise, noise);
   for (float x = x0; x <= x1 + 1e-4f; x += h)
@@ -25,8 +24,7 @@ addPlane(Cloud& c, float x0, float x1, float y0, float y1, float z0, float h, fl
 
 /// Vertical wall x = x0 over [y0, y1] × [z0, z1] with step h and noise ±noise in x.
 inline void
-addWall(Cloud& c, float x0, float y0, float y1, float z0, float z1, float h, float noise,
-        std::mt19937& rng)
+addWall(Cloud& c, float x0, float y0, float y1, float z0, float z1, float h, float noise, std::mt19937& rng)
 {
   std::uniform_real_distribution<float> u(-noise, noise);
   for (float y = y0; y <= y1 + 1e-4f; y += h)

@@ -81,7 +81,7 @@ TEST(FragmentAbsorption, IsolatedFragmentsUnlabelledPointsAndOff)
   auto copy = labels;
   EXPECT_EQ(absorbFragments(graph, 2, copy, 10), 0u);
   EXPECT_EQ(copy, labels);
-  EXPECT_EQ(absorbFragments(graph, 2, copy, 0), 0u);  // off
+  EXPECT_EQ(absorbFragments(graph, 2, copy, 0), 0u);   // off
   EXPECT_EQ(absorbFragments(graph, 3, copy, 10), 0u);  // graph size mismatch: untouched
   EXPECT_EQ(copy, labels);
 }

@@ -47,8 +47,7 @@ TEST(GroundFilter, TerrainIsGroundRoofsAndCarsAreNot)
     if (inBuilding(x, y)) {
       z = terrain(34.f, 36.f) + 6.f;  // flat roof above the footprint's highest terrain
       t = 0;
-    }
-    else if (inCar(x, y)) {
+    } else if (inCar(x, y)) {
       z = g + 1.5f;
       t = 0;
     }
@@ -98,8 +97,7 @@ TEST(GroundFilter, SteepSlopeIsGround)
     if (x > 10.f && x < 14.5f && y > 10.f && y < 11.8f) {
       z += 1.5f;
       t = 0;
-    }
-    else if (x > 20.f && x < 26.f && y > 20.f && y < 26.f && i % 2 == 0) {
+    } else if (x > 20.f && x < 26.f && y > 20.f && y < 26.f && i % 2 == 0) {
       z += 1.f;
       t = 0;
     }
@@ -182,7 +180,7 @@ TEST(GroundFilter, HeightAboveTerrainFollowsTheTerrainPlane)
       grass_kept += ground[i];
     }
   }
-  EXPECT_GT(grass_kept, grass / 2);  // the filter alone keeps most grass as ground
+  EXPECT_GT(grass_kept, grass / 2);                          // the filter alone keeps most grass as ground
   EXPECT_LT(std::sqrt(sum / double(pts.size() - 2)), 0.04);  // ≈ the noise
   EXPECT_LT(worst, 0.2);
 
@@ -194,8 +192,7 @@ TEST(GroundFilter, HeightAboveTerrainFollowsTheTerrainPlane)
   line.emplace_back(30.f, 30.f, 0.f);
   std::vector<char> on_line(line.size(), 1);
   on_line[20] = on_line[21] = 0;
-  const std::vector<float> h_line =
-      heightAboveTerrain(line, on_line, std::vector<char>(line.size(), 1), 1.5);
+  const std::vector<float> h_line = heightAboveTerrain(line, on_line, std::vector<char>(line.size(), 1), 1.5);
   EXPECT_TRUE(std::isnan(h_line[20]));
   EXPECT_TRUE(std::isnan(h_line[21]));
   // Sizes that do not match: nothing computed (no read past the end).

@@ -24,8 +24,7 @@ using seg_test::Cloud;
 namespace {
 
 double
-fractionWith(const std::vector<Dimensionality>& dims, std::size_t begin, std::size_t end,
-             Dimensionality d)
+fractionWith(const std::vector<Dimensionality>& dims, std::size_t begin, std::size_t end, Dimensionality d)
 {
   std::size_t n = 0;
   for (std::size_t i = begin; i < end; ++i)
@@ -278,8 +277,7 @@ TEST(MultiRuleRegionGrowing, BadInput)
     largest = std::max(largest, cl.indices.size());
   EXPECT_EQ(std::count(lf.begin(), lf.end(), -1), 0);
   EXPECT_GE(largest, flat->size() * 85 / 100);  // the 31×31 grid has 120 border points
-  EXPECT_EQ(fractionWith(s.getDimensionality(), 0, flat->size(), Dimensionality::Volumetric),
-            0.0);
+  EXPECT_EQ(fractionWith(s.getDimensionality(), 0, flat->size(), Dimensionality::Volumetric), 0.0);
   s.setUseSeedCondition(true);
 
   // All collinear: linear, one segment.
@@ -409,8 +407,8 @@ TEST(MultiRuleRegionGrowing, InputNormalsAreUsed)
   s.extract(clusters);
   auto l = labelsOf(clusters, c->size());
   const std::size_t wall_mid = roof_end + (c->size() - roof_end) / 2;  // (3.05, 1.5, 1.5)
-  const std::size_t roof_left = 7 * 31 + 15;                             // (0.7, 1.5, 3)
-  const std::size_t roof_right = 22 * 31 + 15;                           // (2.2, 1.5, 3)
+  const std::size_t roof_left = 7 * 31 + 15;                           // (0.7, 1.5, 3)
+  const std::size_t roof_right = 22 * 31 + 15;                         // (2.2, 1.5, 3)
   ASSERT_LT(roof_right, roof_end);
   ASSERT_GE(l[roof_left], 0);
   EXPECT_NE(l[roof_left], l[wall_mid]) << "computed normals keep roof and wall apart";
@@ -420,8 +418,8 @@ TEST(MultiRuleRegionGrowing, InputNormalsAreUsed)
   given->resize(c->size(), pcl::Normal(1.f, 0.f, 0.f));  // the wall's own normal
   const float tilt = 20.f * static_cast<float>(M_PI) / 180.f;
   for (std::size_t i = 0; i < roof_end; ++i)
-    (*given)[i] = (*c)[i].x < 1.5f ? pcl::Normal(0.f, 0.f, 1.f)
-                                   : pcl::Normal(std::sin(tilt), 0.f, std::cos(tilt));
+    (*given)[i] =
+        (*c)[i].x < 1.5f ? pcl::Normal(0.f, 0.f, 1.f) : pcl::Normal(std::sin(tilt), 0.f, std::cos(tilt));
   s.setInputNormals(given);
   s.extract(clusters);
   l = labelsOf(clusters, c->size());

@@ -24,7 +24,20 @@ using Cloud = seg_test::Cloud;
 namespace {
 
 /// Part of the scene each point belongs to.
-enum Part { GROUND, ROOF_A, ROOF_B, WALL, TREE_1, TREE_2, TREE_3, SPAN_1, SPAN_2, ARM, CHIMNEY };
+enum Part
+{
+  GROUND,
+  ROOF_A,
+  ROOF_B,
+  WALL,
+  TREE_1,
+  TREE_2,
+  TREE_3,
+  SPAN_1,
+  SPAN_2,
+  ARM,
+  CHIMNEY
+};
 
 void
 add(Cloud& c, std::vector<int>& part, std::size_t from, Part p)
@@ -288,8 +301,7 @@ struct Scene
   /// Walls of a 10 m x 10 m house with a flat roof at 6 m: the sides y = 0, y = 10, x = 0 and
   /// (if east) x = 10 on a 0.5 m grid from 0.5 m to 5.5 m, noise n(rng) across each wall.
   void
-  addHouseWalls(int label, std::uniform_real_distribution<float>& n, std::mt19937& rng,
-                bool east = true)
+  addHouseWalls(int label, std::uniform_real_distribution<float>& n, std::mt19937& rng, bool east = true)
   {
     for (float t = 0.f; t <= 10.f; t += 0.5f)
       for (float z = 0.5f; z <= 5.5f; z += 0.5f) {
@@ -316,8 +328,8 @@ struct Scene
   /// count rough points (residual 0.2) in the ball of radius r at c, drawn by rejection from
   /// the cube of b(rng), b uniform in [-1, 1].
   void
-  addBall(const Eigen::Vector3f& c, float r, int count, int label,
-          std::uniform_real_distribution<float>& b, std::mt19937& rng)
+  addBall(const Eigen::Vector3f& c, float r, int count, int label, std::uniform_real_distribution<float>& b,
+          std::mt19937& rng)
   {
     for (int i = 0; i < count;) {
       const Eigen::Vector3f d(b(rng), b(rng), b(rng));
@@ -334,8 +346,7 @@ struct Scene
            sg::AssemblyReport* report = nullptr) const
   {
     std::vector<int> out = labels;
-    const sg::AssemblyReport rep =
-        sg::assembleObjects(pts, knnGraph(pts, 16), 16, residuals, ground, a, out);
+    const sg::AssemblyReport rep = sg::assembleObjects(pts, knnGraph(pts, 16), 16, residuals, ground, a, out);
     if (report)
       *report = rep;
     return out;
@@ -343,8 +354,7 @@ struct Scene
 
   /// ... with the ground found by groundPoints() on cells of ground_cell.
   std::vector<int>
-  assemble(const sg::AssemblySettings& a, double ground_cell,
-           sg::AssemblyReport* report = nullptr) const
+  assemble(const sg::AssemblySettings& a, double ground_cell, sg::AssemblyReport* report = nullptr) const
   {
     sg::GroundFilterSettings gf;
     gf.cell = ground_cell;
@@ -359,8 +369,8 @@ struct Scene
     for (std::size_t i = 0; i < labels.size(); ++i)
       if (labels[i] == part)
         ++count[out[i]];
-    return std::max_element(count.begin(), count.end(),
-                            [](auto& x, auto& y) { return x.second < y.second; })->first;
+    return std::max_element(count.begin(), count.end(), [](auto& x, auto& y) { return x.second < y.second; })
+        ->first;
   }
 };
 
@@ -377,7 +387,13 @@ TEST(ObjectAssembly, GrassAboveTheTerrainPlaneLeavesTheGround)
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f);
   Scene scene;
   std::vector<int> part;
-  enum { TERRAIN, HEDGE, STRIP, PATCH };
+  enum
+  {
+    TERRAIN,
+    HEDGE,
+    STRIP,
+    PATCH
+  };
   const auto inStrip = [](float x, float y) { return x >= 5.f && x <= 17.f && y > 6.5f && y <= 7.5f; };
   const auto inPatch = [](float x, float y) { return x >= 21.f && x <= 23.f && y >= 21.f && y <= 23.f; };
   for (float x = 0.f; x <= 30.f; x += 0.3f)
@@ -438,7 +454,13 @@ TEST(ObjectAssembly, RaisedPointsLeaveTheGroundSegment)
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f);
   Scene scene;
   std::vector<int> part;
-  enum { TERRAIN, FOOT, HEDGE, PATCH };
+  enum
+  {
+    TERRAIN,
+    FOOT,
+    HEDGE,
+    PATCH
+  };
   for (float x = 0.f; x <= 30.f; x += 0.3f)
     for (float y = 0.f; y <= 30.f; y += 0.3f) {
       scene.push(x, y, n(rng), 0, 0.01f);
@@ -468,16 +490,16 @@ TEST(ObjectAssembly, RaisedPointsLeaveTheGroundSegment)
         ++count[l[i]];
         ++total;
       }
-    const auto best = std::max_element(count.begin(), count.end(),
-                                       [](auto& x, auto& y) { return x.second < y.second; });
+    const auto best =
+        std::max_element(count.begin(), count.end(), [](auto& x, auto& y) { return x.second < y.second; });
     return std::make_pair(best->first, static_cast<double>(best->second) / total);
   };
 
   sg::AssemblyReport rep;
   const std::vector<int> on = scene.assemble(a, 0.6, &rep);
   EXPECT_GT(rep.detached_points, 300u);
-  const auto terrain = majority(on, TERRAIN), foot = majority(on, FOOT),
-             hedge = majority(on, HEDGE), patch = majority(on, PATCH);
+  const auto terrain = majority(on, TERRAIN), foot = majority(on, FOOT), hedge = majority(on, HEDGE),
+             patch = majority(on, PATCH);
   EXPECT_GE(terrain.second, 0.99);
   EXPECT_GE(hedge.second, 0.99);
   EXPECT_EQ(foot.first, hedge.first);  // the foot joined the hedge
@@ -504,7 +526,14 @@ TEST(ObjectAssembly, CrownLeaningOverARoofStaysATree)
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(-1.f, 1.f);
   Scene scene;
-  enum { ROOF, WALL, GROUND, CROWN, CHIMNEY };
+  enum
+  {
+    ROOF,
+    WALL,
+    GROUND,
+    CROWN,
+    CHIMNEY
+  };
   for (float x = 0.f; x <= 10.f; x += 0.25f)
     for (float y = 0.f; y <= 10.f; y += 0.25f)
       scene.push(x, y, 6.f + n(rng), ROOF, 0.01f);
@@ -553,7 +582,7 @@ TEST(ObjectAssembly, NeighbouringCrownsStayTwoTrees)
       scene.push(Eigen::Vector3f(cx, 0.f, 6.f) + d, d.x() < 0.f ? left : right, 0.2f);
     }
   };
-  crown(0.f, 0, 1);  // crown A in two segments, x in [-2, 2]
+  crown(0.f, 0, 1);   // crown A in two segments, x in [-2, 2]
   crown(4.8f, 2, 2);  // crown B, x in [2.8, 6.8]
   std::vector<char> ground(scene.pts.size(), 0);
   // Flat ground far below (the noise unit of the roughness: crowns are rough against it).
@@ -565,8 +594,8 @@ TEST(ObjectAssembly, NeighbouringCrownsStayTwoTrees)
   sg::AssemblySettings a;
   a.max_link_length = 1.2;
   a.rough_link_length = 0.75;
-  const std::size_t a_right = static_cast<std::size_t>(
-      std::find(scene.labels.begin(), scene.labels.end(), 1) - scene.labels.begin());
+  const std::size_t a_right =
+      static_cast<std::size_t>(std::find(scene.labels.begin(), scene.labels.end(), 1) - scene.labels.begin());
   std::vector<int> out = scene.assemble(a, ground);
   EXPECT_EQ(out[0], out[a_right]);  // A's halves join
   EXPECT_NE(out[0], out[599]);      // A and B do not
@@ -607,9 +636,8 @@ roofPlaneContents(std::uint32_t seed)
     if (labels[i] < 0)
       continue;
     const auto& v = votes[labels[i]];
-    const int plane = std::max_element(v.begin(), v.end(), [](auto& a, auto& b) {
-                        return a.second < b.second;
-                      })->first;
+    const int plane =
+        std::max_element(v.begin(), v.end(), [](auto& a, auto& b) { return a.second < b.second; })->first;
     if (plane < 0)
       continue;  // not a roof-plane segment
     const int id = scene.object_id[i];
@@ -617,8 +645,8 @@ roofPlaneContents(std::uint32_t seed)
       ++out.own;
     else if (scene.plane_id[i] >= 0)
       ++out.other_plane;
-    else if (id >= 0 && scene.objects[static_cast<std::size_t>(id)].type ==
-                            pcl_ls3d::synth::ObjectType::BUILDING)
+    else if (id >= 0 &&
+             scene.objects[static_cast<std::size_t>(id)].type == pcl_ls3d::synth::ObjectType::BUILDING)
       ++out.wall;
   }
   return out;
@@ -656,7 +684,15 @@ TEST(ObjectAssembly, FacadeUnderAnEdgeRoofStripJoinsIt)
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f), b(-1.f, 1.f);
   Scene scene;
-  enum { ROOF, GROUND, CROWN, TREE, UNIT, STOREY };  // storeys: STOREY + 0..3
+  enum
+  {
+    ROOF,
+    GROUND,
+    CROWN,
+    TREE,
+    UNIT,
+    STOREY
+  };  // storeys: STOREY + 0..3
   for (float x = 0.f; x <= 2.5f; x += 0.25f)
     for (float y = 0.f; y <= 10.f; y += 0.25f)
       scene.push({x, y, 15.f + n(rng)}, ROOF, 0.01f);
@@ -694,7 +730,13 @@ TEST(ObjectAssembly, RoughFlatRoofIsARoofNotATree)
   std::mt19937 rng(13);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), gravel(-0.05f, 0.05f), b(-1.f, 1.f);
   Scene scene;
-  enum { ROOF, WALL, GROUND, CROWN };
+  enum
+  {
+    ROOF,
+    WALL,
+    GROUND,
+    CROWN
+  };
   for (float x = 0.f; x <= 10.f; x += 0.25f)
     for (float y = 0.f; y <= 10.f; y += 0.25f)
       scene.push(x, y, 6.f + gravel(rng), ROOF, 0.05f);
@@ -724,7 +766,15 @@ TEST(ObjectAssembly, CrownOverhangingAnEaveStaysATree)
   std::mt19937 rng(17);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f), b(-1.f, 1.f);
   Scene scene;
-  enum { ROOF, WALL, GROUND, CROWN, UNIT, CHIMNEY };
+  enum
+  {
+    ROOF,
+    WALL,
+    GROUND,
+    CROWN,
+    UNIT,
+    CHIMNEY
+  };
   for (float x = 0.f; x <= 10.f; x += 0.25f)
     for (float y = 0.f; y <= 10.f; y += 0.25f)
       if (x <= 2.f || x >= 4.f || y <= 2.f || y >= 4.f)  // no roof under the unit
@@ -761,7 +811,14 @@ TEST(ObjectAssembly, BalconyRowUnderTheEavesIsNotPartOfTheHedgeBelow)
   std::mt19937 rng(19);
   std::uniform_real_distribution<float> n(-0.02f, 0.02f), u(0.f, 1.f);
   Scene scene;
-  enum { ROOF, WALL, GROUND, BALCONY, HEDGE };
+  enum
+  {
+    ROOF,
+    WALL,
+    GROUND,
+    BALCONY,
+    HEDGE
+  };
   for (float x = 0.f; x <= 10.f; x += 0.25f)  // the roof's eaves reach 0.6 m past the walls
     for (float y = -0.6f; y <= 10.f; y += 0.25f)
       scene.push(x, y, 6.f + n(rng), ROOF, 0.01f);
@@ -810,11 +867,11 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
   // rows, each point linked to the previous and the next point of its segment.
   std::vector<std::size_t> lawn, crown;
   for (int i = 0; i < 40; ++i)
-    lawn.push_back(addPoint(0.3f * static_cast<float>(i % 20),
-                            0.3f * static_cast<float>(i / 20), 0.0f, SegmentKind::Ground, 0));
+    lawn.push_back(addPoint(0.3f * static_cast<float>(i % 20), 0.3f * static_cast<float>(i / 20), 0.0f,
+                            SegmentKind::Ground, 0));
   for (int i = 0; i < 40; ++i)
-    crown.push_back(addPoint(9.0f + 0.3f * static_cast<float>(i % 20),
-                             0.3f * static_cast<float>(i / 20), 3.0f, SegmentKind::Rough, 1));
+    crown.push_back(addPoint(9.0f + 0.3f * static_cast<float>(i % 20), 0.3f * static_cast<float>(i / 20),
+                             3.0f, SegmentKind::Rough, 1));
   for (const auto* part : {&lawn, &crown})
     for (std::size_t i = 0; i < part->size(); ++i) {
       const std::size_t next = i + 1 < part->size() ? i + 1 : i - 1;
@@ -824,15 +881,13 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
   // points, one lawn point 0.32-0.37 m away, one crown point 4.1-4.4 m away.
   std::vector<std::size_t> bush;
   for (int i = 0; i < 4; ++i)
-    bush.push_back(
-        addPoint(5.6f + 0.1f * static_cast<float>(i), 0.1f, 0.3f, SegmentKind::Rough, 2));
+    bush.push_back(addPoint(5.6f + 0.1f * static_cast<float>(i), 0.1f, 0.3f, SegmentKind::Rough, 2));
   for (std::size_t i = 0; i < 4; ++i)
     link(bush[i], {bush[(i + 1) % 4], bush[(i + 2) % 4], lawn[19], crown[0]});
   // Crown fragment (segment 3): 3 rough points 0.3 m under the crown's first points.
   std::vector<std::size_t> leaves;
   for (int i = 0; i < 3; ++i)
-    leaves.push_back(
-        addPoint(9.0f + 0.3f * static_cast<float>(i), 0.0f, 2.7f, SegmentKind::Rough, 3));
+    leaves.push_back(addPoint(9.0f + 0.3f * static_cast<float>(i), 0.0f, 2.7f, SegmentKind::Rough, 3));
   for (std::size_t i = 0; i < 3; ++i)
     link(leaves[i], {leaves[(i + 1) % 3], crown[i]});
 
@@ -841,8 +896,7 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
   const double max_link = 0.9;
   std::vector<int> assembled = labels;
   EXPECT_EQ(pcl_ls3d::segmentation::absorbFragments(
-                graph, k, assembled, 10,
-                pcl_ls3d::segmentation::absorptionContact(points, kind, max_link)),
+                graph, k, assembled, 10, pcl_ls3d::segmentation::absorptionContact(points, kind, max_link)),
             1u)
       << "only the leaves join";
   EXPECT_NE(assembled[bush[0]], assembled[crown[0]]) << "the bush joined a crown 4 m away";
@@ -852,18 +906,20 @@ TEST(ObjectAssembly, AbsorptionJoinsOnlyTouchingFragments)
   // Without the length limit (the rule before: only no rough point into the ground) the
   // bush's crown links decide and the bush becomes part of the tree.
   std::vector<int> unlimited = labels;
-  EXPECT_EQ(pcl_ls3d::segmentation::absorbFragments(graph, k, unlimited, 10, [&kind](int p, int q) {
-              return !(kind[static_cast<std::size_t>(p)] == SegmentKind::Rough &&
-                       kind[static_cast<std::size_t>(q)] == SegmentKind::Ground);
-            }),
+  EXPECT_EQ(pcl_ls3d::segmentation::absorbFragments(
+                graph, k, unlimited, 10,
+                [&kind](int p, int q) {
+                  return !(kind[static_cast<std::size_t>(p)] == SegmentKind::Rough &&
+                           kind[static_cast<std::size_t>(q)] == SegmentKind::Ground);
+                }),
             2u);
   EXPECT_EQ(unlimited[bush[0]], unlimited[crown[0]]);
 
   // Sizes that differ: no link counts, nothing is absorbed.
   std::vector<int> mismatched = labels;
   const std::vector<SegmentKind> short_kinds(3, SegmentKind::Rough);
-  EXPECT_EQ(pcl_ls3d::segmentation::absorbFragments(
-                graph, k, mismatched, 10,
-                pcl_ls3d::segmentation::absorptionContact(points, short_kinds, max_link)),
-            0u);
+  EXPECT_EQ(
+      pcl_ls3d::segmentation::absorbFragments(
+          graph, k, mismatched, 10, pcl_ls3d::segmentation::absorptionContact(points, short_kinds, max_link)),
+      0u);
 }

@@ -36,7 +36,8 @@ struct Scene
   std::vector<SegmentKind> kinds;
   std::vector<char> ground;
 
-  void add(float x, float y, float z, int label, SegmentKind kind, bool on_ground = false)
+  void
+  add(float x, float y, float z, int label, SegmentKind kind, bool on_ground = false)
   {
     points.emplace_back(x, y, z);
     labels.push_back(label);
@@ -44,14 +45,16 @@ struct Scene
     ground.push_back(on_ground ? 1 : 0);
   }
   /// A horizontal rectangle sampled every `step`.
-  void rectangle(float x0, float x1, float y0, float y1, float z, float step, int label,
-                 SegmentKind kind, bool on_ground = false)
+  void
+  rectangle(float x0, float x1, float y0, float y1, float z, float step, int label, SegmentKind kind,
+            bool on_ground = false)
   {
     for (float x = x0; x <= x1; x += step)
       for (float y = y0; y <= y1; y += step)
         add(x, y, z, label, kind, on_ground);
   }
-  std::vector<ObjectClass> classify() const
+  std::vector<ObjectClass>
+  classify() const
   {
     return classifyObjects(points, labels, kinds, ground, ObjectClassSettings{});
   }
@@ -74,8 +77,7 @@ addTerrain(Scene& s, const std::vector<std::array<float, 4>>& holes = {})
 
 /// A flat layer of rough points, 0.2 m apart, jittered 0.15 m: a car's roof, a shrub's top.
 void
-addRoughBox(Scene& s, std::mt19937& rng, const Eigen::Vector3f& corner, float length, float width,
-            int label)
+addRoughBox(Scene& s, std::mt19937& rng, const Eigen::Vector3f& corner, float length, float width, int label)
 {
   std::uniform_real_distribution<float> jitter(-0.15f, 0.15f);
   for (float x = corner.x(); x <= corner.x() + length; x += 0.2f)
@@ -98,32 +100,32 @@ TEST(ObjectClasses, ConstructedObjectsGetTheirClasses)
 {
   Scene s;
   addTerrain(s, {{-31.0f, -17.0f, -31.0f, -19.0f}, {9.5f, 15.0f, 9.5f, 12.3f}});
-  s.rectangle(-30.0f, -18.0f, -30.0f, -20.0f, 6.0f, 0.5f, 1, SegmentKind::Solid);    // roof
-  s.rectangle(10.0f, 14.5f, 10.0f, 11.8f, 1.5f, 0.2f, 2, SegmentKind::Solid);        // car
+  s.rectangle(-30.0f, -18.0f, -30.0f, -20.0f, 6.0f, 0.5f, 1, SegmentKind::Solid);  // roof
+  s.rectangle(10.0f, 14.5f, 10.0f, 11.8f, 1.5f, 0.2f, 2, SegmentKind::Solid);      // car
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  for (int i = 0; i < 800; ++i) {                                                   // crown
+  for (int i = 0; i < 800; ++i) {  // crown
     const Eigen::Vector3f d(u(rng), u(rng), u(rng));
     if (d.norm() <= 1.0f)
       s.add(20.0f + 3.0f * d.x(), -20.0f + 3.0f * d.y(), 7.0f + 3.0f * d.z(), 3, SegmentKind::Rough);
   }
-  for (float x = -35.0f; x <= 35.0f; x += 0.3f)                                      // wire
+  for (float x = -35.0f; x <= 35.0f; x += 0.3f)  // wire
     s.add(x, 30.0f, 10.0f + 0.002f * x * x, 4, SegmentKind::Linear);
-  for (float z = 0.0f; z <= 12.0f; z += 0.1f)                                        // pole
+  for (float z = 0.0f; z <= 12.0f; z += 0.1f)  // pole
     s.add(0.0f, -10.0f, z, 5, SegmentKind::Linear);
   for (float x = -0.5f; x <= 0.5f; x += 0.1f)
     s.add(x, -10.0f, 11.0f, 5, SegmentKind::Linear);
-  for (float x = -20.0f; x <= -15.0f; x += 0.1f)                                     // low wall
+  for (float x = -20.0f; x <= -15.0f; x += 0.1f)  // low wall
     for (float z = 0.1f; z <= 1.0f; z += 0.1f)
       for (float y : {10.0f, 10.2f})
         s.add(x, y, z, 6, SegmentKind::Wall);
 
-  for (float x = -30.0f; x <= -14.0f; x += 0.2f)                                     // canopy
+  for (float x = -30.0f; x <= -14.0f; x += 0.2f)  // canopy
     for (float y = 20.0f; y <= 22.6f; y += 0.2f)
       s.add(x, y, 2.9f, 7, SegmentKind::Linear);
 
   s.rectangle(200.0f, 204.5f, 0.0f, 1.8f, 1.5f, 0.2f, 8, SegmentKind::Solid);  // far "car"
-  for (float x = 30.0f; x <= 38.0f; x += 0.25f)  // a slope from 6 m below the terrain to 6 m
+  for (float x = 30.0f; x <= 38.0f; x += 0.25f)    // a slope from 6 m below the terrain to 6 m
     for (float y = 30.0f; y <= 38.0f; y += 0.25f)  // above it: terrain, not a building
       s.add(x, y, 1.5f * (x - 34.0f), 9, SegmentKind::Solid);
   const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -230,16 +232,15 @@ TEST(ObjectClasses, OpaqueCarSizedRoughObjectIsACar)
   Scene s;
   addTerrain(s, {{9.5f, 15.0f, 9.5f, 12.3f}});
   std::mt19937 rng(5);
-  addRoughBox(s, rng, {10.0f, 10.0f, 1.4f}, 4.5f, 1.8f, 1);   // car
-  addRoughBox(s, rng, {-25.0f, 10.0f, 1.4f}, 4.5f, 1.8f, 2);  // shrub of the car's size
-  addRoughBox(s, rng, {20.0f, -20.0f, 1.4f}, 6.0f, 6.0f, 3);  // crown
-  addRoughBox(s, rng, {-25.0f, -20.0f, 3.5f}, 4.5f, 1.8f, 4); // small crown on a trunk
+  addRoughBox(s, rng, {10.0f, 10.0f, 1.4f}, 4.5f, 1.8f, 1);    // car
+  addRoughBox(s, rng, {-25.0f, 10.0f, 1.4f}, 4.5f, 1.8f, 2);   // shrub of the car's size
+  addRoughBox(s, rng, {20.0f, -20.0f, 1.4f}, 6.0f, 6.0f, 3);   // crown
+  addRoughBox(s, rng, {-25.0f, -20.0f, 3.5f}, 4.5f, 1.8f, 4);  // small crown on a trunk
   std::vector<char> multiple(s.points.size(), 0);
   for (std::size_t p = 0; p < s.points.size(); ++p)
     multiple[p] = s.labels[p] == 2 && p % 2 == 0;
 
-  const std::vector<ObjectClass> with =
-      classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
+  const std::vector<ObjectClass> with = classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
   ASSERT_EQ(with.size(), 5u);
   EXPECT_EQ(with[0], ObjectClass::Ground);
   EXPECT_EQ(with[1], ObjectClass::Car);
@@ -271,8 +272,7 @@ TEST(ObjectClasses, OpaqueRowOfCarsIsCars)
   for (std::size_t p = 0; p < s.points.size(); ++p)
     multiple[p] = s.labels[p] == 2 && p % 2 == 0;
 
-  const std::vector<ObjectClass> with =
-      classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
+  const std::vector<ObjectClass> with = classifyObjects(s.points, s.labels, s.kinds, s.ground, {}, multiple);
   ASSERT_EQ(with.size(), 6u);
   EXPECT_EQ(with[1], ObjectClass::Car);
   EXPECT_EQ(with[2], ObjectClass::Vegetation);
@@ -321,9 +321,7 @@ TEST(ObjectClasses, ImrgClassesOnAGeneratedScene)
       ++fp[pred];
     }
   }
-  const auto f1 = [&](int c) {
-    return 2.0 * tp[c] / (2.0 * tp[c] + fp[c] + fn[c]);
-  };
+  const auto f1 = [&](int c) { return 2.0 * tp[c] / (2.0 * tp[c] + fp[c] + fn[c]); };
   EXPECT_GE(f1(2), 0.95) << "ground";
   EXPECT_GE(f1(6), 0.95) << "building";
   EXPECT_GE(f1(5), 0.95) << "vegetation";
@@ -353,9 +351,8 @@ TEST(ObjectClasses, ImrgClassesOnAGeneratedScene)
       }
     if (size < 5)
       continue;
-    const auto most = std::max_element(held.begin(), held.end(), [](const auto& a, const auto& b) {
-      return a.second < b.second;
-    });
+    const auto most = std::max_element(held.begin(), held.end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
     // A shrub at a lattice tower's foot joins the tower's rough members (its object is a pole;
     // two on this seed): not counted.
     if (most->first >= 0 && classes[static_cast<std::size_t>(most->first)] == ObjectClass::Pole)
@@ -435,8 +432,7 @@ segmentRealFile(const std::string& path, RealRun& run, bool use_returns = false)
 // recall 0.980; before the raised-ground rule the roof's 12 305 points were called ground).
 TEST(ObjectClasses, SampleCRoofIsABuildingNotGround)
 {
-  const std::string path =
-      std::string(PCL_LS3D_SHARED_DATA_DIR) + "/segmentation/pdal__sample_c.las";
+  const std::string path = std::string(PCL_LS3D_SHARED_DATA_DIR) + "/segmentation/pdal__sample_c.las";
   if (!std::ifstream(path).good())
     GTEST_SKIP() << "shared data not found: " << path << "; skipped";
   RealRun run;
@@ -478,9 +474,8 @@ TEST(ObjectClasses, ReturnsNameParkedCarsOnARealTile)
         const int c = run.las[static_cast<std::size_t>(i)].classification;
         ++votes[c == 1 ? 1 : (c >= 3 && c <= 5) ? 3 : 0];
       }
-      const auto top = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
-        return a.second < b.second;
-      });
+      const auto top = std::max_element(votes.begin(), votes.end(),
+                                        [](const auto& a, const auto& b) { return a.second < b.second; });
       n += run.objects[o].indices.size() >= 20 && run.classes[o] == ObjectClass::Car &&
            top->first == (vegetation ? 3 : 1);
     }
@@ -513,8 +508,8 @@ TEST(ObjectClasses, ReturnsNameParkedCarsOnARealTile)
 // and pcl_ls3d_segment says that no structure was found.
 TEST(ObjectClasses, WoodedRavineIsNoBuilding)
 {
-  const std::string path = std::string(PCL_LS3D_SHARED_DATA_DIR) +
-                           "/registration/ign_lidarhd/sample_lareunion_epsg2975.las";
+  const std::string path =
+      std::string(PCL_LS3D_SHARED_DATA_DIR) + "/registration/ign_lidarhd/sample_lareunion_epsg2975.las";
   if (!std::ifstream(path).good())
     GTEST_SKIP() << "shared data not found: " << path << "; skipped";
   RealRun run;
@@ -528,7 +523,8 @@ TEST(ObjectClasses, WoodedRavineIsNoBuilding)
     building += classes[o] == ObjectClass::Building ? objects[o].indices.size() : 0;
   EXPECT_LT(building, run.las.size() / 10) << "points called building";
 
-  const pcl_ls3d_test::ToolRun r = pcl_ls3d_test::runToolMerged("pcl_ls3d_segment", path, ::testing::TempDir());
+  const pcl_ls3d_test::ToolRun r =
+      pcl_ls3d_test::runToolMerged("pcl_ls3d_segment", path, ::testing::TempDir());
   ASSERT_EQ(r.code, 0);
   EXPECT_NE(r.out.find("no structure was found"), std::string::npos) << r.out;
 }

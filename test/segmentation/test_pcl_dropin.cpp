@@ -54,8 +54,7 @@ loadClouds(std::string& why)
         io::loadPCDFile((dir / "bun4.pcd").string(), *another_cloud_) < 0) {
       state = -1;
       reason = "PCL's bun0.pcd / bun4.pcd not readable in " + dir.string() + "; skipped";
-    }
-    else {
+    } else {
       normals_ = normalsOf(cloud_);
       another_normals_ = normalsOf(another_cloud_);
       state = 1;
@@ -65,11 +64,11 @@ loadClouds(std::string& why)
   return state == 1;
 }
 
-#define REQUIRE_CLOUDS()                                                                       \
-  do {                                                                                         \
-    std::string why_;                                                                          \
-    if (!loadClouds(why_))                                                                     \
-      GTEST_SKIP() << why_;                                                                    \
+#define REQUIRE_CLOUDS()                                                                                     \
+  do {                                                                                                       \
+    std::string why_;                                                                                        \
+    if (!loadClouds(why_))                                                                                   \
+      GTEST_SKIP() << why_;                                                                                  \
   } while (0)
 
 }  // namespace

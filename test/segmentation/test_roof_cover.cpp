@@ -22,7 +22,8 @@ struct Scene
   std::vector<int> labels;
   std::vector<SegmentKind> kinds;
 
-  std::size_t add(float x, float y, float z, int label, SegmentKind kind)
+  std::size_t
+  add(float x, float y, float z, int label, SegmentKind kind)
   {
     points.emplace_back(x, y, z);
     labels.push_back(label);
@@ -31,7 +32,8 @@ struct Scene
   }
 
   /// A horizontal grid x0..x1 × y0..y1 at height z.
-  void roof(float x0, float x1, float y0, float y1, float z, int label)
+  void
+  roof(float x0, float x1, float y0, float y1, float z, int label)
   {
     for (float x = x0; x < x1; x += kStep)
       for (float y = y0; y < y1; y += kStep)
@@ -39,7 +41,8 @@ struct Scene
   }
 
   /// A vertical sheet at x, y0..y1, z0..z1 (facade scatter, crown sides: rough).
-  std::vector<std::size_t> sheet(float x, float y0, float y1, float z0, float z1, int label)
+  std::vector<std::size_t>
+  sheet(float x, float y0, float y1, float z0, float z1, int label)
   {
     std::vector<std::size_t> added;
     for (float y = y0; y < y1; y += kStep)
@@ -49,7 +52,15 @@ struct Scene
   }
 };
 
-enum Object { kHouse, kShed, kTreeGroup, kCrownOverRoof, kCarUnderCarport, kObjects };
+enum Object
+{
+  kHouse,
+  kShed,
+  kTreeGroup,
+  kCrownOverRoof,
+  kCarUnderCarport,
+  kObjects
+};
 
 std::vector<ObjectClass>
 classesOfTheScene()
@@ -66,8 +77,8 @@ classesOfTheScene()
 TEST(RoofCover, FacadeInATreeGroupJoinsTheBuildingAboveIt)
 {
   Scene s;
-  s.roof(0.f, 10.f, 0.f, 10.f, 6.f, kHouse);     // flat roof, eaves at x = 10
-  s.roof(20.f, 26.f, 0.f, 6.f, 3.f, kShed);      // a lower building farther east
+  s.roof(0.f, 10.f, 0.f, 10.f, 6.f, kHouse);  // flat roof, eaves at x = 10
+  s.roof(20.f, 26.f, 0.f, 6.f, 3.f, kShed);   // a lower building farther east
   // The tree group holds the house's facade under its eaves (x = 9.9), the shed's (x = 25.9)
   // and its own crowns in front of both (x ≥ 10.5, outside every roof).
   const auto house_wall = s.sheet(9.9f, 2.f, 8.f, 1.f, 5.f, kTreeGroup);
@@ -83,8 +94,8 @@ TEST(RoofCover, FacadeInATreeGroupJoinsTheBuildingAboveIt)
   const std::size_t lost = s.add(nan, nan, nan, kTreeGroup, SegmentKind::Rough);
   std::vector<int> labels = s.labels;
 
-  const std::size_t moved = claimPointsUnderRoofs(s.points, s.kinds, classesOfTheScene(), kStep,
-                                                  kStep, labels);
+  const std::size_t moved =
+      claimPointsUnderRoofs(s.points, s.kinds, classesOfTheScene(), kStep, kStep, labels);
 
   EXPECT_EQ(moved, house_wall.size() + shed_wall.size());
   for (const auto p : house_wall)
@@ -115,8 +126,7 @@ TEST(RoofCover, RoofCellsAreTheBuildingsSolidSegmentsOnly)
   s.add(1.f, 1.f, 1.f, -1, SegmentKind::Rough);  // in no object
   std::vector<int> labels = s.labels;
 
-  EXPECT_EQ(claimPointsUnderRoofs(s.points, s.kinds, classesOfTheScene(), kStep, kStep, labels),
-            0u);
+  EXPECT_EQ(claimPointsUnderRoofs(s.points, s.kinds, classesOfTheScene(), kStep, kStep, labels), 0u);
   EXPECT_EQ(labels, s.labels);
 }
 
@@ -127,8 +137,7 @@ TEST(RoofCover, MismatchedSizesMoveNothing)
   s.sheet(1.f, 0.f, 2.f, 1.f, 3.f, kTreeGroup);
   std::vector<int> labels = s.labels;
   std::vector<SegmentKind> short_kinds(s.kinds.begin(), s.kinds.end() - 1);
-  EXPECT_EQ(claimPointsUnderRoofs(s.points, short_kinds, classesOfTheScene(), kStep, kStep, labels),
-            0u);
+  EXPECT_EQ(claimPointsUnderRoofs(s.points, short_kinds, classesOfTheScene(), kStep, kStep, labels), 0u);
   EXPECT_EQ(claimPointsUnderRoofs(s.points, s.kinds, classesOfTheScene(), 0.0, kStep, labels), 0u);
   EXPECT_EQ(labels, s.labels);
 }

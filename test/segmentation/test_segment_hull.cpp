@@ -134,8 +134,7 @@ TEST(PointFeatures, IdealShapes)
   for (int i = -6; i <= 6; ++i)
     for (int j = -6; j <= 6; ++j)
       disc.emplace_back(float(i * i + j * j), Eigen::Vector3f(0.1f * i, 0.1f * j, 1.f));
-  std::stable_sort(disc.begin(), disc.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::stable_sort(disc.begin(), disc.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (const auto& d : disc)
     plane.push_back(d.second);
   const PointFeatures fp = computePointFeatures(plane, s);
@@ -159,8 +158,7 @@ TEST(PointFeatures, IdealShapes)
   // Zero extent: defined as volumetric, residual 0; fewer than 3 points: Invalid.
   const std::vector<Eigen::Vector3f> dup(20, Eigen::Vector3f(1, 2, 3));
   EXPECT_EQ(computePointFeatures(dup, s).dimensionality, Dimensionality::Volumetric);
-  EXPECT_EQ(computePointFeatures({{0, 0, 0}, {1, 0, 0}}, s).dimensionality,
-            Dimensionality::Invalid);
+  EXPECT_EQ(computePointFeatures({{0, 0, 0}, {1, 0, 0}}, s).dimensionality, Dimensionality::Invalid);
 }
 
 // The residual is the RMS distance to the LS plane: an 8×8 checkerboard of ±e has the LS

@@ -35,15 +35,10 @@ TEST(SegmentKinds, FlatSegmentsAreSurfacesHoweverRoughTheirPoints)
   const double ground = 0.01, rough = 0.03;  // point residuals: the ground's and 3 x it
   const sg::KindSettings k;
   const Eigen::Vector3d sheet(0.0004, 1.0, 4.0), thick(0.25, 1.0, 4.0);
-  EXPECT_EQ(sg::kindOf(shape(sheet, Eigen::Vector3d::UnitX(), rough), ground, k),
-            sg::SegmentKind::Wall);
-  EXPECT_EQ(sg::kindOf(shape(sheet, Eigen::Vector3d::UnitZ(), rough), ground, k),
-            sg::SegmentKind::Solid);
-  EXPECT_EQ(sg::kindOf(shape(thick, Eigen::Vector3d::UnitZ(), rough), ground, k),
-            sg::SegmentKind::Rough);
+  EXPECT_EQ(sg::kindOf(shape(sheet, Eigen::Vector3d::UnitX(), rough), ground, k), sg::SegmentKind::Wall);
+  EXPECT_EQ(sg::kindOf(shape(sheet, Eigen::Vector3d::UnitZ(), rough), ground, k), sg::SegmentKind::Solid);
+  EXPECT_EQ(sg::kindOf(shape(thick, Eigen::Vector3d::UnitZ(), rough), ground, k), sg::SegmentKind::Rough);
   // Smooth segments keep their kinds.
-  EXPECT_EQ(sg::kindOf(shape(sheet, Eigen::Vector3d::UnitX(), ground), ground, k),
-            sg::SegmentKind::Wall);
-  EXPECT_EQ(sg::kindOf(shape(thick, Eigen::Vector3d::UnitZ(), ground), ground, k),
-            sg::SegmentKind::Solid);
+  EXPECT_EQ(sg::kindOf(shape(sheet, Eigen::Vector3d::UnitX(), ground), ground, k), sg::SegmentKind::Wall);
+  EXPECT_EQ(sg::kindOf(shape(thick, Eigen::Vector3d::UnitZ(), ground), ground, k), sg::SegmentKind::Solid);
 }

@@ -16,10 +16,16 @@ using pcl_ls3d::segmentation::returnTerrainPoints;
 namespace {
 
 constexpr int kGraphK = 8;
-constexpr double kLimit = 0.06;      // 3 ground residuals of 2 cm
+constexpr double kLimit = 0.06;  // 3 ground residuals of 2 cm
 constexpr double kHalfWidth = 1.5;
 
-enum Object { kLawn, kBush, kHouse, kObjects };
+enum Object
+{
+  kLawn,
+  kBush,
+  kHouse,
+  kObjects
+};
 
 struct Scene
 {
@@ -27,7 +33,8 @@ struct Scene
   std::vector<int> labels;
   std::vector<char> ground;
 
-  std::size_t add(float x, float y, float z, int label, bool kept)
+  std::size_t
+  add(float x, float y, float z, int label, bool kept)
   {
     points.emplace_back(x, y, z);
     labels.push_back(label);
@@ -36,7 +43,8 @@ struct Scene
   }
 
   /// Brute-force k nearest neighbours (the scene is small).
-  std::vector<int> graph() const
+  std::vector<int>
+  graph() const
   {
     std::vector<int> g(points.size() * kGraphK, -1);
     std::vector<std::size_t> order(points.size());
@@ -93,8 +101,8 @@ TEST(TerrainContact, GroundAtABushsFootJoinsTheLawnAndItsLeavesStay)
       wall_foot.push_back(s.add(9.05f, y, terrain(9.05f, y) + z, kHouse, z == 0.f));
   std::vector<int> labels = s.labels;
 
-  const std::size_t moved = returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK,
-                                                classesOfTheScene(), kLimit, kHalfWidth, labels);
+  const std::size_t moved = returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK, classesOfTheScene(),
+                                                kLimit, kHalfWidth, labels);
 
   std::size_t foot_on_lawn = 0;
   for (const auto p : foot)
@@ -158,8 +166,8 @@ TEST(TerrainContact, EnclosedGroundWithoutALinkToTheGroundStays)
         s.add(x, y, 0.f, kBush, true);  // terrain seen through it
     }
   std::vector<int> labels = s.labels;
-  const std::size_t moved = returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK,
-                                                classesOfTheScene(), kLimit, kHalfWidth, labels);
+  const std::size_t moved = returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK, classesOfTheScene(),
+                                                kLimit, kHalfWidth, labels);
   EXPECT_EQ(moved, 0u);
   EXPECT_EQ(labels, s.labels);
 }
@@ -180,8 +188,8 @@ TEST(TerrainContact, EnclosedGroundLinkedByTerrainReturns)
         s.add(x, y, 2.f + 0.3f * std::sin(3.f * x), kBush, false);  // crown
     }
   std::vector<int> labels = s.labels;
-  returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK, classesOfTheScene(), kLimit,
-                      kHalfWidth, labels);
+  returnTerrainPoints(s.points, s.ground, s.graph(), kGraphK, classesOfTheScene(), kLimit, kHalfWidth,
+                      labels);
   for (const auto p : through_crown)
     ASSERT_EQ(labels[p], kLawn) << "at " << s.points[p].transpose();
 }
@@ -195,20 +203,18 @@ TEST(TerrainContact, BadArgumentsMoveNothing)
   const std::vector<int> graph = s.graph();
   std::vector<int> labels = s.labels;
   const auto classes = classesOfTheScene();
-  EXPECT_EQ(returnTerrainPoints(s.points, s.ground, graph, kGraphK, classes, 0.0, kHalfWidth,
-                                labels), 0u);
-  EXPECT_EQ(returnTerrainPoints(s.points, s.ground, graph, kGraphK - 1, classes, kLimit,
-                                kHalfWidth, labels), 0u);
+  EXPECT_EQ(returnTerrainPoints(s.points, s.ground, graph, kGraphK, classes, 0.0, kHalfWidth, labels), 0u);
+  EXPECT_EQ(returnTerrainPoints(s.points, s.ground, graph, kGraphK - 1, classes, kLimit, kHalfWidth, labels),
+            0u);
   std::vector<char> short_ground(s.ground.begin(), s.ground.end() - 1);
-  EXPECT_EQ(returnTerrainPoints(s.points, short_ground, graph, kGraphK, classes, kLimit,
-                                kHalfWidth, labels), 0u);
+  EXPECT_EQ(returnTerrainPoints(s.points, short_ground, graph, kGraphK, classes, kLimit, kHalfWidth, labels),
+            0u);
   EXPECT_EQ(labels, s.labels);
   // Points in no object, or in an object past the class list, are left alone.
   labels[0] = -1;
   labels[1] = kObjects + 3;
   const std::vector<int> odd = labels;
-  EXPECT_GT(returnTerrainPoints(s.points, s.ground, graph, kGraphK, classes, kLimit, kHalfWidth,
-                                labels), 0u);
+  EXPECT_GT(returnTerrainPoints(s.points, s.ground, graph, kGraphK, classes, kLimit, kHalfWidth, labels), 0u);
   EXPECT_EQ(labels[0], -1);
   EXPECT_EQ(labels[1], kObjects + 3);
 }

@@ -90,7 +90,9 @@ meanDifference(const Block& b, std::size_t k, const Eigen::Matrix4d& A, const Ei
 TEST(StripBlockAdjustment, DatumOptionsGiveTheSameRelativeCorrections)
 {
   const Block b = makeBlock(smallBlock(3, 5));
-  const auto truth = [&b](std::size_t k) -> Eigen::Matrix4d { return b.generated.strips[k].transform.matrix(); };
+  const auto truth = [&b](std::size_t k) -> Eigen::Matrix4d {
+    return b.generated.strips[k].transform.matrix();
+  };
   // Default datum: the strip with the largest overlap area, the middle one.
   strips::StripAdjustmentSettings settings;
   const strips::StripAdjustmentReport r1 = adjust(b, settings);
@@ -154,7 +156,8 @@ TEST(StripBlockAdjustment, OneWayMatchingAndTheMinimumOfObservedPointsAreHonoure
   strips::StripAdjustmentReport none;
   std::string error;
   const bool ran = adjustment.run(b.strips, none, error);
-  std::printf("min observations above every overlap: ran %d, %s / %s\n", ran, error.c_str(), none.message.c_str());
+  std::printf("min observations above every overlap: ran %d, %s / %s\n", ran, error.c_str(),
+              none.message.c_str());
   EXPECT_FALSE(ran && none.converged());
 }
 
@@ -193,7 +196,8 @@ TEST(StripBlockAdjustment, FlatOverlapsFlagHorizontalParametersUndeterminable)
   for (std::size_t k = 1; k < 3; ++k) {
     const auto& d = r.strips[k].determinable;
     // A plane fixes height and the two tilts, never the horizontal shift or the heading.
-    EXPECT_FALSE(d[TX]) << k << " p " << r.strips[k].parameters.transpose() << " s " << r.strips[k].sigmas.transpose();
+    EXPECT_FALSE(d[TX]) << k << " p " << r.strips[k].parameters.transpose() << " s "
+                        << r.strips[k].sigmas.transpose();
     EXPECT_FALSE(d[TY]) << k;
     EXPECT_FALSE(d[KAPPA]) << k;
     EXPECT_TRUE(d[TZ]) << k;

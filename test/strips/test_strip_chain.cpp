@@ -37,7 +37,9 @@ error(const Block& b, std::size_t k, const Eigen::Matrix4d& T)
   double sum = 0.0;
   std::size_t n = 0;
   for (std::size_t i = 0; i < b.strips[k].size(); i += 7, ++n)
-    sum += ((T - b.generated.strips[k].transform.matrix()) * b.strips[k].blockPoint(i).homogeneous()).head<3>().norm();
+    sum += ((T - b.generated.strips[k].transform.matrix()) * b.strips[k].blockPoint(i).homogeneous())
+               .head<3>()
+               .norm();
   return sum / static_cast<double>(n);
 }
 

@@ -36,7 +36,8 @@ TEST(StripCoverage, SigmaCoversTheTruth)
     }
   }
   const double c1 = static_cast<double>(within1) / n, c2 = static_cast<double>(within2) / n;
-  std::printf("coverage over %d parameters: %.1f %% within sigma, %.1f %% within 2 sigma\n", n, 100.0 * c1, 100.0 * c2);
+  std::printf("coverage over %d parameters: %.1f %% within sigma, %.1f %% within 2 sigma\n", n, 100.0 * c1,
+              100.0 * c2);
   EXPECT_GT(c1, 0.58);
   EXPECT_LT(c1, 0.80);
   EXPECT_GT(c2, 0.89);

@@ -56,9 +56,11 @@ print(const strips::StripAdjustmentReport& r, const Block& b)
 {
   for (std::size_t k = 1; k < r.strips.size(); ++k)
     for (const auto& h : r.strips[k].held_out)
-      std::printf("strip %zu: held-out m-1 %+.1f ppm +- %.1f (formal %.1f), z %+.2f, effect %.4f, noise %.4f, "
-                  "truth %+.1f ppm\n", k, 1e6 * h.estimate, 1e6 * h.sigma, 1e6 * h.sigma_formal, h.z, h.effect,
-                  h.noise, 1e6 * trueScale(b, k));
+      std::printf(
+          "strip %zu: held-out m-1 %+.1f ppm +- %.1f (formal %.1f), z %+.2f, effect %.4f, noise %.4f, "
+          "truth %+.1f ppm\n",
+          k, 1e6 * h.estimate, 1e6 * h.sigma, 1e6 * h.sigma_formal, h.z, h.effect, h.noise,
+          1e6 * trueScale(b, k));
 }
 
 }  // namespace
@@ -113,11 +115,12 @@ TEST(StripHeldOut, FreedScaleConvergesWithinItsSigma)
   EXPECT_FALSE(r.held_out.tested);  // nothing held out
   for (std::size_t k = 1; k < 3; ++k) {
     const double error = meanDisplacementError(b, r, k), sigma = meanDisplacementSigma(b, r, k);
-    std::printf("strip %zu: -params 7 error %.4f m, sigma %.4f m; m-1 %+.1f ppm +- %.1f, truth %+.1f\n", k, error,
-                sigma, 1e6 * (r.strips[k].parameters[SCALE] - 1.0), 1e6 * r.strips[k].sigmas[SCALE],
+    std::printf("strip %zu: -params 7 error %.4f m, sigma %.4f m; m-1 %+.1f ppm +- %.1f, truth %+.1f\n", k,
+                error, sigma, 1e6 * (r.strips[k].parameters[SCALE] - 1.0), 1e6 * r.strips[k].sigmas[SCALE],
                 1e6 * trueScale(b, k));
     EXPECT_LT(error, 3.0 * sigma) << "strip " << k;
-    EXPECT_LT(std::abs(r.strips[k].parameters[SCALE] - 1.0 - trueScale(b, k)), 3.0 * r.strips[k].sigmas[SCALE]);
+    EXPECT_LT(std::abs(r.strips[k].parameters[SCALE] - 1.0 - trueScale(b, k)),
+              3.0 * r.strips[k].sigmas[SCALE]);
   }
 }
 

@@ -85,8 +85,9 @@ protected:
     fs::create_directories(dir);
     // 3 strips of 240 m × 120 m, 30 % side overlap (36 m), 2 pts/m², strip 1 the identity.
     const auto r = runTool("pcl_ls3d_synth",
-                           "strips -o '" + dir + "/in' -format las -split -strips 3 -length 240 -swath 120 "
-                           "-density 2 -seed 3 -shift_sigma 0.3 -angle_sigma 5e-4 -scale_sigma 0",
+                           "strips -o '" + dir +
+                               "/in' -format las -split -strips 3 -length 240 -swath 120 "
+                               "-density 2 -seed 3 -shift_sigma 0.3 -angle_sigma 5e-4 -scale_sigma 0",
                            dir);
     ASSERT_EQ(r.code, 0) << r.err;
   }
@@ -116,8 +117,8 @@ TEST_F(StripTool, CorrectedLasKeepsEveryByteButXyzAndBounds)
   const nlohmann::json report = nlohmann::json::parse(slurp(dir + "/report.json"));
   ASSERT_TRUE(report["converged"].get<bool>());
   ASSERT_EQ(report["strips"].size(), 3u);
-  for (const char* map : {"mosaic_before.png", "mosaic_after.png", "mosaic_before.tif", "mosaic_after.tif",
-                          "histogram.png"})
+  for (const char* map :
+       {"mosaic_before.png", "mosaic_after.png", "mosaic_before.tif", "mosaic_after.tif", "histogram.png"})
     EXPECT_TRUE(fs::exists(dir + "/maps/" + map)) << map;
 
   const std::string input = slurp(dir + "/in/strips.las");
@@ -173,8 +174,8 @@ TEST_F(StripTool, CorrectedLasKeepsEveryByteButXyzAndBounds)
     }
   }
   // Never overwrites: a second run into the same folder fails before writing anything.
-  const auto again = runTool("pcl_ls3d_strip_adjust",
-                             in("strips.las") + " -split psid -o '" + dir + "/out' -q", dir);
+  const auto again =
+      runTool("pcl_ls3d_strip_adjust", in("strips.las") + " -split psid -o '" + dir + "/out' -q", dir);
   EXPECT_NE(again.code, 0);
 }
 
@@ -186,8 +187,9 @@ TEST_F(StripTool, LazBlockComesBackAsLazWithTheLasRunsRecords)
   auto r = runTool("pcl_ls3d_convert", in("strips.las") + " " + in("strips.laz"), dir);
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* ext : {"las", "laz"}) {
-    r = runTool("pcl_ls3d_strip_adjust", in(std::string("strips.") + ext) + " -split psid -reference 1 -q -o '" +
-                                             dir + "/out_" + ext + "'",
+    r = runTool("pcl_ls3d_strip_adjust",
+                in(std::string("strips.") + ext) + " -split psid -reference 1 -q -o '" + dir + "/out_" + ext +
+                    "'",
                 dir);
     ASSERT_EQ(r.code, 0) << r.err;
   }
@@ -244,7 +246,8 @@ TEST_F(StripTool, OutputsAndDuplicatesAreRefusedBeforeAnyWork)
       {both + " -json /proc/pcl_ls3d_report.json", "cannot write /proc/pcl_ls3d_report.json"},
       {both + " -o /proc/pcl_ls3d_out", "cannot create or write the folder /proc/pcl_ls3d_out"},
       {both + " -maps /proc/pcl_ls3d_maps", "cannot create or write the folder /proc/pcl_ls3d_maps"},
-      {both + " -o '" + dir + "/outj' -json '" + dir + "/outj/strip_1.las'", "would replace the corrected strip"},
+      {both + " -o '" + dir + "/outj' -json '" + dir + "/outj/strip_1.las'",
+       "would replace the corrected strip"},
   };
   for (const auto& c : cases) {
     const auto r = runTool("pcl_ls3d_strip_adjust", c.first + " -q", dir);
@@ -259,7 +262,8 @@ TEST_F(StripTool, OutputsAndDuplicatesAreRefusedBeforeAnyWork)
 // and the overlap's row shows no figures that read as a perfect fit.
 TEST_F(StripTool, NoObservationIsNamedAsTheCause)
 {
-  const auto r = runTool("pcl_ls3d_strip_adjust", in("strip_1.las") + " " + in("strip_2.las") + " -classes 99", dir);
+  const auto r =
+      runTool("pcl_ls3d_strip_adjust", in("strip_1.las") + " " + in("strip_2.las") + " -classes 99", dir);
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_NE(r.out.find("TOO_FEW_OBSERVATIONS"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("no overlap has an observation"), std::string::npos) << r.out;
@@ -267,9 +271,11 @@ TEST_F(StripTool, NoObservationIsNamedAsTheCause)
   EXPECT_NE(r.out.find("no observation (0 conjugate points"), std::string::npos) << r.out;
   // More observed points asked per direction than the overlap has: nothing is matched either,
   // and the message names the option.
-  const auto few = runTool("pcl_ls3d_strip_adjust", in("strip_1.las") + " " + in("strip_2.las") + " -min_obs 100000000", dir);
+  const auto few = runTool("pcl_ls3d_strip_adjust",
+                           in("strip_1.las") + " " + in("strip_2.las") + " -min_obs 100000000", dir);
   EXPECT_EQ(few.code, 2) << few.err;
-  EXPECT_NE(few.out.find("no overlap direction has 100000000 observed points (-min_obs)"), std::string::npos) << few.out;
+  EXPECT_NE(few.out.find("no overlap direction has 100000000 observed points (-min_obs)"), std::string::npos)
+      << few.out;
 }
 
 // -one_way observes each overlap in one direction: about half the observations of both ways.
@@ -298,7 +304,8 @@ TEST(StripToolRealData, CorrectionsTheDiscrepanciesDoNotConfirmAreUnreliable)
   if (!std::ifstream(ign + "test_semis_2023_0292_6833_LA93_IGN69.las").good())
     GTEST_SKIP() << "shared data not found under " << PCL_LS3D_SHARED_DATA_DIR << "; skipped";
   const std::string tmp = fs::temp_directory_path().string();
-  const auto semis = runTool("pcl_ls3d_strip_adjust", "'" + ign + "test_semis_2023_0292_6833_LA93_IGN69.las' -split psid", tmp);
+  const auto semis = runTool("pcl_ls3d_strip_adjust",
+                             "'" + ign + "test_semis_2023_0292_6833_LA93_IGN69.las' -split psid", tmp);
   EXPECT_EQ(semis.code, 3) << semis.out << semis.err;
   EXPECT_NE(semis.out.find("UNRELIABLE"), std::string::npos) << semis.out;
   EXPECT_NE(semis.out.find("NOT CONFIRMED"), std::string::npos) << semis.out;

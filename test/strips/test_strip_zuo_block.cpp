@@ -49,14 +49,14 @@ expectRecovered(synth::LandscapeType type, double scale, double k_sigma, double 
     ASSERT_GT(std::abs(truth[TZ]), 0.3) << "the errors are Zuo's, not small";
     for (int p = 0; p < 7; ++p)
       EXPECT_LE(std::abs(r.strips[k].parameters[p] - truth[p]), k_sigma * r.strips[k].sigmas[p])
-          << synth::toString(type) << " strip " << k << " parameter " << p << ": " << r.strips[k].parameters[p]
-          << " vs " << truth[p] << ", sigma " << r.strips[k].sigmas[p];
+          << synth::toString(type) << " strip " << k << " parameter " << p << ": "
+          << r.strips[k].parameters[p] << " vs " << truth[p] << ", sigma " << r.strips[k].sigmas[p];
     const double error = meanDisplacementError(b, r, k), sigma = meanDisplacementSigma(b, r, k);
     EXPECT_GT(sigma, 0.0);
     EXPECT_LE(error, k_sigma * sigma) << synth::toString(type) << " strip " << k << ", sigma " << sigma;
     EXPECT_LE(error, max_error) << synth::toString(type) << " strip " << k << ", sigma " << sigma;
-    std::printf("%s strip %zu: mean correction error %.4f m, its sigma %.4f m\n",
-                synth::toString(type), k, error, sigma);
+    std::printf("%s strip %zu: mean correction error %.4f m, its sigma %.4f m\n", synth::toString(type), k,
+                error, sigma);
   }
   // σ0 is the σ of a point's distance to the other strip's local quadric: the point's noise and
   // the quadric's own height σ at the query (σ_surface, measured per observation by the rule).
@@ -64,7 +64,8 @@ expectRecovered(synth::LandscapeType type, double scale, double k_sigma, double 
     ASSERT_TRUE(o.used);
     const double expected = std::hypot(s.noise_sigma, o.sigma_surface);
     EXPECT_GT(o.sigma_surface, 0.1 * s.noise_sigma);
-    EXPECT_NEAR(o.sigma0, expected, 0.1 * expected) << synth::toString(type) << " overlap " << o.i << "-" << o.j;
+    EXPECT_NEAR(o.sigma0, expected, 0.1 * expected)
+        << synth::toString(type) << " overlap " << o.i << "-" << o.j;
   }
 }
 

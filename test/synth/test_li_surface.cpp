@@ -45,8 +45,7 @@ TEST(Synth, LiSurfaceTruthAndDeformation)
     if (li.deformed[i]) {
       in_sum += dz;
       ++n_in;
-    }
-    else {
+    } else {
       out_sq += dz * dz;
       ++n_out;
     }

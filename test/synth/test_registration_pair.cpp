@@ -118,8 +118,7 @@ TEST(Synth, PairDensityAndOverlap)
   const auto s = smallSettings();
   const auto pair = makeRegistrationPair(s);
   EXPECT_EQ(pair.source->size(), static_cast<std::size_t>(std::lround(s.size_x * s.size_y)));
-  EXPECT_EQ(pair.target->size(),
-            static_cast<std::size_t>(std::lround(2.0 * s.size_x * s.size_y)));
+  EXPECT_EQ(pair.target->size(), static_cast<std::size_t>(std::lround(2.0 * s.size_x * s.size_y)));
   // Density measured in a 40 m × 40 m window inside the target footprint: expected 3200 points,
   // Poisson-like sd ≈ 57; tolerance 5 %.
   const Eigen::Vector2d c = pair.target_footprint.center();
@@ -146,8 +145,7 @@ TEST(Synth, PairLabels)
     if (q.classification == 2) {
       ++ground;
       EXPECT_LT(std::abs(dz), 0.5);  // 10 σ
-    }
-    else {
+    } else {
       ASSERT_EQ(q.classification, 6);
       ++roofs;
       EXPECT_GT(dz, 1.0);  // eaves are ≥ 3 m above the highest footprint terrain
@@ -167,8 +165,7 @@ TEST(Synth, PairGlobalTruth)
   const auto& q = (*pair.source)[0];
   const Eigen::Vector3d local = q.getVector3fMap().cast<double>();
   const Eigen::Vector3d via_local = pair.truth.apply(local) + s.origin;
-  const Eigen::Vector3d via_global =
-      G.topLeftCorner<3, 3>() * (local + s.origin) + G.topRightCorner<3, 1>();
+  const Eigen::Vector3d via_global = G.topLeftCorner<3, 3>() * (local + s.origin) + G.topRightCorner<3, 1>();
   EXPECT_LT((via_local - via_global).norm(), 1e-6);
 }
 

@@ -47,8 +47,7 @@ TEST(Synth, SceneClassesAndObjects)
     }
     if (cls >= 3 && cls <= 5) {
       ASSERT_TRUE(t == ObjectType::TREE || t == ObjectType::SHRUB);
-    }
-    else {
+    } else {
       ASSERT_EQ(cls, scene.objects[id].classification) << toString(t);
     }
   }
@@ -92,10 +91,12 @@ TEST(Synth, SceneRoofPlanes)
   ASSERT_GE(planes_per_building.size(), 3u);
   bool any_hip = false;
   for (const auto& [object, count] : planes_per_building) {
-    const RoofType roof = scene.planes[static_cast<std::size_t>(
-        std::find_if(scene.planes.begin(), scene.planes.end(),
-                     [o = object](const RoofPlane& p) { return p.object == o; }) -
-        scene.planes.begin())].roof;
+    const RoofType roof = scene
+                              .planes[static_cast<std::size_t>(
+                                  std::find_if(scene.planes.begin(), scene.planes.end(),
+                                               [o = object](const RoofPlane& p) { return p.object == o; }) -
+                                  scene.planes.begin())]
+                              .roof;
     EXPECT_EQ(count, roofPlaneCount(roof));
     any_hip |= roof == RoofType::HIP;
   }
@@ -113,30 +114,30 @@ TEST(Synth, SceneLabelsMatchGeometry)
   for (const auto& p : *scene.cloud) {
     const double above = p.z - terrain.height(p.x, p.y);
     switch (p.classification) {
-      case 2:
-        ASSERT_LT(std::abs(above), tol);
-        break;
-      case 3:
-        ASSERT_LT(above, s.low_max);
-        break;
-      case 4:
-        ASSERT_TRUE(above >= s.low_max && above < s.medium_max);
-        break;
-      case 5:
-        ASSERT_GE(above, s.medium_max);
-        break;
-      case 6:
-        ASSERT_GT(above, -tol);  // walls start at the ground
-        break;
-      case 14:
-        ASSERT_GT(above, 8.0);  // 25 m towers, sag 3 % of spans ≤ 160 m
-        break;
-      case 64:
-        ASSERT_GT(above, 1.0);
-        ASSERT_LT(above, 2.5);  // 1.4–1.8 m above the highest corner on gentle terrain
-        break;
-      default:
-        break;
+    case 2:
+      ASSERT_LT(std::abs(above), tol);
+      break;
+    case 3:
+      ASSERT_LT(above, s.low_max);
+      break;
+    case 4:
+      ASSERT_TRUE(above >= s.low_max && above < s.medium_max);
+      break;
+    case 5:
+      ASSERT_GE(above, s.medium_max);
+      break;
+    case 6:
+      ASSERT_GT(above, -tol);  // walls start at the ground
+      break;
+    case 14:
+      ASSERT_GT(above, 8.0);  // 25 m towers, sag 3 % of spans ≤ 160 m
+      break;
+    case 64:
+      ASSERT_GT(above, 1.0);
+      ASSERT_LT(above, 2.5);  // 1.4–1.8 m above the highest corner on gentle terrain
+      break;
+    default:
+      break;
     }
   }
 }

@@ -99,8 +99,7 @@ TEST(Synth, StripSideOverlap)
     extent.emplace_back(lo, hi);
   }
   for (std::size_t k = 0; k + 1 < extent.size(); ++k) {
-    const double overlap =
-        (extent[k].second - extent[k + 1].first) / (extent[k].second - extent[k].first);
+    const double overlap = (extent[k].second - extent[k + 1].first) / (extent[k].second - extent[k].first);
     // Edge points sit half a point spacing (0.35 m) inside the swath; noise 0.05 m: ±0.01.
     EXPECT_NEAR(overlap, s.side_overlap, 0.01);
   }
@@ -116,8 +115,7 @@ TEST(Synth, StripTruthApplied)
   EXPECT_LT((block.strips[0].transform.matrix() - Eigen::Matrix4d::Identity()).norm(), 1e-15);
   for (std::size_t k = 0; k < block.strips.size(); ++k) {
     // ~30000 normal draws: RMS within ~1 % of σ; tolerance 10 %.
-    EXPECT_NEAR(terrainRms(block, k, block.strips[k].transform), s.noise_sigma,
-                0.1 * s.noise_sigma);
+    EXPECT_NEAR(terrainRms(block, k, block.strips[k].transform), s.noise_sigma, 0.1 * s.noise_sigma);
     // The centre-referenced shift is consistent with the transform.
     const StripTruth& st = block.strips[k];
     const Eigen::Vector3d x = st.centre + Eigen::Vector3d(10.0, -20.0, 3.0);
@@ -231,7 +229,8 @@ TEST(Synth, CrossStrips)
     EXPECT_NEAR(static_cast<double>(st.point_count), s.density * across * s.swath_width,
                 0.005 * s.density * across * s.swath_width);
     // Its first and last scan lines lie at the two outer edges of the row (true frame).
-    const auto first = (*block.cloud)[st.first_index], last = (*block.cloud)[st.first_index + st.point_count - 1];
+    const auto first = (*block.cloud)[st.first_index],
+               last = (*block.cloud)[st.first_index + st.point_count - 1];
     const Eigen::Vector3d p0 = st.transform.apply(first.getVector3fMap().cast<double>());
     const Eigen::Vector3d p1 = st.transform.apply(last.getVector3fMap().cast<double>());
     EXPECT_NEAR(a.dot(p1.head<2>() - p0.head<2>()), across, 2.0);
@@ -287,7 +286,8 @@ TEST(Synth, UrbanAndMountainScenes)
       const double h = m.groundHeight(x, y);
       lo = std::min(lo, h);
       hi = std::max(hi, h);
-      flat += std::abs(m.groundHeight(x + 1.0, y) - h) < 1e-3 && std::abs(m.groundHeight(x, y + 1.0) - h) < 1e-3;
+      flat +=
+          std::abs(m.groundHeight(x + 1.0, y) - h) < 1e-3 && std::abs(m.groundHeight(x, y + 1.0) - h) < 1e-3;
     }
   EXPECT_GT(flat, n / 3);
   EXPECT_GT(hi - lo, 20.0);

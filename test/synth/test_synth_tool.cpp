@@ -88,14 +88,14 @@ TEST(SynthTool, RefusalsAndErrors)
   ASSERT_EQ(run("li -o " + dir.string()), 0);
   EXPECT_TRUE(fs::exists(dir / "reference.pcd"));
   EXPECT_TRUE(fs::exists(dir / "mate.pcd"));
-  EXPECT_NE(run("li -o " + dir.string()), 0);               // exists, no -overwrite
+  EXPECT_NE(run("li -o " + dir.string()), 0);  // exists, no -overwrite
   EXPECT_EQ(run("li -overwrite -o " + dir.string()), 0);
-  EXPECT_NE(run("pair -bogus 1 -o " + dir.string()), 0);    // unknown option
+  EXPECT_NE(run("pair -bogus 1 -o " + dir.string()), 0);      // unknown option
   EXPECT_NE(run("pair -overlap 1.5 -o " + dir.string()), 0);  // impossible value
   EXPECT_NE(run("pair -overlap abc -o " + dir.string()), 0);  // not a number
   EXPECT_NE(run("pair -format e57 -o " + dir.string()), 0);
   EXPECT_NE(run("nothing -o " + dir.string()), 0);
-  EXPECT_NE(run("pair"), 0);                                // no -o
+  EXPECT_NE(run("pair"), 0);  // no -o
   EXPECT_EQ(run("-h"), 0);
 }
 
@@ -105,9 +105,7 @@ TEST(SynthTool, StripsAndScene)
   if (!fs::exists(kTool))
     FAIL() << kTool << " not built";
   const fs::path dir = freshDir("strips");
-  ASSERT_EQ(run("strips -strips 2 -length 80 -swath 40 -density 1 -split -format las -o " +
-                dir.string()),
-            0);
+  ASSERT_EQ(run("strips -strips 2 -length 80 -swath 40 -density 1 -split -format las -o " + dir.string()), 0);
   for (const char* f : {"strips.las", "strip_1.las", "strip_2.las", "truth.json"})
     EXPECT_TRUE(fs::exists(dir / f)) << f;
   // The LAS file keeps the strip ids, classes and times the generator set.

@@ -43,10 +43,10 @@ struct AdjustmentSettings
   bool apriori_from_guess = true;
 
   // --- iteration and convergence (Zuo §4: angle change < 1e-6 rad, < ~20 iterations) --------
-  int max_iterations = 30;                 ///< upper bound on Gauss–Newton iterations
-  double angle_epsilon = 1e-6;             ///< [rad] converged when every |dφ|,|dω|,|dκ| below
-  double translation_epsilon = 1e-5;       ///< [length] ... and |dt| below
-  double scale_epsilon = 1e-8;             ///< [-] ... and |dm| below
+  int max_iterations = 30;            ///< upper bound on Gauss–Newton iterations
+  double angle_epsilon = 1e-6;        ///< [rad] converged when every |dφ|,|dω|,|dκ| below
+  double translation_epsilon = 1e-5;  ///< [length] ... and |dt| below
+  double scale_epsilon = 1e-8;        ///< [-] ... and |dm| below
 
   /// Conjugate points are searched afresh every iteration until every parameter change is
   /// below this fraction of its σ_i; from then on they are frozen (the rules' per-point caches

@@ -46,7 +46,8 @@ struct PhaseStep
 ///        frozen once they are below freeze_sigma_fraction σ_i (or after two thirds).
 /// \param[in] it the number of solves done, this one included
 PhaseStep
-advancePhase(IterationPhase& phase, const GaussMarkovSolution& sol, const AdjustmentSettings& settings, int it);
+advancePhase(IterationPhase& phase, const GaussMarkovSolution& sol, const AdjustmentSettings& settings,
+             int it);
 
 /// \brief The state machine of one adjustment's iterations:
 ///          coarse (every k-th point) → fine (all points, fresh correspondences, extrapolation)

@@ -93,8 +93,8 @@ noiseFloor(const ObservationSet& set, const Eigen::VectorXd& weights, double var
 /// weights added here) and the rank test's column scaling; flagged one at a time, the test
 /// repeated without each.
 std::vector<bool>
-noiseDominated(const Matrix7d& N, const Matrix7d& M, const Vector7d& apriori_weights,
-               const Vector7d& scaling, double share);
+noiseDominated(const Matrix7d& N, const Matrix7d& M, const Vector7d& apriori_weights, const Vector7d& scaling,
+               double share);
 
 /// Holds the flagged unknowns at their start values for one solve (infinite a-priori weight).
 void

@@ -48,7 +48,7 @@ public:
     if (estimator.needsResidualSigmas() && sigma0 > 0.0) {
       sigma_v_.resize(m);
       redundancy_.resize(m);
-#pragma omp parallel for schedule(static) if (worthParallel(static_cast<std::size_t>(m)))
+#pragma omp parallel for schedule(static) if (worthParallel(static_cast <std::size_t>(m)))
       for (Eigen::Index j = 0; j < m; ++j) {
         const auto a = row(static_cast<std::size_t>(j));
         redundancy_[j] = std::max(0.0, 1.0 - (a * qxx * a.transpose())(0, 0));

@@ -34,20 +34,20 @@ namespace pcl_ls3d {
 /// \brief One held-out parameter, as it would be if freed.
 struct OmittedParameter
 {
-  int index = -1;            ///< into the adjustment's parameter vector
-  double estimate = 0.0;     ///< θ: the change it would take (one Gauss–Newton step)
-  double sigma = 0.0;        ///< σ of θ from the sandwich's middle term, at least sigma_formal
-  double sigma_formal = 0.0; ///< σ0 √(K⁻¹)_ii
-  double z = 0.0;            ///< θ / σ
+  int index = -1;             ///< into the adjustment's parameter vector
+  double estimate = 0.0;      ///< θ: the change it would take (one Gauss–Newton step)
+  double sigma = 0.0;         ///< σ of θ from the sandwich's middle term, at least sigma_formal
+  double sigma_formal = 0.0;  ///< σ0 √(K⁻¹)_ii
+  double z = 0.0;             ///< θ / σ
 };
 
 /// \brief The test of all held-out parameters together and one by one.
 struct OmittedParameterTest
 {
-  bool ok = false;                          ///< false: K singular or inputs inconsistent
-  std::string message;                      ///< why not ok
-  std::vector<OmittedParameter> parameters; ///< in the order of `omitted`
-  double statistic = 0.0;                   ///< θᵀ C_θ⁻¹ θ: χ² with parameters.size() degrees of freedom under H0
+  bool ok = false;                           ///< false: K singular or inputs inconsistent
+  std::string message;                       ///< why not ok
+  std::vector<OmittedParameter> parameters;  ///< in the order of `omitted`
+  double statistic = 0.0;  ///< θᵀ C_θ⁻¹ θ: χ² with parameters.size() degrees of freedom under H0
 };
 
 /// The sandwich's middle term M (u × u) for residuals v + A·step (step over the whole parameter

@@ -36,8 +36,8 @@ public:
     const double fx = (p.x() - x0_) * inv_cell_, fy = (p.y() - y0_) * inv_cell_;
     if (!(fx >= 0.0 && fy >= 0.0 && fx < nx_ && fy < ny_))
       return false;
-    const std::size_t c = static_cast<std::size_t>(fy) * static_cast<std::size_t>(nx_) +
-                          static_cast<std::size_t>(fx);
+    const std::size_t c =
+        static_cast<std::size_t>(fy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(fx);
     return p.z() >= zlo_[c] && p.z() <= zhi_[c];
   }
 

@@ -42,8 +42,8 @@ public:
   /// reach are culled by a grid look-up before any search (overlap_grid.h). The target, the
   /// rule and the points must outlive the matcher's use.
   void
-  reset(const std::vector<Eigen::Vector3d>& source, const TargetSurface& target,
-        const ConjugateRule& rule, double max_distance);
+  reset(const std::vector<Eigen::Vector3d>& source, const TargetSurface& target, const ConjugateRule& rule,
+        double max_distance);
 
   /// Observations of the sampled source points under the given poses.
   const ObservationSet&
@@ -119,8 +119,8 @@ public:
 
 private:
   void
-  matchPoint(std::size_t p, const BlockLinearization& source_pose,
-             const BlockLinearization& target_pose, std::vector<Observation>& out);
+  matchPoint(std::size_t p, const BlockLinearization& source_pose, const BlockLinearization& target_pose,
+             std::vector<Observation>& out);
 
   const std::vector<Eigen::Vector3d>* source_ = nullptr;
   const TargetSurface* target_ = nullptr;
@@ -129,7 +129,7 @@ private:
   double grid_reach_ = 0.0;  ///< the reach the overlap grid was built for
   OverlapGrid grid_;
   std::vector<CorrespondenceCache> caches_;
-  std::vector<unsigned char> missed_;  ///< no correspondence at the point's last search
+  std::vector<unsigned char> missed_;             ///< no correspondence at the point's last search
   std::vector<std::vector<Observation>> chunks_;  ///< per block of points, concatenated in order
   ObservationSet set_;
   BlockLinearization source_pose_{ParameterBlock()}, target_pose_{ParameterBlock()};

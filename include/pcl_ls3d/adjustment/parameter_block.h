@@ -17,11 +17,12 @@
 namespace pcl_ls3d {
 
 /// \brief Which of the 7 similarity parameters (tx, ty, tz, φ, ω, κ, m) are estimated.
-enum class ParameterModel {
-  SIMILARITY_7,      ///< all seven free
-  RIGID_6,           ///< m fixed (Zuo's 6-parameter case; LHD = LZD rule + RIGID_6)
-  TRANSLATION_3,     ///< tx, ty, tz free; rotations and scale fixed
-  HEIGHT_1           ///< only tz free (classic strip height offset)
+enum class ParameterModel
+{
+  SIMILARITY_7,   ///< all seven free
+  RIGID_6,        ///< m fixed (Zuo's 6-parameter case; LHD = LZD rule + RIGID_6)
+  TRANSLATION_3,  ///< tx, ty, tz free; rotations and scale fixed
+  HEIGHT_1        ///< only tz free (classic strip height offset)
 };
 
 /// "7", "6", "3", "z" (or "1") → model, the one spelling of -params; false when unknown.

@@ -22,20 +22,20 @@ namespace pcl_ls3d {
 /// \brief What the gate measures a finished adjustment with.
 struct QualityInputs
 {
-  double sigma0 = 0.0;                      ///< σ̂0 of the last solve
-  double normal_sigma = 0.0;                ///< normalComponentSigma() of the last solve (0: n/a)
-  double source_noise = 0.0;                ///< σ_s (surface_noise.h)
-  double target_noise = 0.0;                ///< σ_t near the conjugate points
-  double spacing = 0.0;                     ///< mean target point spacing: σ0 below 1e-3 of it is an exact fit
-  std::size_t candidates = 0;               ///< source points over the target's extent
-  std::size_t correspondences = 0;          ///< observations of the last iteration
-  std::size_t used = 0;                     ///< of them with non-zero weight
-  double start_scale = 0.0;                 ///< 1.4826 · median |l| of the first iteration's observations
-  std::size_t start_correspondences = 0;    ///< observations of the first iteration
-  Vector7d start = Vector7d::Zero();        ///< parameters at the initial guess (reduced frame)
-  Vector7d estimate = Vector7d::Zero();     ///< final parameters
-  Eigen::AlignedBox3d source_box;           ///< of the reduced source points
-  Matrix7d covariance = Matrix7d::Zero();   ///< of the estimate (AdjustmentReport::covariance)
+  double sigma0 = 0.0;                    ///< σ̂0 of the last solve
+  double normal_sigma = 0.0;              ///< normalComponentSigma() of the last solve (0: n/a)
+  double source_noise = 0.0;              ///< σ_s (surface_noise.h)
+  double target_noise = 0.0;              ///< σ_t near the conjugate points
+  double spacing = 0.0;                   ///< mean target point spacing: σ0 below 1e-3 of it is an exact fit
+  std::size_t candidates = 0;             ///< source points over the target's extent
+  std::size_t correspondences = 0;        ///< observations of the last iteration
+  std::size_t used = 0;                   ///< of them with non-zero weight
+  double start_scale = 0.0;               ///< 1.4826 · median |l| of the first iteration's observations
+  std::size_t start_correspondences = 0;  ///< observations of the first iteration
+  Vector7d start = Vector7d::Zero();      ///< parameters at the initial guess (reduced frame)
+  Vector7d estimate = Vector7d::Zero();   ///< final parameters
+  Eigen::AlignedBox3d source_box;         ///< of the reduced source points
+  Matrix7d covariance = Matrix7d::Zero();  ///< of the estimate (AdjustmentReport::covariance)
 };
 
 /// The figures of QualityFigures from the last observation set (distinct observed points).

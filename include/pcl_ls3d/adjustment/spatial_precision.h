@@ -39,7 +39,8 @@ namespace pcl_ls3d {
 class SpatialScoreSum
 {
 public:
-  explicit SpatialScoreSum(double cell) : inv_cell_(1.0 / cell) {}
+  explicit SpatialScoreSum(double cell) : inv_cell_(1.0 / cell)
+  {}
 
   /// Adds an observation at position x with design row a (weight p) and score s = p v aᵀ.
   void

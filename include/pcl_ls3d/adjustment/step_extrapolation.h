@@ -25,8 +25,7 @@ class StepExtrapolator
 public:
   /// \param[in] max_step largest step (same units as next()'s) that may be creep; larger steps
   ///            are never extrapolated. Infinite: no limit.
-  explicit StepExtrapolator(double max_step = std::numeric_limits<double>::infinity())
-  : max_step_(max_step)
+  explicit StepExtrapolator(double max_step = std::numeric_limits<double>::infinity()) : max_step_(max_step)
   {}
 
   /// \param[in] step this iteration's change, scaled to comparable units (displacement at the

@@ -52,13 +52,9 @@ public:
   /// \param[in] target the target surface (cloud coordinates)
   /// \param[in] guess initial 4×4 similarity mapping source into target coordinates
   AdjustmentReport
-  run(const std::vector<Eigen::Vector3d>& source,
-      const std::vector<int>& source_indices,
-      const TargetSurface& target,
-      const ConjugateRule& rule,
-      const RobustEstimator& estimator,
-      const AdjustmentSettings& settings,
-      const Eigen::Matrix4d& guess);
+  run(const std::vector<Eigen::Vector3d>& source, const std::vector<int>& source_indices,
+      const TargetSurface& target, const ConjugateRule& rule, const RobustEstimator& estimator,
+      const AdjustmentSettings& settings, const Eigen::Matrix4d& guess);
 
   /// Hooks for the following runs (empty functions: none).
   void

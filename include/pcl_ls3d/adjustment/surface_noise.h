@@ -17,14 +17,14 @@ namespace pcl_ls3d {
 ///        points (spread over `seeds`), pooled as the median of RSS/(k − 6) corrected to a mean.
 ///        Returns 0 when no seed has enough neighbours.
 double
-estimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& seeds,
-                     double radius, std::size_t max_seeds = 256);
+estimateSurfaceNoise(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& seeds, double radius,
+                     std::size_t max_seeds = 256);
 
 /// \brief The same on a TargetSurface: quadrics of the k nearest target points of up to
 ///        max_seeds positions (spread over `seeds`, e.g. the conjugate points of a match).
 double
-estimateSurfaceNoise(const TargetSurface& surface, const std::vector<Eigen::Vector3d>& seeds,
-                     int k = 30, std::size_t max_seeds = 256);
+estimateSurfaceNoise(const TargetSurface& surface, const std::vector<Eigen::Vector3d>& seeds, int k = 30,
+                     std::size_t max_seeds = 256);
 
 /// \brief Median distance from a target point to its nearest other target point, over up to
 ///        `samples` points spread over the surface (0 for fewer than 2 points).

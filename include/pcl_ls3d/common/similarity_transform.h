@@ -19,7 +19,16 @@ using Vector7d = Eigen::Matrix<double, 7, 1>;
 using Matrix7d = Eigen::Matrix<double, 7, 7>;
 
 /// Index of each parameter in Vector7d / Matrix7d.
-enum SimilarityParameter : int { TX = 0, TY = 1, TZ = 2, PHI = 3, OMEGA = 4, KAPPA = 5, SCALE = 6 };
+enum SimilarityParameter : int
+{
+  TX = 0,
+  TY = 1,
+  TZ = 2,
+  PHI = 3,
+  OMEGA = 4,
+  KAPPA = 5,
+  SCALE = 6
+};
 
 /// Names in parameter order: "tx", "ty", "tz", "phi", "omega", "kappa", "m".
 const std::array<std::string, 7>&
@@ -66,14 +75,12 @@ struct SimilarityTransform
 /// \brief Re-expresses a transform given in local coordinates (x_local = x_global - origin) in
 ///        global coordinates: T_global = Shift(origin_target) · T_local · Shift(-origin_source).
 Eigen::Matrix4d
-localToGlobal(const Eigen::Matrix4d& T_local,
-              const Eigen::Vector3d& origin_source,
+localToGlobal(const Eigen::Matrix4d& T_local, const Eigen::Vector3d& origin_source,
               const Eigen::Vector3d& origin_target);
 
 /// Inverse of localToGlobal.
 Eigen::Matrix4d
-globalToLocal(const Eigen::Matrix4d& T_global,
-              const Eigen::Vector3d& origin_source,
+globalToLocal(const Eigen::Matrix4d& T_global, const Eigen::Vector3d& origin_source,
               const Eigen::Vector3d& origin_target);
 
 }  // namespace pcl_ls3d

@@ -32,10 +32,10 @@ struct DeformationMapSettings
 {
   std::string title = "Deformation";
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< added to the points (file coordinates)
-  std::string crs_wkt;   ///< CRS of the inputs (empty: none; the GeoTIFF then has no CRS)
-  double k = 3.0;        ///< significance factor used (the colour range covers 2 k σ̂)
-  bool lod95 = false;    ///< significance by the 95 % level of detection instead of k σ
-  double cell = 0.0;     ///< cell edge; 0: 1.5 × the regions' point spacing
+  std::string crs_wkt;  ///< CRS of the inputs (empty: none; the GeoTIFF then has no CRS)
+  double k = 3.0;       ///< significance factor used (the colour range covers 2 k σ̂)
+  bool lod95 = false;   ///< significance by the 95 % level of detection instead of k σ
+  double cell = 0.0;    ///< cell edge; 0: 1.5 × the regions' point spacing
   /// Said under the title when the heights were converted to the plan unit before matching
   /// (HeightUnits), e.g. "heights converted to m (x 0.3048006) before matching"; empty:
   /// heights as the files store them.

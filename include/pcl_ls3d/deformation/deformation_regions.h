@@ -30,8 +30,8 @@ struct RegionSettings
   /// significant points join; an isolated weak point never does. Default 2 (set before any
   /// measurement; at 5 σ it lifts the recall from 0.87 to 0.96, docs/BENCHMARKS.md).
   double grow_k = 2.0;
-  double adjacency = 0.0;       ///< link distance; 0: 2.5 × the point spacing
-  double cell = 0.0;            ///< area cell edge; 0: the point spacing
+  double adjacency = 0.0;  ///< link distance; 0: 2.5 × the point spacing
+  double cell = 0.0;       ///< area cell edge; 0: the point spacing
   /// Normal axis of the plane areas are counted on (0 x, 1 y, 2 z); −1: the largest projection
   /// of the epoch's box, points linked in 3-D. When set (≥ 0), points are also linked in that
   /// plane. analyseDeformation() sets 2 (xy) for the LZD rule.
@@ -44,12 +44,12 @@ struct RegionSettings
 /// \brief One connected region (or one noise cluster).
 struct DeformationRegion
 {
-  int id = 0;                   ///< 1, 2, ... by decreasing area (noise: −1)
-  int sign = 1;                 ///< +1 the epoch is above / outside the reference, −1 below
+  int id = 0;    ///< 1, 2, ... by decreasing area (noise: −1)
+  int sign = 1;  ///< +1 the epoch is above / outside the reference, −1 below
   std::size_t points = 0;
-  double area = 0.0;            ///< [length²]
-  double mean = 0.0, max = 0.0, min = 0.0;  ///< of the residuals [length]
-  double volume = 0.0;          ///< [length³], signed
+  double area = 0.0;                                   ///< [length²]
+  double mean = 0.0, max = 0.0, min = 0.0;             ///< of the residuals [length]
+  double volume = 0.0;                                 ///< [length³], signed
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();  ///< epoch coordinates
   Eigen::Vector3d box_min = Eigen::Vector3d::Zero(), box_max = Eigen::Vector3d::Zero();
 };
@@ -64,7 +64,7 @@ struct RegionAnalysis
   double area_deformed = 0.0;              ///< cells of the regions
   double percent_deformed = 0.0;           ///< 100 · area_deformed / area_observed
   double spacing = 0.0, adjacency = 0.0, cell = 0.0;
-  int plane_normal_axis = 2;               ///< 0 x, 1 y, 2 z (the plane areas are counted on)
+  int plane_normal_axis = 2;  ///< 0 x, 1 y, 2 z (the plane areas are counted on)
 };
 
 /// Connected regions of field.significant (per sign), grown by hysteresis when grow_k > 0, their

@@ -18,8 +18,8 @@ namespace pcl_ls3d {
 struct EIGEN_ALIGN16 PointResidual
 {
   PCL_ADD_POINT4D;
-  float residual = 0.f;        ///< signed distance along the rule's direction (LZD: z − z_reference)
-  float sigma = 0.f;           ///< σ of the residual
+  float residual = 0.f;  ///< signed distance along the rule's direction (LZD: z − z_reference)
+  float sigma = 0.f;     ///< σ of the residual
   std::uint8_t significant = 0;
   std::int32_t region = 0;
   PCL_MAKE_ALIGNED_OPERATOR_NEW
@@ -29,5 +29,5 @@ struct EIGEN_ALIGN16 PointResidual
 
 POINT_CLOUD_REGISTER_POINT_STRUCT(pcl_ls3d::PointResidual,
                                   (float, x, x)(float, y, y)(float, z, z)(float, residual, residual)(
-                                      float, sigma, sigma)(std::uint8_t, significant, significant)(
-                                      std::int32_t, region, region))
+                                      float, sigma, sigma)(std::uint8_t, significant,
+                                                           significant)(std::int32_t, region, region))

@@ -34,7 +34,8 @@ namespace pcl_ls3d {
 namespace deformation {
 
 /// \brief How a residual is declared significant.
-enum class DetectionRule {
+enum class DetectionRule
+{
   SIGMA_K,  ///< |r| > k σ (Li et al.)
   LOD95     ///< M3C2-style level of detection at 95 % on the k-nearest-neighbour mean
 };
@@ -47,8 +48,8 @@ toString(DetectionRule rule);
 struct ResidualSettings
 {
   DetectionRule rule = DetectionRule::SIGMA_K;
-  double k = 3.0;               ///< SIGMA_K: significance factor
-  int lod_neighbours = 12;      ///< LOD95: epoch points averaged around each point (itself included)
+  double k = 3.0;           ///< SIGMA_K: significance factor
+  int lod_neighbours = 12;  ///< LOD95: epoch points averaged around each point (itself included)
   /// Conjugate points farther than this are none (the matching's max correspondence distance).
   double max_distance = std::numeric_limits<double>::max();
 
@@ -59,14 +60,14 @@ struct ResidualSettings
 /// \brief One record per epoch point, in the epoch's order.
 struct ResidualField
 {
-  std::vector<double> residual;         ///< r_i (NaN: no conjugate on the reference)
-  std::vector<double> sigma;            ///< σ_i (NaN: no conjugate)
-  std::vector<std::uint8_t> significant;///< 1 when |r| exceeds its threshold
-  std::vector<Eigen::Vector3d> direction; ///< u_i (reference frame; zero when none)
-  std::size_t observed = 0;             ///< points with a residual
+  std::vector<double> residual;            ///< r_i (NaN: no conjugate on the reference)
+  std::vector<double> sigma;               ///< σ_i (NaN: no conjugate)
+  std::vector<std::uint8_t> significant;   ///< 1 when |r| exceeds its threshold
+  std::vector<Eigen::Vector3d> direction;  ///< u_i (reference frame; zero when none)
+  std::size_t observed = 0;                ///< points with a residual
   std::size_t significant_count = 0;
-  double scale = 0.0;                   ///< σ̂ used
-  double median_surface_sigma = 0.0;    ///< √med σ²_surf
+  double scale = 0.0;                 ///< σ̂ used
+  double median_surface_sigma = 0.0;  ///< √med σ²_surf
 };
 
 /// \brief Residuals of `points` (epoch coordinates, NaN allowed) at the matching's final

@@ -68,9 +68,9 @@ nearRegions(const std::vector<Eigen::Vector3d>& points, const RegionAnalysis& an
 /// \brief What refineOnStablePart() did.
 struct StableRefinementReport
 {
-  int rounds = 0;                 ///< matchings of the stable part that were kept
-  std::size_t left_out = 0;       ///< points left out in the last kept round
-  std::string stopped;            ///< why it stopped ("no region", "unchanged", ...)
+  int rounds = 0;            ///< matchings of the stable part that were kept
+  std::size_t left_out = 0;  ///< points left out in the last kept round
+  std::string stopped;       ///< why it stopped ("no region", "unchanged", ...)
 };
 
 /// Refines `robust` (the robust matching of `points` onto `reference`) on its stable part.

@@ -46,10 +46,10 @@ stablePartScatter(const std::vector<Eigen::Vector3d>& points, const TargetSurfac
 /// \brief One competing fit and its score.
 struct StartCandidate
 {
-  std::string name;     ///< "mm" / "lms" (the estimator's fit), "lts start" / "lms start", "block start"
-  double scatter = 0.0; ///< stablePartScatter() after its refinement (inf: not scored)
-  std::size_t outside = 0; ///< the points it was measured on
-  bool usable = false;  ///< its matching gave an estimate and its refinement settled (CONVERGED)
+  std::string name;         ///< "mm" / "lms" (the estimator's fit), "lts start" / "lms start", "block start"
+  double scatter = 0.0;     ///< stablePartScatter() after its refinement (inf: not scored)
+  std::size_t outside = 0;  ///< the points it was measured on
+  bool usable = false;      ///< its matching gave an estimate and its refinement settled (CONVERGED)
 };
 
 /// \brief What chooseBetweenStarts() compared and kept.

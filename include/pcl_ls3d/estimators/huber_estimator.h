@@ -14,9 +14,8 @@ namespace pcl_ls3d {
 class HuberEstimator final : public RobustEstimator
 {
 public:
-  explicit HuberEstimator(double k = kHuber95, ScaleRule rule = ScaleRule::MAD,
-                          double fixed_scale = 0.0)
-  : k_(k), rule_(rule), fixed_(fixed_scale)
+  explicit HuberEstimator(double k = kHuber95, ScaleRule rule = ScaleRule::MAD, double fixed_scale = 0.0)
+      : k_(k), rule_(rule), fixed_(fixed_scale)
   {}
   std::string
   name() const override;

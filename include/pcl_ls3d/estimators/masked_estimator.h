@@ -24,7 +24,7 @@ public:
   /// \param[in] cut held-out points count again within cut ŝ
   MaskedEstimator(RobustEstimator::ConstPtr inner, std::vector<std::uint8_t> held_out,
                   double cut = kReweightingCut)
-  : inner_(std::move(inner)), held_out_(std::move(held_out)), cut_(cut)
+      : inner_(std::move(inner)), held_out_(std::move(held_out)), cut_(cut)
   {}
   std::string
   name() const override

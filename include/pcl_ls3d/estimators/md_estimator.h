@@ -22,9 +22,8 @@ namespace pcl_ls3d {
 class MdEstimator final : public RobustEstimator
 {
 public:
-  explicit MdEstimator(double c = kTukey95, ScaleRule rule = ScaleRule::SIGMA0,
-                       double fixed_scale = 0.0)
-  : c_(c), rule_(rule), fixed_(fixed_scale)
+  explicit MdEstimator(double c = kTukey95, ScaleRule rule = ScaleRule::SIGMA0, double fixed_scale = 0.0)
+      : c_(c), rule_(rule), fixed_(fixed_scale)
   {}
   std::string
   name() const override;

@@ -28,7 +28,8 @@
 namespace pcl_ls3d {
 
 /// The weight-function estimators shipped with the library.
-enum class RobustEstimatorType {
+enum class RobustEstimatorType
+{
   LEAST_SQUARES,  ///< w = 1
   ZUO,            ///< Zuo et al. 2012, eq. 15: 0/1 weight at K σ0 (default K = 6)
   HUBER,          ///< Huber, k = 1.345 (95 % efficiency), MAD scale
@@ -57,7 +58,8 @@ makeRobustEstimator(const RobustEstimatorChoice& choice);
 /// case-insensitive, optionally with a tuning constant after a colon ("zuo:7", "huber:1.5").
 /// False with the reason when the text is not one (\a choice untouched).
 bool
-parseRobustEstimatorChoice(const std::string& text, RobustEstimatorChoice& choice, std::string* why = nullptr);
+parseRobustEstimatorChoice(const std::string& text, RobustEstimatorChoice& choice,
+                           std::string* why = nullptr);
 
 /// "zuo", "huber:1.5": the text parseRobustEstimatorChoice() reads back to the same choice.
 std::string

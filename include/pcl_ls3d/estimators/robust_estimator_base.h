@@ -30,15 +30,11 @@ struct WeightingInput
   WeightingInput(const Eigen::VectorXd& residuals_, const Eigen::VectorXd& sigma_v_,
                  const Eigen::VectorXd& redundancy_, double scale_,
                  const ObservationSet* observations_ = nullptr, int iteration_ = 0)
-  : residuals(residuals_)
-  , sigma_v(sigma_v_)
-  , redundancy(redundancy_)
-  , scale(scale_)
-  , observations(observations_)
-  , iteration(iteration_)
+      : residuals(residuals_), sigma_v(sigma_v_), redundancy(redundancy_), scale(scale_),
+        observations(observations_), iteration(iteration_)
   {}
 
-  const Eigen::VectorXd& residuals;   ///< v_i (the signed distances at the current estimate)
+  const Eigen::VectorXd& residuals;  ///< v_i (the signed distances at the current estimate)
   /// σ_vi = σ0 √r_i from the previous solve when needsResidualSigmas(), else empty.
   const Eigen::VectorXd& sigma_v;
   /// r_i = 1 − a_iᵀ Qxx a_i (unit a-priori weight) when needsResidualSigmas(), else empty.
@@ -47,7 +43,7 @@ struct WeightingInput
   double scale;
   /// The observations behind the residuals (same order), or null when called without them.
   const ObservationSet* observations;
-  int iteration;                      ///< 1 for the first iteration
+  int iteration;  ///< 1 for the first iteration
   /// The engine's annealed floor for estimators that cut (AdjustmentSettings::guess_uncertainty
   /// halved each iteration): |v| up to this is never cut. 0: none.
   double min_cut = 0.0;
@@ -98,8 +94,7 @@ public:
   /// \param[out] weights resized by the caller to residuals.size(); w_i in [0, 1]
   virtual void
   computeWeights(const Eigen::Ref<const Eigen::VectorXd>& residuals,
-                 const Eigen::Ref<const Eigen::VectorXd>& sigma_v,
-                 double sigma0,
+                 const Eigen::Ref<const Eigen::VectorXd>& sigma_v, double sigma0,
                  Eigen::Ref<Eigen::VectorXd> weights) const = 0;
 };
 

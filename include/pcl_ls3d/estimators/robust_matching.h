@@ -32,7 +32,8 @@
 namespace pcl_ls3d {
 
 /// \brief The estimators of robust matching.
-enum class RobustMethod {
+enum class RobustMethod
+{
   LEAST_SQUARES,  ///< plain LHD (breakdown 0)
   ZUO,            ///< Zuo's 0/1 weight at K σ0 (eq. 15 of Zuo 2012)
   HUBER,          ///< Huber, k = 1.345, MAD scale
@@ -51,7 +52,8 @@ bool
 parseRobustMethod(const std::string& text, RobustMethod& method);
 
 /// \brief The scale an MM-estimator fixes for its M-step.
-enum class MmScale {
+enum class MmScale
+{
   REWEIGHTED,  ///< the LTS scale refined by reweighting at 2.5 σ̂ (robust_scale.h, default)
   S_SCALE      ///< the textbook choice: M-scale of the LTS residuals (c = 1.5476, b = 0.5)
 };
@@ -66,7 +68,8 @@ enum class MmScale {
 /// the deformation pulls the M-step away from the LMS fit. Rousseeuw & Leroy (1987, p. 202)
 /// take the scale of the LMS fit instead: s0 = 1.4826 (1 + 5/(n − p)) √med v², then σ* from the
 /// residuals within 2.5 s0 (lmsFinalScale()), fixed for the reweighted step.
-enum class LmsScale {
+enum class LmsScale
+{
   FINAL,        ///< σ* of the LMS fit (Rousseeuw & Leroy's reweighted scale; default)
   PRELIMINARY,  ///< s0 of the LMS fit (inflated when much of the surface moved)
   MAD           ///< eq. 7 on all residuals, every iteration (the reading before issue 9 pt 2)
@@ -87,7 +90,7 @@ struct RobustMatchingSettings
   int sample_size = 7;               ///< p (Li: 7 for 6 parameters)
   std::size_t score_points = 20000;  ///< rank subsets on a random subsample of this many
   std::uint32_t seed = 1;
-  int max_rounds = 3;                ///< search rounds (re-linearised at the last estimate)
+  int max_rounds = 3;  ///< search rounds (re-linearised at the last estimate)
   MmScale mm_scale = MmScale::REWEIGHTED;
   /// MM: points beyond 2.5 ŝ of the LTS start stay out of the M-step (Rousseeuw & Leroy's
   /// reweighting, MaskedEstimator). Tukey's c = 4.685 ŝ keeps a deformation of c σ near 4–5 σ
@@ -140,19 +143,19 @@ struct RobustMatchingSettings
 struct RobustMatchingReport
 {
   RobustMethod method = RobustMethod::LMS;
-  std::string estimator;              ///< e.g. "lms(3000 subsets) + tukey(4.685)"
+  std::string estimator;  ///< e.g. "lms(3000 subsets) + tukey(4.685)"
   TerminationType termination = TerminationType::NOT_RUN;
-  std::string message;                ///< why it stopped, warnings
+  std::string message;  ///< why it stopped, warnings
   /// The final adjustment: parameters (reduced frame), transformation (cloud coordinates),
   /// σ0, σ_i (spatial sandwich), Qxx, per-observation residuals, weights and redundancy
   /// numbers, iteration log.
   AdjustmentReport adjustment;
-  AdjustmentReport start;             ///< the all-points least-squares start
-  double scale = 0.0;                 ///< σ̂ the final weights standardise with
+  AdjustmentReport start;  ///< the all-points least-squares start
+  double scale = 0.0;      ///< σ̂ the final weights standardise with
   /// High-breakdown stage (LMS, MM): the last round's search, its estimate and scale.
   SubsetSearchResult search;
-  int rounds = 0;                     ///< search rounds (re-linearisations + 1)
-  int subsets_drawn = 0;              ///< over all rounds
+  int rounds = 0;         ///< search rounds (re-linearisations + 1)
+  int subsets_drawn = 0;  ///< over all rounds
   Eigen::Matrix4d high_breakdown_transformation = Eigen::Matrix4d::Identity();
   double high_breakdown_scale = 0.0;  ///< the scale the M-step keeps fixed (LMS: σ* or s0, MM: see MmScale)
   double neighbour_noise = 0.0;       ///< σ_d of the high-breakdown fit's residuals (neighbour_noise.h)
@@ -160,12 +163,12 @@ struct RobustMatchingReport
   /// of the observations in the blocks its criterion kept; support 0: not searched.
   Eigen::Matrix4d block_start_transformation = Eigen::Matrix4d::Identity();
   double block_support = 0.0;
-  std::size_t held_out = 0;           ///< MM: points beyond 2.5 ŝ of the start, out of the M-step
+  std::size_t held_out = 0;  ///< MM: points beyond 2.5 ŝ of the start, out of the M-step
   /// LMS, MM: 1.4826 · med |v| of the observations the final M-step kept, and σ_d of the
   /// final residuals (RobustMatchingSettings::max_kept_scale_ratio); 0: not measured.
   double kept_scale = 0.0;
   double final_neighbour_noise = 0.0;
-  int iterations = 0;                 ///< adjustment iterations over all stages
+  int iterations = 0;  ///< adjustment iterations over all stages
 
   /// Usable estimate (the final adjustment converged or hit its iteration limit).
   bool

@@ -13,14 +13,15 @@
 
 namespace pcl_ls3d {
 
-constexpr double kHuber95 = 1.345;   ///< Huber k for 95 % efficiency at the normal
-constexpr double kTukey95 = 4.685;   ///< Tukey biweight c for 95 % efficiency at the normal
-constexpr double kTukeyS50 = 1.5476; ///< Tukey c of the 50 %-breakdown S-scale (b = 0.5)
+constexpr double kHuber95 = 1.345;    ///< Huber k for 95 % efficiency at the normal
+constexpr double kTukey95 = 4.685;    ///< Tukey biweight c for 95 % efficiency at the normal
+constexpr double kTukeyS50 = 1.5476;  ///< Tukey c of the 50 %-breakdown S-scale (b = 0.5)
 /// Rousseeuw & Leroy's (1987, p. 202) reweighting cut after a high-breakdown fit: |v| > 2.5 ŝ is out.
 constexpr double kReweightingCut = 2.5;
 
 /// \brief Where an estimator takes σ̂ from.
-enum class ScaleRule {
+enum class ScaleRule
+{
   SIGMA0,  ///< σ̂0 of the previous Gauss–Markoff solve (eq. 11), as Zuo's eq. 15 and Baarda do
   MAD,     ///< 1.4826 · med |v − med v| of this iteration's residuals (Li et al. 2001, eq. 7)
   FIXED    ///< one value given beforehand (the S-scale of an MM-estimator's start)
@@ -46,8 +47,7 @@ tukeyRho(double u, double c);
 /// \param[in] start first s (≤ 0: the MAD scale)
 /// \return 0 when more than n(1 − b) residuals are exactly 0 or the input is empty
 double
-mScale(const Eigen::Ref<const Eigen::VectorXd>& v, double c = kTukeyS50, double b = 0.5,
-       double start = 0.0);
+mScale(const Eigen::Ref<const Eigen::VectorXd>& v, double c = kTukeyS50, double b = 0.5, double start = 0.0);
 
 /// LMS scale (Rousseeuw & Leroy 1987, p. 202): 1.4826 (1 + 5 / (n − p)) √(med v²).
 double
@@ -77,7 +77,6 @@ reweightedScale(const Eigen::Ref<const Eigen::VectorXd>& v, double start, double
 
 /// σ̂ by a rule: σ0 (sigma0 ≤ 0 → MAD), the MAD of v, or `fixed`.
 double
-scaleByRule(ScaleRule rule, const Eigen::Ref<const Eigen::VectorXd>& v, double sigma0,
-            double fixed);
+scaleByRule(ScaleRule rule, const Eigen::Ref<const Eigen::VectorXd>& v, double sigma0, double fixed);
 
 }  // namespace pcl_ls3d

@@ -15,9 +15,8 @@ namespace pcl_ls3d {
 class TukeyEstimator final : public RobustEstimator
 {
 public:
-  explicit TukeyEstimator(double c = kTukey95, ScaleRule rule = ScaleRule::MAD,
-                          double fixed_scale = 0.0)
-  : c_(c), rule_(rule), fixed_(fixed_scale)
+  explicit TukeyEstimator(double c = kTukey95, ScaleRule rule = ScaleRule::MAD, double fixed_scale = 0.0)
+      : c_(c), rule_(rule), fixed_(fixed_scale)
   {}
   std::string
   name() const override;

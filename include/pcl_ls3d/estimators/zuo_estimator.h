@@ -20,7 +20,8 @@ namespace pcl_ls3d {
 class ZuoEstimator final : public RobustEstimator
 {
 public:
-  explicit ZuoEstimator(double k = 6.0) : k_(k) {}
+  explicit ZuoEstimator(double k = 6.0) : k_(k)
+  {}
   std::string
   name() const override;
   /// computeWeights() with the cut at max(K σ0, input.min_cut).

@@ -18,15 +18,15 @@ namespace evaluation {
 /// \brief What was compared (written into the JSON next to the rows).
 struct ComparisonContext
 {
-  std::string source, target;                         ///< file names or a generator description
-  Eigen::Vector3d origin = Eigen::Vector3d::Zero();   ///< common local origin (working = local + origin)
-  HeightUnits heights;                                ///< working coordinates: heights × factor
+  std::string source, target;                             ///< file names or a generator description
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();       ///< common local origin (working = local + origin)
+  HeightUnits heights;                                    ///< working coordinates: heights × factor
   Eigen::Vector3d file_origin = Eigen::Vector3d::Zero();  ///< origin in the target file's units
   std::size_t source_points = 0, target_points = 0;
   bool has_truth = false;
-  double rms_max_distance = 0.0;                      ///< [unit] neighbour cut-off of the RMS column
-  std::string unit = "m";                             ///< the data's length unit (CRS), or "units"
-  std::string pcl_settings, ls3d_settings;            ///< describe() of the settings used
+  double rms_max_distance = 0.0;            ///< [unit] neighbour cut-off of the RMS column
+  std::string unit = "m";                   ///< the data's length unit (CRS), or "units"
+  std::string pcl_settings, ls3d_settings;  ///< describe() of the settings used
 };
 
 /// \brief Fixed-width text table, one row per run. Columns: method, iterations, wall time [s],

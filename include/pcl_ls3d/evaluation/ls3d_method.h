@@ -26,10 +26,10 @@ struct Ls3dMethodSettings
   /// [m] same as the PCL methods; <= 0 = the class default (unlimited with the automatic,
   /// data-derived reach), i.e. what a user who sets nothing gets.
   double max_correspondence_distance = 2.0;
-  int max_iterations = 30;                   ///< LS3D default; <= 0 = the class default
-  double source_thinning = 0.0;              ///< [m] voxel edge, 0 = every source point
-  double translation_epsilon = 1e-5;         ///< [m] stop when the translation step is below
-                                             ///< (the class default)
+  int max_iterations = 30;            ///< LS3D default; <= 0 = the class default
+  double source_thinning = 0.0;       ///< [m] voxel edge, 0 = every source point
+  double translation_epsilon = 1e-5;  ///< [m] stop when the translation step is below
+                                      ///< (the class default)
   /// RIGID_6 is the class default (like the ICP it replaces); SIMILARITY_7 frees the scale.
   ParameterModel model = ParameterModel::RIGID_6;
 
@@ -47,8 +47,7 @@ struct Ls3dMethodSettings
 ///        the report (double) when the solution is usable, else from getFinalTransformation().
 RegistrationRun
 runLs3d(ConjugateRuleType rule, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
-        const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
-        const Ls3dMethodSettings& settings = {});
+        const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target, const Ls3dMethodSettings& settings = {});
 
 }  // namespace evaluation
 }  // namespace pcl_ls3d

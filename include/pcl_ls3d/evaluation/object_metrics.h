@@ -30,11 +30,11 @@ namespace evaluation {
 /// \brief What the evaluation found for one reference object.
 struct ObjectResult
 {
-  int group = -1;                   ///< class group (ClassLookup::kOther for "other")
+  int group = -1;  ///< class group (ClassLookup::kOther for "other")
   std::size_t points = 0;
   std::size_t valid_segments = 0;
-  std::size_t matched_points = 0;   ///< Σ |S_i ∩ S_r| over valid segments
-  double largest_share = 0.0;       ///< largest valid segment's share of the object
+  std::size_t matched_points = 0;  ///< Σ |S_i ∩ S_r| over valid segments
+  double largest_share = 0.0;      ///< largest valid segment's share of the object
   bool recognised = false;
 };
 
@@ -45,9 +45,9 @@ struct ObjectClassScores
   std::size_t objects = 0, recognised = 0;
   std::size_t tp = 0, fp = 0, fn = 0;
   double precision = 0.0, recall = 0.0, f1 = 0.0;
-  std::size_t large_objects = 0;         ///< objects of at least min_object_points
-  double median_valid_segments = 0.0;    ///< over large objects (NaN if none)
-  double median_largest_share = 0.0;     ///< over large objects (NaN if none)
+  std::size_t large_objects = 0;       ///< objects of at least min_object_points
+  double median_valid_segments = 0.0;  ///< over large objects (NaN if none)
+  double median_largest_share = 0.0;   ///< over large objects (NaN if none)
 };
 
 struct ObjectEvaluationSettings
@@ -57,9 +57,9 @@ struct ObjectEvaluationSettings
 
 struct ObjectEvaluation
 {
-  std::string method;   ///< free text set by the caller
-  double seconds = 0.0; ///< set by the caller
-  std::string failure;  ///< set by the caller when the method failed: shown as a table row
+  std::string method;    ///< free text set by the caller
+  double seconds = 0.0;  ///< set by the caller
+  std::string failure;   ///< set by the caller when the method failed: shown as a table row
   std::size_t segments = 0;
   std::vector<ObjectClassScores> classes;  ///< one per class group, in group order
   std::vector<ObjectResult> objects;       ///< one per reference object
@@ -70,8 +70,7 @@ struct ObjectEvaluation
 /// \return false with a one-line reason (an index outside the reference)
 bool
 evaluateObjects(const std::vector<pcl::PointIndices>& segments, const ReferenceObjects& reference,
-                const ObjectEvaluationSettings& settings, ObjectEvaluation& result,
-                std::string& error);
+                const ObjectEvaluationSettings& settings, ObjectEvaluation& result, std::string& error);
 
 }  // namespace evaluation
 }  // namespace pcl_ls3d

@@ -26,7 +26,8 @@ namespace pcl_ls3d {
 namespace evaluation {
 
 /// \brief PCL's registration classes compared against LS3D.
-enum class PclMethod {
+enum class PclMethod
+{
   ICP,          ///< pcl::IterativeClosestPoint (point-to-point, SVD)
   ICP_NORMALS,  ///< pcl::IterativeClosestPointWithNormals (point-to-plane, linear LS)
   GICP,         ///< pcl::GeneralizedIterativeClosestPoint (plane-to-plane)
@@ -59,11 +60,11 @@ struct PclMethodSettings
   /// GICP: inner BFGS stops when the (per-point mean) translation and rotation gradient norms fall
   /// below this (PCL default; 1e-4 and 1e-6 gave identical results on a 150 m synthetic pair).
   double gicp_gradient_tolerance = 1e-2;
-  int normal_k = 15;                         ///< ICP-N: neighbours per target normal
-  double ndt_resolution = 2.0;               ///< [m] NDT voxel edge
-  double ndt_step_size = 0.5;                ///< [m] NDT maximum line-search step
-  double ndt_outlier_ratio = 0.55;           ///< NDT (PCL default)
-  unsigned int threads = 0;                  ///< NormalEstimationOMP threads (0 = all cores)
+  int normal_k = 15;                ///< ICP-N: neighbours per target normal
+  double ndt_resolution = 2.0;      ///< [m] NDT voxel edge
+  double ndt_step_size = 0.5;       ///< [m] NDT maximum line-search step
+  double ndt_outlier_ratio = 0.55;  ///< NDT (PCL default)
+  unsigned int threads = 0;         ///< NormalEstimationOMP threads (0 = all cores)
 
   /// One line listing every value, for tables and docs; lengths labelled `unit` (the data's).
   std::string
@@ -80,8 +81,7 @@ struct PclMethodSettings
 ///        and run.message says why. The returned run has no rms/error yet (see RunEvaluation).
 RegistrationRun
 runPclMethod(PclMethod method, const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& source,
-             const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target,
-             const PclMethodSettings& settings = {});
+             const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& target, const PclMethodSettings& settings = {});
 
 }  // namespace evaluation
 }  // namespace pcl_ls3d

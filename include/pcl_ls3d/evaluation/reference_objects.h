@@ -26,9 +26,9 @@ struct ReferenceObjects
   /// Per object: index into the class groups, or ClassLookup::kOther (evaluated code in no
   /// group: such objects make segments impure but are not scored).
   std::vector<int> group_of_object;
-  std::vector<std::size_t> size;  ///< points per object
+  std::vector<std::size_t> size;         ///< points per object
   std::vector<std::string> group_names;  ///< names of the class groups, in order
-  double radius = 0.0;  ///< connectivity radius used (0 for objects given by ids)
+  double radius = 0.0;                   ///< connectivity radius used (0 for objects given by ids)
 
   std::size_t
   objects() const
@@ -58,8 +58,7 @@ struct ReferenceObjectSettings
 ///        components too) become objects.
 /// \return false with a one-line reason (sizes differ, empty cloud)
 bool
-referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                           const std::vector<int>& labels,
+referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud, const std::vector<int>& labels,
                            const ReferenceObjectSettings& settings, ReferenceObjects& objects,
                            std::string& error);
 
@@ -69,9 +68,8 @@ referenceObjectsFromLabels(const pcl::PointCloud<pcl::PointXYZ>& cloud,
 /// \return false with a one-line reason (sizes differ)
 bool
 referenceObjectsFromIds(const std::vector<int>& ids, const std::vector<int>& labels,
-                        const std::vector<ClassGroup>& groups,
-                        const std::vector<int>& excluded_codes, ReferenceObjects& objects,
-                        std::string& error);
+                        const std::vector<ClassGroup>& groups, const std::vector<int>& excluded_codes,
+                        ReferenceObjects& objects, std::string& error);
 
 }  // namespace evaluation
 }  // namespace pcl_ls3d

@@ -27,21 +27,21 @@ inline const Eigen::Matrix4d kNoTransformation =
 /// \brief What one method did on one input (all clouds in their common local frame).
 struct RegistrationRun
 {
-  std::string name;                 ///< "PCL-ICP", "PCL-ICP-N", "PCL-GICP", "PCL-NDT", "LS3D-LND", ...
-  bool ran = false;                 ///< false: the method could not be set up or threw
-  std::string message;              ///< why it failed / how it stopped
-  int iterations = 0;               ///< iterations of this alignment (not accumulated)
+  std::string name;     ///< "PCL-ICP", "PCL-ICP-N", "PCL-GICP", "PCL-NDT", "LS3D-LND", ...
+  bool ran = false;     ///< false: the method could not be set up or threw
+  std::string message;  ///< why it failed / how it stopped
+  int iterations = 0;   ///< iterations of this alignment (not accumulated)
   /// Wall time [s] from handing over the clouds to the end of align(): search structures,
   /// covariances, NDT grid and (PCL-ICP-N) normal estimation included.
   double time_s = 0.0;
-  double normals_time_s = 0.0;      ///< part of time_s spent estimating normals (PCL-ICP-N)
+  double normals_time_s = 0.0;  ///< part of time_s spent estimating normals (PCL-ICP-N)
   /// Process CPU time [s] over the same span, summed over all threads. On a loaded machine it
   /// shows the work done where the wall time only shows the share of the CPU that was granted.
   double cpu_s = 0.0;
   /// Stopped by its own convergence criterion before the iteration limit. PCL's hasConverged()
   /// is also true when ICP/GICP/NDT merely hit the limit; that value is kept in pcl_converged.
   bool converged = false;
-  bool pcl_converged = false;       ///< the method's hasConverged()
+  bool pcl_converged = false;  ///< the method's hasConverged()
   /// The method judged its own result (LS3D's quality gate: pcl_converged is false for a
   /// refused fit); PCL's methods have no such check and hasConverged() is not one.
   bool quality_checked = false;
@@ -54,11 +54,11 @@ struct RegistrationRun
   /// RMS of the nearest-neighbour distances source→target after alignment, over the source
   /// points whose neighbour is within RunEvaluation::rms_max_distance (same for every method).
   double rms = std::numeric_limits<double>::quiet_NaN();
-  std::size_t rms_points = 0;       ///< source points inside that distance
+  std::size_t rms_points = 0;                                ///< source points inside that distance
   double sigma0 = std::numeric_limits<double>::quiet_NaN();  ///< LS3D's σ̂0 (NaN for PCL)
   /// Source → target, local; all NaN (kNoTransformation) when the method gave no estimate.
   Eigen::Matrix4d transformation = Eigen::Matrix4d::Identity();
-  TransformError error;             ///< against the truth, when one was given (error.valid)
+  TransformError error;  ///< against the truth, when one was given (error.valid)
 };
 
 /// \brief Shared, untimed evaluation of every run: the uniform RMS and the truth errors.
@@ -67,15 +67,14 @@ struct RunEvaluation
   using CloudXYZ = pcl::PointCloud<pcl::PointXYZ>;
 
   /// Builds the target kd-tree once and keeps the source points in double.
-  RunEvaluation(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target,
-                double rms_max_distance);
+  RunEvaluation(const CloudXYZ::ConstPtr& source, const CloudXYZ::ConstPtr& target, double rms_max_distance);
 
   /// Fills run.rms, run.rms_points and, when truth is not null, run.error.
   void
   evaluate(RegistrationRun& run, const Eigen::Matrix4d* truth) const;
 
-  double rms_max_distance;          ///< [length] neighbours farther than this are not counted
-  Eigen::Matrix3Xd source_points;   ///< source (local frame), double
+  double rms_max_distance;         ///< [length] neighbours farther than this are not counted
+  Eigen::Matrix3Xd source_points;  ///< source (local frame), double
   pcl::KdTreeFLANN<pcl::PointXYZ> target_tree;
 };
 

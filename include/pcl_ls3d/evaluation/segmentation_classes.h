@@ -50,7 +50,7 @@ parseClassGroups(const std::string& spec, std::vector<ClassGroup>& groups, std::
 ///        -2 for excluded. Codes outside 0..255 map to -2 (excluded) when looked up.
 class ClassLookup
 {
- public:
+public:
   static constexpr int kOther = -1;
   static constexpr int kExcluded = -2;
 
@@ -61,7 +61,7 @@ class ClassLookup
     return (code < 0 || code > 255) ? kExcluded : table_[static_cast<std::size_t>(code)];
   }
 
- private:
+private:
   std::vector<int> table_;
 };
 

@@ -29,8 +29,7 @@ segmentsFromLabels(const std::vector<std::uint32_t>& labels);
 ///        one of another size than \a segments: all 0.
 std::vector<int>
 classCodesFromSegments(const std::vector<pcl::PointIndices>& segments,
-                       const std::vector<segmentation::ObjectClass>& classes,
-                       std::size_t num_points);
+                       const std::vector<segmentation::ObjectClass>& classes, std::size_t num_points);
 
 /// \brief A deterministic, well spread RGB colour for a segment label (label 0: grey 128).
 ///        Packed as 0x00RRGGBB, ready for pcl::PointXYZRGB(L)::rgba.

@@ -53,18 +53,18 @@ struct SegmentationEvaluationSettings
 /// \brief Result of evaluateSegmentation(). `classes` follows the settings' group order.
 struct SegmentationEvaluation
 {
-  std::string method;                   ///< free text set by the caller ("IMRG", ...)
-  double seconds = 0.0;                 ///< wall time of the method, set by the caller
-  std::string failure;                  ///< set by the caller when the method failed: a table row
+  std::string method;    ///< free text set by the caller ("IMRG", ...)
+  double seconds = 0.0;  ///< wall time of the method, set by the caller
+  std::string failure;   ///< set by the caller when the method failed: a table row
   std::vector<ClassScores> classes;
-  ClassScores other;                    ///< pseudo-class "other" (codes in no group)
-  std::size_t segments = 0;             ///< segments given
-  std::size_t segments_evaluated = 0;   ///< segments with at least one evaluated point
-  std::size_t segments_too_small = 0;   ///< segments ignored by min_segment_size
-  std::size_t points_total = 0;         ///< size of the reference label vector
-  std::size_t points_evaluated = 0;     ///< points not excluded
-  std::size_t points_unsegmented = 0;   ///< evaluated points in no segment (all FN)
-  std::size_t points_duplicated = 0;    ///< extra listings of a point already in a segment
+  ClassScores other;                   ///< pseudo-class "other" (codes in no group)
+  std::size_t segments = 0;            ///< segments given
+  std::size_t segments_evaluated = 0;  ///< segments with at least one evaluated point
+  std::size_t segments_too_small = 0;  ///< segments ignored by min_segment_size
+  std::size_t points_total = 0;        ///< size of the reference label vector
+  std::size_t points_evaluated = 0;    ///< points not excluded
+  std::size_t points_unsegmented = 0;  ///< evaluated points in no segment (all FN)
+  std::size_t points_duplicated = 0;   ///< extra listings of a point already in a segment
   /// confusion[r][c]: r = reference group (G = other), c = predicted group (G = other, G+1 = none).
   std::vector<std::vector<std::size_t>> confusion;
 };
@@ -72,10 +72,9 @@ struct SegmentationEvaluation
 /// \brief Evaluates `segments` (indices into a cloud of reference_labels.size() points).
 /// \return false with a one-line reason (index out of range) in `error`
 bool
-evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
-                     const std::vector<int>& reference_labels,
-                     const SegmentationEvaluationSettings& settings,
-                     SegmentationEvaluation& result, std::string& error);
+evaluateSegmentation(const std::vector<pcl::PointIndices>& segments, const std::vector<int>& reference_labels,
+                     const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
+                     std::string& error);
 
 /// \brief Scores predicted classes point by point (IMRG's object classes, as LAS codes): a point
 ///        is predicted as the group holding its predicted code; a predicted code in no group or
@@ -87,10 +86,9 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments,
 ///        segment counts stay 0; points_unsegmented counts the points predicted none.
 /// \return false with a one-line reason (sizes differ) in `error`
 bool
-evaluateClassification(const std::vector<int>& predicted_codes,
-                       const std::vector<int>& reference_labels,
-                       const SegmentationEvaluationSettings& settings,
-                       SegmentationEvaluation& result, std::string& error);
+evaluateClassification(const std::vector<int>& predicted_codes, const std::vector<int>& reference_labels,
+                       const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
+                       std::string& error);
 
 /// \brief Scores from counts: the rules of ClassScores (exposed for tests and tools).
 void

@@ -27,8 +27,7 @@ formatObjectTable(const std::vector<ObjectEvaluation>& evaluations);
 ///        of at least `min_points` points the median number of valid segments per object and the
 ///        median share of the largest valid segment.
 std::string
-formatFragmentationTable(const std::vector<ObjectEvaluation>& evaluations,
-                         std::size_t min_points);
+formatFragmentationTable(const std::vector<ObjectEvaluation>& evaluations, std::size_t min_points);
 
 /// \brief Where each class's points went, e.g. "building: 91.2% building, 6.1% ground,
 ///        2.7% none" — the largest flows only (those above `min_share`).

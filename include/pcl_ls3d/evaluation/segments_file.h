@@ -41,8 +41,8 @@ namespace evaluation {
 /// \brief Where the loaded points sit in the input file.
 struct InputLayout
 {
-  std::size_t points_in_file = 0;            ///< input points, finite or not
-  std::vector<std::size_t> nonfinite;        ///< file indices of the dropped points, ascending
+  std::size_t points_in_file = 0;                    ///< input points, finite or not
+  std::vector<std::size_t> nonfinite;                ///< file indices of the dropped points, ascending
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< file coordinate = local + origin
   std::string crs_wkt;  ///< the input's CRS (OGC WKT), recorded in the header; empty: none
 };
@@ -56,8 +56,8 @@ struct InputLayout
 /// \return false with a one-line reason (counts that do not add up, write failure)
 bool
 saveSegmentsPcd(const std::string& path, const pcl::PointCloud<pcl::PointXYZ>& cloud,
-                const std::vector<pcl::PointIndices>& segments, const InputLayout& layout,
-                std::string& error, const std::vector<std::uint8_t>& segment_codes = {});
+                const std::vector<pcl::PointIndices>& segments, const InputLayout& layout, std::string& error,
+                const std::vector<std::uint8_t>& segment_codes = {});
 
 /// \brief True when \a path's header carries io::kPcdSegmentsMarker (pcd_io.h): its labels are
 ///        segment ids, never classes (pcl_ls3d_segment -evaluate refuses such a file as its own

@@ -41,10 +41,10 @@ struct DiscrepancyStats
 /// \brief Settings of the discrepancy measure.
 struct DiscrepancySettings
 {
-  int k = 10;                          ///< target neighbours per plane
-  double max_distance = 1.0;           ///< [length] reach from a source point to its nearest target point
-  double max_variation = 0.02;         ///< flatness limit of the target plane (λ0 / Σλ)
-  bool outward = false;                ///< false: normals up (airborne); true: away from the centroid
+  int k = 10;                   ///< target neighbours per plane
+  double max_distance = 1.0;    ///< [length] reach from a source point to its nearest target point
+  double max_variation = 0.02;  ///< flatness limit of the target plane (λ0 / Σλ)
+  bool outward = false;         ///< false: normals up (airborne); true: away from the centroid
 };
 
 /// \brief The target's local planes, fitted once and reused for every transform.

@@ -22,23 +22,22 @@ namespace evaluation {
 /// \brief Displacement and parameter errors of one estimated transform.
 struct TransformError
 {
-  std::size_t points = 0;     ///< source points evaluated
-  double mean = 0.0;          ///< mean |T_est x − T_true x| over the points [length]
-  double rms = 0.0;           ///< root mean square of the same [length]
-  double max = 0.0;           ///< maximum over the points [length]
+  std::size_t points = 0;  ///< source points evaluated
+  double mean = 0.0;       ///< mean |T_est x − T_true x| over the points [length]
+  double rms = 0.0;        ///< root mean square of the same [length]
+  double max = 0.0;        ///< maximum over the points [length]
   /// Maximum over the 8 corners of the points' axis-aligned bounding box [length]. Because the
   /// displacement (T_est − T_true) x is affine in x, this bounds the error anywhere in the box.
   double max_bbox = 0.0;
   /// Estimated minus true parameter (tx, ty, tz, φ, ω, κ, m), angles wrapped to (−π, π]; both
   /// decomposed with SimilarityTransform::fromMatrix.
   Vector7d parameters = Vector7d::Zero();
-  bool valid = false;         ///< false: no points or non-finite input
+  bool valid = false;  ///< false: no points or non-finite input
 };
 
 /// Displacement of one point, |T_est x − T_true x| (homogeneous 4×4 matrices).
 double
-displacementError(const Eigen::Matrix4d& T_est, const Eigen::Matrix4d& T_true,
-                  const Eigen::Vector3d& x);
+displacementError(const Eigen::Matrix4d& T_est, const Eigen::Matrix4d& T_true, const Eigen::Vector3d& x);
 
 /// Estimated minus true parameters (tx, ty, tz, φ, ω, κ, m); angle differences wrapped to
 /// (−π, π].

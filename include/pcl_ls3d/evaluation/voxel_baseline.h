@@ -23,8 +23,7 @@ voxelSegments(const pcl::PointCloud<pcl::PointXYZ>& cloud, double size);
 /// \brief voxelSegments() with the edge whose segment count is closest to \a target (bisection
 ///        on log size, count within 1 % or 40 steps). \a size receives the edge used.
 std::vector<pcl::PointIndices>
-voxelSegmentsWithCount(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t target,
-                       double& size);
+voxelSegmentsWithCount(const pcl::PointCloud<pcl::PointXYZ>& cloud, std::size_t target, double& size);
 
 }  // namespace evaluation
 }  // namespace pcl_ls3d

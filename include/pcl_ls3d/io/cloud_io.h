@@ -42,30 +42,30 @@ namespace io {
 /// \brief One variable-length record of a LAS file (kept so a LAS→LAS conversion can carry the CRS).
 struct LasVlr
 {
-  std::string user_id;               ///< 16-byte user id, trailing NULs removed
+  std::string user_id;  ///< 16-byte user id, trailing NULs removed
   std::uint16_t record_id = 0;
-  std::string description;           ///< 32-byte description, trailing NULs removed
-  std::vector<std::uint8_t> data;    ///< payload (record length after header bytes)
+  std::string description;         ///< 32-byte description, trailing NULs removed
+  std::vector<std::uint8_t> data;  ///< payload (record length after header bytes)
 };
 
 /// \brief How the point records of a LAZ file are compressed (LASzip); all zero for LAS.
 struct LazInfo
 {
-  bool compressed = false;          ///< the records are LASzip-compressed (a .laz file)
-  int compressor = 0;               ///< 1 pointwise, 2 pointwise-chunked, 3 layered-chunked
-  std::uint32_t chunk_size = 0;     ///< points per chunk; 0xFFFFFFFF: chunks of varying size
-  std::uint64_t chunk_count = 0;    ///< chunks holding the points
+  bool compressed = false;        ///< the records are LASzip-compressed (a .laz file)
+  int compressor = 0;             ///< 1 pointwise, 2 pointwise-chunked, 3 layered-chunked
+  std::uint32_t chunk_size = 0;   ///< points per chunk; 0xFFFFFFFF: chunks of varying size
+  std::uint64_t chunk_count = 0;  ///< chunks holding the points
   /// The chunk table was read; false: it is missing or unusable and the chunks are found by
   /// decoding them in order (no parallel decoding then).
   bool chunk_table = false;
-  std::string items;                ///< the item list, e.g. "POINT10 v2, GPSTIME11 v2"
+  std::string items;  ///< the item list, e.g. "POINT10 v2, GPSTIME11 v2"
 };
 
 /// \brief Nodes and points of one level of a COPC octree (level 0: the root).
 struct CopcLevel
 {
   int level = 0;
-  std::size_t nodes = 0;      ///< nodes of this level that hold points
+  std::size_t nodes = 0;  ///< nodes of this level that hold points
   std::uint64_t points = 0;
 };
 
@@ -85,15 +85,15 @@ struct CopcHeaderInfo
 struct LasHeaderInfo
 {
   std::uint8_t version_major = 1, version_minor = 2;
-  std::uint8_t point_format = 0;            ///< 0–10 (compression bits masked off)
-  std::uint16_t record_length = 0;          ///< bytes per point record in the file
-  std::uint16_t extra_bytes_per_record = 0; ///< record_length minus the format's minimum (skipped)
-  std::uint16_t header_size = 0;            ///< 227 (1.0–1.2), 235 (1.3), 375 (1.4) or larger
+  std::uint8_t point_format = 0;             ///< 0–10 (compression bits masked off)
+  std::uint16_t record_length = 0;           ///< bytes per point record in the file
+  std::uint16_t extra_bytes_per_record = 0;  ///< record_length minus the format's minimum (skipped)
+  std::uint16_t header_size = 0;             ///< 227 (1.0–1.2), 235 (1.3), 375 (1.4) or larger
   std::uint32_t offset_to_points = 0;
   std::uint32_t number_of_vlrs = 0;
-  std::uint16_t global_encoding = 0;        ///< bit 0: adjusted standard GPS time; bit 4: WKT CRS
+  std::uint16_t global_encoding = 0;  ///< bit 0: adjusted standard GPS time; bit 4: WKT CRS
   std::uint16_t file_source_id = 0;
-  std::uint64_t point_count = 0;            ///< legacy or 64-bit count, whichever the version uses
+  std::uint64_t point_count = 0;  ///< legacy or 64-bit count, whichever the version uses
   std::uint32_t legacy_point_count = 0;
   std::uint64_t points_by_return[15] = {};  ///< legacy 5 counts, or the 15 of LAS 1.4
   std::string system_identifier, generating_software;
@@ -101,10 +101,10 @@ struct LasHeaderInfo
   Eigen::Vector3d offset = Eigen::Vector3d::Zero();
   Eigen::Vector3d min = Eigen::Vector3d::Zero();  ///< header bounds (file units)
   Eigen::Vector3d max = Eigen::Vector3d::Zero();
-  std::vector<LasVlr> vlrs;                 ///< the VLRs between header and points
-  std::vector<LasVlr> evlrs;                ///< LAS 1.4 extended VLRs after the points
-  LazInfo laz;                              ///< compression of the records (LAZ)
-  CopcHeaderInfo copc;                      ///< the COPC octree, when the file is COPC
+  std::vector<LasVlr> vlrs;   ///< the VLRs between header and points
+  std::vector<LasVlr> evlrs;  ///< LAS 1.4 extended VLRs after the points
+  LazInfo laz;                ///< compression of the records (LAZ)
+  CopcHeaderInfo copc;        ///< the COPC octree, when the file is COPC
 };
 
 /// \brief A box query: loadCloud() keeps only the points inside `box` (file coordinates, the
@@ -124,10 +124,10 @@ struct Region
 /// \brief What a region query read (CloudInfo::region).
 struct RegionInfo
 {
-  bool applied = false;            ///< LoadOptions::region was given
-  bool copc = false;               ///< answered from the COPC octree
-  std::size_t nodes = 0;           ///< COPC: nodes holding points
-  std::size_t nodes_read = 0;      ///< COPC: nodes decoded (their cube meets the box)
+  bool applied = false;              ///< LoadOptions::region was given
+  bool copc = false;                 ///< answered from the COPC octree
+  std::size_t nodes = 0;             ///< COPC: nodes holding points
+  std::size_t nodes_read = 0;        ///< COPC: nodes decoded (their cube meets the box)
   std::uint64_t points_decoded = 0;  ///< records decoded (COPC: of the nodes read)
 };
 
@@ -147,18 +147,18 @@ struct LoadOptions
 /// \brief How saveCloud() writes a file.
 struct SaveOptions
 {
-  bool overwrite = false;                            ///< refuse to replace an existing file unless true
-  bool binary = true;                                ///< PCD/PLY: binary (true) or ASCII
-  Eigen::Vector3d las_scale{0.001, 0.001, 0.001};    ///< LAS writer quantum (file units)
+  bool overwrite = false;                          ///< refuse to replace an existing file unless true
+  bool binary = true;                              ///< PCD/PLY: binary (true) or ASCII
+  Eigen::Vector3d las_scale{0.001, 0.001, 0.001};  ///< LAS writer quantum (file units)
   /// LAS offset. When las_use_offset is false the writer uses the rounded bbox centre.
   bool las_use_offset = false;
   Eigen::Vector3d las_offset = Eigen::Vector3d::Zero();
-  std::uint8_t las_point_format = 3;                 ///< 0–10 (6–10 need version 1.4)
-  std::uint8_t las_minor_version = 2;                ///< 0–4 (LAS 1.x)
+  std::uint8_t las_point_format = 3;   ///< 0–10 (6–10 need version 1.4)
+  std::uint8_t las_minor_version = 2;  ///< 0–4 (LAS 1.x)
   /// Sets global-encoding bit 0 (LAS 1.2+): the gps_time values are adjusted standard GPS time
   /// (GPS seconds − 1e9). Default false = GPS week time. The writer never converts the values.
   bool las_adjusted_standard_gps_time = false;
-  std::vector<LasVlr> las_vlrs;                      ///< VLRs to write (e.g. copied from the input)
+  std::vector<LasVlr> las_vlrs;  ///< VLRs to write (e.g. copied from the input)
   /// ASCII XYZ: x, y, z with this many fixed decimals; -1 (default) = full precision, the
   /// shortest text that reads back as exactly the double x_local + origin.
   int xyz_decimals = -1;
@@ -188,17 +188,18 @@ struct CloudInfo
   /// Points left out by LoadOptions::region (outside the box, or in nodes below its level):
   /// points_loaded + points_dropped_nonfinite + points_outside_region == points_in_file.
   std::size_t points_outside_region = 0;
-  RegionInfo region;                                 ///< what a region query read
-  std::vector<std::size_t> nonfinite_indices;        ///< file indices of the dropped points, ascending
+  RegionInfo region;                                   ///< what a region query read
+  std::vector<std::size_t> nonfinite_indices;          ///< file indices of the dropped points, ascending
   Eigen::Vector3d min_file = Eigen::Vector3d::Zero();  ///< bounds of the loaded points, file units
   Eigen::Vector3d max_file = Eigen::Vector3d::Zero();
-  std::vector<std::string> fields;                   ///< point fields mapped into PointLiDAR
-                                                     ///< (a SEGMENTS.pcd's label is not)
-  std::size_t xyz_unmapped_columns = 0;              ///< XYZ: columns on the first data line not mapped
-  LasHeaderInfo las;                                 ///< valid when format == "las"
+  std::vector<std::string> fields;       ///< point fields mapped into PointLiDAR
+                                         ///< (a SEGMENTS.pcd's label is not)
+  std::size_t xyz_unmapped_columns = 0;  ///< XYZ: columns on the first data line not mapped
+  LasHeaderInfo las;                     ///< valid when format == "las"
 
   /// Was a field of this name read into PointLiDAR (fields)?
-  bool hasField(const std::string& name) const
+  bool
+  hasField(const std::string& name) const
   {
     return std::find(fields.begin(), fields.end(), name) != fields.end();
   }
@@ -210,15 +211,15 @@ struct CloudInfo
 /// (and the auto origin is chosen from them); a region holding none is an error unless
 /// allow_empty. Returns false with a one-line reason.
 bool
-loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
-          std::string& error, const LoadOptions& options = {});
+loadCloud(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
+          const LoadOptions& options = {});
 
 /// Writes by extension (.pcd .ply .las .laz .xyz/.txt), restoring x_file = x_local + origin in
 /// double.
 /// PCD/PLY store x, y, z as FLOAT64 when origin is non-zero (FLOAT32 otherwise).
 bool
-saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-          const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options = {});
+saveCloud(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+          std::string& error, const SaveOptions& options = {});
 
 /// Can saveCloud() write a file of this name's format? False with the reason (the extension).
 bool

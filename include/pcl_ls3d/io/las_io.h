@@ -57,19 +57,18 @@ extern const char* const kLazNotSupported;
 /// them against `size` (no point is decoded; for LAZ the chunk table is read to fill
 /// header.laz). Returns false with a one-line reason.
 bool
-readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& header,
-              std::string& error);
+readLasHeader(const std::uint8_t* data, std::size_t size, LasHeaderInfo& header, std::string& error);
 
 /// Parses a whole in-memory LAS file into local coordinates (see cloud_io.h for the origin rule
 /// and the handling of empty results). Never reads outside [data, data + size).
 bool
-readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-        CloudInfo& info, std::string& error, const LoadOptions& options = {});
+readLas(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+        std::string& error, const LoadOptions& options = {});
 
 /// Reads a LAS file: maps it read-only (or bulk-reads it when mmap fails), then readLas().
 bool
-readLasFile(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
-            std::string& error, const LoadOptions& options = {});
+readLasFile(const std::string& path, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, std::string& error,
+            const LoadOptions& options = {});
 
 /// Encodes a cloud as a LAS file in memory (header, options.las_vlrs, point records).
 bool
@@ -78,8 +77,8 @@ writeLas(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
 
 /// Writes a LAS file (no overwrite check here; saveCloud() does it).
 bool
-writeLasFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options = {});
+writeLasFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+             std::string& error, const SaveOptions& options = {});
 
 /// Encodes a cloud as a LAZ file in memory: writeLas(), then compressLas().
 bool
@@ -88,8 +87,8 @@ writeLaz(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
 
 /// Writes a LAZ file (no overwrite check here; saveCloud() does it).
 bool
-writeLazFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options = {});
+writeLazFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+             std::string& error, const SaveOptions& options = {});
 
 /// Compresses an in-memory LAS file into LAZ, losslessly: every record byte, the header, the VLRs
 /// (a LASzip VLR is added last, the format byte gets bit 0x80) and the EVLRs are kept; only the
@@ -97,15 +96,14 @@ writeLazFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
 /// chunks this file does not have, are left out. `chunk_size` points per chunk. Waveform formats (4, 5, 9,
 /// 10) are refused.
 bool
-compressLas(const std::uint8_t* las, std::size_t size, std::vector<std::uint8_t>& laz,
-            std::string& error, std::uint32_t chunk_size = 50000);
+compressLas(const std::uint8_t* las, std::size_t size, std::vector<std::uint8_t>& laz, std::string& error,
+            std::uint32_t chunk_size = 50000);
 
 /// Decompresses an in-memory LAZ file into LAS: the records decoded, the LASzip VLR removed and
 /// the compression bits cleared; the header, the other VLRs and the EVLRs are kept (a COPC
 /// file's info VLR and hierarchy EVLR are removed too: they locate compressed chunks).
 bool
-decompressLaz(const std::uint8_t* laz, std::size_t size, std::vector<std::uint8_t>& las,
-              std::string& error);
+decompressLaz(const std::uint8_t* laz, std::size_t size, std::vector<std::uint8_t>& las, std::string& error);
 
 }  // namespace io
 }  // namespace pcl_ls3d

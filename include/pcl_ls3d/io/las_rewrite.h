@@ -28,8 +28,8 @@ using RecordMover = std::function<bool(std::size_t, Eigen::Vector3d&)>;
 /// \brief What rewriteLas() wrote.
 struct LasRewriteSummary
 {
-  std::size_t points = 0;   ///< records written
-  std::size_t moved = 0;    ///< records whose X, Y, Z were replaced
+  std::size_t points = 0;  ///< records written
+  std::size_t moved = 0;   ///< records whose X, Y, Z were replaced
 };
 
 /// Writes the records `selection` (indices into `in`, in the order given; null = all, in file
@@ -39,9 +39,8 @@ struct LasRewriteSummary
 /// LASzip VLR added), any other name LAS. Refuses an existing `path` unless `overwrite`. False
 /// with a one-line reason.
 bool
-rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection,
-           const RecordMover& move, const std::string& path, LasRewriteSummary& summary,
-           std::string& error, bool overwrite = false);
+rewriteLas(const LasRecordFile& in, const std::vector<std::size_t>* selection, const RecordMover& move,
+           const std::string& path, LasRewriteSummary& summary, std::string& error, bool overwrite = false);
 
 }  // namespace io
 }  // namespace pcl_ls3d

@@ -46,8 +46,7 @@ namespace pcl_ls3d {
 namespace io {
 
 /// Header comment line of a SEGMENTS.pcd: its label field holds segment ids, never classes.
-constexpr const char* kPcdSegmentsMarker =
-    "# pcl_ls3d segments: label = segment id + 1, not a class";
+constexpr const char* kPcdSegmentsMarker = "# pcl_ls3d segments: label = segment id + 1, not a class";
 
 /// \brief Is \a line (a PCD header line, with or without "\r" or trailing spaces) the
 ///        kPcdSegmentsMarker line? The reader and evaluation::isSegmentsFile() both ask this.
@@ -57,8 +56,8 @@ isPcdSegmentsMarkerLine(std::string_view line);
 /// Parses an in-memory PCD file into local coordinates (cloud_io.h describes the origin rule).
 /// Never reads outside [data, data + size); returns false with a one-line reason.
 bool
-readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-        CloudInfo& info, std::string& error, const LoadOptions& options = {});
+readPcd(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+        std::string& error, const LoadOptions& options = {});
 
 /// \brief The header line that records `origin`, without a newline: "# pcl_ls3d origin X Y Z"
 ///        with %.17g, so the doubles come back exactly.
@@ -86,8 +85,7 @@ savePcdBinaryWithComments(const std::string& path, const pcl::PCLPointCloud2& cl
 /// \return false with a one-line reason (the file cannot be written, too few data bytes)
 bool
 savePcdBinaryWithOrigin(const std::string& path, const pcl::PCLPointCloud2& cloud,
-                        const Eigen::Vector3d& origin, const std::string& comments,
-                        std::string& error);
+                        const Eigen::Vector3d& origin, const std::string& comments, std::string& error);
 
 /// What parsePcdOriginLine() found in a header line.
 enum class PcdOriginLine

@@ -32,8 +32,8 @@ plyCrsLine(const std::string& wkt);
 /// Parses an in-memory PLY file into local coordinates (cloud_io.h describes the origin rule).
 /// Never reads outside [data, data + size); returns false with a one-line reason.
 bool
-readPly(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-        CloudInfo& info, std::string& error, const LoadOptions& options = {});
+readPly(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+        std::string& error, const LoadOptions& options = {});
 
 }  // namespace io
 }  // namespace pcl_ls3d

@@ -21,8 +21,8 @@ splitByPointSource(const pcl::PointCloud<PointLiDAR>& cloud);
 
 /// Indices of the points whose classification is (keep = true) or is not (keep = false) in `classes`.
 pcl::Indices
-filterByClassification(const pcl::PointCloud<PointLiDAR>& cloud,
-                       const std::set<std::uint8_t>& classes, bool keep = true);
+filterByClassification(const pcl::PointCloud<PointLiDAR>& cloud, const std::set<std::uint8_t>& classes,
+                       bool keep = true);
 
 }  // namespace io
 }  // namespace pcl_ls3d

@@ -34,8 +34,8 @@ readXyz(std::istream& in, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info, s
 
 /// Writes ASCII XYZ text (no overwrite check here; saveCloud() does it).
 bool
-writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options = {});
+writeXyzFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+             std::string& error, const SaveOptions& options = {});
 
 }  // namespace io
 }  // namespace pcl_ls3d

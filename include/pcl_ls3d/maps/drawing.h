@@ -24,8 +24,17 @@
 namespace pcl_ls3d {
 namespace maps {
 
-enum class FontStyle { REGULAR, BOLD };
-enum class TextAlign { LEFT, CENTRE, RIGHT };
+enum class FontStyle
+{
+  REGULAR,
+  BOLD
+};
+enum class TextAlign
+{
+  LEFT,
+  CENTRE,
+  RIGHT
+};
 
 /// \brief A recorded picture of a fixed size. Move-only: it owns cairo's recording.
 class Drawing
@@ -87,8 +96,7 @@ public:
   /// Fills [x, x + w) × [y, y + h) with a vertical gradient: (offset, colour) pairs, offset 0 at
   /// the top and 1 at the bottom, non-decreasing; two stops at one offset make a sharp step.
   void
-  verticalGradient(double x, double y, double w, double h,
-                   const std::vector<std::pair<double, Rgb>>& stops);
+  verticalGradient(double x, double y, double w, double h, const std::vector<std::pair<double, Rgb>>& stops);
   /// Draws \a pixels with its top left corner at (x, y), each pixel a square of \a scale
   /// (unsmoothed in PNG and PDF; SVG viewers smooth an enlarged image, so where sharp cells
   /// matter enlarge the pixels first and draw at scale 1).

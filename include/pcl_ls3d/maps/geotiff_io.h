@@ -13,8 +13,8 @@ namespace maps {
 /// Writes `raster` (deflate-compressed, tiled when large) with the CRS in `crs_wkt` (empty: no
 /// CRS); refuses to replace an existing file unless `overwrite`. False with a one-line reason.
 bool
-writeGeoTiff(const std::string& path, const Raster& raster, const std::string& crs_wkt,
-             std::string& error, bool overwrite = false);
+writeGeoTiff(const std::string& path, const Raster& raster, const std::string& crs_wkt, std::string& error,
+             bool overwrite = false);
 
 /// Reads band 1 of a north-up raster GDAL can open (GeoTIFF or other) as float, the band's
 /// no-data value mapped to NaN; `crs_wkt` receives its CRS (empty when none).

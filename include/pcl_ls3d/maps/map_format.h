@@ -8,7 +8,12 @@
 namespace pcl_ls3d {
 namespace maps {
 
-enum class MapFormat { PNG, PDF, SVG };
+enum class MapFormat
+{
+  PNG,
+  PDF,
+  SVG
+};
 
 /// "png", "pdf" or "svg" (lower case, as the option is written) into \a format; false otherwise.
 bool

@@ -25,10 +25,10 @@ struct MapStyle
   std::string tick_format = "%+.2f";  ///< printf format of colour-bar labels
   /// Label the end ticks "≤ min" / "≥ max": values beyond the ramp take its end colours.
   bool clamp_labels = true;
-  std::vector<std::string> legend;    ///< lines under the colour bar
-  std::string footer;                 ///< last line (extent, cell, CRS)
-  std::string length_unit = "m";      ///< unit of the coordinates (scale bar); empty: no scale bar
-  Rgb no_data{200, 200, 200};         ///< colour of cells without a value
+  std::vector<std::string> legend;        ///< lines under the colour bar
+  std::string footer;                     ///< last line (extent, cell, CRS)
+  std::string length_unit = "m";          ///< unit of the coordinates (scale bar); empty: no scale bar
+  Rgb no_data{200, 200, 200};             ///< colour of cells without a value
   int max_width = 760, max_height = 640;  ///< the map area fits in this (cells scaled)
 };
 
@@ -81,8 +81,7 @@ struct ScaleBar
 /// `map_width` pixels: four black and white parts 6 px high, "0" and "length unit" under its
 /// ends; 30 px high in all. Used by renderRasterMap() and by pictures with their own layout.
 ScaleBar
-drawScaleBar(Drawing& drawing, int x, int y, int map_width, double ground_per_pixel,
-             const std::string& unit);
+drawScaleBar(Drawing& drawing, int x, int y, int map_width, double ground_per_pixel, const std::string& unit);
 
 /// Draws a bold "N" over an arrow pointing up, centred on x, 36 px high from y down.
 void

@@ -97,7 +97,11 @@ struct Raster
 class RasterAccumulator
 {
 public:
-  enum class Mode { MEAN, MAX_ABS };
+  enum class Mode
+  {
+    MEAN,
+    MAX_ABS
+  };
 
   explicit RasterAccumulator(const GridGeometry& grid, Mode mode = Mode::MEAN);
 

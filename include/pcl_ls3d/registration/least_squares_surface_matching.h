@@ -93,8 +93,7 @@ public:
   using Matrix4 = typename Base::Matrix4;
 
   using Ptr = std::shared_ptr<LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>>;
-  using ConstPtr =
-      std::shared_ptr<const LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>>;
+  using ConstPtr = std::shared_ptr<const LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>>;
 
   using Base::converged_;
   using Base::corr_dist_threshold_;
@@ -265,9 +264,8 @@ private:
                              pcl::Correspondences& corr, std::vector<std::size_t>& first_obs) const;
   /// Runs getCorrespondenceRejectors() in order on the observations (as ICP does per iteration).
   void
-  rejectObservations(const Eigen::Matrix4d& pose, const ObservationSet& obs,
-                     const std::vector<int>& index_of, const TargetSurface& surface,
-                     std::vector<char>& keep);
+  rejectObservations(const Eigen::Matrix4d& pose, const ObservationSet& obs, const std::vector<int>& index_of,
+                     const TargetSurface& surface, std::vector<char>& keep);
 
   AdjustmentSettings settings_;
   ConjugateRule::Ptr rule_;

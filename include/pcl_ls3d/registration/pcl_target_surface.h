@@ -22,7 +22,7 @@ public:
   using Search = pcl::search::Search<PointT>;
 
   PclTargetSurface(const typename Cloud::ConstPtr& cloud, const typename Search::Ptr& search)
-  : cloud_(cloud), search_(search)
+      : cloud_(cloud), search_(search)
   {}
 
   std::size_t

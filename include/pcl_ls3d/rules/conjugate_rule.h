@@ -25,9 +25,9 @@ namespace pcl_ls3d {
 ///        its gradient is (−∂z/∂x, −∂z/∂y, 1), because moving x' over a slope changes l.
 struct ConjugateObservation
 {
-  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ(); ///< u = ∂l/∂x' (target coordinates)
-  double distance = 0.0;                                ///< signed l = uᵀ(x' − q)
-  Eigen::Vector3d foot = Eigen::Vector3d::Zero();       ///< conjugate point q on the target
+  Eigen::Vector3d direction = Eigen::Vector3d::UnitZ();  ///< u = ∂l/∂x' (target coordinates)
+  double distance = 0.0;                                 ///< signed l = uᵀ(x' − q)
+  Eigen::Vector3d foot = Eigen::Vector3d::Zero();        ///< conjugate point q on the target
   /// Variance of the local target surface at q along u (from the rule's local fit); NaN when
   /// the rule does not estimate it. Deformation detection uses it for the residuals' σ.
   double variance = std::numeric_limits<double>::quiet_NaN();
@@ -61,8 +61,8 @@ struct CorrespondenceCache
 {
   std::array<std::int32_t, 3> vertices{{-1, -1, -1}};  ///< e.g. a TIN triangle (−1: none)
   std::array<float, 6> plane{{0, 0, 0, 0, 0, 0}};      ///< e.g. a local plane: normal, point
-  std::array<float, 3> anchor{{0, 0, 0}};  ///< query position the element was built for
-  float reuse_radius = 0.f;                ///< reuse the element while the query stays this close
+  std::array<float, 3> anchor{{0, 0, 0}};              ///< query position the element was built for
+  float reuse_radius = 0.f;                            ///< reuse the element while the query stays this close
   float variance = std::numeric_limits<float>::quiet_NaN();  ///< the element's surface variance
   std::int32_t nearest_sample = -1;  ///< the target sample nearest to `anchor` (−1: none)
   float snap_radius = 0.f;           ///< within this of nearest_sample the surface meets it
@@ -105,15 +105,13 @@ public:
   /// \param[in,out] cache this source point's memory from the previous iteration
   /// \param[out] out observations; return false (or leave out.count == 0) for none
   virtual bool
-  findConjugate(const Eigen::Vector3d& query,
-                const TargetSurface& target,
-                double max_distance,
-                CorrespondenceCache& cache,
-                ConjugateObservations& out) const = 0;
+  findConjugate(const Eigen::Vector3d& query, const TargetSurface& target, double max_distance,
+                CorrespondenceCache& cache, ConjugateObservations& out) const = 0;
 };
 
 /// The rules shipped with the library.
-enum class ConjugateRuleType {
+enum class ConjugateRuleType
+{
   LND,  ///< least normal distance: foot point on the local TIN triangle, u = triangle normal
   LZD,  ///< least z-difference: vertical intersection with the XY triangle, u = z
   ICP   ///< closest target point, three observations along the axes

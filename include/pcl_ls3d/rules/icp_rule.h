@@ -26,7 +26,7 @@ class IcpRule final : public ConjugateRule
 {
 public:
   explicit IcpRule(bool require_enclosure = true, int neighbours = 8)
-  : require_enclosure_(require_enclosure), neighbours_(neighbours)
+      : require_enclosure_(require_enclosure), neighbours_(neighbours)
   {}
   std::string
   name() const override

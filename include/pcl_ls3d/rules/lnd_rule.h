@@ -17,10 +17,11 @@ class LndRule final : public ConjugateRule
 {
 public:
   /// Which surface element gives the normal and the foot point.
-  enum class Surface {
-    TRIANGLE,     ///< the enclosing TIN triangle itself (Zuo et al.; Gruen & Akca)
-    LOCAL_PLANE,  ///< the least-squares plane of the k neighbours (normal less noisy: see below)
-    LOCAL_QUADRIC ///< a least-squares quadric of the k neighbours: no curvature bias (default)
+  enum class Surface
+  {
+    TRIANGLE,      ///< the enclosing TIN triangle itself (Zuo et al.; Gruen & Akca)
+    LOCAL_PLANE,   ///< the least-squares plane of the k neighbours (normal less noisy: see below)
+    LOCAL_QUADRIC  ///< a least-squares quadric of the k neighbours: no curvature bias (default)
   };
   /// LOCAL_QUADRIC is the default: a triangle normal's own noise enters the design matrix (errors
   /// in variables) and the estimate stops short of the truth; a plane or a facet inside curved
@@ -29,7 +30,7 @@ public:
   /// surface's noise attenuate the horizontal parameters, more smooth the relief
   /// (docs/ARCHITECTURE.md, "Where the defaults come from").
   explicit LndRule(int neighbours = 20, Surface surface = Surface::LOCAL_QUADRIC)
-  : neighbours_(neighbours), surface_(surface)
+      : neighbours_(neighbours), surface_(surface)
   {}
   std::string
   name() const override

@@ -17,8 +17,7 @@ namespace tin {
 /// Unit normal of the least-squares plane through the given target points (PCA, smallest
 /// eigenvector). False for fewer than 3 points or a degenerate (collinear) set.
 bool
-planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count,
-            Eigen::Vector3d& normal);
+planeNormal(const TargetSurface& target, const std::vector<int>& indices, int count, Eigen::Vector3d& normal);
 
 /// Mean and covariance (divided by \a count) of the first \a count target points of \a indices.
 Eigen::Matrix3d
@@ -75,8 +74,8 @@ projectToPlane(const TargetSurface& target, const std::vector<int>& indices, int
 bool
 quadricPatch(const TargetSurface& target, const std::vector<int>& indices, int count,
              const Eigen::Vector3d& query, const Eigen::Vector3d& normal, double& height,
-             Eigen::Vector2d& slope, double* height_variance = nullptr,
-             double* residual_variance = nullptr, Eigen::Vector2d* slope_variance = nullptr);
+             Eigen::Vector2d& slope, double* height_variance = nullptr, double* residual_variance = nullptr,
+             Eigen::Vector2d* slope_variance = nullptr);
 
 /// The orthonormal (e1, e2) used with `normal` by projectToPlane() and quadricPatch().
 void

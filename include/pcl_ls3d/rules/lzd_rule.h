@@ -17,13 +17,14 @@ class LzdRule final : public ConjugateRule
 {
 public:
   /// Which surface element gives the height and its slope.
-  enum class Surface {
-    TRIANGLE,     ///< the XY-enclosing TIN triangle itself (Rosenholm; Zuo et al.)
-    LOCAL_PLANE,  ///< the least-squares plane of the k neighbours (see LndRule)
-    LOCAL_QUADRIC ///< a least-squares quadric z(x, y) of the k neighbours (default; see LndRule)
+  enum class Surface
+  {
+    TRIANGLE,      ///< the XY-enclosing TIN triangle itself (Rosenholm; Zuo et al.)
+    LOCAL_PLANE,   ///< the least-squares plane of the k neighbours (see LndRule)
+    LOCAL_QUADRIC  ///< a least-squares quadric z(x, y) of the k neighbours (default; see LndRule)
   };
   explicit LzdRule(int neighbours = 20, Surface surface = Surface::LOCAL_QUADRIC)
-  : neighbours_(neighbours), surface_(surface)
+      : neighbours_(neighbours), surface_(surface)
   {}
   std::string
   name() const override

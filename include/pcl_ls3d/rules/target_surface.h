@@ -29,9 +29,7 @@ public:
   /// The k nearest target points of `query`, closest first; squared distances in `sq_dists`.
   /// Returns the number found (0 on failure). Must be callable from several threads at once.
   virtual int
-  nearestKSearch(const Eigen::Vector3d& query,
-                 int k,
-                 std::vector<int>& indices,
+  nearestKSearch(const Eigen::Vector3d& query, int k, std::vector<int>& indices,
                  std::vector<float>& sq_dists) const = 0;
 };
 
@@ -39,8 +37,7 @@ public:
 class PointVectorTargetSurface : public TargetSurface
 {
 public:
-  explicit PointVectorTargetSurface(std::vector<Eigen::Vector3d> points)
-  : points_(std::move(points))
+  explicit PointVectorTargetSurface(std::vector<Eigen::Vector3d> points) : points_(std::move(points))
   {}
   std::size_t
   size() const override
@@ -53,9 +50,7 @@ public:
     return points_[static_cast<std::size_t>(index)];
   }
   int
-  nearestKSearch(const Eigen::Vector3d& query,
-                 int k,
-                 std::vector<int>& indices,
+  nearestKSearch(const Eigen::Vector3d& query, int k, std::vector<int>& indices,
                  std::vector<float>& sq_dists) const override;
 
 private:

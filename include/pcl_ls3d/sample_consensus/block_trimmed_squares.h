@@ -41,10 +41,10 @@ struct BlockTrimmedSquaresResult
 {
   bool ok = false;
   Vector7d parameters = identityParameters();  ///< reduced frame of the LinearizedMatching
-  double scale = 0.0;         ///< √ of the criterion (√ of the mean of the kept blocks' mean squares)
-  double support = 0.0;       ///< share of the observations in the kept blocks
-  std::size_t blocks = 0;     ///< blocks taking part
-  std::size_t kept = 0;       ///< h
+  double scale = 0.0;      ///< √ of the criterion (√ of the mean of the kept blocks' mean squares)
+  double support = 0.0;    ///< share of the observations in the kept blocks
+  std::size_t blocks = 0;  ///< blocks taking part
+  std::size_t kept = 0;    ///< h
 };
 
 /// \param[in] lin the matched observations (linearised; only fit() and residuals() are used)

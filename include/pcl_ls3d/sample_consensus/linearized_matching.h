@@ -39,9 +39,9 @@ public:
   ///         NO_OVERLAP, or TOO_FEW_OBSERVATIONS when the reference is degenerate (collinear or
   ///         coincident) where the points lie over it, as the engine's pair adjustment says
   bool
-  reset(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference,
-        const ConjugateRule& rule, const AdjustmentSettings& settings, const Eigen::Matrix4d& guess,
-        std::string* why = nullptr, TerminationType* failure = nullptr);
+  reset(const std::vector<Eigen::Vector3d>& points, const TargetSurface& reference, const ConjugateRule& rule,
+        const AdjustmentSettings& settings, const Eigen::Matrix4d& guess, std::string* why = nullptr,
+        TerminationType* failure = nullptr);
 
   /// Matches every point again at X (reduced frame) and makes X the linearisation point.
   /// False when no observation is left.
@@ -77,7 +77,8 @@ public:
   double
   residual(std::size_t j, const Vector7d& X) const
   {
-    return l_[static_cast<Eigen::Index>(j)] + rows_.row(static_cast<Eigen::Index>(j)).dot((X - x0_).transpose());
+    return l_[static_cast<Eigen::Index>(j)] +
+           rows_.row(static_cast<Eigen::Index>(j)).dot((X - x0_).transpose());
   }
 
   /// Number of observations m.
@@ -90,13 +91,17 @@ public:
   int
   observationOf(int point) const
   {
-    return point >= 0 && static_cast<std::size_t>(point) < first_.size() ? first_[static_cast<std::size_t>(point)] : -1;
+    return point >= 0 && static_cast<std::size_t>(point) < first_.size()
+               ? first_[static_cast<std::size_t>(point)]
+               : -1;
   }
   /// Observations of epoch point i: [observationOf(i), observationOf(i) + countOf(i)).
   int
   countOf(int point) const
   {
-    return point >= 0 && static_cast<std::size_t>(point) < count_.size() ? count_[static_cast<std::size_t>(point)] : 0;
+    return point >= 0 && static_cast<std::size_t>(point) < count_.size()
+               ? count_[static_cast<std::size_t>(point)]
+               : 0;
   }
   /// The observation records (point, direction u, distance l at X0, foot, surface variance).
   const ObservationSet&

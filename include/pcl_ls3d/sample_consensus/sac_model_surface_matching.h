@@ -54,12 +54,12 @@ public:
   using PointCloudConstPtr = typename Base::PointCloudConstPtr;
   using Ptr = std::shared_ptr<SampleConsensusModelSurfaceMatching<PointT>>;
   using ConstPtr = std::shared_ptr<const SampleConsensusModelSurfaceMatching<PointT>>;
+  using Base::error_sqr_dists_;
   using Base::indices_;
   using Base::input_;
   using Base::model_name_;
   using Base::model_size_;
   using Base::sample_size_;
-  using Base::error_sqr_dists_;
   using Base::shuffled_indices_;
 
   /// \param[in] epoch the cloud to sample (Li's mate surface S')
@@ -110,7 +110,8 @@ public:
   optimizeModelCoefficients(const pcl::Indices& inliers, const Eigen::VectorXf& model_coefficients,
                             Eigen::VectorXf& optimized_coefficients) const override;
   void
-  getDistancesToModel(const Eigen::VectorXf& model_coefficients, std::vector<double>& distances) const override;
+  getDistancesToModel(const Eigen::VectorXf& model_coefficients,
+                      std::vector<double>& distances) const override;
   void
   selectWithinDistance(const Eigen::VectorXf& model_coefficients, const double threshold,
                        pcl::Indices& inliers) override;

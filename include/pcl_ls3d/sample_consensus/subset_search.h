@@ -37,16 +37,16 @@ defaultSubsets(double contamination, int sample_size);
 /// \brief Settings of both searches.
 struct SubsetSearchSettings
 {
-  int subsets = 3000;               ///< random p-subsets drawn (LTS: starts)
-  int sample_size = 7;              ///< p (Li: 7 points for 6 parameters)
-  std::uint32_t seed = 1;           ///< subset k uses stream (seed, k)
-  std::size_t score_points = 20000; ///< rank subsets on a random subsample of this many (0: all)
-  int finalists = 10;               ///< candidates re-scored on all observations (and LTS C-stepped)
-  bool early_exit = true;           ///< LMS: stop scoring a subset that cannot win
+  int subsets = 3000;                ///< random p-subsets drawn (LTS: starts)
+  int sample_size = 7;               ///< p (Li: 7 points for 6 parameters)
+  std::uint32_t seed = 1;            ///< subset k uses stream (seed, k)
+  std::size_t score_points = 20000;  ///< rank subsets on a random subsample of this many (0: all)
+  int finalists = 10;                ///< candidates re-scored on all observations (and LTS C-stepped)
+  bool early_exit = true;            ///< LMS: stop scoring a subset that cannot win
   /// LTS coverage: h = max(⌊(m + p + 1)/2⌋, ⌈α m⌉); α = 0.5 gives the 50 % breakdown point.
   double coverage = 0.5;
-  int start_csteps = 2;             ///< LTS: C-steps on every start (FAST-LTS: 2)
-  int max_csteps = 50;              ///< LTS: C-steps on a finalist until the subset repeats
+  int start_csteps = 2;  ///< LTS: C-steps on every start (FAST-LTS: 2)
+  int max_csteps = 50;   ///< LTS: C-steps on a finalist until the subset repeats
 };
 
 /// \brief What a search found.
@@ -54,15 +54,15 @@ struct SubsetSearchResult
 {
   bool ok = false;
   Vector7d parameters = identityParameters();  ///< best estimate (reduced frame)
-  double criterion = 0.0;   ///< LMS: med v² over all observations; LTS: Σ of the h smallest v² / h
-  double scale = 0.0;       ///< LMS: 1.4826 (1 + 5/(m − p)) √med v²; LTS: consistency-corrected √criterion
-  int drawn = 0;            ///< subsets drawn
-  int valid = 0;            ///< of which could be fitted (determinable, finite)
-  int best_subset = -1;     ///< index k of the winning subset
-  std::size_t scored = 0;   ///< observations each subset was ranked on
-  std::size_t coverage = 0; ///< LTS: h
-  int csteps = 0;           ///< LTS: C-steps of the winner
-  std::vector<int> sample;  ///< observations of the winning subset (LMS) / start (LTS)
+  double criterion = 0.0;  ///< LMS: med v² over all observations; LTS: Σ of the h smallest v² / h
+  double scale = 0.0;  ///< LMS: 1.4826 (1 + 5/(m − p)) √med v²; LTS: consistency-corrected √criterion
+  int drawn = 0;       ///< subsets drawn
+  int valid = 0;       ///< of which could be fitted (determinable, finite)
+  int best_subset = -1;      ///< index k of the winning subset
+  std::size_t scored = 0;    ///< observations each subset was ranked on
+  std::size_t coverage = 0;  ///< LTS: h
+  int csteps = 0;            ///< LTS: C-steps of the winner
+  std::vector<int> sample;   ///< observations of the winning subset (LMS) / start (LTS)
 };
 
 /// med v² of all observations at X (the LMS criterion).

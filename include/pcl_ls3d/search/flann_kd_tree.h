@@ -36,7 +36,10 @@ public:
   using Base::nearestKSearch;
   using Base::radiusSearch;
 
-  explicit FlannKdTree(bool sorted = true) : Base(sorted) { this->name_ = "FlannKdTree"; }
+  explicit FlannKdTree(bool sorted = true) : Base(sorted)
+  {
+    this->name_ = "FlannKdTree";
+  }
 
   void
   setInputCloud(const PointCloudConstPtr& cloud,

@@ -29,9 +29,9 @@ enum class Dimensionality : std::uint8_t
 /// The eigen-entropy minimised over k is E = −Σ e_i ln e_i with e_i = λ_i / Σλ.
 struct PointFeatures
 {
-  Eigen::Vector3f normal = Eigen::Vector3f::UnitZ();      ///< eigenvector of λ3, z ≥ 0
-  Eigen::Vector3f principal = Eigen::Vector3f::UnitX();   ///< eigenvector of λ1
-  float a1d = 0.f, a2d = 0.f, a3d = 0.f;                  ///< dimensionality features
+  Eigen::Vector3f normal = Eigen::Vector3f::UnitZ();     ///< eigenvector of λ3, z ≥ 0
+  Eigen::Vector3f principal = Eigen::Vector3f::UnitX();  ///< eigenvector of λ1
+  float a1d = 0.f, a2d = 0.f, a3d = 0.f;                 ///< dimensionality features
   float residual = 0.f;  ///< RMS distance [m] of the neighbourhood to its LS plane, √λ3
   float entropy = 0.f;   ///< eigen-entropy at the chosen k
   std::uint16_t k = 0;   ///< optimal neighbourhood size (neighbours incl. the point itself)

@@ -28,8 +28,8 @@ namespace segmentation {
 ///            touches at the eave); empty: every link counts
 /// \return number of segments absorbed
 std::size_t
-absorbFragments(const std::vector<int>& graph, int graph_k, std::vector<int>& labels,
-                std::size_t min_size, const std::function<bool(int, int)>& linkable = {});
+absorbFragments(const std::vector<int>& graph, int graph_k, std::vector<int>& labels, std::size_t min_size,
+                const std::function<bool(int, int)>& linkable = {});
 
 }  // namespace segmentation
 }  // namespace pcl_ls3d

@@ -21,15 +21,36 @@ class LowestPointGrid
 public:
   LowestPointGrid(const std::vector<Eigen::Vector3f>& points, double cell);
 
-  int rows() const { return rows_; }
-  int cols() const { return cols_; }
-  double cell() const { return cell_; }
+  int
+  rows() const
+  {
+    return rows_;
+  }
+  int
+  cols() const
+  {
+    return cols_;
+  }
+  double
+  cell() const
+  {
+    return cell_;
+  }
   /// Row-major cell index of a point (clamped into the grid).
-  int cellOf(const Eigen::Vector3f& p) const;
+  int
+  cellOf(const Eigen::Vector3f& p) const;
   /// Lowest z per cell, row-major; NaN where no point fell.
-  const std::vector<float>& lowest() const { return lowest_; }
+  const std::vector<float>&
+  lowest() const
+  {
+    return lowest_;
+  }
   /// Index of the point holding each cell's lowest z; −1 where no point fell.
-  const std::vector<int>& lowestPoint() const { return lowest_point_; }
+  const std::vector<int>&
+  lowestPoint() const
+  {
+    return lowest_point_;
+  }
 
 private:
   double cell_ = 1.0;

@@ -140,67 +140,181 @@ public:
   ~MultiRuleRegionGrowing() override;
 
   /// \brief Class name for messages.
-  std::string getClassName() const { return "MultiRuleRegionGrowing"; }
+  std::string
+  getClassName() const
+  {
+    return "MultiRuleRegionGrowing";
+  }
 
   // ---- neighbourhood and features --------------------------------------------------------
   /// \brief Scan k = k_min, k_min + step, ..., k_max for the minimal eigen-entropy.
-  void setNeighbourhoodRange(int k_min, int k_max, int k_step = 10);
+  void
+  setNeighbourhoodRange(int k_min, int k_max, int k_step = 10);
   /// \brief Fixed-k mode: every point uses exactly k neighbours (including itself).
-  void setFixedNeighbourhood(int k) { setNeighbourhoodRange(k, k, 1); }
-  const segmentation::NeighbourhoodSettings& getNeighbourhoodRange() const { return nbh_; }
+  void
+  setFixedNeighbourhood(int k)
+  {
+    setNeighbourhoodRange(k, k, 1);
+  }
+  const segmentation::NeighbourhoodSettings&
+  getNeighbourhoodRange() const
+  {
+    return nbh_;
+  }
   /// \brief Size of the k-NN graph used for growing (default 16).
-  void setNumberOfNeighbours(int k) { grow_.graph_k = k; }
-  int getNumberOfNeighbours() const { return grow_.graph_k; }
+  void
+  setNumberOfNeighbours(int k)
+  {
+    grow_.graph_k = k;
+  }
+  int
+  getNumberOfNeighbours() const
+  {
+    return grow_.graph_k;
+  }
   /// \brief Threads for the per-point stages (0: OpenMP default).
-  void setNumberOfThreads(int n) { threads_ = n; }
+  void
+  setNumberOfThreads(int n)
+  {
+    threads_ = n;
+  }
 
   // ---- growing rules -----------------------------------------------------------------------
   /// \brief M_t [rad]: max angle between principal directions of linear points (default 15°).
-  void setPrincipalAngleThreshold(double rad) { grow_.principal_angle = rad; }
-  double getPrincipalAngleThreshold() const { return grow_.principal_angle; }
+  void
+  setPrincipalAngleThreshold(double rad)
+  {
+    grow_.principal_angle = rad;
+  }
+  double
+  getPrincipalAngleThreshold() const
+  {
+    return grow_.principal_angle;
+  }
   /// \brief N_t [rad]: max angle between normals of planar points (default 10°).
-  void setNormalAngleThreshold(double rad) { grow_.normal_angle = rad; }
-  double getNormalAngleThreshold() const { return grow_.normal_angle; }
+  void
+  setNormalAngleThreshold(double rad)
+  {
+    grow_.normal_angle = rad;
+  }
+  double
+  getNormalAngleThreshold() const
+  {
+    return grow_.normal_angle;
+  }
   /// \brief Max neighbour distance [m] for linear/planar growth; ≤ 0: auto (see getSpacing()).
-  void setGrowthRadius(double r) { user_growth_radius_ = r; }
-  double getGrowthRadius() const { return grow_.growth_radius; }
+  void
+  setGrowthRadius(double r)
+  {
+    user_growth_radius_ = r;
+  }
+  double
+  getGrowthRadius() const
+  {
+    return grow_.growth_radius;
+  }
   /// \brief Connectivity radius [m] of volumetric growth; ≤ 0: auto (see getSpacing()).
-  void setVolumetricRadius(double r) { user_volumetric_radius_ = r; }
-  double getVolumetricRadius() const { return grow_.volumetric_radius; }
+  void
+  setVolumetricRadius(double r)
+  {
+    user_volumetric_radius_ = r;
+  }
+  double
+  getVolumetricRadius() const
+  {
+    return grow_.volumetric_radius;
+  }
   /// \brief Local spacing scale [m] of the last extract(): median distance to the k_min-th
   ///        neighbour. Auto growth radius = 2 × spacing, auto volumetric radius = 1 × spacing.
-  double getSpacing() const { return spacing_; }
+  double
+  getSpacing() const
+  {
+    return spacing_;
+  }
 
   // ---- IMRG seed condition -----------------------------------------------------------------
   /// \brief Enable/disable the planar seed condition (IMRG §3.1).
-  void setUseSeedCondition(bool on) { grow_.use_seed_condition = on; }
-  bool getUseSeedCondition() const { return grow_.use_seed_condition; }
+  void
+  setUseSeedCondition(bool on)
+  {
+    grow_.use_seed_condition = on;
+  }
+  bool
+  getUseSeedCondition() const
+  {
+    return grow_.use_seed_condition;
+  }
   /// \brief pcl::RegionGrowing's name of the seed condition (its residual test).
-  void setResidualTestFlag(bool on) { setUseSeedCondition(on); }
-  bool getResidualTestFlag() const { return getUseSeedCondition(); }
+  void
+  setResidualTestFlag(bool on)
+  {
+    setUseSeedCondition(on);
+  }
+  bool
+  getResidualTestFlag() const
+  {
+    return getUseSeedCondition();
+  }
   /// \brief v_t [m], fixed; must be > 0 (extract() refuses anything else, as
   ///        pcl::RegionGrowing's residual test does). Default: adaptive, the median residual of
   ///        the linear set (useAdaptiveThresholds()).
-  void setResidualThreshold(double v) { user_residual_threshold_ = v; }
+  void
+  setResidualThreshold(double v)
+  {
+    user_residual_threshold_ = v;
+  }
   /// \brief v_t used by the last extract() (NaN before).
-  double getResidualThreshold() const { return grow_.residual_threshold; }
+  double
+  getResidualThreshold() const
+  {
+    return grow_.residual_threshold;
+  }
   /// \brief pcl::RegionGrowing's name of N_t [rad] (setNormalAngleThreshold()).
-  void setSmoothnessThreshold(double rad) { setNormalAngleThreshold(rad); }
-  double getSmoothnessThreshold() const { return getNormalAngleThreshold(); }
+  void
+  setSmoothnessThreshold(double rad)
+  {
+    setNormalAngleThreshold(rad);
+  }
+  double
+  getSmoothnessThreshold() const
+  {
+    return getNormalAngleThreshold();
+  }
 
   // ---- merging -----------------------------------------------------------------------------
-  void setMergeRule(MergeRule rule) { merge_.rule = rule; }
-  MergeRule getMergeRule() const { return merge_.rule; }
+  void
+  setMergeRule(MergeRule rule)
+  {
+    merge_.rule = rule;
+  }
+  MergeRule
+  getMergeRule() const
+  {
+    return merge_.rule;
+  }
   /// \brief Mode::IMRG: seed condition, full merge rule, object assembly; Mode::MRG: none of
   ///        them (distance-only merging).
-  void setMode(Mode mode);
+  void
+  setMode(Mode mode);
   /// \brief d_t [m], fixed, ≥ 0 (default adaptive: Baarda snooping over nearest-segment
   ///        distances).
-  void setDistanceThreshold(double d) { user_distance_threshold_ = d; }
+  void
+  setDistanceThreshold(double d)
+  {
+    user_distance_threshold_ = d;
+  }
   /// \brief s_t [m], fixed, ≥ 0 (default adaptive: smallest gap of 3 k-means centres of R_i).
-  void setSimilarityThreshold(double s) { user_similarity_threshold_ = s; }
+  void
+  setSimilarityThreshold(double s)
+  {
+    user_similarity_threshold_ = s;
+  }
   /// \brief V_t, fixed, ≥ 0 (default adaptive: Baarda snooping over candidate ΔV).
-  void setVolumeChangeThreshold(double v) { user_volume_threshold_ = v; }
+  void
+  setVolumeChangeThreshold(double v)
+  {
+    user_volume_threshold_ = v;
+  }
   /// \brief Back to the adaptive rules for v_t, d_t, s_t and V_t (the default).
   void
   useAdaptiveThresholds()
@@ -209,41 +323,110 @@ public:
         user_volume_threshold_ = std::nullopt;
   }
   /// \brief Significance α of each w-test in the data snooping (default 0.001).
-  void setSnoopingSignificance(double alpha) { merge_.alpha = alpha; }
+  void
+  setSnoopingSignificance(double alpha)
+  {
+    merge_.alpha = alpha;
+  }
   /// \brief Thresholds actually used by the last extract() and merge statistics.
-  const segmentation::MergeReport& getMergeReport() const { return merge_report_; }
-  double getDistanceThreshold() const { return merge_report_.distance_threshold; }
-  double getSimilarityThreshold() const { return merge_report_.similarity_threshold; }
-  double getVolumeChangeThreshold() const { return merge_report_.volume_threshold; }
+  const segmentation::MergeReport&
+  getMergeReport() const
+  {
+    return merge_report_;
+  }
+  double
+  getDistanceThreshold() const
+  {
+    return merge_report_.distance_threshold;
+  }
+  double
+  getSimilarityThreshold() const
+  {
+    return merge_report_.similarity_threshold;
+  }
+  double
+  getVolumeChangeThreshold() const
+  {
+    return merge_report_.volume_threshold;
+  }
 
   // ---- fragment absorption (after merging; see segmentation::absorbFragments) -------------
   /// \brief Segments under \a n points after merging join the adjacent segment sharing the most
   ///        k-NN graph links (default 30; 0 or 1: off, the paper's output). Not a filter:
   ///        no point is lost. 30 = pcl::RegionGrowing's usual minimum cluster size.
-  void setMinFragmentSize(std::size_t n) { min_fragment_size_ = n; }
-  std::size_t getMinFragmentSize() const { return min_fragment_size_; }
+  void
+  setMinFragmentSize(std::size_t n)
+  {
+    min_fragment_size_ = n;
+  }
+  std::size_t
+  getMinFragmentSize() const
+  {
+    return min_fragment_size_;
+  }
   /// \brief Number of segments absorbed in the last extract() (both absorption passes).
-  std::size_t getNumberOfAbsorbedFragments() const { return absorbed_fragments_; }
+  std::size_t
+  getNumberOfAbsorbedFragments() const
+  {
+    return absorbed_fragments_;
+  }
 
   // ---- object assembly (object level; see segmentation::assembleObjects) -------------------
   /// \brief Join the merged segments into whole objects (default on; Mode::MRG turns it off).
-  void setObjectAssembly(bool on) { assemble_objects_ = on; }
-  bool getObjectAssembly() const { return assemble_objects_; }
+  void
+  setObjectAssembly(bool on)
+  {
+    assemble_objects_ = on;
+  }
+  bool
+  getObjectAssembly() const
+  {
+    return assemble_objects_;
+  }
   /// \brief Rules of the assembly (kinds, links); see segmentation::AssemblySettings.
-  void setAssemblySettings(const segmentation::AssemblySettings& s) { assembly_ = s; }
-  const segmentation::AssemblySettings& getAssemblySettings() const { return assembly_; }
+  void
+  setAssemblySettings(const segmentation::AssemblySettings& s)
+  {
+    assembly_ = s;
+  }
+  const segmentation::AssemblySettings&
+  getAssemblySettings() const
+  {
+    return assembly_;
+  }
   /// \brief Largest building width [m] the ground filter must remove (default 60).
-  void setMaxObjectWidth(double w) { ground_filter_.max_window = w; }
-  double getMaxObjectWidth() const { return ground_filter_.max_window; }
+  void
+  setMaxObjectWidth(double w)
+  {
+    ground_filter_.max_window = w;
+  }
+  double
+  getMaxObjectWidth() const
+  {
+    return ground_filter_.max_window;
+  }
   /// \brief Segments per kind and objects of the last extract().
-  const segmentation::AssemblyReport& getAssemblyReport() const { return assembly_report_; }
+  const segmentation::AssemblyReport&
+  getAssemblyReport() const
+  {
+    return assembly_report_;
+  }
   /// \brief Thresholds of the object classes (heights, car and building sizes; metres).
-  void setObjectClassSettings(const segmentation::ObjectClassSettings& s) { classes_ = s; }
-  const segmentation::ObjectClassSettings& getObjectClassSettings() const { return classes_; }
+  void
+  setObjectClassSettings(const segmentation::ObjectClassSettings& s)
+  {
+    classes_ = s;
+  }
+  const segmentation::ObjectClassSettings&
+  getObjectClassSettings() const
+  {
+    return classes_;
+  }
   /// \brief Class of every cluster of getClusters(\a level) of the last extract() (a plane: the
   ///        class of the object holding most of its points); empty without the object assembly
   ///        (Mode::MRG) or when extract() failed.
-  const std::vector<segmentation::ObjectClass>& getClusterClasses(Level level) const
+  const std::vector<segmentation::ObjectClass>&
+  getClusterClasses(Level level) const
   {
     return level == Level::Planes ? plane_classes_ : object_classes_;
   }
@@ -251,31 +434,67 @@ public:
   /// \brief Wall time [s] of each stage of the last extract().
   struct StageTimes
   {
-    double search = 0.0;     ///< checks, local coordinates, search-structure build
-    double features = 0.0;   ///< k_max-NN query per point, eigen-entropy scan, features, graph
-    double growing = 0.0;    ///< v_t and rule-based region growing
-    double merging = 0.0;    ///< hulls, d_t / s_t / V_t, merge loop (§3.2)
-    double absorbing = 0.0;  ///< fragment absorption
-    double assembling = 0.0; ///< ground filter, segment kinds, object assembly
-    double total = 0.0;      ///< the whole extract()
+    double search = 0.0;      ///< checks, local coordinates, search-structure build
+    double features = 0.0;    ///< k_max-NN query per point, eigen-entropy scan, features, graph
+    double growing = 0.0;     ///< v_t and rule-based region growing
+    double merging = 0.0;     ///< hulls, d_t / s_t / V_t, merge loop (§3.2)
+    double absorbing = 0.0;   ///< fragment absorption
+    double assembling = 0.0;  ///< ground filter, segment kinds, object assembly
+    double total = 0.0;       ///< the whole extract()
   };
-  const StageTimes& getStageTimes() const { return stage_times_; }
+  const StageTimes&
+  getStageTimes() const
+  {
+    return stage_times_;
+  }
 
   // ---- output filtering (as pcl::RegionGrowing) ---------------------------------------------
-  void setMinClusterSize(pcl::uindex_t n) { min_cluster_size_ = n; }
-  pcl::uindex_t getMinClusterSize() const { return min_cluster_size_; }
-  void setMaxClusterSize(pcl::uindex_t n) { max_cluster_size_ = n; }
-  pcl::uindex_t getMaxClusterSize() const { return max_cluster_size_; }
+  void
+  setMinClusterSize(pcl::uindex_t n)
+  {
+    min_cluster_size_ = n;
+  }
+  pcl::uindex_t
+  getMinClusterSize() const
+  {
+    return min_cluster_size_;
+  }
+  void
+  setMaxClusterSize(pcl::uindex_t n)
+  {
+    max_cluster_size_ = n;
+  }
+  pcl::uindex_t
+  getMaxClusterSize() const
+  {
+    return max_cluster_size_;
+  }
 
   // ---- inputs -------------------------------------------------------------------------------
   /// \brief Search method (a pcl::search::KdTree is created when none is given). extract()
   ///        sets its input and queries it from several OpenMP threads at once (const queries,
   ///        as pcl::NormalEstimationOMP does), one k_max-NN query per point.
-  void setSearchMethod(const KdTreePtr& tree) { search_ = tree; }
-  KdTreePtr getSearchMethod() const { return search_; }
+  void
+  setSearchMethod(const KdTreePtr& tree)
+  {
+    search_ = tree;
+  }
+  KdTreePtr
+  getSearchMethod() const
+  {
+    return search_;
+  }
   /// \brief Optional normals used by the planar rule instead of the computed ones.
-  void setInputNormals(const NormalPtr& normals) { normals_ = normals; }
-  NormalPtr getInputNormals() const { return normals_; }
+  void
+  setInputNormals(const NormalPtr& normals)
+  {
+    normals_ = normals;
+  }
+  NormalPtr
+  getInputNormals() const
+  {
+    return normals_;
+  }
   /// \brief Optional: the number of returns of each input point's pulse (LAS NumberOfReturns),
   ///        one per point of the input cloud (not per index). Only the object classes use it: a
   ///        car-sized rough object with at most 20 % of its points from pulses with several
@@ -283,58 +502,96 @@ public:
   ///        Empty (the default), or all at most 1 over the whole input (data that do not record
   ///        returns, segmentation::recordsReturns()): returns unknown. Another size: extract()
   ///        fails.
-  void setNumberOfReturns(std::vector<std::uint8_t> returns) { returns_ = std::move(returns); }
-  const std::vector<std::uint8_t>& getNumberOfReturns() const { return returns_; }
+  void
+  setNumberOfReturns(std::vector<std::uint8_t> returns)
+  {
+    returns_ = std::move(returns);
+  }
+  const std::vector<std::uint8_t>&
+  getNumberOfReturns() const
+  {
+    return returns_;
+  }
 
   // ---- run and results -----------------------------------------------------------------------
   /// \brief Level returned by extract() and used by the per-point getters (default Objects).
-  void setOutputLevel(Level level) { level_ = level; }
-  Level getOutputLevel() const { return level_; }
+  void
+  setOutputLevel(Level level)
+  {
+    level_ = level;
+  }
+  Level
+  getOutputLevel() const
+  {
+    return level_;
+  }
   /// \brief Segment the cloud. On bad input logs PCL_ERROR and returns no clusters.
-  void extract(std::vector<pcl::PointIndices>& clusters);
+  void
+  extract(std::vector<pcl::PointIndices>& clusters);
   /// \brief Segments of either level from the last extract() (min/max cluster size applied).
-  const std::vector<pcl::PointIndices>& getClusters(Level level) const
+  const std::vector<pcl::PointIndices>&
+  getClusters(Level level) const
   {
     return level == Level::Planes ? plane_clusters_ : object_clusters_;
   }
   /// \brief The cluster containing the cloud point \a index (empty if none). Before any
   ///        extract() (or after one that gave no segment) it runs extract() first, as
   ///        pcl::RegionGrowing::getSegmentFromPoint does.
-  void getSegmentFromPoint(pcl::index_t index, pcl::PointIndices& cluster);
+  void
+  getSegmentFromPoint(pcl::index_t index, pcl::PointIndices& cluster);
   /// \brief Input cloud with one random colour per cluster; other points white.
-  pcl::PointCloud<pcl::PointXYZRGB>::Ptr getColoredCloud() const;
+  pcl::PointCloud<pcl::PointXYZRGB>::Ptr
+  getColoredCloud() const;
   /// \brief Per input-cloud point: its dimensionality (Invalid if not processed).
-  std::vector<Dimensionality> getDimensionality() const;
+  std::vector<Dimensionality>
+  getDimensionality() const;
   /// \brief Features of input-cloud point \a index; false if it was not processed.
-  bool getPointFeatures(pcl::index_t index, PointFeatures& features) const;
+  bool
+  getPointFeatures(pcl::index_t index, PointFeatures& features) const;
   /// \brief Per input-cloud point: index of its returned cluster, −1 if none.
-  std::vector<int> getPointLabels() const;
+  std::vector<int>
+  getPointLabels() const;
   /// \brief Number of segments before merging (all sizes).
-  std::size_t getNumberOfInitialSegments() const { return initial_segments_; }
+  std::size_t
+  getNumberOfInitialSegments() const
+  {
+    return initial_segments_;
+  }
 
 protected:
   /// Empties the results, reports and stage times of the previous run.
-  void resetRunState();
-  bool prepareForSegmentation();
+  void
+  resetRunState();
+  bool
+  prepareForSegmentation();
   /// Why the user's thresholds cannot be used ("" when they can); fills merge_'s thresholds.
-  std::string checkThresholds();
-  bool computeFeatures();
-  void growSegments();
+  std::string
+  checkThresholds();
+  bool
+  computeFeatures();
+  void
+  growSegments();
   /// Plane level: fragments in plane_of_ join their most-linked plane, on-plane links only.
-  void absorbPlaneFragments();
-  void mergeSegments();
-  void assembleObjects();
+  void
+  absorbPlaneFragments();
+  void
+  mergeSegments();
+  void
+  assembleObjects();
   /// Clusters and classes of both levels from plane_of_ and segment_of_.
-  void assembleLevelClusters();
+  void
+  assembleLevelClusters();
   /// Per position: 1 if the point's pulse had several returns; empty when returns are unknown.
-  std::vector<char> multipleReturnFlags() const;
+  std::vector<char>
+  multipleReturnFlags() const;
   /// Step 8: vegetation (and car) points on the terrain join the ground, vegetation points under
   /// a roof the building.
-  void assignPointsByPosition(const std::vector<char>& ground,
-                              const segmentation::AssemblySettings& settings);
+  void
+  assignPointsByPosition(const std::vector<char>& ground, const segmentation::AssemblySettings& settings);
   /// Clusters (cloud indices) of per-position \a labels, min/max cluster size applied.
-  void assembleRegions(const std::vector<int>& labels, std::vector<pcl::PointIndices>& clusters,
-                       std::vector<int>& cluster_of) const;
+  void
+  assembleRegions(const std::vector<int>& labels, std::vector<pcl::PointIndices>& clusters,
+                  std::vector<int>& cluster_of) const;
   /// Per cluster: the class of the object holding most of its points (object_class_).
   std::vector<segmentation::ObjectClass>
   clusterClasses(const std::vector<pcl::PointIndices>& clusters) const;
@@ -356,16 +613,16 @@ protected:
   std::vector<std::uint8_t> returns_;  ///< per input point; empty: unknown
 
   // state of the last run; "position" = index into valid_indices_
-  std::vector<int> valid_indices_;            ///< cloud indices processed (finite, in indices_)
-  std::vector<int> position_of_;              ///< cloud index -> position or -1
-  std::vector<Eigen::Vector3f> points_;       ///< coordinates minus origin_, per position
+  std::vector<int> valid_indices_;       ///< cloud indices processed (finite, in indices_)
+  std::vector<int> position_of_;         ///< cloud index -> position or -1
+  std::vector<Eigen::Vector3f> points_;  ///< coordinates minus origin_, per position
   Eigen::Vector3f origin_ = Eigen::Vector3f::Zero();
-  std::vector<PointFeatures> features_;       ///< per position
-  std::vector<int> graph_;                    ///< k-NN graph, graph_k positions per position
-  std::vector<int> segment_of_;               ///< per position: segment id or -1
-  std::vector<int> plane_of_;                 ///< per position: plane-level segment or -1
-  std::vector<pcl::PointIndices> plane_clusters_;   ///< plane level (cloud indices)
-  std::vector<pcl::PointIndices> object_clusters_;  ///< object level (cloud indices)
+  std::vector<PointFeatures> features_;                    ///< per position
+  std::vector<int> graph_;                                 ///< k-NN graph, graph_k positions per position
+  std::vector<int> segment_of_;                            ///< per position: segment id or -1
+  std::vector<int> plane_of_;                              ///< per position: plane-level segment or -1
+  std::vector<pcl::PointIndices> plane_clusters_;          ///< plane level (cloud indices)
+  std::vector<pcl::PointIndices> object_clusters_;         ///< object level (cloud indices)
   std::vector<int> plane_cluster_of_, object_cluster_of_;  ///< per position: cluster or -1
   Level level_ = Level::Objects;
   segmentation::MergeReport merge_report_;
@@ -378,7 +635,7 @@ protected:
   segmentation::GroundFilterSettings ground_filter_;
   segmentation::AssemblyReport assembly_report_;
   segmentation::ObjectClassSettings classes_;
-  std::vector<segmentation::ObjectClass> object_class_;  ///< per object label (segment_of_)
+  std::vector<segmentation::ObjectClass> object_class_;                    ///< per object label (segment_of_)
   std::vector<segmentation::ObjectClass> plane_classes_, object_classes_;  ///< per cluster
   StageTimes stage_times_;
 };

@@ -52,25 +52,25 @@ namespace segmentation {
 /// \brief Settings of assembleObjects(); lengths in cloud units.
 struct AssemblySettings
 {
-  KindSettings kinds;            ///< what makes a segment ground, linear, rough, wall, solid
-  std::size_t min_links = 3;     ///< weaker contacts never join
-  double max_link_length = 1.0;  ///< longer k-NN links do not make segments touch (the class
-                                 ///< sets its growth radius)
-  double rough_link_length = 0.0;  ///< rough segments (crowns) touch each other only through
-                                   ///< links this short (the class sets its volumetric radius);
-                                   ///< ≤ 0: max_link_length
-  double edge_share = 0.25;      ///< share of a linear segment's points touching a group to
-                                 ///< join it (a wire span touches its tower with about 10 %)
-  double enclosure_share = 0.8;  ///< share of a group's contacts with one building to join it
+  KindSettings kinds;                 ///< what makes a segment ground, linear, rough, wall, solid
+  std::size_t min_links = 3;          ///< weaker contacts never join
+  double max_link_length = 1.0;       ///< longer k-NN links do not make segments touch (the class
+                                      ///< sets its growth radius)
+  double rough_link_length = 0.0;     ///< rough segments (crowns) touch each other only through
+                                      ///< links this short (the class sets its volumetric radius);
+                                      ///< ≤ 0: max_link_length
+  double edge_share = 0.25;           ///< share of a linear segment's points touching a group to
+                                      ///< join it (a wire span touches its tower with about 10 %)
+  double enclosure_share = 0.8;       ///< share of a group's contacts with one building to join it
   double enclosure_size_ratio = 0.2;  ///< ... if at most this fraction of the building's size
-  double footprint_share = 0.8;  ///< share of a group's points on or under one building's roof
-                                 ///< (in plan) to join it, if at most enclosure_size_ratio of it
-                                 ///< or if that share also lies below the roof
-  double footprint_margin = 0.75; ///< the roof's plan reaches this far past its points (eaves,
-                                 ///< balconies: for what lies below the roof; above it, only
-                                 ///< margin cells enclosed by the roof count)
-  bool detach_raised_points = true;  ///< points of a ground segment that the ground filter
-                                    ///< rejects leave it as their own segments
+  double footprint_share = 0.8;       ///< share of a group's points on or under one building's roof
+                                      ///< (in plan) to join it, if at most enclosure_size_ratio of it
+                                      ///< or if that share also lies below the roof
+  double footprint_margin = 0.75;     ///< the roof's plan reaches this far past its points (eaves,
+                                      ///< balconies: for what lies below the roof; above it, only
+                                      ///< margin cells enclosed by the roof count)
+  bool detach_raised_points = true;   ///< points of a ground segment that the ground filter
+                                      ///< rejects leave it as their own segments
   /// ... and so do those it keeps that lie more than this many ground residuals (the
   /// terrain's noise, AssemblyReport::ground_residual, an RMS: about σ) above the terrain plane
   /// of the ground points around them (heightAboveTerrain, terrainWindowHalfWidth()):
@@ -108,18 +108,18 @@ terrainWindowHalfWidth(const AssemblySettings& settings)
 ///            counts no link when their sizes differ
 /// \param[in] max_link_length longest contact [cloud units] (AssemblySettings::max_link_length)
 std::function<bool(int, int)>
-absorptionContact(const std::vector<Eigen::Vector3f>& points,
-                  const std::vector<SegmentKind>& point_kind, double max_link_length);
+absorptionContact(const std::vector<Eigen::Vector3f>& points, const std::vector<SegmentKind>& point_kind,
+                  double max_link_length);
 
 /// \brief What assembleObjects() did.
 struct AssemblyReport
 {
   std::size_t segments_before = 0, objects = 0;
-  std::size_t detached_points = 0;  ///< points that left ground segments (raised above terrain)
-  std::size_t points_under_roofs = 0;     ///< vegetation points that joined a roof above them
-  std::size_t points_back_to_ground = 0;  ///< vegetation points that joined the ground
+  std::size_t detached_points = 0;              ///< points that left ground segments (raised above terrain)
+  std::size_t points_under_roofs = 0;           ///< vegetation points that joined a roof above them
+  std::size_t points_back_to_ground = 0;        ///< vegetation points that joined the ground
   std::size_t kind_count[5] = {0, 0, 0, 0, 0};  ///< segments per SegmentKind
-  double ground_residual = 0.0;  ///< median residual of the ground points (roughness unit)
+  double ground_residual = 0.0;                 ///< median residual of the ground points (roughness unit)
   /// per point: kind of its segment before any join (pieces detached from the ground by their
   /// own kind); what classifyObjects() votes with. Solid for points in no segment.
   std::vector<SegmentKind> point_kind;
@@ -133,8 +133,8 @@ struct AssemblyReport
 /// \param[in] ground per point: 1 if the ground filter keeps it
 /// \param[in,out] labels segment per point (dense 0..n−1, −1 none)
 AssemblyReport
-assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
-                int graph_k, const std::vector<float>& residuals, const std::vector<char>& ground,
+assembleObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph, int graph_k,
+                const std::vector<float>& residuals, const std::vector<char>& ground,
                 const AssemblySettings& settings, std::vector<int>& labels);
 
 }  // namespace segmentation

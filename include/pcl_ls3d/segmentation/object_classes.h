@@ -73,10 +73,9 @@ enum class ObjectClass : std::uint8_t
 };
 
 /// \brief Every class, in the order of the enum.
-constexpr ObjectClass kObjectClasses[] = {ObjectClass::Unclassified, ObjectClass::Ground,
-                                          ObjectClass::Building,     ObjectClass::Vegetation,
-                                          ObjectClass::Wire,         ObjectClass::Pole,
-                                          ObjectClass::Car};
+constexpr ObjectClass kObjectClasses[] = {
+    ObjectClass::Unclassified, ObjectClass::Ground, ObjectClass::Building, ObjectClass::Vegetation,
+    ObjectClass::Wire,         ObjectClass::Pole,   ObjectClass::Car};
 
 /// \brief "unclassified", "ground", "building", "vegetation", "wire", "pole", "car".
 const char*
@@ -104,11 +103,11 @@ classOf(int label, const std::vector<ObjectClass>& object_class);
 /// \brief Thresholds of classifyObjects(); lengths in metres (cloud units).
 struct ObjectClassSettings
 {
-  double terrain_cell = 2.0;          ///< cell of the grid of lowest ground points
-  double terrain_margin = 5.0;        ///< terrain sought this far around the plan box
-  double min_building_height = 2.0;   ///< a building's top above the terrain
-  double min_building_area = 6.0;     ///< a building's plan box (length × width)
-  double car_max_height = 3.0;        ///< a car's top above the terrain (vans included)
+  double terrain_cell = 2.0;                          ///< cell of the grid of lowest ground points
+  double terrain_margin = 5.0;                        ///< terrain sought this far around the plan box
+  double min_building_height = 2.0;                   ///< a building's top above the terrain
+  double min_building_area = 6.0;                     ///< a building's plan box (length × width)
+  double car_max_height = 3.0;                        ///< a car's top above the terrain (vans included)
   double car_min_length = 2.5, car_max_length = 7.0;  ///< a car's plan length
   double car_min_width = 1.2, car_max_width = 3.0;    ///< ... and width (a low wall is thinner)
   /// A rough object as wide as a car may be a row of cars parked nose to tail up to this long
@@ -119,14 +118,14 @@ struct ObjectClassSettings
   /// car-sized shrubs (0.25 and more) of the tuning tiles 77050_627755 and 77055_627755
   /// (docs/BENCHMARKS.md).
   double car_max_multiple_return_share = 0.2;
-  double min_wire_height = 2.5;       ///< a wire's low points above the terrain
-  double min_wire_length = 7.0;       ///< a wire's plan length (longer than a car)
-  double wire_cell = 0.5;             ///< a wire covers at most max_wire_cover × its length
-  double max_wire_cover = 2.0;        ///< / wire_cell plan cells of this edge (it is thin)
-  double pole_slenderness = 1.5;      ///< a pole's vertical extent / plan length, at least
-  double pole_plan_aspect = 0.5;      ///< ... a surface one's plan width / length, at least
-                                      ///< (a lattice tower; a piece of wall is thin)
-  double pole_mass_height = 0.7;      ///< ... and its median z at most this far up its extent
+  double min_wire_height = 2.5;   ///< a wire's low points above the terrain
+  double min_wire_length = 7.0;   ///< a wire's plan length (longer than a car)
+  double wire_cell = 0.5;         ///< a wire covers at most max_wire_cover × its length
+  double max_wire_cover = 2.0;    ///< / wire_cell plan cells of this edge (it is thin)
+  double pole_slenderness = 1.5;  ///< a pole's vertical extent / plan length, at least
+  double pole_plan_aspect = 0.5;  ///< ... a surface one's plan width / length, at least
+                                  ///< (a lattice tower; a piece of wall is thin)
+  double pole_mass_height = 0.7;  ///< ... and its median z at most this far up its extent
 };
 
 /// \brief True when \a number_of_returns (per point, as LAS NumberOfReturns) records returns:
@@ -146,8 +145,7 @@ recordsReturns(const std::vector<std::uint8_t>& number_of_returns);
 std::vector<ObjectClass>
 classifyObjects(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& labels,
                 const std::vector<SegmentKind>& point_kind, const std::vector<char>& ground,
-                const ObjectClassSettings& settings,
-                const std::vector<char>& multiple_return = {});
+                const ObjectClassSettings& settings, const std::vector<char>& multiple_return = {});
 
 }  // namespace segmentation
 }  // namespace pcl_ls3d

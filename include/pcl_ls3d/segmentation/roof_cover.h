@@ -36,8 +36,7 @@ namespace segmentation {
 /// \param[in,out] labels object per point (−1 none)
 /// \return the number of points moved; 0 when the sizes differ or cell is not positive
 std::size_t
-claimPointsUnderRoofs(const std::vector<Eigen::Vector3f>& points,
-                      const std::vector<SegmentKind>& point_kind,
+claimPointsUnderRoofs(const std::vector<Eigen::Vector3f>& points, const std::vector<SegmentKind>& point_kind,
                       const std::vector<ObjectClass>& object_class, double cell, double clearance,
                       std::vector<int>& labels);
 

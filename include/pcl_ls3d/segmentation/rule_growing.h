@@ -17,12 +17,12 @@ namespace segmentation {
 /// \brief Settings of growRegions(). Angles in radians, lengths in metres.
 struct GrowingSettings
 {
-  int graph_k = 16;                        ///< neighbours per point in the growth graph
+  int graph_k = 16;                              ///< neighbours per point in the growth graph
   double principal_angle = 15.0 * M_PI / 180.0;  ///< M_t, linear rule
   double normal_angle = 10.0 * M_PI / 180.0;     ///< N_t, planar rule
-  double growth_radius = 0.0;              ///< max neighbour distance, linear and planar rules
-  double volumetric_radius = 0.0;          ///< connectivity radius, volumetric rule
-  bool use_seed_condition = true;          ///< IMRG §3.1
+  double growth_radius = 0.0;                    ///< max neighbour distance, linear and planar rules
+  double volumetric_radius = 0.0;                ///< connectivity radius, volumetric rule
+  bool use_seed_condition = true;                ///< IMRG §3.1
   double residual_threshold = std::numeric_limits<double>::quiet_NaN();  ///< v_t [m]
 };
 
@@ -45,10 +45,8 @@ struct GrowingSettings
 /// \param[in] graph row-major, graph_k positions per position, −1 padded
 /// \return segment id per position (dense from 0), −1 for Invalid points
 std::vector<int>
-growRegions(const std::vector<Eigen::Vector3f>& points,
-            const std::vector<PointFeatures>& features,
-            const std::vector<Eigen::Vector3f>& normals,
-            const std::vector<int>& graph,
+growRegions(const std::vector<Eigen::Vector3f>& points, const std::vector<PointFeatures>& features,
+            const std::vector<Eigen::Vector3f>& normals, const std::vector<int>& graph,
             const GrowingSettings& settings);
 
 }  // namespace segmentation

@@ -26,8 +26,8 @@ struct SegmentLink
 /// \param[in] max_length links longer than this do not count (k-NN edges reach across gaps
 ///            in sparse areas; two segments a gap apart do not touch)
 std::vector<SegmentLink>
-segmentAdjacency(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph,
-                 int graph_k, const std::vector<int>& labels, double max_length);
+segmentAdjacency(const std::vector<Eigen::Vector3f>& points, const std::vector<int>& graph, int graph_k,
+                 const std::vector<int>& labels, double max_length);
 
 }  // namespace segmentation
 }  // namespace pcl_ls3d

@@ -48,12 +48,12 @@ struct KindSettings
 /// \brief Moments and votes of one segment.
 struct SegmentShape
 {
-  std::size_t n = 0;             ///< points
-  std::size_t ground = 0;        ///< points the ground filter keeps
-  double median_residual = 0.0;  ///< median PointFeatures::residual of its points
-  Eigen::Vector3d lambda = Eigen::Vector3d::Zero();  ///< covariance eigenvalues, ascending
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();      ///< eigenvector of λ3
-  Eigen::Vector3d principal = Eigen::Vector3d::UnitX();   ///< eigenvector of λ1
+  std::size_t n = 0;                                     ///< points
+  std::size_t ground = 0;                                ///< points the ground filter keeps
+  double median_residual = 0.0;                          ///< median PointFeatures::residual of its points
+  Eigen::Vector3d lambda = Eigen::Vector3d::Zero();      ///< covariance eigenvalues, ascending
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();     ///< eigenvector of λ3
+  Eigen::Vector3d principal = Eigen::Vector3d::UnitX();  ///< eigenvector of λ1
 };
 
 /// \brief Shape of every segment.

@@ -13,9 +13,9 @@ namespace segmentation {
 /// \brief Which merge conditions apply.
 enum class MergeRule
 {
-  None,                      ///< no merging
-  DistanceOnly,              ///< MRG / strategy ① (Chen et al.): contour distance < d_t
-  DistanceSimilarityVolume   ///< IMRG / strategy ②: distance, |R_i − R_j| < s_t, ΔV < V_t
+  None,                     ///< no merging
+  DistanceOnly,             ///< MRG / strategy ① (Chen et al.): contour distance < d_t
+  DistanceSimilarityVolume  ///< IMRG / strategy ②: distance, |R_i − R_j| < s_t, ΔV < V_t
 };
 
 /// \brief Merge settings; a negative threshold means "adaptive".
@@ -30,7 +30,7 @@ struct MergeSettings
   /// Volume per point [m³] for ΔV's denominator (see mergeSegments()); ≤ 0: spacing³ from the
   /// caller.
   double volume_floor = 0.0;
-  int threads = 0;                     ///< OpenMP threads for hulls and candidates (0: default)
+  int threads = 0;  ///< OpenMP threads for hulls and candidates (0: default)
 };
 
 /// \brief What mergeSegments() used and did.
@@ -42,8 +42,8 @@ struct MergeReport
   std::size_t segments_before = 0;
   std::size_t segments_after = 0;
   std::size_t merges = 0;
-  std::size_t distance_samples = 0;   ///< |D| fed to the snooping
-  std::size_t volume_samples = 0;     ///< |ΔV| fed to the snooping
+  std::size_t distance_samples = 0;  ///< |D| fed to the snooping
+  std::size_t volume_samples = 0;    ///< |ΔV| fed to the snooping
   /// Hulls of the segments before merging by kind (segment_hull.h): degenerate segments
   /// (tiny, collinear, flat) are decided before qhull runs, and qhull runs silently.
   std::size_t hulls_tiny = 0, hulls_collinear = 0, hulls_flat = 0, hulls_solid = 0;

@@ -38,9 +38,8 @@ namespace segmentation {
 ///         positive
 std::size_t
 returnTerrainPoints(const std::vector<Eigen::Vector3f>& points, const std::vector<char>& ground,
-                    const std::vector<int>& graph, int graph_k,
-                    const std::vector<ObjectClass>& object_class, double limit,
-                    double half_width, std::vector<int>& labels);
+                    const std::vector<int>& graph, int graph_k, const std::vector<ObjectClass>& object_class,
+                    double limit, double half_width, std::vector<int>& labels);
 
 }  // namespace segmentation
 }  // namespace pcl_ls3d

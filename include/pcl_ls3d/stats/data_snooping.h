@@ -26,12 +26,12 @@ normalCriticalValue(double alpha);
 /// \brief Settings of the 1-D backward elimination.
 struct DataSnoopingSettings
 {
-  double alpha = 0.001;          ///< significance α0 of each single w-test (two-sided)
-  double critical_value = 0.0;   ///< if > 0, used instead of normalCriticalValue(alpha)
+  double alpha = 0.001;         ///< significance α0 of each single w-test (two-sided)
+  double critical_value = 0.0;  ///< if > 0, used instead of normalCriticalValue(alpha)
   /// σ of one value. If > 0 it is taken as known (Baarda's w-test proper); otherwise σ is
   /// re-estimated from the values kept so far (sample σ, n − 1), which is Pope's τ-style test.
   double sigma_apriori = 0.0;
-  std::size_t min_kept = 3;      ///< never reduce the sample below this many values
+  std::size_t min_kept = 3;  ///< never reduce the sample below this many values
   /// Only test values above the mean (IMRG: gross distances / volume changes are large ones).
   /// The critical value stays the two-sided k of alpha (so the one-sided test has level α/2).
   bool one_sided_upper = false;
@@ -63,10 +63,10 @@ dataSnooping(const std::vector<double>& values, const DataSnoopingSettings& sett
 /// \brief One w-test round on adjustment residuals (the caller re-adjusts and calls again).
 struct BaardaTestResult
 {
-  std::vector<double> w;        ///< w_i = v_i / (σ0 √(r_i / p_i)); 0 where r_i ≤ min_redundancy
-  std::vector<bool> tested;     ///< false where r_i ≤ min_redundancy (uncontrolled observation)
-  long worst = -1;              ///< index of the largest |w_i| above k, −1 if none
-  double max_abs_w = 0.0;       ///< largest |w_i| among tested observations
+  std::vector<double> w;     ///< w_i = v_i / (σ0 √(r_i / p_i)); 0 where r_i ≤ min_redundancy
+  std::vector<bool> tested;  ///< false where r_i ≤ min_redundancy (uncontrolled observation)
+  long worst = -1;           ///< index of the largest |w_i| above k, −1 if none
+  double max_abs_w = 0.0;    ///< largest |w_i| among tested observations
 };
 
 /// \brief Baarda's w-test statistic for every residual (Baarda 1968: σ_vi = σ0 √(r_i/p_i)).
@@ -78,9 +78,8 @@ struct BaardaTestResult
 /// \param[in] min_redundancy observations with r_i at or below this are not tested
 /// \return empty result (worst = −1, w empty) if sizes disagree or sigma0 ≤ 0
 BaardaTestResult
-baardaTest(const std::vector<double>& v, const std::vector<double>& r,
-           const std::vector<double>& p, double sigma0, double critical_value,
-           double min_redundancy = 1e-6);
+baardaTest(const std::vector<double>& v, const std::vector<double>& r, const std::vector<double>& p,
+           double sigma0, double critical_value, double min_redundancy = 1e-6);
 
 }  // namespace stats
 }  // namespace pcl_ls3d

@@ -13,14 +13,14 @@ namespace stats {
 /// \brief Result of kMeans1D().
 struct KMeans1DResult
 {
-  bool valid = false;                ///< false for empty input or k == 0
-  std::vector<double> centres;       ///< ascending; fewer than k if the sample has fewer distinct values
-  std::vector<std::size_t> sizes;    ///< number of values per centre
-  std::vector<int> assignments;      ///< per input value: index into `centres`; −1 for NaN/inf input
-  double smallest_gap = 0.0;         ///< min centres[c+1] − centres[c]; NaN with fewer than 2 centres
-  double within_ss = 0.0;            ///< Σ (x − centre)² over assigned values
-  std::size_t iterations = 0;        ///< Lloyd iterations run
-  bool converged = false;            ///< assignments stopped changing before max_iterations
+  bool valid = false;              ///< false for empty input or k == 0
+  std::vector<double> centres;     ///< ascending; fewer than k if the sample has fewer distinct values
+  std::vector<std::size_t> sizes;  ///< number of values per centre
+  std::vector<int> assignments;    ///< per input value: index into `centres`; −1 for NaN/inf input
+  double smallest_gap = 0.0;       ///< min centres[c+1] − centres[c]; NaN with fewer than 2 centres
+  double within_ss = 0.0;          ///< Σ (x − centre)² over assigned values
+  std::size_t iterations = 0;      ///< Lloyd iterations run
+  bool converged = false;          ///< assignments stopped changing before max_iterations
 };
 
 /// \brief 1-D k-means. Seeds are the (c + ½)/k quantiles of the finite values (so the same

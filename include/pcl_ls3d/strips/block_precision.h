@@ -31,9 +31,8 @@ blockMiddleTerm(const std::vector<OverlapContribution>& contributions, const Eig
 /// overlaps), the last solve's Qxx, σ0 and a-priori weights (soft constraints on determinable
 /// parameters add σ0² p_e to M, as in the pair engine).
 Eigen::MatrixXd
-blockSandwichCovariance(const std::vector<OverlapContribution>& contributions,
-                        const Eigen::MatrixXd& qxx, double sigma0,
-                        const Eigen::VectorXd& apriori_weights,
+blockSandwichCovariance(const std::vector<OverlapContribution>& contributions, const Eigen::MatrixXd& qxx,
+                        double sigma0, const Eigen::VectorXd& apriori_weights,
                         const std::vector<bool>& determinable);
 
 }  // namespace strips

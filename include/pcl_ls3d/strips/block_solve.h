@@ -33,16 +33,21 @@ struct BlockIterationRecord
 /// \brief Where the adjustment stands between two stages.
 struct BlockState
 {
-  enum class Phase { ITERATE, EVALUATE, DONE };
+  enum class Phase
+  {
+    ITERATE,
+    EVALUATE,
+    DONE
+  };
   Phase phase = Phase::ITERATE;
-  int iteration = 0;                     ///< solves done
-  std::vector<Vector7d> values;          ///< per strip (tx, ty, tz, φ, ω, κ, m)
-  double sigma0 = 0.0;                   ///< of the last solve
-  double soft_sigma_obs = 0.0;           ///< σ_obs of the soft datum (fixed at iteration 1)
-  Eigen::MatrixXd qxx;                   ///< 7N × 7N of the last solve
-  std::vector<bool> fixed, determinable; ///< 7N flags of the last solve
+  int iteration = 0;                      ///< solves done
+  std::vector<Vector7d> values;           ///< per strip (tx, ty, tz, φ, ω, κ, m)
+  double sigma0 = 0.0;                    ///< of the last solve
+  double soft_sigma_obs = 0.0;            ///< σ_obs of the soft datum (fixed at iteration 1)
+  Eigen::MatrixXd qxx;                    ///< 7N × 7N of the last solve
+  std::vector<bool> fixed, determinable;  ///< 7N flags of the last solve
   long redundancy = 0;
-  std::size_t observations = 0;          ///< with weight > 0 in the last solve
+  std::size_t observations = 0;  ///< with weight > 0 in the last solve
   bool coarse = true, frozen = false;
   TerminationType termination = TerminationType::NOT_RUN;
   std::string message;

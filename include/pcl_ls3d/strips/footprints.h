@@ -66,13 +66,13 @@ private:
 /// \brief One pair of strips with common cells.
 struct Overlap
 {
-  int i = -1, j = -1;                 ///< strip indices, i < j
+  int i = -1, j = -1;  ///< strip indices, i < j
   std::size_t common_cells = 0;
-  double area = 0.0;                  ///< common_cells × cell² [unit²]
+  double area = 0.0;                       ///< common_cells × cell² [unit²]
   std::size_t points_i = 0, points_j = 0;  ///< points of each strip in the common cells
   bool used = true;
-  std::string skip_reason;            ///< why it is not used
-  std::vector<std::uint64_t> cells;   ///< the common cell ids (sorted)
+  std::string skip_reason;           ///< why it is not used
+  std::vector<std::uint64_t> cells;  ///< the common cell ids (sorted)
 };
 
 /// Pairs of strips with at least one common cell, ordered by (i, j); those below

@@ -32,11 +32,11 @@ struct PrecisionCell
 struct MatchInput
 {
   int iteration = 1;
-  bool coarse = false;       ///< observe about coarse_observations points per direction
-  bool frozen = false;       ///< correspondences frozen (the matchers' caches are reused as is)
-  double sigma0 = 0.0;       ///< σ0 of the previous solve (≤ 0 before the first)
+  bool coarse = false;                ///< observe about coarse_observations points per direction
+  bool frozen = false;                ///< correspondences frozen (the matchers' caches are reused as is)
+  double sigma0 = 0.0;                ///< σ0 of the previous solve (≤ 0 before the first)
   Matrix14d qxx = Matrix14d::Zero();  ///< Qxx block of (i, j) of the previous solve
-  bool scale_free = false;   ///< m is estimated (or tested): apply the errors-in-variables correction
+  bool scale_free = false;  ///< m is estimated (or tested): apply the errors-in-variables correction
 };
 
 /// \brief One direction's counts.
@@ -55,11 +55,11 @@ struct DirectionCounts
 /// \brief One overlap's contribution to one iteration.
 struct OverlapContribution
 {
-  int overlap = -1;              ///< index into the plan's overlap list
-  int i = -1, j = -1;            ///< strips
+  int overlap = -1;    ///< index into the plan's overlap list
+  int i = -1, j = -1;  ///< strips
   int iteration = 0;
-  double spacing = 0.0;          ///< thinning cell edge of the overlap's observations
-  PairNormalEquations normal;    ///< rows [a_i | a_j], both directions summed
+  double spacing = 0.0;        ///< thinning cell edge of the overlap's observations
+  PairNormalEquations normal;  ///< rows [a_i | a_j], both directions summed
   /// What noise in the conjugate surfaces' normals alone puts into normal.N: Σ p E[δa δaᵀ]
   /// with δa the change of a row under a normal tilted by its measured noise σ_u. On a flat
   /// overlap the horizontal parameters' information is no larger than this noise floor, so

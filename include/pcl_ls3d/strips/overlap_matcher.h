@@ -12,9 +12,9 @@
 /// pair engine (errors_in_variables.h) both are evaluated at the adjusted point, which moves
 /// a_s[m] by −c l and a_t[m] by +c l m_s / m_t.
 
+#include <pcl_ls3d/adjustment/errors_in_variables.h>
 #include <pcl_ls3d/adjustment/observation_weighting.h>
 #include <pcl_ls3d/adjustment/pair_matcher.h>
-#include <pcl_ls3d/adjustment/errors_in_variables.h>
 #include <pcl_ls3d/estimators/robust_estimator.h>
 #include <pcl_ls3d/strips/overlap_contribution.h>
 #include <pcl_ls3d/strips/overlap_selection.h>
@@ -34,8 +34,8 @@ public:
   /// `selection` must outlive the matcher. `noise_i`, `noise_j`: the strips' own noise σ
   /// (errors-in-variables; 0 = none).
   OverlapMatcher(const OverlapSelection& selection, const ConjugateRule& rule,
-                 const RobustEstimator& estimator, const StripAdjustmentSettings& settings,
-                 double noise_i, double noise_j);
+                 const RobustEstimator& estimator, const StripAdjustmentSettings& settings, double noise_i,
+                 double noise_j);
 
   /// Matches, weighs and accumulates one iteration at the poses of strips i and j.
   OverlapContribution
@@ -44,8 +44,7 @@ public:
   /// Final evaluation at the adjusted poses: the contribution with the precision cells of
   /// edge `cell` (block coordinates).
   OverlapContribution
-  evaluate(const ParameterBlock& block_i, const ParameterBlock& block_j, const MatchInput& in,
-           double cell);
+  evaluate(const ParameterBlock& block_i, const ParameterBlock& block_j, const MatchInput& in, double cell);
 
   /// The matchers' memory (forward, backward), for a distributed run.
   std::array<PairMatcher::State, 2>
@@ -58,8 +57,7 @@ private:
   static Matrix14d
   noiseFloor(const Direction& D, const ObservationSet& set, const Eigen::VectorXd& p);
   OverlapContribution
-  run(const ParameterBlock& block_i, const ParameterBlock& block_j, const MatchInput& in,
-      double cell);
+  run(const ParameterBlock& block_i, const ParameterBlock& block_j, const MatchInput& in, double cell);
 
   const StripAdjustmentSettings& settings_;
   const ConjugateRule& rule_;

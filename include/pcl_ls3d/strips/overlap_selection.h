@@ -29,11 +29,11 @@ namespace strips {
 /// \brief One direction: points of the source strip observed on the target strip's surface.
 struct DirectionSelection
 {
-  int source = -1, target = -1;                  ///< strip indices
-  std::vector<Eigen::Vector3d> points;           ///< observed points, source-local coordinates
-  std::vector<std::uint32_t> indices;            ///< their indices in the source strip
-  pcl::PointCloud<pcl::PointXYZ>::Ptr surface;   ///< target's stable points, target-local
-  std::size_t candidates = 0;                    ///< stable source points in the common cells
+  int source = -1, target = -1;                 ///< strip indices
+  std::vector<Eigen::Vector3d> points;          ///< observed points, source-local coordinates
+  std::vector<std::uint32_t> indices;           ///< their indices in the source strip
+  pcl::PointCloud<pcl::PointXYZ>::Ptr surface;  ///< target's stable points, target-local
+  std::size_t candidates = 0;                   ///< stable source points in the common cells
 };
 
 /// \brief Both directions of one overlap.

@@ -31,12 +31,12 @@ struct ExclusionCounts
 /// \brief A strip's points and attributes.
 struct Strip
 {
-  std::string name;                          ///< "psid706", or the input file's stem
-  int point_source_id = -1;                  ///< the LAS point-source id when split by it
+  std::string name;                                  ///< "psid706", or the input file's stem
+  int point_source_id = -1;                          ///< the LAS point-source id when split by it
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< o_k in block coordinates
-  std::vector<Eigen::Vector3f> points;       ///< local coordinates (block − o_k)
-  std::vector<std::uint8_t> classification;  ///< ASPRS class per point (0 when unknown)
-  std::vector<std::uint8_t> observable;      ///< 1: may be observed; 0: excluded (see counts)
+  std::vector<Eigen::Vector3f> points;               ///< local coordinates (block − o_k)
+  std::vector<std::uint8_t> classification;          ///< ASPRS class per point (0 when unknown)
+  std::vector<std::uint8_t> observable;              ///< 1: may be observed; 0: excluded (see counts)
   ExclusionCounts excluded;
 
   std::size_t

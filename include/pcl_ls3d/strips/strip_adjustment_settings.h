@@ -47,7 +47,7 @@ struct StripAdjustmentSettings
   // --- model -------------------------------------------------------------------------------------
   ParameterModel model = ParameterModel::RIGID_6;  ///< per strip: 7, 6, 3 or height only
   ConjugateRuleType rule = ConjugateRuleType::LND;
-  RobustEstimatorChoice estimator;                 ///< Zuo's 0/1 weight at 6 σ0 by default
+  RobustEstimatorChoice estimator;  ///< Zuo's 0/1 weight at 6 σ0 by default
   /// Conjugate points farther than this are none (also the reach of the overlap culling).
   double max_distance = 10.0;
 

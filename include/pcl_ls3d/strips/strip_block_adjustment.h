@@ -90,8 +90,7 @@ private:
 /// contributions (with precision cells) and the overlaps' samples (same order as the plan's
 /// overlaps; may be empty). Shared by the single-process and the distributed run.
 StripAdjustmentReport
-makeReport(const StripPlan& plan, const BlockState& state,
-           const std::vector<OverlapContribution>& final_pass,
+makeReport(const StripPlan& plan, const BlockState& state, const std::vector<OverlapContribution>& final_pass,
            const std::vector<OverlapSamples>& samples);
 
 /// The 4 × 4 matrix of a strip's correction in block coordinates (x' = o + t + mR(x − o)).

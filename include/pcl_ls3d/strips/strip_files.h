@@ -29,10 +29,10 @@ struct PlanFile
   std::string crs_wkt;
   std::size_t unassigned = 0;
   std::vector<std::string> load_notes;
-  std::string output_dir;   ///< corrected strips ("" = none)
+  std::string output_dir;  ///< corrected strips ("" = none)
   bool keep_files = false;
-  std::string json_path;    ///< report ("" = none)
-  std::string maps_dir;     ///< maps ("" = none)
+  std::string json_path;  ///< report ("" = none)
+  std::string maps_dir;   ///< maps ("" = none)
   double band_inner = 0.10, band_outer = 0.20;
   maps::MapFormat map_format = maps::MapFormat::PNG;  ///< of the drawn maps (GeoTIFFs besides)
 

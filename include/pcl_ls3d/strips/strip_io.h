@@ -23,8 +23,8 @@ namespace strips {
 struct StripSource
 {
   std::string name;
-  int point_source_id = -1;          ///< −1: all points of the files
-  std::vector<int> files;            ///< indices into the input list
+  int point_source_id = -1;                               ///< −1: all points of the files
+  std::vector<int> files;                                 ///< indices into the input list
   Eigen::Vector3d file_origin = Eigen::Vector3d::Zero();  ///< O + o_k, file coordinates
 };
 
@@ -32,8 +32,8 @@ struct StripSource
 struct InputFile
 {
   std::string path;
-  std::string format;                ///< "las", "pcd", "ply", "xyz"
-  std::string crs_wkt;               ///< declared (LAS VLRs, PCD header; empty when none)
+  std::string format;   ///< "las", "pcd", "ply", "xyz"
+  std::string crs_wkt;  ///< declared (LAS VLRs, PCD header; empty when none)
   std::size_t points = 0;
   std::map<int, std::size_t> point_sources;  ///< point-source id → points (LAS)
 };
@@ -63,16 +63,16 @@ struct LoadedStrips
   std::vector<StripSource> sources;  ///< one per strip
   std::vector<Strip> strips;
   Eigen::Vector3d block_origin = Eigen::Vector3d::Zero();  ///< file = block + this
-  std::size_t unassigned = 0;        ///< points with point-source id 0 (split only)
-  std::string crs_wkt;               ///< of the first input that declares one
+  std::size_t unassigned = 0;                              ///< points with point-source id 0 (split only)
+  std::string crs_wkt;                                     ///< of the first input that declares one
   std::vector<std::string> notes;
 };
 
 /// Reads the inputs and forms the strips. False with a one-line reason (unreadable or
 /// compressed file, a split that finds fewer than two flight lines, ...).
 bool
-loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& options,
-           LoadedStrips& out, std::string& error);
+loadStrips(const std::vector<std::string>& paths, const StripLoadOptions& options, LoadedStrips& out,
+           std::string& error);
 
 /// Reads one strip again for a distributed job, with the origins the plan chose (so its local
 /// coordinates equal those of the planning run bit for bit).

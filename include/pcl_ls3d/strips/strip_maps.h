@@ -18,12 +18,12 @@ namespace strips {
 /// \brief What to draw and how.
 struct StripMapSettings
 {
-  double inner = 0.10;         ///< tolerance class limits in metres (converted to the data's unit)
+  double inner = 0.10;  ///< tolerance class limits in metres (converted to the data's unit)
   double outer = 0.20;
-  double cell = 0.0;           ///< raster cell in data units; 0 = 2 × the overlap's observation spacing
-  std::string crs_wkt;         ///< written into the GeoTIFFs; its unit labels the maps
-  bool geotiff = true;         ///< the discrepancy rasters as GeoTIFF
-  bool pictures = true;        ///< the maps and histograms, drawn in `format`
+  double cell = 0.0;     ///< raster cell in data units; 0 = 2 × the overlap's observation spacing
+  std::string crs_wkt;   ///< written into the GeoTIFFs; its unit labels the maps
+  bool geotiff = true;   ///< the discrepancy rasters as GeoTIFF
+  bool pictures = true;  ///< the maps and histograms, drawn in `format`
   maps::MapFormat format = maps::MapFormat::PNG;
 };
 
@@ -32,8 +32,7 @@ struct StripMapSettings
 bool
 writeStripMaps(const StripAdjustmentReport& report, const StripPlan& plan,
                const std::vector<OverlapSamples>& samples, const std::string& dir,
-               const StripMapSettings& settings, std::vector<std::string>& written,
-               std::string& error);
+               const StripMapSettings& settings, std::vector<std::string>& written, std::string& error);
 
 }  // namespace strips
 }  // namespace pcl_ls3d

@@ -25,11 +25,11 @@ struct PlannedStrip
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< o_k, block coordinates
   std::size_t points = 0, observable = 0;
   ExclusionCounts excluded;
-  double density = 0.0;       ///< points per unit² over its footprint
-  double radius = 0.0;        ///< largest horizontal distance of a point from o_k
-  int part = -1;              ///< connected part of the overlap graph (−1: no overlap)
-  bool reference = false;     ///< fixed datum strip
-  bool classified = false;    ///< stable surfaces by class (else by roughness)
+  double density = 0.0;     ///< points per unit² over its footprint
+  double radius = 0.0;      ///< largest horizontal distance of a point from o_k
+  int part = -1;            ///< connected part of the overlap graph (−1: no overlap)
+  bool reference = false;   ///< fixed datum strip
+  bool classified = false;  ///< stable surfaces by class (else by roughness)
 };
 
 /// \brief The plan.
@@ -38,10 +38,10 @@ struct StripPlan
   StripAdjustmentSettings settings;
   Eigen::Vector3d block_origin = Eigen::Vector3d::Zero();  ///< file coordinates = block + this
   std::vector<PlannedStrip> strips;
-  maps::GridGeometry grid;              ///< footprint grid (block coordinates)
-  std::vector<Overlap> overlaps;        ///< all pairs with common cells (cells may be cleared)
-  double precision_cell = 0.0;          ///< edge of the spatial precision cells
-  std::vector<std::string> notes;       ///< datum choices and warnings, for the report
+  maps::GridGeometry grid;         ///< footprint grid (block coordinates)
+  std::vector<Overlap> overlaps;   ///< all pairs with common cells (cells may be cleared)
+  double precision_cell = 0.0;     ///< edge of the spatial precision cells
+  std::vector<std::string> notes;  ///< datum choices and warnings, for the report
 
   /// Indices of the used overlaps (the match jobs).
   std::vector<int>

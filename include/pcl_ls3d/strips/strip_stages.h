@@ -60,8 +60,7 @@ struct WorkDir
 /// Stage plan: reads the inputs, plans, writes plan.json and the initial state. `request`
 /// carries the settings, load options and output locations (its plan is filled here).
 bool
-stagePlan(const std::vector<std::string>& inputs, PlanFile request, const WorkDir& work,
-          std::string& error);
+stagePlan(const std::vector<std::string>& inputs, PlanFile request, const WorkDir& work, std::string& error);
 
 /// Stage match for job `job` (0 ≤ job < number of used overlaps) in the state's next pass.
 bool

@@ -14,7 +14,12 @@
 namespace pcl_ls3d {
 namespace synth {
 
-enum class RoofType : std::uint8_t { FLAT = 0, GABLE = 1, HIP = 2 };
+enum class RoofType : std::uint8_t
+{
+  FLAT = 0,
+  GABLE = 1,
+  HIP = 2
+};
 
 /// \brief Number of roof planes: 1 flat, 2 gable, 4 hip.
 int
@@ -28,11 +33,11 @@ roofPlaneCount(RoofType roof);
 struct Building
 {
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();  ///< footprint centre [m]
-  double length = 20.0;       ///< footprint extent along u (ridge direction) [m]
-  double width = 10.0;        ///< footprint extent along v [m]
-  double heading = 0.0;       ///< angle of u from +x [rad]
-  double eave_z = 0.0;        ///< absolute height of the eave (whole flat roof) [m]
-  double ridge_rise = 0.0;    ///< ridge above eave, gable and hip [m]
+  double length = 20.0;                              ///< footprint extent along u (ridge direction) [m]
+  double width = 10.0;                               ///< footprint extent along v [m]
+  double heading = 0.0;                              ///< angle of u from +x [rad]
+  double eave_z = 0.0;                               ///< absolute height of the eave (whole flat roof) [m]
+  double ridge_rise = 0.0;                           ///< ridge above eave, gable and hip [m]
   RoofType roof = RoofType::FLAT;
 
   /// (u, v) of a horizontal position.
@@ -60,7 +65,7 @@ struct Building
 /// \brief Placement settings for placeBuildings().
 struct BuildingSettings
 {
-  double per_hectare = 2.0;                   ///< expected buildings per 10 000 m²
+  double per_hectare = 2.0;                     ///< expected buildings per 10 000 m²
   double min_length = 10.0, max_length = 30.0;  ///< [m]
   double min_width = 8.0, max_width = 15.0;     ///< [m]
   double min_eave = 3.0, max_eave = 9.0;        ///< eave above the highest footprint terrain [m]
@@ -105,9 +110,7 @@ private:
 ///        settings.gap clearance; count = round(per_hectare · area / 1e4), fewer if the region is
 ///        full). Each eave is set above the highest terrain point of its footprint.
 std::vector<Building>
-placeBuildings(const Terrain& terrain,
-               const Eigen::AlignedBox2d& region,
-               const BuildingSettings& settings,
+placeBuildings(const Terrain& terrain, const Eigen::AlignedBox2d& region, const BuildingSettings& settings,
                std::uint32_t seed);
 
 /// \brief The true surface seen from above: roofs where there is a building, terrain elsewhere.
@@ -115,7 +118,7 @@ class SurfaceModel
 {
 public:
   SurfaceModel(Terrain terrain, BuildingSet buildings)
-  : terrain_(std::move(terrain)), buildings_(std::move(buildings))
+      : terrain_(std::move(terrain)), buildings_(std::move(buildings))
   {}
 
   /// Top surface height; `building` receives the building index or −1 for terrain.

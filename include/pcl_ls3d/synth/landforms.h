@@ -25,11 +25,11 @@ namespace synth {
 /// \brief Terraces and scarps on top of a Terrain (all off by default).
 struct LandformSettings
 {
-  double terrace_step = 0.0;        ///< height of one terrace [m]; 0 = no terraces
-  double terrace_riser = 0.3;       ///< share of each step taken by the riser, (0, 1]
-  int scarps = 0;                   ///< straight scarps through the region
+  double terrace_step = 0.0;                               ///< height of one terrace [m]; 0 = no terraces
+  double terrace_riser = 0.3;                              ///< share of each step taken by the riser, (0, 1]
+  int scarps = 0;                                          ///< straight scarps through the region
   double min_scarp_height = 4.0, max_scarp_height = 10.0;  ///< [m]
-  double scarp_width = 3.0;         ///< horizontal width of a scarp's face [m]
+  double scarp_width = 3.0;                                ///< horizontal width of a scarp's face [m]
 
   bool
   isValid(std::string* why = nullptr) const;
@@ -38,9 +38,9 @@ struct LandformSettings
 /// \brief One straight scarp.
 struct Scarp
 {
-  Eigen::Vector2d point = Eigen::Vector2d::Zero();   ///< on the middle of the face
-  Eigen::Vector2d normal = Eigen::Vector2d::UnitX(); ///< towards the raised side
-  double height = 0.0;                               ///< [m]
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();    ///< on the middle of the face
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitX();  ///< towards the raised side
+  double height = 0.0;                                ///< [m]
 };
 
 /// \brief The ground: terrain, terraces, scarps.

@@ -26,7 +26,12 @@
 namespace pcl_ls3d {
 namespace synth {
 
-enum class LandscapeType : std::uint8_t { ROLLING = 0, URBAN = 1, MOUNTAIN = 2 };
+enum class LandscapeType : std::uint8_t
+{
+  ROLLING = 0,
+  URBAN = 1,
+  MOUNTAIN = 2
+};
 
 /// "rolling", "urban", "mountain".
 const char*
@@ -40,10 +45,10 @@ struct LandscapeSettings
   double trees_per_hectare = 0.0;
   double min_crown_radius = 2.0, max_crown_radius = 5.0;  ///< [m]
   double min_tree_height = 6.0, max_tree_height = 15.0;   ///< top above the ground [m]
-  double penetration = 0.3;       ///< share of crown pulses that reach the ground
-  double road_spacing = 0.0;      ///< 0 = no roads [m]
-  double road_width = 12.0;       ///< [m]
-  double road_heading = 0.35;     ///< direction of the first road family from +x [rad]
+  double penetration = 0.3;                               ///< share of crown pulses that reach the ground
+  double road_spacing = 0.0;                              ///< 0 = no roads [m]
+  double road_width = 12.0;                               ///< [m]
+  double road_heading = 0.35;  ///< direction of the first road family from +x [rad]
 
   bool
   isValid(std::string* why = nullptr) const;
@@ -63,8 +68,7 @@ class Landscape
 public:
   /// Builds the scene over `region` (buildings from `buildings`, scarps and trees from `seed`).
   Landscape(const Terrain& terrain, const LandscapeSettings& settings, bool buildings,
-            const BuildingSettings& building_settings, const Eigen::AlignedBox2d& region,
-            std::uint32_t seed);
+            const BuildingSettings& building_settings, const Eigen::AlignedBox2d& region, std::uint32_t seed);
   ~Landscape();
 
   /// The return of a pulse from above at (x, y). Draws from `rng` only where a tree stands.

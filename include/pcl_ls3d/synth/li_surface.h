@@ -29,8 +29,17 @@ namespace pcl_ls3d {
 namespace synth {
 
 /// The nine deformation positions of Li et al. (2001).
-enum class DeformationPosition : int {
-  UPPER_LEFT = 0, UPPER, UPPER_RIGHT, LEFT, MIDDLE, RIGHT, LOWER_LEFT, LOWER, LOWER_RIGHT
+enum class DeformationPosition : int
+{
+  UPPER_LEFT = 0,
+  UPPER,
+  UPPER_RIGHT,
+  LEFT,
+  MIDDLE,
+  RIGHT,
+  LOWER_LEFT,
+  LOWER,
+  LOWER_RIGHT
 };
 
 /// "upper_left", "upper", ..., "lower_right".
@@ -50,18 +59,18 @@ defaultLiTruth();
 struct LiSurfaceSettings
 {
   std::uint32_t seed = 1;
-  int grid_size = 50;              ///< nodes per side
-  double spacing = 100.0;          ///< grid interval [units]
-  double relief = 5000.0;          ///< max − min height of S [units]
+  int grid_size = 50;      ///< nodes per side
+  double spacing = 100.0;  ///< grid interval [units]
+  double relief = 5000.0;  ///< max − min height of S [units]
   /// Terrain wavelength [units]. At 3000 a local quadric of 20 grid nodes interpolates the
   /// reference to well below σ (LHD residual scale 19.9 for σ = 20 without deformation); at
   /// 1500 its misfit adds about 22 units RMS, more than the noise itself.
   double wavelength = 3000.0;
-  double noise_sigma = 20.0;       ///< σ of the random errors N(0, σ)
+  double noise_sigma = 20.0;         ///< σ of the random errors N(0, σ)
   double deformation_percent = 9.0;  ///< share of deformed nodes [%], 0–100
-  double deformation_c = 10.0;     ///< deformation mean in units of σ: d ~ N(c·σ, σ)
+  double deformation_c = 10.0;       ///< deformation mean in units of σ: d ~ N(c·σ, σ)
   DeformationPosition position = DeformationPosition::UPPER_RIGHT;
-  bool noise_on_reference = false;  ///< also add N(0, σ) to S
+  bool noise_on_reference = false;               ///< also add N(0, σ) to S
   SimilarityTransform truth = defaultLiTruth();  ///< maps the mate onto the reference (m = 1: rigid)
 
   bool

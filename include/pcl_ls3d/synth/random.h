@@ -21,7 +21,8 @@ namespace synth {
 class Random
 {
 public:
-  explicit Random(std::uint32_t seed) : engine_(seed) {}
+  explicit Random(std::uint32_t seed) : engine_(seed)
+  {}
 
   /// Independent stream for (seed, stream id, block id), via std::seed_seq.
   Random(std::uint32_t seed, std::uint32_t stream, std::uint32_t block)
@@ -36,8 +37,7 @@ public:
   {
     const std::uint64_t a = engine_() >> 5;  // 27 bits
     const std::uint64_t b = engine_() >> 6;  // 26 bits
-    return (static_cast<double>(a) * 67108864.0 + static_cast<double>(b)) *
-           (1.0 / 9007199254740992.0);
+    return (static_cast<double>(a) * 67108864.0 + static_cast<double>(b)) * (1.0 / 9007199254740992.0);
   }
 
   /// Uniform in [lo, hi).

@@ -54,7 +54,7 @@ struct RegistrationPairSettings
   double relief = 10.0;                   ///< Terrain relief [m]
   double wavelength = 60.0;               ///< Terrain wavelength [m]
   BuildingSettings building_settings;     ///< density and sizes of the buildings
-  SimilarityTransform truth = defaultPairTruth();  ///< maps SOURCE into TARGET's frame (local)
+  SimilarityTransform truth = defaultPairTruth();    ///< maps SOURCE into TARGET's frame (local)
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< georeference offset of both clouds
 
   /// False (with a reason) for impossible values.
@@ -65,13 +65,13 @@ struct RegistrationPairSettings
 /// \brief The generated pair and its truth.
 struct RegistrationPair
 {
-  pcl::PointCloud<PointLiDAR>::Ptr source;  ///< local coordinates, source frame
-  pcl::PointCloud<PointLiDAR>::Ptr target;  ///< local coordinates, target (= true surface) frame
-  SimilarityTransform truth;                ///< source → target, local coordinates
+  pcl::PointCloud<PointLiDAR>::Ptr source;           ///< local coordinates, source frame
+  pcl::PointCloud<PointLiDAR>::Ptr target;           ///< local coordinates, target (= true surface) frame
+  SimilarityTransform truth;                         ///< source → target, local coordinates
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< global = local + origin
-  Eigen::AlignedBox2d source_footprint;     ///< in the target frame
-  Eigen::AlignedBox2d target_footprint;     ///< in the target frame
-  std::shared_ptr<const SurfaceModel> surface;  ///< the true surface (target frame)
+  Eigen::AlignedBox2d source_footprint;              ///< in the target frame
+  Eigen::AlignedBox2d target_footprint;              ///< in the target frame
+  std::shared_ptr<const SurfaceModel> surface;       ///< the true surface (target frame)
 
   /// Truth as a 4×4 matrix in written (global) coordinates.
   Eigen::Matrix4d

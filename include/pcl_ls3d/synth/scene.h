@@ -32,7 +32,16 @@
 namespace pcl_ls3d {
 namespace synth {
 
-enum class ObjectType : std::uint8_t { BUILDING = 0, TREE, SHRUB, CAR, TOWER, WIRE, GROUND };
+enum class ObjectType : std::uint8_t
+{
+  BUILDING = 0,
+  TREE,
+  SHRUB,
+  CAR,
+  TOWER,
+  WIRE,
+  GROUND
+};
 
 /// "building", "tree", "shrub", "car", "tower", "wire", "ground".
 const char*
@@ -41,21 +50,21 @@ toString(ObjectType t);
 /// \brief One generated object (local coordinates).
 struct SceneObject
 {
-  int id = 0;                        ///< index in LabelledScene::objects
+  int id = 0;  ///< index in LabelledScene::objects
   ObjectType type = ObjectType::BUILDING;
-  std::uint8_t classification = 0;   ///< class of its points (vegetation: dominant class)
+  std::uint8_t classification = 0;                     ///< class of its points (vegetation: dominant class)
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< footprint centre on the ground / wire start
   Eigen::Vector3d size = Eigen::Vector3d::Zero();      ///< extent (length, width, height) [m]
-  double heading = 0.0;              ///< orientation of the length axis [rad]
+  double heading = 0.0;                                ///< orientation of the length axis [rad]
   std::size_t point_count = 0;
 };
 
 /// \brief One roof plane of a generated building.
 struct RoofPlane
 {
-  int object = 0;                      ///< the building's index in LabelledScene::objects
+  int object = 0;  ///< the building's index in LabelledScene::objects
   RoofType roof = RoofType::FLAT;
-  int index = 0;                       ///< Building::roofPlane() of its points
+  int index = 0;  ///< Building::roofPlane() of its points
   std::size_t point_count = 0;
 };
 
@@ -63,24 +72,24 @@ struct RoofPlane
 struct SceneSettings
 {
   std::uint32_t seed = 1;
-  double size_x = 200.0, size_y = 200.0;  ///< extent, centred on the origin [m]
-  double density = 8.0;                   ///< pulses per m²
-  double noise_sigma = 0.03;              ///< isotropic noise per axis [m]
-  double relief = 6.0, wavelength = 80.0; ///< Terrain
+  double size_x = 200.0, size_y = 200.0;   ///< extent, centred on the origin [m]
+  double density = 8.0;                    ///< pulses per m²
+  double noise_sigma = 0.03;               ///< isotropic noise per axis [m]
+  double relief = 6.0, wavelength = 80.0;  ///< Terrain
   bool buildings = true;
   BuildingSettings building_settings = defaultSceneBuildings();
-  double wall_density_ratio = 0.1;        ///< wall points per m² relative to density (sparse walls)
+  double wall_density_ratio = 0.1;  ///< wall points per m² relative to density (sparse walls)
   double trees_per_hectare = 30.0;
   double shrubs_per_hectare = 30.0;
-  double low_max = 0.5, medium_max = 2.0; ///< vegetation class limits above ground [m]
+  double low_max = 0.5, medium_max = 2.0;  ///< vegetation class limits above ground [m]
   bool power_line = true;
-  int towers = 3;                         ///< along a line across the scene
-  int wires = 3;                          ///< conductors per span
-  double tower_height = 25.0;             ///< [m]
-  double wire_sag = 0.03;                 ///< sag / span length
-  double line_spacing = 0.3;              ///< point spacing along wires and tower members [m]
+  int towers = 3;              ///< along a line across the scene
+  int wires = 3;               ///< conductors per span
+  double tower_height = 25.0;  ///< [m]
+  double wire_sag = 0.03;      ///< sag / span length
+  double line_spacing = 0.3;   ///< point spacing along wires and tower members [m]
   double cars_per_hectare = 10.0;
-  std::uint8_t car_class = 64;            ///< user-definable class for cars
+  std::uint8_t car_class = 64;  ///< user-definable class for cars
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
 
   static BuildingSettings
@@ -102,9 +111,9 @@ struct LabelledScene
 {
   pcl::PointCloud<PointLiDAR>::Ptr cloud;
   std::vector<SceneObject> objects;
-  std::vector<int> object_id;  ///< per point: index in objects (the terrain is one GROUND object)
+  std::vector<int> object_id;     ///< per point: index in objects (the terrain is one GROUND object)
   std::vector<RoofPlane> planes;  ///< roof planes of all buildings
-  std::vector<int> plane_id;   ///< per point: index in planes for roof points, −1 otherwise
+  std::vector<int> plane_id;      ///< per point: index in planes for roof points, −1 otherwise
   std::shared_ptr<const SurfaceModel> surface;  ///< terrain + buildings
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
 

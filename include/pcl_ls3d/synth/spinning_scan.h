@@ -25,13 +25,13 @@ namespace synth {
 /// \brief Beam pattern and noise of the scanner (defaults: HDL-32E at 10 Hz).
 struct SpinningScannerSettings
 {
-  int beams = 32;                 ///< lasers, elevations evenly spread over the field of view
+  int beams = 32;  ///< lasers, elevations evenly spread over the field of view
   double elevation_min_deg = -30.67;
   double elevation_max_deg = 10.67;
-  int azimuth_steps = 2170;       ///< firings per revolution (0.166°)
-  double min_range = 1.0;         ///< [m]
-  double max_range = 80.0;        ///< [m]
-  double range_sigma = 0.02;      ///< [m], along the beam
+  int azimuth_steps = 2170;   ///< firings per revolution (0.166°)
+  double min_range = 1.0;     ///< [m]
+  double max_range = 80.0;    ///< [m]
+  double range_sigma = 0.02;  ///< [m], along the beam
   std::uint32_t seed = 1;
 };
 

@@ -46,29 +46,33 @@
 namespace pcl_ls3d {
 namespace synth {
 
-enum class ScanPattern : std::uint8_t { ZIGZAG = 0, PARALLEL = 1 };
+enum class ScanPattern : std::uint8_t
+{
+  ZIGZAG = 0,
+  PARALLEL = 1
+};
 
 /// \brief Settings of makeStripBlock().
 struct StripSettings
 {
   std::uint32_t seed = 1;
-  int num_strips = 3;              ///< parallel strips
-  int cross_strips = 0;            ///< strips across them (after the parallel ones)
-  double heading = 0.0;            ///< flight direction from +x [rad]
-  double strip_length = 600.0;     ///< [m]
-  double swath_width = 300.0;      ///< [m]
-  double side_overlap = 0.3;       ///< shared fraction of the swath between neighbours, [0, 1)
-  double density = 4.0;            ///< nominal points per m² within a strip
+  int num_strips = 3;           ///< parallel strips
+  int cross_strips = 0;         ///< strips across them (after the parallel ones)
+  double heading = 0.0;         ///< flight direction from +x [rad]
+  double strip_length = 600.0;  ///< [m]
+  double swath_width = 300.0;   ///< [m]
+  double side_overlap = 0.3;    ///< shared fraction of the swath between neighbours, [0, 1)
+  double density = 4.0;         ///< nominal points per m² within a strip
   ScanPattern pattern = ScanPattern::ZIGZAG;
-  double speed = 60.0;             ///< ground speed [m/s] (gps_time)
-  double start_time = 0.0;         ///< gps_time of the first point [s]
-  double turn_time = 120.0;        ///< time between strips [s]
-  double noise_sigma = 0.05;       ///< isotropic noise per axis [m]
-  double relief = 10.0;            ///< Terrain relief [m]
-  double wavelength = 60.0;        ///< Terrain wavelength [m]
+  double speed = 60.0;        ///< ground speed [m/s] (gps_time)
+  double start_time = 0.0;    ///< gps_time of the first point [s]
+  double turn_time = 120.0;   ///< time between strips [s]
+  double noise_sigma = 0.05;  ///< isotropic noise per axis [m]
+  double relief = 10.0;       ///< Terrain relief [m]
+  double wavelength = 60.0;   ///< Terrain wavelength [m]
   bool buildings = true;
   BuildingSettings building_settings;
-  LandscapeSettings landscape;     ///< trees, roads, terraces, scarps (ROLLING: none)
+  LandscapeSettings landscape;  ///< trees, roads, terraces, scarps (ROLLING: none)
   std::uint16_t first_source_id = 1;
   /// Strip 1 is the fixed reference (identity truth).
   bool fix_first = true;
@@ -111,13 +115,14 @@ setScene(StripSettings& settings, LandscapeType type);
 struct StripTruth
 {
   std::uint16_t point_source_id = 0;
-  bool cross = false;                 ///< a cross strip
-  bool fixed = false;                 ///< the reference strip (identity)
-  SimilarityTransform transform;      ///< observed → true, block-local frame (rotation about 0)
+  bool cross = false;             ///< a cross strip
+  bool fixed = false;             ///< the reference strip (identity)
+  SimilarityTransform transform;  ///< observed → true, block-local frame (rotation about 0)
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< strip centre c_s (true frame, z = 0)
   /// The same map written about the centre: x' = centre + t_centre + m R (x − centre).
   Eigen::Vector3d t_centre = Eigen::Vector3d::Zero();
-  std::array<Eigen::Vector2d, 4> footprint;  ///< true-frame corners (start-left, start-right, end-right, end-left)
+  std::array<Eigen::Vector2d, 4>
+      footprint;  ///< true-frame corners (start-left, start-right, end-right, end-left)
   std::size_t first_index = 0, point_count = 0;  ///< the strip's points in the block cloud
   std::size_t scan_lines = 0, points_per_line = 0;
   double start_time = 0.0, end_time = 0.0;  ///< [s]
@@ -129,10 +134,10 @@ struct StripBlock
   pcl::PointCloud<PointLiDAR>::Ptr cloud;
   std::vector<StripTruth> strips;
   Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-  std::shared_ptr<const SurfaceModel> surface;  ///< terrain + roofs (ROLLING: the true surface)
-  std::shared_ptr<const Landscape> landscape;   ///< the true scene
+  std::shared_ptr<const SurfaceModel> surface;           ///< terrain + roofs (ROLLING: the true surface)
+  std::shared_ptr<const Landscape> landscape;            ///< the true scene
   Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  ///< d
-  double strip_spacing = 0.0;                   ///< distance between neighbouring centre lines [m]
+  double strip_spacing = 0.0;                            ///< distance between neighbouring centre lines [m]
 
   /// The points of strip s (copy).
   pcl::PointCloud<PointLiDAR>::Ptr

@@ -58,9 +58,9 @@ public:
 private:
   struct Wave
   {
-    double kx, ky;      ///< 2π d / λ [rad/m]
-    double amplitude;   ///< [m]
-    double phase;       ///< [rad]
+    double kx, ky;     ///< 2π d / λ [rad/m]
+    double amplitude;  ///< [m]
+    double phase;      ///< [rad]
   };
   std::vector<Wave> waves_;
   std::uint32_t seed_;

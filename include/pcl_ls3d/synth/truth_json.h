@@ -41,8 +41,7 @@ truthJson(const LabelledScene& scene, const SceneSettings& settings);
 
 /// Writes text to a file; refuses an existing file unless overwrite. False + reason on failure.
 bool
-writeTextFile(const std::string& path, const std::string& text, bool overwrite,
-              std::string& error);
+writeTextFile(const std::string& path, const std::string& text, bool overwrite, std::string& error);
 
 }  // namespace synth
 }  // namespace pcl_ls3d

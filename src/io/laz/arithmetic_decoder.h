@@ -19,7 +19,10 @@ class ArithmeticDecoder
 {
 public:
   ArithmeticDecoder() = default;
-  ArithmeticDecoder(const std::uint8_t* begin, const std::uint8_t* end) { start(begin, end); }
+  ArithmeticDecoder(const std::uint8_t* begin, const std::uint8_t* end)
+  {
+    start(begin, end);
+  }
 
   /// Starts decoding the range: reads the first four bytes into the interval's value.
   void

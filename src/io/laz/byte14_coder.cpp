@@ -37,9 +37,8 @@ class Byte14Decoder final : public LayeredItemDecoder
 {
 public:
   Byte14Decoder(std::size_t count, ContextSwitch rule)
-    : count_(count), rule_(rule), dec_(count), present_(count, 0)
-  {
-  }
+      : count_(count), rule_(rule), dec_(count), present_(count, 0)
+  {}
 
   std::size_t
   layerCount() const override
@@ -64,10 +63,9 @@ public:
   void
   decode(std::uint8_t* item, unsigned& channel) override
   {
-    std::uint8_t* last = switchChannel(contexts_, current_, channel, rule_,
-                                       [this](Byte14Context& c, const std::uint8_t* from) {
-                                         startContext(c, from, count_);
-                                       });
+    std::uint8_t* last =
+        switchChannel(contexts_, current_, channel, rule_,
+                      [this](Byte14Context& c, const std::uint8_t* from) { startContext(c, from, count_); });
     Byte14Context& c = contexts_[current_];
     for (std::size_t i = 0; i < count_; ++i) {
       if (present_[i])
@@ -100,9 +98,8 @@ class Byte14Encoder final : public LayeredItemEncoder
 {
 public:
   Byte14Encoder(std::size_t count, ContextSwitch rule)
-    : count_(count), rule_(rule), enc_(count), changed_(count, 0)
-  {
-  }
+      : count_(count), rule_(rule), enc_(count), changed_(count, 0)
+  {}
 
   std::size_t
   layerCount() const override
@@ -125,10 +122,9 @@ public:
   void
   encode(const std::uint8_t* item, unsigned& channel) override
   {
-    std::uint8_t* last = switchChannel(contexts_, current_, channel, rule_,
-                                       [this](Byte14Context& c, const std::uint8_t* from) {
-                                         startContext(c, from, count_);
-                                       });
+    std::uint8_t* last =
+        switchChannel(contexts_, current_, channel, rule_,
+                      [this](Byte14Context& c, const std::uint8_t* from) { startContext(c, from, count_); });
     Byte14Context& c = contexts_[current_];
     for (std::size_t i = 0; i < count_; ++i) {
       enc_[i].encodeSymbol(c.models[i], static_cast<std::uint8_t>(item[i] - last[i]));

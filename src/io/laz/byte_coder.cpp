@@ -18,7 +18,8 @@ namespace {
 class ByteCoderV1 final : public PointwiseItemCoder
 {
 public:
-  explicit ByteCoderV1(std::size_t n) : last_(n), ic_(8, static_cast<std::uint32_t>(n)) {}
+  explicit ByteCoderV1(std::size_t n) : last_(n), ic_(8, static_cast<std::uint32_t>(n))
+  {}
 
   void
   init(const std::uint8_t* first) override
@@ -52,7 +53,8 @@ private:
 class ByteCoderV2 final : public PointwiseItemCoder
 {
 public:
-  explicit ByteCoderV2(std::size_t n) : last_(n), models_(n, SymbolModel(256)) {}
+  explicit ByteCoderV2(std::size_t n) : last_(n), models_(n, SymbolModel(256))
+  {}
 
   void
   init(const std::uint8_t* first) override

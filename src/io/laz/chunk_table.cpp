@@ -23,8 +23,8 @@ readChunkTable(const std::uint8_t* data, std::size_t size, std::uint64_t offset,
 {
   table = ChunkTable();
   if (offset > size || size - offset < kTableHead) {
-    error = "the chunk table offset " + std::to_string(offset) + " lies outside the " +
-            std::to_string(size) + "-byte file";
+    error = "the chunk table offset " + std::to_string(offset) + " lies outside the " + std::to_string(size) +
+            "-byte file";
     return false;
   }
   const std::uint8_t* p = data + offset;
@@ -49,12 +49,13 @@ readChunkTable(const std::uint8_t* data, std::size_t size, std::uint64_t offset,
   std::uint32_t points = 0, bytes = 0;
   for (std::uint32_t i = 0; i < count; ++i) {
     if (variable)
-      table.points[i] = points = static_cast<std::uint32_t>(ic.decompress(dec, static_cast<std::int32_t>(points), 0));
+      table.points[i] = points =
+          static_cast<std::uint32_t>(ic.decompress(dec, static_cast<std::int32_t>(points), 0));
     bytes = static_cast<std::uint32_t>(ic.decompress(dec, static_cast<std::int32_t>(bytes), 1));
     table.bytes[i] = bytes;
     if (dec.overrun() != 0) {
-      error = "the chunk table is truncated after " + std::to_string(i) + " of " +
-              std::to_string(count) + " chunks";
+      error = "the chunk table is truncated after " + std::to_string(i) + " of " + std::to_string(count) +
+              " chunks";
       return false;
     }
   }

@@ -44,11 +44,9 @@ struct PageRef
 };
 
 bool
-checkPage(const PageRef& page, std::size_t file_size, std::set<std::uint64_t>& seen,
-          std::string& error)
+checkPage(const PageRef& page, std::size_t file_size, std::set<std::uint64_t>& seen, std::string& error)
 {
-  if (page.size % kEntryBytes != 0 || page.offset > file_size ||
-      page.size > file_size - page.offset) {
+  if (page.size % kEntryBytes != 0 || page.offset > file_size || page.size > file_size - page.offset) {
     error = "COPC hierarchy page at byte " + std::to_string(page.offset) + " of " +
             std::to_string(page.size) + " bytes lies outside the file or is not whole entries";
     return false;
@@ -63,15 +61,14 @@ checkPage(const PageRef& page, std::size_t file_size, std::set<std::uint64_t>& s
 
 /// Reads one page's entries: data nodes go to `nodes`, child pages to `pending`.
 bool
-readPage(const std::uint8_t* file, std::size_t file_size, const PageRef& page,
-         std::vector<CopcNode>& nodes, std::vector<PageRef>& pending, std::uint64_t& points,
-         std::string& error)
+readPage(const std::uint8_t* file, std::size_t file_size, const PageRef& page, std::vector<CopcNode>& nodes,
+         std::vector<PageRef>& pending, std::uint64_t& points, std::string& error)
 {
   for (std::uint64_t e = 0; e < page.size / kEntryBytes; ++e) {
     const std::uint8_t* p = file + page.offset + e * kEntryBytes;
     CopcNode node;
-    node.key = {las::get<std::int32_t>(p), las::get<std::int32_t>(p + 4),
-                las::get<std::int32_t>(p + 8), las::get<std::int32_t>(p + 12)};
+    node.key = {las::get<std::int32_t>(p), las::get<std::int32_t>(p + 4), las::get<std::int32_t>(p + 8),
+                las::get<std::int32_t>(p + 12)};
     node.offset = las::get<std::uint64_t>(p + 16);
     const std::int32_t byte_size = las::get<std::int32_t>(p + 24);
     const std::int32_t count = las::get<std::int32_t>(p + 28);
@@ -126,8 +123,7 @@ parseCopcInfo(const std::uint8_t* data, std::size_t size, CopcInfo& info, std::s
 
 bool
 readCopcHierarchy(const std::uint8_t* file, std::size_t file_size, const CopcInfo& info,
-                  std::uint64_t file_point_count, std::vector<CopcNode>& nodes,
-                  std::string& error)
+                  std::uint64_t file_point_count, std::vector<CopcNode>& nodes, std::string& error)
 {
   nodes.clear();
   std::set<std::uint64_t> seen;
@@ -140,8 +136,7 @@ readCopcHierarchy(const std::uint8_t* file, std::size_t file_size, const CopcInf
         !readPage(file, file_size, page, nodes, pending, points, error))
       return false;
     if (points > file_point_count) {
-      error = "the COPC hierarchy holds more points than the header's " +
-              std::to_string(file_point_count);
+      error = "the COPC hierarchy holds more points than the header's " + std::to_string(file_point_count);
       return false;
     }
   }
@@ -155,8 +150,8 @@ Eigen::AlignedBox3d
 nodeBounds(const CopcInfo& info, const VoxelKey& key)
 {
   const double edge = 2.0 * info.halfsize / std::ldexp(1.0, key.level);
-  const Eigen::Vector3d lo = info.center - Eigen::Vector3d::Constant(info.halfsize) +
-                             edge * Eigen::Vector3d(key.x, key.y, key.z);
+  const Eigen::Vector3d lo =
+      info.center - Eigen::Vector3d::Constant(info.halfsize) + edge * Eigen::Vector3d(key.x, key.y, key.z);
   return Eigen::AlignedBox3d(lo, lo + Eigen::Vector3d::Constant(edge));
 }
 

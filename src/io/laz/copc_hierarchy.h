@@ -37,8 +37,8 @@ struct VoxelKey
 struct CopcNode
 {
   VoxelKey key;
-  std::uint64_t offset = 0;      ///< absolute file offset of the chunk
-  std::uint32_t byte_size = 0;   ///< bytes of the chunk
+  std::uint64_t offset = 0;     ///< absolute file offset of the chunk
+  std::uint32_t byte_size = 0;  ///< bytes of the chunk
   std::uint32_t point_count = 0;
 };
 
@@ -52,8 +52,7 @@ parseCopcInfo(const std::uint8_t* data, std::size_t size, CopcInfo& info, std::s
 /// must not add up to more than `file_point_count`. False with a one-line reason.
 bool
 readCopcHierarchy(const std::uint8_t* file, std::size_t file_size, const CopcInfo& info,
-                  std::uint64_t file_point_count, std::vector<CopcNode>& nodes,
-                  std::string& error);
+                  std::uint64_t file_point_count, std::vector<CopcNode>& nodes, std::string& error);
 
 /// The cube of a key, in file coordinates.
 Eigen::AlignedBox3d

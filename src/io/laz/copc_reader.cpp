@@ -97,9 +97,8 @@ threadIndex()
 
 /// Decodes node `n` into `buffer` and appends the records `keep` accepts to `part`.
 bool
-decodeNode(const std::uint8_t* data, const CopcNode& n, std::size_t record_length,
-           ChunkDecoder& decoder, RecordBuffer& buffer, const RecordTest& keep,
-           std::vector<std::uint8_t>& part, std::string& error)
+decodeNode(const std::uint8_t* data, const CopcNode& n, std::size_t record_length, ChunkDecoder& decoder,
+           RecordBuffer& buffer, const RecordTest& keep, std::vector<std::uint8_t>& part, std::string& error)
 {
   if (n.point_count > kMaxPointsPerByte * n.byte_size) {
     error = nodeName(n) + " claims " + std::to_string(n.point_count) + " points in " +
@@ -119,8 +118,8 @@ decodeNode(const std::uint8_t* data, const CopcNode& n, std::size_t record_lengt
     return false;
   }
   if (used != n.byte_size) {
-    error = nodeName(n) + ": its points take " + std::to_string(used) +
-            " bytes, the hierarchy says " + std::to_string(n.byte_size) + " (corrupt node)";
+    error = nodeName(n) + ": its points take " + std::to_string(used) + " bytes, the hierarchy says " +
+            std::to_string(n.byte_size) + " (corrupt node)";
     return false;
   }
   for (std::size_t j = 0; j < n.point_count; ++j) {
@@ -169,15 +168,15 @@ summariseCopc(const CopcFile& copc)
 }
 
 bool
-readCopcNodes(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
-              const CopcFile& copc, const CopcQuery& query, const RecordTest& keep,
-              std::vector<std::vector<std::uint8_t>>& parts, RegionInfo& read, std::string& error)
+readCopcNodes(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h, const CopcFile& copc,
+              const CopcQuery& query, const RecordTest& keep, std::vector<std::vector<std::uint8_t>>& parts,
+              RegionInfo& read, std::string& error)
 {
   (void)size;  // every node was checked against the file by openCopc()
   const LasVlr* found = findVlr(h.vlrs, "laszip encoded", 22204);
   LaszipVlr vlr;
-  if (!found || !parseLaszipVlr(found->data.data(), found->data.size(), h.point_format,
-                                h.record_length, vlr, error))
+  if (!found ||
+      !parseLaszipVlr(found->data.data(), found->data.size(), h.point_format, h.record_length, vlr, error))
     return (error = found ? error : "the COPC file has no LASzip VLR"), false;
   const std::vector<std::size_t> selected = selectNodes(copc.nodes, copc.info, query);
   read.copc = true;

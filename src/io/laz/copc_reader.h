@@ -48,9 +48,9 @@ using RecordTest = std::function<bool(const std::uint8_t* record)>;
 /// kept records of the k-th node read, in file order. `read` counts the nodes and points
 /// decoded. False with a one-line reason naming the node when one does not decode.
 bool
-readCopcNodes(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
-              const CopcFile& copc, const CopcQuery& query, const RecordTest& keep,
-              std::vector<std::vector<std::uint8_t>>& parts, RegionInfo& read, std::string& error);
+readCopcNodes(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h, const CopcFile& copc,
+              const CopcQuery& query, const RecordTest& keep, std::vector<std::vector<std::uint8_t>>& parts,
+              RegionInfo& read, std::string& error);
 
 }  // namespace laz
 }  // namespace io

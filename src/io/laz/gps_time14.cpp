@@ -36,8 +36,7 @@ difference(std::uint64_t a, std::uint64_t b)
 std::int32_t
 scaled(std::int32_t multi, std::int32_t diff)
 {
-  return static_cast<std::int32_t>(static_cast<std::uint32_t>(multi) *
-                                   static_cast<std::uint32_t>(diff));
+  return static_cast<std::int32_t>(static_cast<std::uint32_t>(multi) * static_cast<std::uint32_t>(diff));
 }
 
 /// LASzip's multiplier: the single-precision ratio, rounded half away from zero (in double).
@@ -55,7 +54,8 @@ quantizeMultiplier(std::int32_t diff, std::int32_t last_diff)
 
 }  // namespace
 
-GpsTime14::GpsTime14() : multi_(kMultiSymbols), zero_diff_(kZeroDiffSymbols), ic_(32, 9) {}
+GpsTime14::GpsTime14() : multi_(kMultiSymbols), zero_diff_(kZeroDiffSymbols), ic_(32, 9)
+{}
 
 void
 GpsTime14::start(std::uint64_t first)
@@ -87,8 +87,8 @@ GpsTime14::decode(ArithmeticDecoder& dec)
   // bounded instead of following them recursively.
   for (int hop = 0; hop < 4; ++hop) {
     bool switched = false;
-    const std::uint64_t t = diff_[last_] == 0 ? decodeFromZeroDifference(dec, switched)
-                                              : decodeFromMultiplier(dec, switched);
+    const std::uint64_t t =
+        diff_[last_] == 0 ? decodeFromZeroDifference(dec, switched) : decodeFromMultiplier(dec, switched);
     if (!switched)
       return t;
   }
@@ -159,8 +159,8 @@ GpsTime14::decodeScaledDifference(ArithmeticDecoder& dec, std::int32_t sym)
 void
 GpsTime14::decodeNewSequence(ArithmeticDecoder& dec)
 {
-  const auto high = static_cast<std::uint32_t>(
-      ic_.decompress(dec, static_cast<std::int32_t>(time_[last_] >> 32), 8));
+  const auto high =
+      static_cast<std::uint32_t>(ic_.decompress(dec, static_cast<std::int32_t>(time_[last_] >> 32), 8));
   const std::uint32_t low = dec.readInt();
   next_ = (next_ + 1) & 3;
   time_[next_] = (static_cast<std::uint64_t>(high) << 32) | low;
@@ -176,8 +176,8 @@ GpsTime14::encode(ArithmeticEncoder& enc, std::uint64_t time)
 {
   // After a switch the time is within 32 bits of the chosen sequence, so the second pass codes it.
   for (int pass = 0; pass < 2; ++pass) {
-    const bool coded = diff_[last_] == 0 ? encodeWithZeroDifference(enc, time)
-                                         : encodeWithMultiplier(enc, time);
+    const bool coded =
+        diff_[last_] == 0 ? encodeWithZeroDifference(enc, time) : encodeWithMultiplier(enc, time);
     if (coded)
       break;
   }
@@ -265,8 +265,7 @@ GpsTime14::encodeScaledDifference(ArithmeticEncoder& enc, std::int32_t diff)
 void
 GpsTime14::encodeNewSequence(ArithmeticEncoder& enc, std::uint64_t time)
 {
-  ic_.compress(enc, static_cast<std::int32_t>(time_[last_] >> 32),
-               static_cast<std::int32_t>(time >> 32), 8);
+  ic_.compress(enc, static_cast<std::int32_t>(time_[last_] >> 32), static_cast<std::int32_t>(time >> 32), 8);
   enc.writeInt(static_cast<std::uint32_t>(time));
   next_ = (next_ + 1) & 3;
   last_ = next_;

@@ -61,8 +61,7 @@ private:
 };
 
 void
-GpsTime11CoderV1::predictionFor(std::int32_t multi, std::int32_t& pred,
-                                std::uint32_t& context) const
+GpsTime11CoderV1::predictionFor(std::int32_t multi, std::int32_t& pred, std::uint32_t& context) const
 {
   if (multi == 1) {
     pred = diff_;

@@ -19,11 +19,11 @@ namespace laz {
 namespace {
 
 // Symbols of the multiplier model (after a non-zero difference).
-constexpr std::int32_t kMultiMax = 500;     // multipliers 1..499 coded as such, 500 = at least 500
-constexpr std::int32_t kMultiMinus = -10;   // -1..-9 coded as 501..509, 510 = -10 or less
-constexpr std::uint32_t kUnchanged = kMultiMax - kMultiMinus + 1;    // 511
-constexpr std::uint32_t kFullTime = kMultiMax - kMultiMinus + 2;     // 512; 513..515 switch
-constexpr std::uint32_t kMultiSymbols = kMultiMax - kMultiMinus + 6; // 516
+constexpr std::int32_t kMultiMax = 500;    // multipliers 1..499 coded as such, 500 = at least 500
+constexpr std::int32_t kMultiMinus = -10;  // -1..-9 coded as 501..509, 510 = -10 or less
+constexpr std::uint32_t kUnchanged = kMultiMax - kMultiMinus + 1;     // 511
+constexpr std::uint32_t kFullTime = kMultiMax - kMultiMinus + 2;      // 512; 513..515 switch
+constexpr std::uint32_t kMultiSymbols = kMultiMax - kMultiMinus + 6;  // 516
 // Symbols of the model after a zero difference: 0 unchanged, 1 a 32-bit difference, 2 a full
 // time, 3..5 switch to sequence last + 1..3.
 constexpr std::uint32_t kZeroDiffSymbols = 6;

@@ -9,9 +9,9 @@ namespace pcl_ls3d {
 namespace io {
 namespace laz {
 
-IntegerCompressor::IntegerCompressor(std::uint32_t bits, std::uint32_t contexts,
-                                     std::uint32_t bits_high, std::uint32_t range)
-  : contexts_(contexts), bits_high_(bits_high)
+IntegerCompressor::IntegerCompressor(std::uint32_t bits, std::uint32_t contexts, std::uint32_t bits_high,
+                                     std::uint32_t range)
+    : contexts_(contexts), bits_high_(bits_high)
 {
   if (range != 0) {
     corr_range_ = range;

@@ -28,32 +28,32 @@ itemSupported(const Item& item, bool layered, std::string& why)
 {
   std::ostringstream s;
   switch (item.type) {
-    case ItemType::Point10:
-    case ItemType::GpsTime11:
-    case ItemType::Rgb12:
-    case ItemType::Byte:
-      if (layered || item.version < 1 || item.version > 2)
-        break;
-      return true;
-    case ItemType::Point14:
-    case ItemType::Rgb14:
-    case ItemType::RgbNir14:
-    case ItemType::Byte14:
-      if (!layered || item.version < 3 || item.version > 4)
-        break;
-      return true;
-    case ItemType::Wavepacket13:
-    case ItemType::Wavepacket14:
-      why = "waveform packets (point formats 4, 5, 9, 10) are not supported in LAZ";
-      return false;
-    default:
-      s << "the LASzip VLR names item type " << static_cast<int>(item.type)
-        << ", which no LASzip writer uses for point records";
-      why = s.str();
-      return false;
+  case ItemType::Point10:
+  case ItemType::GpsTime11:
+  case ItemType::Rgb12:
+  case ItemType::Byte:
+    if (layered || item.version < 1 || item.version > 2)
+      break;
+    return true;
+  case ItemType::Point14:
+  case ItemType::Rgb14:
+  case ItemType::RgbNir14:
+  case ItemType::Byte14:
+    if (!layered || item.version < 3 || item.version > 4)
+      break;
+    return true;
+  case ItemType::Wavepacket13:
+  case ItemType::Wavepacket14:
+    why = "waveform packets (point formats 4, 5, 9, 10) are not supported in LAZ";
+    return false;
+  default:
+    s << "the LASzip VLR names item type " << static_cast<int>(item.type)
+      << ", which no LASzip writer uses for point records";
+    why = s.str();
+    return false;
   }
-  s << "the LASzip VLR names item type " << static_cast<int>(item.type) << " version "
-    << item.version << ", which this decoder does not implement for "
+  s << "the LASzip VLR names item type " << static_cast<int>(item.type) << " version " << item.version
+    << ", which this decoder does not implement for "
     << (layered ? "point formats 6-10" : "point formats 0-5");
   why = s.str();
   return false;
@@ -71,8 +71,8 @@ LaszipVlr::recordLength() const
 }
 
 bool
-parseLaszipVlr(const std::uint8_t* data, std::size_t size, int point_format,
-               std::size_t record_length, LaszipVlr& vlr, std::string& error)
+parseLaszipVlr(const std::uint8_t* data, std::size_t size, int point_format, std::size_t record_length,
+               LaszipVlr& vlr, std::string& error)
 {
   if (size < kVlrFixedBytes) {
     error = "the LASzip VLR is " + std::to_string(size) + " bytes, shorter than its 34-byte head";
@@ -102,8 +102,8 @@ parseLaszipVlr(const std::uint8_t* data, std::size_t size, int point_format,
     return false;
   }
   if ((vlr.compressor == Compressor::LayeredChunked) != layered) {
-    error = "the LASzip VLR's compressor " + std::to_string(compressor) +
-            " does not fit point format " + std::to_string(point_format);
+    error = "the LASzip VLR's compressor " + std::to_string(compressor) + " does not fit point format " +
+            std::to_string(point_format);
     return false;
   }
   if (vlr.coder != 0) {
@@ -123,8 +123,8 @@ parseLaszipVlr(const std::uint8_t* data, std::size_t size, int point_format,
     vlr.items.push_back(item);
   }
   if (vlr.items.empty() || vlr.recordLength() != record_length) {
-    error = "the LASzip VLR's items cover " + std::to_string(vlr.recordLength()) +
-            " bytes of a " + std::to_string(record_length) + "-byte point record";
+    error = "the LASzip VLR's items cover " + std::to_string(vlr.recordLength()) + " bytes of a " +
+            std::to_string(record_length) + "-byte point record";
     return false;
   }
   return true;

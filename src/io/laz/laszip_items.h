@@ -74,8 +74,8 @@ struct LaszipVlr
 /// (known compressor, coder 0, item types and versions this decoder implements, item sizes that
 /// add up to the record). False with a one-line reason naming what is wrong.
 bool
-parseLaszipVlr(const std::uint8_t* data, std::size_t size, int point_format,
-               std::size_t record_length, LaszipVlr& vlr, std::string& error);
+parseLaszipVlr(const std::uint8_t* data, std::size_t size, int point_format, std::size_t record_length,
+               LaszipVlr& vlr, std::string& error);
 
 /// The VLR payload for `vlr` (34 + 6 · items bytes).
 std::vector<std::uint8_t>
@@ -97,8 +97,8 @@ public:
   /// walked), or 0 with a one-line reason when the chunk is corrupt or runs past `end`. The
   /// models are reset at the start of every call.
   virtual std::size_t
-  decode(const std::uint8_t* begin, const std::uint8_t* end, std::size_t count,
-         std::uint8_t* out, std::string& error) = 0;
+  decode(const std::uint8_t* begin, const std::uint8_t* end, std::size_t count, std::uint8_t* out,
+         std::string& error) = 0;
 };
 
 /// \brief Encodes the point records of one chunk.

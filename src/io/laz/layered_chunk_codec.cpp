@@ -74,7 +74,7 @@ class LayeredChunkDecoder final : public ChunkDecoder
 {
 public:
   explicit LayeredChunkDecoder(const LaszipVlr& vlr)
-    : slots_(slotsOf(vlr)), record_length_(vlr.recordLength())
+      : slots_(slotsOf(vlr)), record_length_(vlr.recordLength())
   {
     for (const Item& item : vlr.items) {
       if (item.type == ItemType::Point14)
@@ -129,8 +129,7 @@ private:
   /// Points layers_ at the layer bytes that follow the size table; false when they do not all
   /// fit before `end`.
   bool
-  mapLayers(const std::uint8_t* table, const std::uint8_t* data, const std::uint8_t* end,
-            std::size_t& total)
+  mapLayers(const std::uint8_t* table, const std::uint8_t* data, const std::uint8_t* end, std::size_t& total)
   {
     const auto room = static_cast<std::size_t>(end - data);
     total = 0;
@@ -173,7 +172,7 @@ class LayeredChunkEncoder final : public ChunkEncoder
 {
 public:
   explicit LayeredChunkEncoder(const LaszipVlr& vlr)
-    : slots_(slotsOf(vlr)), record_length_(vlr.recordLength())
+      : slots_(slotsOf(vlr)), record_length_(vlr.recordLength())
   {
     for (const Item& item : vlr.items) {
       if (item.type == ItemType::Point14)
@@ -194,9 +193,9 @@ public:
       return;
     encodeRecords(records, count);
     const std::size_t at = out.size();
-    const std::size_t bytes = std::accumulate(
-        layers_.begin(), layers_.end(), std::size_t(0),
-        [](std::size_t n, const std::vector<std::uint8_t>& l) { return n + l.size(); });
+    const std::size_t bytes =
+        std::accumulate(layers_.begin(), layers_.end(), std::size_t(0),
+                        [](std::size_t n, const std::vector<std::uint8_t>& l) { return n + l.size(); });
     out.resize(at + record_length_ + 4 + 4 * layer_count_ + bytes);
     std::uint8_t* p = out.data() + at;
     p = std::copy(records, records + record_length_, p);

@@ -26,17 +26,28 @@ const char*
 itemName(ItemType type)
 {
   switch (type) {
-    case ItemType::Byte: return "BYTE";
-    case ItemType::Point10: return "POINT10";
-    case ItemType::GpsTime11: return "GPSTIME11";
-    case ItemType::Rgb12: return "RGB12";
-    case ItemType::Wavepacket13: return "WAVEPACKET13";
-    case ItemType::Point14: return "POINT14";
-    case ItemType::Rgb14: return "RGB14";
-    case ItemType::RgbNir14: return "RGBNIR14";
-    case ItemType::Wavepacket14: return "WAVEPACKET14";
-    case ItemType::Byte14: return "BYTE14";
-    default: return "ITEM";
+  case ItemType::Byte:
+    return "BYTE";
+  case ItemType::Point10:
+    return "POINT10";
+  case ItemType::GpsTime11:
+    return "GPSTIME11";
+  case ItemType::Rgb12:
+    return "RGB12";
+  case ItemType::Wavepacket13:
+    return "WAVEPACKET13";
+  case ItemType::Point14:
+    return "POINT14";
+  case ItemType::Rgb14:
+    return "RGB14";
+  case ItemType::RgbNir14:
+    return "RGBNIR14";
+  case ItemType::Wavepacket14:
+    return "WAVEPACKET14";
+  case ItemType::Byte14:
+    return "BYTE14";
+  default:
+    return "ITEM";
   }
 }
 
@@ -85,8 +96,7 @@ describeItems(const LaszipVlr& vlr)
 }
 
 bool
-LazChunkReader::open(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h,
-                     std::string& error)
+LazChunkReader::open(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h, std::string& error)
 {
   *this = LazChunkReader();
   data_ = data;
@@ -100,8 +110,8 @@ LazChunkReader::open(const std::uint8_t* data, std::size_t size, const LasHeader
     error = "the file has no LASzip VLR";
     return false;
   }
-  return parseLaszipVlr(found->data.data(), found->data.size(), h.point_format, h.record_length,
-                        vlr_, error) &&
+  return parseLaszipVlr(found->data.data(), found->data.size(), h.point_format, h.record_length, vlr_,
+                        error) &&
          locateChunks(h, error);
 }
 
@@ -111,10 +121,9 @@ LazChunkReader::splitFixed(std::uint64_t n, std::uint32_t chunk_size, std::strin
   const std::uint64_t chunks = n / chunk_size + (n % chunk_size != 0);
   const std::uint64_t room = (chunks_end_ - chunks_begin_) / (record_length_ + 4);
   if (chunks > room) {
-    error = "the header's " + std::to_string(n) + " points in chunks of " +
-            std::to_string(chunk_size) + " make " + std::to_string(chunks) +
-            " chunks, more than the " + std::to_string(chunks_end_ - chunks_begin_) +
-            " bytes of compressed data can hold";
+    error = "the header's " + std::to_string(n) + " points in chunks of " + std::to_string(chunk_size) +
+            " make " + std::to_string(chunks) + " chunks, more than the " +
+            std::to_string(chunks_end_ - chunks_begin_) + " bytes of compressed data can hold";
     return false;
   }
   points_.assign(chunks, chunk_size);
@@ -128,15 +137,14 @@ LazChunkReader::readTable(std::uint64_t table_offset, bool variable, std::string
 {
   const std::uint64_t area = table_offset - chunks_begin_;
   ChunkTable table;
-  if (!readChunkTable(data_, size_, table_offset, variable, area / (record_length_ + 4), table,
-                      error))
+  if (!readChunkTable(data_, size_, table_offset, variable, area / (record_length_ + 4), table, error))
     return false;
   std::uint64_t pos = chunks_begin_;
   for (std::size_t i = 0; i < table.bytes.size(); ++i) {
     if (table.bytes[i] == 0 || table.bytes[i] > table_offset - pos) {
-      error = "the chunk table's chunk " + std::to_string(i) + " of " +
-              std::to_string(table.bytes[i]) + " bytes at byte " + std::to_string(pos) +
-              " does not end before the table at byte " + std::to_string(table_offset);
+      error = "the chunk table's chunk " + std::to_string(i) + " of " + std::to_string(table.bytes[i]) +
+              " bytes at byte " + std::to_string(pos) + " does not end before the table at byte " +
+              std::to_string(table_offset);
       return false;
     }
     starts_.push_back(pos);
@@ -160,16 +168,14 @@ LazChunkReader::tableOffset(const LasHeaderInfo& h, std::uint64_t limit)
     return 0;
   }
   if (offset < static_cast<std::int64_t>(chunks_begin_) || static_cast<std::uint64_t>(offset) > limit) {
-    table_problem_ = "the chunk table offset " + std::to_string(offset) +
-                     " lies outside the compressed data";
+    table_problem_ = "the chunk table offset " + std::to_string(offset) + " lies outside the compressed data";
     return 0;
   }
   return static_cast<std::uint64_t>(offset);
 }
 
 bool
-LazChunkReader::locateTabledChunks(const LasHeaderInfo& h, std::uint64_t limit,
-                                   std::string& error)
+LazChunkReader::locateTabledChunks(const LasHeaderInfo& h, std::uint64_t limit, std::string& error)
 {
   if (limit - h.offset_to_points < 8) {
     error = "the LAZ point data is truncated: not even the 8-byte chunk table offset is there";
@@ -185,8 +191,8 @@ LazChunkReader::locateTabledChunks(const LasHeaderInfo& h, std::uint64_t limit,
     table_ = readTable(offset, variable, table_problem_);
     if (table_ && !variable && starts_.size() - 1 != points_.size()) {
       table_problem_ = "the chunk table lists " + std::to_string(starts_.size() - 1) +
-                       " chunks, the header's " + std::to_string(h.point_count) +
-                       " points need " + std::to_string(points_.size());
+                       " chunks, the header's " + std::to_string(h.point_count) + " points need " +
+                       std::to_string(points_.size());
       table_ = false;
     }
   }
@@ -205,11 +211,10 @@ LazChunkReader::checkPointCounts(std::uint64_t n, std::string& error)
 {
   std::uint64_t total = 0;
   for (std::size_t i = 0; i < points_.size(); ++i) {
-    const std::uint64_t bytes =
-        table_ ? starts_[i + 1] - starts_[i] : chunks_end_ - chunks_begin_;
+    const std::uint64_t bytes = table_ ? starts_[i + 1] - starts_[i] : chunks_end_ - chunks_begin_;
     if (points_[i] == 0 || points_[i] > kMaxPointsPerByte * bytes) {
-      error = "chunk " + std::to_string(i) + " claims " + std::to_string(points_[i]) +
-              " points in " + std::to_string(bytes) + " bytes";
+      error = "chunk " + std::to_string(i) + " claims " + std::to_string(points_[i]) + " points in " +
+              std::to_string(bytes) + " bytes";
       return false;
     }
     first_.push_back(total);
@@ -217,8 +222,7 @@ LazChunkReader::checkPointCounts(std::uint64_t n, std::string& error)
     max_points_ = std::max(max_points_, points_[i]);
   }
   if (total != n) {
-    error = "the chunks hold " + std::to_string(total) + " points, the header says " +
-            std::to_string(n);
+    error = "the chunks hold " + std::to_string(total) + " points, the header says " + std::to_string(n);
     return false;
   }
   return true;
@@ -227,8 +231,7 @@ LazChunkReader::checkPointCounts(std::uint64_t n, std::string& error)
 bool
 LazChunkReader::locateChunks(const LasHeaderInfo& h, std::string& error)
 {
-  const std::uint64_t limit =
-      std::max<std::uint64_t>(evlrStart(data_, size_, h), h.offset_to_points);
+  const std::uint64_t limit = std::max<std::uint64_t>(evlrStart(data_, size_, h), h.offset_to_points);
   if (vlr_.compressor == Compressor::Pointwise) {
     // One stream for all points, straight after the VLRs, and no chunk table.
     chunks_begin_ = h.offset_to_points;
@@ -249,8 +252,7 @@ LazChunkReader::makeDecoder(std::string& error) const
 }
 
 bool
-LazChunkReader::decodeChunk(std::size_t i, ChunkDecoder& decoder, std::uint8_t* out,
-                            std::string& error)
+LazChunkReader::decodeChunk(std::size_t i, ChunkDecoder& decoder, std::uint8_t* out, std::string& error)
 {
   const std::string where = "chunk " + std::to_string(i + 1) + " of " + std::to_string(chunkCount());
   if (i >= starts_.size()) {
@@ -339,8 +341,8 @@ LazChunkReader::forEachChunk(int threads, const std::function<void(std::uint64_t
       std::uint8_t* out = buffers[t].reserve(bytes);
       ok[t] = out ? decodeChunk(b + t, *decoders[worker], out, errors[t])
                   : (errors[t] = "chunk " + std::to_string(b + t + 1) + ": no memory for the " +
-                                 std::to_string(bytes) + " bytes of its " +
-                                 std::to_string(points_[b + t]) + " points",
+                                 std::to_string(bytes) + " bytes of its " + std::to_string(points_[b + t]) +
+                                 " points",
                      false);
     }
     if (firstFailure(m))

@@ -100,8 +100,8 @@ public:
   /// an output grows with the data actually decoded, not with the header's claims. Stops at the
   /// first failure; the error is that of the lowest failing chunk of its batch.
   bool
-  forEachChunk(int threads, const std::function<void(std::uint64_t)>& grow,
-               const ChunkVisitor& visit, std::string& error);
+  forEachChunk(int threads, const std::function<void(std::uint64_t)>& grow, const ChunkVisitor& visit,
+               std::string& error);
 
 private:
   bool

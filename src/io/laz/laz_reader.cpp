@@ -102,8 +102,8 @@ describeCopc(const std::uint8_t* data, std::size_t size, LasHeaderInfo& h, std::
 }
 
 bool
-readLazPoints(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud,
-              CloudInfo& info, std::string& error, const LoadOptions& options)
+readLazPoints(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointLiDAR>& cloud, CloudInfo& info,
+              std::string& error, const LoadOptions& options)
 {
   LasHeaderInfo& h = info.las;
   laz::LazChunkReader reader;
@@ -147,8 +147,7 @@ readLazPoints(const std::uint8_t* data, std::size_t size, pcl::PointCloud<PointL
 }  // namespace laz_detail
 
 bool
-decompressLaz(const std::uint8_t* data, std::size_t size, std::vector<std::uint8_t>& out,
-              std::string& error)
+decompressLaz(const std::uint8_t* data, std::size_t size, std::vector<std::uint8_t>& out, std::string& error)
 {
   out.clear();
   LasHeaderInfo h;

@@ -79,15 +79,14 @@ appendChunks(const std::uint8_t* records, const LasHeaderInfo& h, const laz::Las
 }  // namespace
 
 bool
-compressLas(const std::uint8_t* data, std::size_t size, std::vector<std::uint8_t>& out,
-            std::string& error, std::uint32_t chunk_size)
+compressLas(const std::uint8_t* data, std::size_t size, std::vector<std::uint8_t>& out, std::string& error,
+            std::uint32_t chunk_size)
 {
   out.clear();
   LasHeaderInfo h;
   if (!las::parseHeader(data, size, h, error) || !checkCompressible(h, chunk_size, error))
     return false;
-  const laz::LaszipVlr vlr =
-      laz::defaultLaszipVlr(h.point_format, h.extra_bytes_per_record, chunk_size);
+  const laz::LaszipVlr vlr = laz::defaultLaszipVlr(h.point_format, h.extra_bytes_per_record, chunk_size);
   // LASzip writes its VLR after the others and marks the format byte with bit 7.
   out = las::rebuildHead(data, h, laszipVlrBytes(vlr));
   out[las::kPointFormat] |= 0x80;
@@ -110,20 +109,19 @@ writeLaz(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin
          std::vector<std::uint8_t>& out, std::string& error, const SaveOptions& options)
 {
   std::vector<std::uint8_t> las;
-  return writeLas(cloud, origin, las, error, options) &&
-         compressLas(las.data(), las.size(), out, error);
+  return writeLas(cloud, origin, las, error, options) && compressLas(las.data(), las.size(), out, error);
 }
 
 bool
-writeLazFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+writeLazFile(const std::string& path, const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin,
+             std::string& error, const SaveOptions& options)
 {
   std::vector<std::uint8_t> bytes;
   if (!writeLaz(cloud, origin, bytes, error, options))
     return false;
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out || !out.write(reinterpret_cast<const char*>(bytes.data()),
-                         static_cast<std::streamsize>(bytes.size()))) {
+  if (!out ||
+      !out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()))) {
     error = "cannot write the file";
     return false;
   }

@@ -17,10 +17,10 @@ namespace laz {
 
 namespace {
 
-constexpr std::size_t kX = 0, kY = 4, kZ = 8, kIntensity = 12, kReturns = 14, kClass = 15,
-                      kScanAngle = 16, kUserData = 17, kSource = 18;
-constexpr std::uint32_t kIntensityChanged = 32, kReturnsChanged = 16, kClassChanged = 8,
-                        kAngleChanged = 4, kUserChanged = 2, kSourceChanged = 1;
+constexpr std::size_t kX = 0, kY = 4, kZ = 8, kIntensity = 12, kReturns = 14, kClass = 15, kScanAngle = 16,
+                      kUserData = 17, kSource = 18;
+constexpr std::uint32_t kIntensityChanged = 32, kReturnsChanged = 16, kClassChanged = 8, kAngleChanged = 4,
+                        kUserChanged = 2, kSourceChanged = 1;
 
 std::int32_t
 median3(const std::int32_t v[3])
@@ -59,8 +59,7 @@ private:
 
   SymbolModel changed_{64};
   ByteModelsByContext returns_, class_, user_data_;
-  IntegerCompressor dx_{32}, dy_{32, 20}, z_{32, 20}, intensity_{16}, scan_angle_{8, 2},
-      source_{16};
+  IntegerCompressor dx_{32}, dy_{32, 20}, z_{32, 20}, intensity_{16}, scan_angle_{8, 2}, source_{16};
 };
 
 void
@@ -87,8 +86,7 @@ Point10CoderV1::rememberDifferences(std::int32_t dx, std::int32_t dy)
 }
 
 void
-Point10CoderV1::decodeChangedFields(ArithmeticDecoder& dec, std::uint32_t changed,
-                                    std::uint32_t k_xy)
+Point10CoderV1::decodeChangedFields(ArithmeticDecoder& dec, std::uint32_t changed, std::uint32_t k_xy)
 {
   if (changed & kIntensityChanged) {
     const std::int32_t prev = las::get<std::uint16_t>(last_ + kIntensity);
@@ -99,8 +97,7 @@ Point10CoderV1::decodeChangedFields(ArithmeticDecoder& dec, std::uint32_t change
   if (changed & kClassChanged)
     last_[kClass] = static_cast<std::uint8_t>(dec.decodeSymbol(class_.at(last_[kClass])));
   if (changed & kAngleChanged)
-    last_[kScanAngle] =
-        static_cast<std::uint8_t>(scan_angle_.decompress(dec, last_[kScanAngle], k_xy < 3));
+    last_[kScanAngle] = static_cast<std::uint8_t>(scan_angle_.decompress(dec, last_[kScanAngle], k_xy < 3));
   if (changed & kUserChanged)
     last_[kUserData] = static_cast<std::uint8_t>(dec.decodeSymbol(user_data_.at(last_[kUserData])));
   if (changed & kSourceChanged) {
@@ -129,8 +126,7 @@ Point10CoderV1::decode(ArithmeticDecoder& dec, std::uint8_t* out)
 }
 
 void
-Point10CoderV1::encodeChangedFields(ArithmeticEncoder& enc, const std::uint8_t* item,
-                                    std::uint32_t k_xy)
+Point10CoderV1::encodeChangedFields(ArithmeticEncoder& enc, const std::uint8_t* item, std::uint32_t k_xy)
 {
   const std::uint16_t intensity = las::get<std::uint16_t>(item + kIntensity);
   const std::uint16_t last_intensity = las::get<std::uint16_t>(last_ + kIntensity);
@@ -160,16 +156,15 @@ Point10CoderV1::encodeChangedFields(ArithmeticEncoder& enc, const std::uint8_t* 
 void
 Point10CoderV1::encode(ArithmeticEncoder& enc, const std::uint8_t* item)
 {
-  const std::int32_t dx = static_cast<std::int32_t>(las::get<std::uint32_t>(item + kX) -
-                                                    las::get<std::uint32_t>(last_ + kX));
-  const std::int32_t dy = static_cast<std::int32_t>(las::get<std::uint32_t>(item + kY) -
-                                                    las::get<std::uint32_t>(last_ + kY));
+  const std::int32_t dx =
+      static_cast<std::int32_t>(las::get<std::uint32_t>(item + kX) - las::get<std::uint32_t>(last_ + kX));
+  const std::int32_t dy =
+      static_cast<std::int32_t>(las::get<std::uint32_t>(item + kY) - las::get<std::uint32_t>(last_ + kY));
   dx_.compress(enc, median3(last_dx_), dx);
   const std::uint32_t k_x = dx_.k();
   dy_.compress(enc, median3(last_dy_), dy, bitsContext(k_x));
   const std::uint32_t k_xy = (k_x + dy_.k()) / 2;
-  z_.compress(enc, las::get<std::int32_t>(last_ + kZ), las::get<std::int32_t>(item + kZ),
-              bitsContext(k_xy));
+  z_.compress(enc, las::get<std::int32_t>(last_ + kZ), las::get<std::int32_t>(item + kZ), bitsContext(k_xy));
   encodeChangedFields(enc, item, k_xy);
   rememberDifferences(dx, dy);
   std::memcpy(last_, item, 20);

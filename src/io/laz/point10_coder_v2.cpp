@@ -23,12 +23,12 @@ namespace laz {
 namespace {
 
 // Byte offsets in the POINT10 item.
-constexpr std::size_t kX = 0, kY = 4, kZ = 8, kIntensity = 12, kReturns = 14, kClass = 15,
-                      kScanAngle = 16, kUserData = 17, kSource = 18;
+constexpr std::size_t kX = 0, kY = 4, kZ = 8, kIntensity = 12, kReturns = 14, kClass = 15, kScanAngle = 16,
+                      kUserData = 17, kSource = 18;
 
 // Bits of the "changed" symbol.
-constexpr std::uint32_t kReturnsChanged = 32, kIntensityChanged = 16, kClassChanged = 8,
-                        kAngleChanged = 4, kUserChanged = 2, kSourceChanged = 1;
+constexpr std::uint32_t kReturnsChanged = 32, kIntensityChanged = 16, kClassChanged = 8, kAngleChanged = 4,
+                        kUserChanged = 2, kSourceChanged = 1;
 
 std::uint32_t
 returnNumber(const std::uint8_t* p)
@@ -117,8 +117,7 @@ Point10CoderV2::decodeChangedFields(ArithmeticDecoder& dec, std::uint32_t change
     last_[kReturns] = static_cast<std::uint8_t>(dec.decodeSymbol(returns_.at(last_[kReturns])));
   const std::uint32_t m = point10ReturnContext(numberOfReturns(last_), returnNumber(last_));
   if (changed & kIntensityChanged) {
-    const auto v = static_cast<std::uint16_t>(
-        intensity_.decompress(dec, last_intensity_[m], m < 3 ? m : 3));
+    const auto v = static_cast<std::uint16_t>(intensity_.decompress(dec, last_intensity_[m], m < 3 ? m : 3));
     last_intensity_[m] = v;
   }
   las::put<std::uint16_t>(last_ + kIntensity, last_intensity_[m]);
@@ -137,8 +136,7 @@ Point10CoderV2::decodeChangedFields(ArithmeticDecoder& dec, std::uint32_t change
 }
 
 void
-Point10CoderV2::decodeCoordinates(ArithmeticDecoder& dec, std::uint32_t n, std::uint32_t m,
-                                  std::uint32_t l)
+Point10CoderV2::decodeCoordinates(ArithmeticDecoder& dec, std::uint32_t n, std::uint32_t m, std::uint32_t l)
 {
   const std::int32_t dx = dx_.decompress(dec, median_dx_[m].get(), n == 1);
   las::put<std::int32_t>(last_ + kX, wrapAdd(las::get<std::int32_t>(last_ + kX), dx));
@@ -173,13 +171,12 @@ Point10CoderV2::encode(ArithmeticEncoder& enc, const std::uint8_t* item)
   const std::uint16_t intensity = las::get<std::uint16_t>(item + kIntensity);
   const std::uint16_t source = las::get<std::uint16_t>(item + kSource);
   const std::uint16_t last_source = las::get<std::uint16_t>(last_ + kSource);
-  const std::uint32_t changed =
-      (last_[kReturns] != item[kReturns] ? kReturnsChanged : 0) |
-      (last_intensity_[m] != intensity ? kIntensityChanged : 0) |
-      (last_[kClass] != item[kClass] ? kClassChanged : 0) |
-      (last_[kScanAngle] != item[kScanAngle] ? kAngleChanged : 0) |
-      (last_[kUserData] != item[kUserData] ? kUserChanged : 0) |
-      (last_source != source ? kSourceChanged : 0);
+  const std::uint32_t changed = (last_[kReturns] != item[kReturns] ? kReturnsChanged : 0) |
+                                (last_intensity_[m] != intensity ? kIntensityChanged : 0) |
+                                (last_[kClass] != item[kClass] ? kClassChanged : 0) |
+                                (last_[kScanAngle] != item[kScanAngle] ? kAngleChanged : 0) |
+                                (last_[kUserData] != item[kUserData] ? kUserChanged : 0) |
+                                (last_source != source ? kSourceChanged : 0);
   enc.encodeSymbol(changed_, changed);
   if (changed & kReturnsChanged)
     enc.encodeSymbol(returns_.at(last_[kReturns]), item[kReturns]);
@@ -190,19 +187,18 @@ Point10CoderV2::encode(ArithmeticEncoder& enc, const std::uint8_t* item)
   if (changed & kClassChanged)
     enc.encodeSymbol(class_.at(last_[kClass]), item[kClass]);
   if (changed & kAngleChanged)
-    enc.encodeSymbol(scan_angle_[scanDirection(item)],
-                     foldByte(item[kScanAngle] - last_[kScanAngle]));
+    enc.encodeSymbol(scan_angle_[scanDirection(item)], foldByte(item[kScanAngle] - last_[kScanAngle]));
   if (changed & kUserChanged)
     enc.encodeSymbol(user_data_.at(last_[kUserData]), item[kUserData]);
   if (changed & kSourceChanged)
     source_.compress(enc, last_source, source);
 
-  const std::int32_t dx = static_cast<std::int32_t>(las::get<std::uint32_t>(item + kX) -
-                                                    las::get<std::uint32_t>(last_ + kX));
+  const std::int32_t dx =
+      static_cast<std::int32_t>(las::get<std::uint32_t>(item + kX) - las::get<std::uint32_t>(last_ + kX));
   dx_.compress(enc, median_dx_[m].get(), dx, n == 1);
   median_dx_[m].add(dx);
-  const std::int32_t dy = static_cast<std::int32_t>(las::get<std::uint32_t>(item + kY) -
-                                                    las::get<std::uint32_t>(last_ + kY));
+  const std::int32_t dy =
+      static_cast<std::int32_t>(las::get<std::uint32_t>(item + kY) - las::get<std::uint32_t>(last_ + kY));
   dy_.compress(enc, median_dy_[m].get(), dy, yContext(n, dx_.k()));
   median_dy_[m].add(dy);
   const std::int32_t z = las::get<std::int32_t>(item + kZ);

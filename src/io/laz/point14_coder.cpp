@@ -66,7 +66,8 @@ classificationContext(std::uint8_t last_class, const ReturnContext& rc)
 class Point14Decoder final : public LayeredItemDecoder
 {
 public:
-  explicit Point14Decoder(ContextSwitch rule) : rule_(rule) {}
+  explicit Point14Decoder(ContextSwitch rule) : rule_(rule)
+  {}
 
   std::size_t
   layerCount() const override
@@ -140,19 +141,24 @@ private:
     ArithmeticDecoder& dec = dec_[kChannelReturnsXY];
     const unsigned last_n = c.last.number_of_returns, last_r = c.last.return_number;
     if (changed & kNumberOfReturnsChanged)
-      c.last.number_of_returns = static_cast<std::uint8_t>(
-          dec.decodeSymbol(lazyModel(c.number_of_returns[last_n], 16)));
+      c.last.number_of_returns =
+          static_cast<std::uint8_t>(dec.decodeSymbol(lazyModel(c.number_of_returns[last_n], 16)));
     unsigned r = last_r;
     switch (changed & kReturnNumberBits) {
-      case 1: r = (last_r + 1) & 15; break;
-      case 2: r = (last_r + 15) & 15; break;
-      case 3:
-        if (gps_changed)
-          r = dec.decodeSymbol(lazyModel(c.return_number[last_r], 16));
-        else
-          r = (last_r + dec.decodeSymbol(c.return_number_gps_same) + 2) & 15;
-        break;
-      default: break;
+    case 1:
+      r = (last_r + 1) & 15;
+      break;
+    case 2:
+      r = (last_r + 15) & 15;
+      break;
+    case 3:
+      if (gps_changed)
+        r = dec.decodeSymbol(lazyModel(c.return_number[last_r], 16));
+      else
+        r = (last_r + dec.decodeSymbol(c.return_number_gps_same) + 2) & 15;
+      break;
+    default:
+      break;
     }
     c.last.return_number = static_cast<std::uint8_t>(r);
   }
@@ -185,12 +191,11 @@ private:
       p.classification = static_cast<std::uint8_t>(dec_[kClassification].decodeSymbol(
           lazyModel(c.classification[classificationContext(p.classification, rc)], 256)));
     if (present_[kFlags])
-      p.flags = static_cast<std::uint8_t>(
-          dec_[kFlags].decodeSymbol(lazyModel(c.flags[p.flags & 63], 64)));
+      p.flags = static_cast<std::uint8_t>(dec_[kFlags].decodeSymbol(lazyModel(c.flags[p.flags & 63], 64)));
     if (present_[kIntensity]) {
       const unsigned i = (rc.cpr << 1) | (gps_changed ? 1u : 0u);
-      p.intensity = static_cast<std::uint16_t>(
-          c.intensity.decompress(dec_[kIntensity], c.last_intensity[i], rc.cpr));
+      p.intensity =
+          static_cast<std::uint16_t>(c.intensity.decompress(dec_[kIntensity], c.last_intensity[i], rc.cpr));
       c.last_intensity[i] = p.intensity;
     }
     if (present_[kScanAngle] && (changed & kScanAngleChanged))
@@ -200,8 +205,8 @@ private:
       p.user_data = static_cast<std::uint8_t>(
           dec_[kUserData].decodeSymbol(lazyModel(c.user_data[p.user_data / 4], 256)));
     if (present_[kPointSource] && (changed & kPointSourceChanged))
-      p.point_source = static_cast<std::uint16_t>(
-          c.point_source.decompress(dec_[kPointSource], p.point_source));
+      p.point_source =
+          static_cast<std::uint16_t>(c.point_source.decompress(dec_[kPointSource], p.point_source));
     if (present_[kGpsTime] && gps_changed)
       p.gps_time = c.gps.decode(dec_[kGpsTime]);
   }
@@ -217,7 +222,8 @@ private:
 class Point14Encoder final : public LayeredItemEncoder
 {
 public:
-  explicit Point14Encoder(ContextSwitch rule) : rule_(rule) {}
+  explicit Point14Encoder(ContextSwitch rule) : rule_(rule)
+  {}
 
   std::size_t
   layerCount() const override
@@ -343,13 +349,11 @@ private:
   {
     const Point14& last = c.last;
     const std::uint32_t k = (c.dx.k() + c.dy.k()) / 2;
-    c.z.compress(enc_[kZ], c.last_z[rc.level], p.z,
-                 (p.number_of_returns == 1 ? 1u : 0u) + kContext(k, 18));
+    c.z.compress(enc_[kZ], c.last_z[rc.level], p.z, (p.number_of_returns == 1 ? 1u : 0u) + kContext(k, 18));
     c.last_z[rc.level] = p.z;
     changed_[kClassification] |= p.classification != last.classification;
     enc_[kClassification].encodeSymbol(
-        lazyModel(c.classification[classificationContext(last.classification, rc)], 256),
-        p.classification);
+        lazyModel(c.classification[classificationContext(last.classification, rc)], 256), p.classification);
     changed_[kFlags] |= p.flags != last.flags;
     enc_[kFlags].encodeSymbol(lazyModel(c.flags[last.flags & 63], 64), p.flags);
     const unsigned i = (rc.cpr << 1) | (gps_changed ? 1u : 0u);

@@ -15,22 +15,14 @@ namespace {
 // last of two, first / intermediate / last of more. Invalid pairs (r > n, zeros) get contexts
 // too, because real files contain them. A constant of the format, indexed [n][r].
 constexpr std::uint8_t kReturnMap6[16][16] = {
-    {0, 1, 2, 3, 4, 5, 3, 4, 4, 5, 5, 5, 5, 5, 5, 5},
-    {1, 0, 1, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3},
-    {2, 1, 2, 4, 4, 4, 4, 4, 4, 4, 4, 3, 3, 3, 3, 3},
-    {3, 3, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4},
-    {4, 3, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4},
-    {5, 3, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4},
-    {3, 3, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4, 4},
-    {4, 3, 4, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4},
-    {4, 3, 4, 4, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4},
-    {5, 3, 4, 4, 4, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4},
-    {5, 3, 4, 4, 4, 4, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4},
-    {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 4, 4, 4},
-    {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 4, 4},
-    {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 4},
-    {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5},
-    {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5},
+    {0, 1, 2, 3, 4, 5, 3, 4, 4, 5, 5, 5, 5, 5, 5, 5}, {1, 0, 1, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3, 3},
+    {2, 1, 2, 4, 4, 4, 4, 4, 4, 4, 4, 3, 3, 3, 3, 3}, {3, 3, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4},
+    {4, 3, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4}, {5, 3, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4},
+    {3, 3, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4, 4}, {4, 3, 4, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4, 4},
+    {4, 3, 4, 4, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4, 4}, {5, 3, 4, 4, 4, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4, 4},
+    {5, 3, 4, 4, 4, 4, 4, 4, 4, 4, 5, 4, 4, 4, 4, 4}, {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 4, 4, 4},
+    {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 4, 4}, {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5, 4},
+    {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5, 5}, {5, 3, 3, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 5, 5},
 };
 
 }  // namespace
@@ -64,8 +56,8 @@ packPoint14(const Point14& p, std::uint8_t* record)
   las::put<std::int32_t>(record + 8, p.z);
   las::put<std::uint16_t>(record + 12, p.intensity);
   record[14] = static_cast<std::uint8_t>((p.return_number & 0x0F) | (p.number_of_returns << 4));
-  record[15] = static_cast<std::uint8_t>((p.flags & 0x0F) | ((p.channel & 0x03) << 4) |
-                                         ((p.flags & 0x30) << 2));
+  record[15] =
+      static_cast<std::uint8_t>((p.flags & 0x0F) | ((p.channel & 0x03) << 4) | ((p.flags & 0x30) << 2));
   record[16] = p.classification;
   record[17] = p.user_data;
   las::put<std::int16_t>(record + 18, p.scan_angle);
@@ -85,24 +77,16 @@ returnContext(unsigned n, unsigned r)
 unsigned
 previousReturnContext(const Point14& last)
 {
-  return (last.return_number == 1 ? 1u : 0u) +
-         (last.return_number >= last.number_of_returns ? 2u : 0u) +
+  return (last.return_number == 1 ? 1u : 0u) + (last.return_number >= last.number_of_returns ? 2u : 0u) +
          (last.gps_time_changed ? 4u : 0u);
 }
 
 Point14Context::Point14Context()
-  : changed_values{SymbolModel(128), SymbolModel(128), SymbolModel(128), SymbolModel(128),
-                   SymbolModel(128), SymbolModel(128), SymbolModel(128), SymbolModel(128)},
-    scanner_channel(3),
-    return_number_gps_same(13),
-    dx(32, 2),
-    dy(32, 22),
-    z(32, 20),
-    intensity(16, 4),
-    scan_angle(16, 2),
-    point_source(16, 1)
-{
-}
+    : changed_values{SymbolModel(128), SymbolModel(128), SymbolModel(128), SymbolModel(128),
+                     SymbolModel(128), SymbolModel(128), SymbolModel(128), SymbolModel(128)},
+      scanner_channel(3), return_number_gps_same(13), dx(32, 2), dy(32, 22), z(32, 20), intensity(16, 4),
+      scan_angle(16, 2), point_source(16, 1)
+{}
 
 void
 Point14Context::start(const Point14& from)

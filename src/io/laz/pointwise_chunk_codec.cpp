@@ -34,24 +34,23 @@ makeItemCoder(const Item& item, std::string& error)
 {
   const int v = item.version;
   switch (item.type) {
-    case ItemType::Point10:
-      if (item.size == 20)
-        return v == 1 ? makePoint10CoderV1() : makePoint10CoderV2();
-      break;
-    case ItemType::GpsTime11:
-      if (item.size == 8)
-        return v == 1 ? makeGpsTime11CoderV1() : makeGpsTime11CoderV2();
-      break;
-    case ItemType::Rgb12:
-      if (item.size == 6)
-        return makeRgb12Coder(v);
-      break;
-    case ItemType::Byte:
-      return makeByteCoder(v, item.size);
-    default:
-      error = "item type " + std::to_string(static_cast<int>(item.type)) +
-              " is not a pointwise LASzip item";
-      return nullptr;
+  case ItemType::Point10:
+    if (item.size == 20)
+      return v == 1 ? makePoint10CoderV1() : makePoint10CoderV2();
+    break;
+  case ItemType::GpsTime11:
+    if (item.size == 8)
+      return v == 1 ? makeGpsTime11CoderV1() : makeGpsTime11CoderV2();
+    break;
+  case ItemType::Rgb12:
+    if (item.size == 6)
+      return makeRgb12Coder(v);
+    break;
+  case ItemType::Byte:
+    return makeByteCoder(v, item.size);
+  default:
+    error = "item type " + std::to_string(static_cast<int>(item.type)) + " is not a pointwise LASzip item";
+    return nullptr;
   }
   error = "LASzip item type " + std::to_string(static_cast<int>(item.type)) + " of " +
           std::to_string(item.size) + " bytes has the wrong size";
@@ -79,11 +78,12 @@ makeItems(const LaszipVlr& vlr, PointwiseItems& items, std::string& error)
 class PointwiseChunkDecoder final : public ChunkDecoder
 {
 public:
-  explicit PointwiseChunkDecoder(PointwiseItems items) : items_(std::move(items)) {}
+  explicit PointwiseChunkDecoder(PointwiseItems items) : items_(std::move(items))
+  {}
 
   std::size_t
-  decode(const std::uint8_t* begin, const std::uint8_t* end, std::size_t count,
-         std::uint8_t* out, std::string& error) override;
+  decode(const std::uint8_t* begin, const std::uint8_t* end, std::size_t count, std::uint8_t* out,
+         std::string& error) override;
 
 private:
   PointwiseItems items_;
@@ -91,8 +91,8 @@ private:
 };
 
 std::size_t
-PointwiseChunkDecoder::decode(const std::uint8_t* begin, const std::uint8_t* end,
-                              std::size_t count, std::uint8_t* out, std::string& error)
+PointwiseChunkDecoder::decode(const std::uint8_t* begin, const std::uint8_t* end, std::size_t count,
+                              std::uint8_t* out, std::string& error)
 {
   const std::size_t length = items_.record_length;
   if (count == 0) {
@@ -125,7 +125,8 @@ PointwiseChunkDecoder::decode(const std::uint8_t* begin, const std::uint8_t* end
 class PointwiseChunkEncoder final : public ChunkEncoder
 {
 public:
-  explicit PointwiseChunkEncoder(PointwiseItems items) : items_(std::move(items)) {}
+  explicit PointwiseChunkEncoder(PointwiseItems items) : items_(std::move(items))
+  {}
 
   void
   encode(const std::uint8_t* records, std::size_t count, std::vector<std::uint8_t>& out) override

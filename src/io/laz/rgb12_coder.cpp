@@ -42,8 +42,7 @@ public:
     // Bit 2c + h of the symbol: byte h of channel c changed; each byte has its own context.
     const std::uint32_t sym = dec.decodeSymbol(used_);
     for (std::uint32_t b = 0; b < 6; ++b)
-      last_[b] = (sym & (1u << b)) ? static_cast<std::uint8_t>(ic_.decompress(dec, last_[b], b))
-                                   : last_[b];
+      last_[b] = (sym & (1u << b)) ? static_cast<std::uint8_t>(ic_.decompress(dec, last_[b], b)) : last_[b];
     std::memcpy(out, last_, 6);
     return true;
   }
@@ -107,8 +106,7 @@ private:
 };
 
 void
-Rgb12CoderV2::decodeGreenBlue(ArithmeticDecoder& dec, std::uint32_t sym, int high,
-                              std::uint8_t* rgb)
+Rgb12CoderV2::decodeGreenBlue(ArithmeticDecoder& dec, std::uint32_t sym, int high, std::uint8_t* rgb)
 {
   int change = channelByte(rgb, 0, high) - channelByte(last_, 0, high);
   std::uint8_t& green = rgb[2 + high];
@@ -149,8 +147,7 @@ Rgb12CoderV2::decode(ArithmeticDecoder& dec, std::uint8_t* out)
 }
 
 void
-Rgb12CoderV2::encodeGreenBlue(ArithmeticEncoder& enc, std::uint32_t sym, int high,
-                              const std::uint8_t* rgb)
+Rgb12CoderV2::encodeGreenBlue(ArithmeticEncoder& enc, std::uint32_t sym, int high, const std::uint8_t* rgb)
 {
   // Red's change counts only when its byte changed (else it is 0 either way).
   int change = (sym & changedBit(0, high)) ? rgb[high] - last_[high] : 0;

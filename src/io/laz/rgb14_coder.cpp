@@ -173,7 +173,8 @@ readColour(const std::uint8_t* item, std::size_t channels, std::uint16_t* v)
 class Rgb14Decoder final : public LayeredItemDecoder
 {
 public:
-  Rgb14Decoder(bool nir, ContextSwitch rule) : nir_(nir), rule_(rule) {}
+  Rgb14Decoder(bool nir, ContextSwitch rule) : nir_(nir), rule_(rule)
+  {}
 
   std::size_t
   layerCount() const override
@@ -233,7 +234,8 @@ private:
 class Rgb14Encoder final : public LayeredItemEncoder
 {
 public:
-  Rgb14Encoder(bool nir, ContextSwitch rule) : nir_(nir), rule_(rule) {}
+  Rgb14Encoder(bool nir, ContextSwitch rule) : nir_(nir), rule_(rule)
+  {}
 
   std::size_t
   layerCount() const override

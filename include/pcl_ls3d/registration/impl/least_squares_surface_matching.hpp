@@ -22,8 +22,7 @@ namespace pcl_ls3d {
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::LeastSquaresSurfaceMatching()
-: rule_(makeConjugateRule(ConjugateRuleType::LND))
-, estimator_(std::make_shared<ZuoEstimator>(6.0))
+    : rule_(makeConjugateRule(ConjugateRuleType::LND)), estimator_(std::make_shared<ZuoEstimator>(6.0))
 {
   reg_name_ = "LeastSquaresSurfaceMatching";
   max_iterations_ = settings_.max_iterations;
@@ -33,8 +32,7 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::LeastSquaresSurfa
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void
-LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::setConjugateRule(
-    ConjugateRuleType type)
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::setConjugateRule(ConjugateRuleType type)
 {
   rule_ = makeConjugateRule(type);
 }
@@ -57,8 +55,7 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::setRobustEstimato
     const RobustEstimator::Ptr& estimator)
 {
   if (!estimator) {
-    PCL_ERROR("[pcl_ls3d::%s::setRobustEstimator] null estimator ignored\n",
-              getClassName().c_str());
+    PCL_ERROR("[pcl_ls3d::%s::setRobustEstimator] null estimator ignored\n", getClassName().c_str());
     return;
   }
   estimator_ = estimator;
@@ -134,8 +131,7 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::collectSourcePoin
 template <typename PointSource, typename PointTarget, typename Scalar>
 std::string
 LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::checkInputs(
-    const std::vector<Eigen::Vector3d>& points, const TargetSurface& surface,
-    ConjugateRule& rule) const
+    const std::vector<Eigen::Vector3d>& points, const TargetSurface& surface, ConjugateRule& rule) const
 {
   if (points.empty())
     return "the source cloud has no finite point";
@@ -198,8 +194,8 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::centroidStart(
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 ConjugateRule::Ptr
-LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::ruleForSize(
-    std::size_t source_points, AdjustmentSettings& settings) const
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::ruleForSize(std::size_t source_points,
+                                                                           AdjustmentSettings& settings) const
 {
   std::size_t finite_target = 0;
   for (const auto& p : *target_)
@@ -233,10 +229,8 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::adoptReport()
                (report_.termination == TerminationType::CONVERGED || !failure_after_max_iter_);
   if (report_.isSolutionUsable()) {
     if (!report_.message.empty())
-      PCL_WARN("[pcl_ls3d::%s::computeTransformation] %s\n", getClassName().c_str(),
-               report_.message.c_str());
-  }
-  else {
+      PCL_WARN("[pcl_ls3d::%s::computeTransformation] %s\n", getClassName().c_str(), report_.message.c_str());
+  } else {
     PCL_ERROR("[pcl_ls3d::%s::computeTransformation] %s: %s\n", getClassName().c_str(),
               terminationTypeToString(report_.termination), report_.message.c_str());
   }
@@ -267,8 +261,7 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::warnIgnoredStrate
              getClassName().c_str());
     warned_estimation_ = true;
   }
-  if (correspondence_estimation_ != default_correspondence_estimation_ &&
-      !warned_correspondence_) {
+  if (correspondence_estimation_ != default_correspondence_estimation_ && !warned_correspondence_) {
     PCL_WARN("[pcl_ls3d::%s::align] setCorrespondenceEstimation() is ignored: the conjugate "
              "rule (setConjugateRule) finds the correspondences\n",
              getClassName().c_str());
@@ -278,8 +271,8 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::warnIgnoredStrate
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void
-LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::transformInput(
-    const Eigen::Matrix4d& pose, PointCloudSource& out) const
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::transformInput(const Eigen::Matrix4d& pose,
+                                                                              PointCloudSource& out) const
 {
   const Matrix4 t = pose.template cast<Scalar>();
   if constexpr (pcl::traits::has_normal_v<PointSource>)
@@ -292,8 +285,7 @@ template <typename PointSource, typename PointTarget, typename Scalar>
 void
 LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::observationCorrespondences(
     const Eigen::Matrix4d& pose, const ObservationSet& obs, const std::vector<int>& index_of,
-    const TargetSurface& surface, pcl::Correspondences& corr,
-    std::vector<std::size_t>& first_obs) const
+    const TargetSurface& surface, pcl::Correspondences& corr, std::vector<std::size_t>& first_obs) const
 {
   corr.clear();
   first_obs.clear();
@@ -349,8 +341,7 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::rejectObservation
   std::vector<char> point_kept(index_of.size(), 0);
   std::vector<int> position(input_->size(), -1);
   for (std::size_t k = 0; k < all->size(); ++k)
-    position[static_cast<std::size_t>((*all)[k].index_query)] =
-        obs[first_obs[k]].point;
+    position[static_cast<std::size_t>((*all)[k].index_query)] = obs[first_obs[k]].point;
   for (const auto& c : *current)
     if (c.index_query >= 0 && static_cast<std::size_t>(c.index_query) < position.size() &&
         position[static_cast<std::size_t>(c.index_query)] >= 0)
@@ -361,8 +352,8 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::rejectObservation
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 IterationHooks
-LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::pclHooks(
-    const std::vector<int>& index_of, const TargetSurface& surface)
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::pclHooks(const std::vector<int>& index_of,
+                                                                        const TargetSurface& surface)
 {
   IterationHooks hooks;
   if (!correspondence_rejectors_.empty()) {
@@ -374,15 +365,13 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::pclHooks(
       if (rej->requiresTargetNormals() && pcl::traits::has_normal_v<PointTarget>)
         rej->setTargetNormals(target_blob_);
     }
-    hooks.filter = [this, &index_of, &surface](const Eigen::Matrix4d& pose,
-                                               const ObservationSet& obs,
+    hooks.filter = [this, &index_of, &surface](const Eigen::Matrix4d& pose, const ObservationSet& obs,
                                                std::vector<char>& keep) {
       rejectObservations(pose, obs, index_of, surface, keep);
     };
   }
   previous_mse_ = std::numeric_limits<double>::max();
-  hooks.after_iteration = [this, &index_of, &surface](const IterationRecord& rec,
-                                                      const Eigen::Matrix4d& pose,
+  hooks.after_iteration = [this, &index_of, &surface](const IterationRecord& rec, const Eigen::Matrix4d& pose,
                                                       const ObservationSet& obs) {
     nr_iterations_ = rec.iteration;  // as ICP: counted while iterating
     pose_before_that_ = pose_before_;
@@ -416,8 +405,8 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::pclHooks(
 
 template <typename PointSource, typename PointTarget, typename Scalar>
 void
-LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransformation(
-    PointCloudSource& output, const Matrix4& guess)
+LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransformation(PointCloudSource& output,
+                                                                                     const Matrix4& guess)
 {
   nr_iterations_ = 0;
   converged_ = false;
@@ -437,13 +426,11 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransforma
     report_.termination = TerminationType::INVALID_INPUT;
     report_.message = invalid;
     PCL_ERROR("[pcl_ls3d::%s::computeTransformation] %s\n", getClassName().c_str(), invalid.c_str());
-  }
-  else {
+  } else {
     warnIgnoredStrategies();
     core_.setHooks(pclHooks(index_of, surface));
     Eigen::Matrix4d start = guess.template cast<double>();
-    if (isUnlimitedDistance(settings.max_correspondence_distance) &&
-        !overlapsTarget(points, start)) {
+    if (isUnlimitedDistance(settings.max_correspondence_distance) && !overlapsTarget(points, start)) {
       // The source lies beside the target (e.g. moved beyond its own size): ICP would still pair
       // every point; LS3D starts with the centroids made to coincide instead of no observation.
       PCL_WARN("[pcl_ls3d::%s::computeTransformation] no source point over the target under the "
@@ -462,5 +449,5 @@ LeastSquaresSurfaceMatching<PointSource, PointTarget, Scalar>::computeTransforma
 
 }  // namespace pcl_ls3d
 
-#define PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(S, T)                               \
+#define PCL_LS3D_INSTANTIATE_LeastSquaresSurfaceMatching(S, T)                                               \
   template class PCL_EXPORTS pcl_ls3d::LeastSquaresSurfaceMatching<S, T, float>;

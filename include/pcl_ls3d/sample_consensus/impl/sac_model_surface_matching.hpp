@@ -16,7 +16,7 @@ namespace pcl_ls3d {
 template <typename PointT>
 SampleConsensusModelSurfaceMatching<PointT>::SampleConsensusModelSurfaceMatching(
     const PointCloudConstPtr& epoch, const PointCloudConstPtr& reference, bool random)
-: Base(epoch, random)
+    : Base(epoch, random)
 {
   setUp(reference);
 }
@@ -25,7 +25,7 @@ template <typename PointT>
 SampleConsensusModelSurfaceMatching<PointT>::SampleConsensusModelSurfaceMatching(
     const PointCloudConstPtr& epoch, const pcl::Indices& indices, const PointCloudConstPtr& reference,
     bool random)
-: Base(epoch, indices, random)
+    : Base(epoch, indices, random)
 {
   setUp(reference);
 }
@@ -70,8 +70,7 @@ SampleConsensusModelSurfaceMatching<PointT>::setMatching(const ConjugateRule::Pt
 {
   std::string why;
   if (!rule || !settings.isValid(&why)) {
-    PCL_ERROR("[pcl_ls3d::%s::setMatching] %s\n", model_name_.c_str(),
-              rule ? why.c_str() : "null rule");
+    PCL_ERROR("[pcl_ls3d::%s::setMatching] %s\n", model_name_.c_str(), rule ? why.c_str() : "null rule");
     return false;
   }
   rule_ = rule;
@@ -309,8 +308,8 @@ SampleConsensusModelSurfaceMatching<PointT>::optimizeModelCoefficients(const pcl
 template <typename PointT>
 void
 SampleConsensusModelSurfaceMatching<PointT>::projectPoints(const pcl::Indices& inliers,
-                                                           const Eigen::VectorXf& c,
-                                                           PointCloud& projected, bool copy_data_fields) const
+                                                           const Eigen::VectorXf& c, PointCloud& projected,
+                                                           bool copy_data_fields) const
 {
   if (copy_data_fields)
     projected = *input_;
@@ -338,8 +337,7 @@ SampleConsensusModelSurfaceMatching<PointT>::projectPoints(const pcl::Indices& i
     pcl::transformPointCloud(*input_, projected, T.cast<float>());
     for (const pcl::index_t i : inliers)
       move(i, projected[static_cast<std::size_t>(i)]);
-  }
-  else
+  } else
     for (std::size_t k = 0; k < inliers.size(); ++k) {
       projected[k] = (*input_)[static_cast<std::size_t>(inliers[k])];
       move(inliers[k], projected[k]);
@@ -348,5 +346,5 @@ SampleConsensusModelSurfaceMatching<PointT>::projectPoints(const pcl::Indices& i
 
 }  // namespace pcl_ls3d
 
-#define PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(T)                           \
+#define PCL_LS3D_INSTANTIATE_SampleConsensusModelSurfaceMatching(T)                                          \
   template class PCL_EXPORTS pcl_ls3d::SampleConsensusModelSurfaceMatching<T>;

@@ -25,8 +25,7 @@ FlannKdTree<PointT>::searchesCoordinates() const
 
 template <typename PointT>
 void
-FlannKdTree<PointT>::setInputCloud(const PointCloudConstPtr& cloud,
-                                   const pcl::IndicesConstPtr& indices)
+FlannKdTree<PointT>::setInputCloud(const PointCloudConstPtr& cloud, const pcl::IndicesConstPtr& indices)
 {
   index_.reset();
   coordinates_.clear();
@@ -73,8 +72,7 @@ FlannKdTree<PointT>::nearestKSearch(const PointT& point, int k, pcl::Indices& k_
   if (!index_ || k <= 0 || !pcl::isXYZFinite(point))
     return 0;
 
-  const std::size_t wanted = std::min<std::size_t>(static_cast<std::size_t>(k),
-                                                   tree_to_input_.size());
+  const std::size_t wanted = std::min<std::size_t>(static_cast<std::size_t>(k), tree_to_input_.size());
   flann::KNNSimpleResultSet<float> result(wanted);
   const float query[3] = {point.x, point.y, point.z};
   index_->findNeighbors(result, query, flann::SearchParams(-1, this->getEpsilon()));
@@ -91,8 +89,7 @@ FlannKdTree<PointT>::nearestKSearch(const PointT& point, int k, pcl::Indices& k_
 template <typename PointT>
 int
 FlannKdTree<PointT>::radiusSearch(const PointT& point, double radius, pcl::Indices& k_indices,
-                                  std::vector<float>& k_sqr_distances,
-                                  unsigned int max_nn) const
+                                  std::vector<float>& k_sqr_distances, unsigned int max_nn) const
 {
   if (!direct_)
     return Base::radiusSearch(point, radius, k_indices, k_sqr_distances, max_nn);
@@ -114,8 +111,7 @@ FlannKdTree<PointT>::radiusSearch(const PointT& point, double radius, pcl::Indic
   if (max_nn == 0 || max_nn >= tree_to_input_.size()) {
     flann::RadiusResultSet<float> result(sq_radius);
     collect(result);
-  }
-  else {
+  } else {
     flann::KNNRadiusResultSet<float> result(sq_radius, max_nn);
     collect(result);
   }

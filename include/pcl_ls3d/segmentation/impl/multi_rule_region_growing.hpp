@@ -2,10 +2,10 @@
 /// \file impl/multi_rule_region_growing.hpp
 /// \brief Template members of pcl_ls3d::MultiRuleRegionGrowing.
 
+#include <pcl_ls3d/search/flann_kd_tree.h>
 #include <pcl_ls3d/segmentation/adaptive_thresholds.h>
 #include <pcl_ls3d/segmentation/multi_rule_region_growing.h>
 #include <pcl_ls3d/stats/descriptive.h>
-#include <pcl_ls3d/search/flann_kd_tree.h>
 
 #include <pcl/common/point_tests.h>
 #include <pcl/common/time.h>
@@ -48,8 +48,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::setMode(Mode mode)
 {
   grow_.use_seed_condition = (mode == Mode::IMRG);
   assemble_objects_ = (mode == Mode::IMRG);
-  merge_.rule = (mode == Mode::IMRG) ? MergeRule::DistanceSimilarityVolume
-                                     : MergeRule::DistanceOnly;
+  merge_.rule = (mode == Mode::IMRG) ? MergeRule::DistanceSimilarityVolume : MergeRule::DistanceOnly;
 }
 
 template <typename PointT, typename NormalT>
@@ -85,8 +84,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   mergeSegments();
   lap(stage_times_.merging);
   if (min_fragment_size_ > 1)
-    absorbed_fragments_ = segmentation::absorbFragments(graph_, grow_.graph_k, segment_of_,
-                                                        min_fragment_size_);
+    absorbed_fragments_ =
+        segmentation::absorbFragments(graph_, grow_.graph_k, segment_of_, min_fragment_size_);
   lap(stage_times_.absorbing);
   if (assemble_objects_)
     assembleObjects();
@@ -97,8 +96,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::extract(std::vector<pcl::PointIndices>&
   PCL_DEBUG("[pcl_ls3d::%s::extract] %zu points: search %.2f s, features %.2f s, growing %.2f s, "
             "merging %.2f s, absorbing %.2f s; %zu -> %zu segments (%zu fragments absorbed).\n",
             getClassName().c_str(), points_.size(), stage_times_.search, stage_times_.features,
-            stage_times_.growing, stage_times_.merging, stage_times_.absorbing,
-            initial_segments_, object_clusters_.size(), absorbed_fragments_);
+            stage_times_.growing, stage_times_.merging, stage_times_.absorbing, initial_segments_,
+            object_clusters_.size(), absorbed_fragments_);
   deinitCompute();
 }
 
@@ -142,15 +141,12 @@ MultiRuleRegionGrowing<PointT, NormalT>::absorbPlaneFragments()
   const auto on_plane = [this, tol, cos_nt](int p, int q) {
     const auto& fp = features_[static_cast<std::size_t>(p)];
     const auto& fq = features_[static_cast<std::size_t>(q)];
-    if (fp.dimensionality == Dimensionality::Volumetric &&
-        fq.dimensionality == Dimensionality::Volumetric)
+    if (fp.dimensionality == Dimensionality::Volumetric && fq.dimensionality == Dimensionality::Volumetric)
       return true;
-    const Eigen::Vector3f d =
-        points_[static_cast<std::size_t>(p)] - points_[static_cast<std::size_t>(q)];
+    const Eigen::Vector3f d = points_[static_cast<std::size_t>(p)] - points_[static_cast<std::size_t>(q)];
     if (std::abs(d.dot(fq.normal)) > tol)
       return false;
-    return fp.dimensionality != Dimensionality::Planar ||
-           fq.dimensionality != Dimensionality::Planar ||
+    return fp.dimensionality != Dimensionality::Planar || fq.dimensionality != Dimensionality::Planar ||
            std::abs(fp.normal.dot(fq.normal)) >= cos_nt;
   };
   segmentation::absorbFragments(graph_, grow_.graph_k, plane_of_, min_fragment_size_, on_plane);
@@ -187,7 +183,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
   if (grow_.graph_k < 1 || !(grow_.principal_angle > 0.0) || !(grow_.normal_angle > 0.0) ||
       !std::isfinite(user_growth_radius_) || !std::isfinite(user_volumetric_radius_)) {
     PCL_ERROR("[pcl_ls3d::%s::extract] Invalid growing settings (neighbours %d, angles must be "
-              "> 0, radii finite).\n", name, grow_.graph_k);
+              "> 0, radii finite).\n",
+              name, grow_.graph_k);
     return false;
   }
   if (const std::string why = checkThresholds(); !why.empty()) {
@@ -200,8 +197,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
     return false;
   }
   if (!returns_.empty() && returns_.size() != input_->size()) {
-    PCL_ERROR("[pcl_ls3d::%s::extract] %zu numbers of returns for %zu points.\n", name,
-              returns_.size(), static_cast<std::size_t>(input_->size()));
+    PCL_ERROR("[pcl_ls3d::%s::extract] %zu numbers of returns for %zu points.\n", name, returns_.size(),
+              static_cast<std::size_t>(input_->size()));
     return false;
   }
 
@@ -216,7 +213,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
   }
   if (valid_indices_.size() < static_cast<std::size_t>(nbh_.k_min)) {
     PCL_ERROR("[pcl_ls3d::%s::extract] %zu finite points, fewer than the smallest "
-              "neighbourhood k_min = %d.\n", name, valid_indices_.size(), nbh_.k_min);
+              "neighbourhood k_min = %d.\n",
+              name, valid_indices_.size(), nbh_.k_min);
     return false;
   }
   if (valid_indices_.size() < indices_->size())
@@ -230,8 +228,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::prepareForSegmentation()
 
   if (!search_)
     search_.reset(new pcl_ls3d::search::FlannKdTree<PointT>);
-  search_->setInputCloud(input_, pcl::IndicesConstPtr(new pcl::Indices(valid_indices_.begin(),
-                                                                       valid_indices_.end())));
+  search_->setInputCloud(
+      input_, pcl::IndicesConstPtr(new pcl::Indices(valid_indices_.begin(), valid_indices_.end())));
   return true;
 }
 
@@ -244,8 +242,10 @@ MultiRuleRegionGrowing<PointT, NormalT>::checkThresholds()
   char buf[160];
   if (user_residual_threshold_ &&
       !(std::isfinite(*user_residual_threshold_) && *user_residual_threshold_ > 0.0)) {
-    std::snprintf(buf, sizeof(buf), "Invalid residual threshold %g (must be > 0; "
-                  "useAdaptiveThresholds() restores the adaptive one).", *user_residual_threshold_);
+    std::snprintf(buf, sizeof(buf),
+                  "Invalid residual threshold %g (must be > 0; "
+                  "useAdaptiveThresholds() restores the adaptive one).",
+                  *user_residual_threshold_);
     return buf;
   }
   const std::pair<const char*, const std::optional<double>*> merge_thresholds[] = {
@@ -254,8 +254,10 @@ MultiRuleRegionGrowing<PointT, NormalT>::checkThresholds()
       {"volume change", &user_volume_threshold_}};
   for (const auto& [what, value] : merge_thresholds)
     if (*value && !(std::isfinite(**value) && **value >= 0.0)) {
-      std::snprintf(buf, sizeof(buf), "Invalid %s threshold %g (must be >= 0; "
-                    "useAdaptiveThresholds() restores the adaptive one).", what, **value);
+      std::snprintf(buf, sizeof(buf),
+                    "Invalid %s threshold %g (must be >= 0; "
+                    "useAdaptiveThresholds() restores the adaptive one).",
+                    what, **value);
       return buf;
     }
   if (!(merge_.alpha > 0.0 && merge_.alpha < 1.0))
@@ -293,8 +295,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::computeFeatures()
         continue;  // stays Invalid: never labelled
       sorted.clear();
       for (std::size_t t = 0; t < nn.size(); ++t) {
-        const int pos = (nn[t] >= 0 && static_cast<std::size_t>(nn[t]) < position_of_.size())
-                            ? position_of_[nn[t]] : -1;
+        const int pos =
+            (nn[t] >= 0 && static_cast<std::size_t>(nn[t]) < position_of_.size()) ? position_of_[nn[t]] : -1;
         if (pos >= 0)
           sorted.emplace_back(d2[t], pos);
       }
@@ -320,7 +322,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::computeFeatures()
   spacing_ = stats::median(scale);
   if (!(spacing_ > 0.0)) {
     PCL_ERROR("[pcl_ls3d::%s::extract] All neighbourhoods have zero extent (duplicate points "
-              "only); nothing to segment.\n", getClassName().c_str());
+              "only); nothing to segment.\n",
+              getClassName().c_str());
     return false;
   }
   return true;
@@ -332,13 +335,11 @@ MultiRuleRegionGrowing<PointT, NormalT>::growSegments()
 {
   const std::size_t n = points_.size();
   grow_.growth_radius = user_growth_radius_ > 0.0 ? user_growth_radius_ : 2.0 * spacing_;
-  grow_.volumetric_radius =
-      user_volumetric_radius_ > 0.0 ? user_volumetric_radius_ : 1.0 * spacing_;
+  grow_.volumetric_radius = user_volumetric_radius_ > 0.0 ? user_volumetric_radius_ : 1.0 * spacing_;
 
   // v_t (§3.1): median plane-fit residual of the linear set unless given.
-  grow_.residual_threshold = user_residual_threshold_
-                                 ? *user_residual_threshold_
-                                 : segmentation::seedResidualThreshold(features_);
+  grow_.residual_threshold =
+      user_residual_threshold_ ? *user_residual_threshold_ : segmentation::seedResidualThreshold(features_);
 
   std::vector<Eigen::Vector3f> normals(n);
   for (std::size_t p = 0; p < n; ++p) {
@@ -351,9 +352,10 @@ MultiRuleRegionGrowing<PointT, NormalT>::growSegments()
     }
   }
   segment_of_ = segmentation::growRegions(points_, features_, normals, graph_, grow_);
-  initial_segments_ = segment_of_.empty()
-                          ? 0 : static_cast<std::size_t>(
-                                    *std::max_element(segment_of_.begin(), segment_of_.end()) + 1);
+  initial_segments_ =
+      segment_of_.empty()
+          ? 0
+          : static_cast<std::size_t>(*std::max_element(segment_of_.begin(), segment_of_.end()) + 1);
 }
 
 template <typename PointT, typename NormalT>
@@ -364,8 +366,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::mergeSegments()
   for (std::size_t p = 0; p < features_.size(); ++p)
     residuals[p] = features_[p].residual;
   merge_.threads = threads_;
-  merge_report_ = segmentation::mergeSegments(points_, segment_of_, residuals, merge_,
-                                              spacing_ * spacing_ * spacing_);
+  merge_report_ =
+      segmentation::mergeSegments(points_, segment_of_, residuals, merge_, spacing_ * spacing_ * spacing_);
 }
 
 template <typename PointT, typename NormalT>
@@ -385,8 +387,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
   // growth radius (1.5 spacings by default; tuned on 77050_627755, 77055_627755 and the
   // generated seeds 1-3, docs/BENCHMARKS.md).
   a.rough_link_length = 0.5 * (grow_.volumetric_radius + grow_.growth_radius);
-  assembly_report_ = segmentation::assembleObjects(points_, graph_, grow_.graph_k, residuals,
-                                                   ground, a, segment_of_);
+  assembly_report_ =
+      segmentation::assembleObjects(points_, graph_, grow_.graph_k, residuals, ground, a, segment_of_);
   if (min_fragment_size_ > 1) {
     // Only touching fragments join (links up to the growth radius), and rough ones never into
     // the ground, so vegetation the assembly left alone (a bush of a few points on a lawn)
@@ -395,8 +397,8 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleObjects()
         graph_, grow_.graph_k, segment_of_, min_fragment_size_,
         segmentation::absorptionContact(points_, assembly_report_.point_kind, a.max_link_length));
   }
-  object_class_ = segmentation::classifyObjects(points_, segment_of_, assembly_report_.point_kind,
-                                                ground, classes_, multipleReturnFlags());
+  object_class_ = segmentation::classifyObjects(points_, segment_of_, assembly_report_.point_kind, ground,
+                                                classes_, multipleReturnFlags());
   assignPointsByPosition(ground, a);
 }
 
@@ -417,17 +419,17 @@ MultiRuleRegionGrowing<PointT, NormalT>::multipleReturnFlags() const
 
 template <typename PointT, typename NormalT>
 void
-MultiRuleRegionGrowing<PointT, NormalT>::assignPointsByPosition(
-    const std::vector<char>& ground, const segmentation::AssemblySettings& a)
+MultiRuleRegionGrowing<PointT, NormalT>::assignPointsByPosition(const std::vector<char>& ground,
+                                                                const segmentation::AssemblySettings& a)
 {
   // The terrain first: the ground under an eave inside a crown object is ground, not wall.
   // Within terrain_return_multiple ground residuals of the plane the assembly measures raised
   // points against, in the same window.
   if (a.terrain_return_multiple > 0.0)
-    assembly_report_.points_back_to_ground = segmentation::returnTerrainPoints(
-        points_, ground, graph_, grow_.graph_k, object_class_,
-        a.terrain_return_multiple * assembly_report_.ground_residual,
-        segmentation::terrainWindowHalfWidth(a), segment_of_);
+    assembly_report_.points_back_to_ground =
+        segmentation::returnTerrainPoints(points_, ground, graph_, grow_.graph_k, object_class_,
+                                          a.terrain_return_multiple * assembly_report_.ground_residual,
+                                          segmentation::terrainWindowHalfWidth(a), segment_of_);
   // Cells of one spacing hold about three roof points; "under" is a spacing below the lowest.
   if (a.claim_under_roofs)
     assembly_report_.points_under_roofs = segmentation::claimPointsUnderRoofs(
@@ -436,20 +438,17 @@ MultiRuleRegionGrowing<PointT, NormalT>::assignPointsByPosition(
 
 template <typename PointT, typename NormalT>
 std::vector<segmentation::ObjectClass>
-MultiRuleRegionGrowing<PointT, NormalT>::clusterClasses(
-    const std::vector<pcl::PointIndices>& clusters) const
+MultiRuleRegionGrowing<PointT, NormalT>::clusterClasses(const std::vector<pcl::PointIndices>& clusters) const
 {
-  std::vector<segmentation::ObjectClass> out(clusters.size(),
-                                             segmentation::ObjectClass::Unclassified);
+  std::vector<segmentation::ObjectClass> out(clusters.size(), segmentation::ObjectClass::Unclassified);
   std::map<int, std::size_t> votes;  // object -> points of the cluster in it
   for (std::size_t c = 0; c < clusters.size(); ++c) {
     votes.clear();
     for (const auto i : clusters[c].indices)
       if (const int object = segment_of_[static_cast<std::size_t>(position_of_[i])]; object >= 0)
         ++votes[object];
-    const auto best = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
-      return a.second < b.second;
-    });
+    const auto best = std::max_element(votes.begin(), votes.end(),
+                                       [](const auto& a, const auto& b) { return a.second < b.second; });
     if (best != votes.end())
       out[c] = segmentation::classOf(best->first, object_class_);
   }
@@ -471,8 +470,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleRegions(const std::vector<int>&
   cluster_of.assign(labels.size(), -1);
   for (auto& c : all) {
     // Empty: an object the point-level rules of the object level emptied.
-    if (c.indices.empty() || c.indices.size() < min_cluster_size_ ||
-        c.indices.size() > max_cluster_size_)
+    if (c.indices.empty() || c.indices.size() < min_cluster_size_ || c.indices.size() > max_cluster_size_)
       continue;
     for (const auto i : c.indices)
       cluster_of[position_of_[i]] = static_cast<int>(clusters.size());
@@ -482,8 +480,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::assembleRegions(const std::vector<int>&
 
 template <typename PointT, typename NormalT>
 void
-MultiRuleRegionGrowing<PointT, NormalT>::getSegmentFromPoint(pcl::index_t index,
-                                                             pcl::PointIndices& cluster)
+MultiRuleRegionGrowing<PointT, NormalT>::getSegmentFromPoint(pcl::index_t index, pcl::PointIndices& cluster)
 {
   cluster.indices.clear();
   if (plane_clusters_.empty() && object_clusters_.empty()) {  // not segmented yet: as PCL, do it
@@ -540,8 +537,7 @@ MultiRuleRegionGrowing<PointT, NormalT>::getDimensionality() const
 
 template <typename PointT, typename NormalT>
 bool
-MultiRuleRegionGrowing<PointT, NormalT>::getPointFeatures(pcl::index_t index,
-                                                          PointFeatures& features) const
+MultiRuleRegionGrowing<PointT, NormalT>::getPointFeatures(pcl::index_t index, PointFeatures& features) const
 {
   if (index < 0 || static_cast<std::size_t>(index) >= position_of_.size())
     return false;
@@ -565,5 +561,5 @@ MultiRuleRegionGrowing<PointT, NormalT>::getPointLabels() const
 
 }  // namespace pcl_ls3d
 
-#define PCL_LS3D_INSTANTIATE_MultiRuleRegionGrowing(T)                                   \
+#define PCL_LS3D_INSTANTIATE_MultiRuleRegionGrowing(T)                                                       \
   template class PCL_EXPORTS pcl_ls3d::MultiRuleRegionGrowing<T, pcl::Normal>;
