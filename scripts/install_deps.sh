@@ -5,7 +5,8 @@ set -euo pipefail
 packages=(build-essential cmake ninja-build pkg-config
           libpcl-dev libeigen3-dev libboost-dev libflann-dev libqhull-dev
           libgtest-dev nlohmann-json3-dev
-          libgdal-dev libcairo2-dev fonts-dejavu-core slurm-wlm munge)
+          libgdal-dev libcairo2-dev fonts-dejavu-core slurm-wlm munge
+          clang-format)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
