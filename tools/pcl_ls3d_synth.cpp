@@ -276,13 +276,13 @@ runPair(int argc, char** argv, const Context& ctx)
   setOrigin(argc, argv, s.origin, ok);
   s.buildings = !find_switch(argc, argv, "-no_buildings");
   if (!ok)
-    return -1;
+    return 1;
   if (!s.isValid(&why)) {
     print_error("Invalid pair settings: %s.\n", why.c_str());
-    return -1;
+    return 1;
   }
   if (!refuseExisting({ctx.json_path, ctx.file("source"), ctx.file("target")}, ctx.overwrite))
-    return -1;
+    return 1;
   tt.tic();
   const auto pair = synth::makeRegistrationPair(s);
   print_info("Generated pair: ");
@@ -323,13 +323,13 @@ runScene(int argc, char** argv, const Context& ctx)
   s.buildings = !find_switch(argc, argv, "-no_buildings");
   s.power_line = !find_switch(argc, argv, "-no_power_line");
   if (!ok)
-    return -1;
+    return 1;
   if (!s.isValid(&why)) {
     print_error("Invalid scene settings: %s.\n", why.c_str());
-    return -1;
+    return 1;
   }
   if (!refuseExisting({ctx.json_path, ctx.file("scene")}, ctx.overwrite))
-    return -1;
+    return 1;
   tt.tic();
   const auto scene = synth::makeScene(s);
   print_info("Generated scene: ");
@@ -372,24 +372,24 @@ runStrips(int argc, char** argv, const Context& ctx)
   if (parse_argument(argc, argv, "-pattern", pattern) >= 0) {
     if (pattern != "zigzag" && pattern != "parallel") {
       print_error("-pattern must be zigzag or parallel, got '%s'.\n", pattern.c_str());
-      return -1;
+      return 1;
     }
     s.pattern = pattern == "zigzag" ? synth::ScanPattern::ZIGZAG : synth::ScanPattern::PARALLEL;
   }
   s.buildings = !find_switch(argc, argv, "-no_buildings");
   s.fix_first = !find_switch(argc, argv, "-no_fix_first");
   if (!ok)
-    return -1;
+    return 1;
   if (!s.isValid(&why)) {
     print_error("Invalid strip settings: %s.\n", why.c_str());
-    return -1;
+    return 1;
   }
   const bool split = find_switch(argc, argv, "-split");
   std::vector<std::string> planned{ctx.json_path, ctx.file("strips")};
   for (int k = 0; split && k < s.num_strips; ++k)
     planned.push_back(ctx.file("strip_" + std::to_string(s.first_source_id + k)));
   if (!refuseExisting(planned, ctx.overwrite))
-    return -1;
+    return 1;
   tt.tic();
   const auto block = synth::makeStripBlock(s);
   print_info("Generated ");
@@ -430,17 +430,17 @@ runLi(int argc, char** argv, const Context& ctx)
   if (parse_argument(argc, argv, "-position", position) >= 0 &&
       !synth::parseDeformationPosition(position, s.position)) {
     print_error("Unknown -position '%s' (see -h).\n", position.c_str());
-    return -1;
+    return 1;
   }
   s.noise_on_reference = find_switch(argc, argv, "-noise_on_reference");
   if (!ok)
-    return -1;
+    return 1;
   if (!s.isValid(&why)) {
     print_error("Invalid li settings: %s.\n", why.c_str());
-    return -1;
+    return 1;
   }
   if (!refuseExisting({ctx.json_path, ctx.file("reference"), ctx.file("mate")}, ctx.overwrite))
-    return -1;
+    return 1;
   tt.tic();
   const auto li = synth::makeLiSurface(s);
   print_info("Generated Li surface: ");
@@ -466,41 +466,41 @@ main(int argc, char** argv)
   pcl_ls3d::tools::lineBufferedStdout();
   if (argc < 2 || find_switch(argc, argv, "-h") || find_switch(argc, argv, "--help")) {
     printHelp(argv[0]);
-    return argc < 2 ? -1 : 0;
+    return argc < 2 ? 1 : 0;
   }
   const std::string cmd = argv[1];
   if (!kValues.count(cmd)) {
     print_error("Unknown subcommand '%s': use pair, scene, strips or li (see -h).\n", cmd.c_str());
-    return -1;
+    return 1;
   }
   if (!checkOptions(argc, argv, cmd))
-    return -1;
+    return 1;
   std::string outdir, format = "pcd";
   if (parse_argument(argc, argv, "-o", outdir) < 0 || outdir.empty()) {
     print_error("Missing -o OUTDIR (see -h).\n");
-    return -1;
+    return 1;
   }
   parse_argument(argc, argv, "-format", format);
   if (format != "pcd" && format != "ply" && format != "las" && format != "laz" && format != "xyz") {
     print_error("-format must be pcd, ply, las, laz or xyz, got '%s'.\n", format.c_str());
-    return -1;
+    return 1;
   }
   const bool overwrite = find_switch(argc, argv, "-overwrite");
   bool ok = true;
   std::uint32_t seed = 1;
   setInt(argc, argv, "-seed", seed, 0, 4294967295.0, ok);
   if (!ok)
-    return -1;
+    return 1;
   std::error_code ec;
   std::string why;
   if (!pcl_ls3d::tools::checkOutputFolder(outdir, why)) {
     print_error("%s\n", why.c_str());
-    return -1;
+    return 1;
   }
   fs::create_directories(outdir, ec);
   if (ec || !fs::is_directory(outdir)) {
     print_error("Cannot create output folder %s.\n", outdir.c_str());
-    return -1;
+    return 1;
   }
   Context ctx;
   ctx.seed = seed;

@@ -111,6 +111,8 @@ TEST_F(ToolOptions, NumericOptionsAreParsedStrictly)
   for (const auto& [args, expect] : std::vector<std::pair<std::string, std::string>>{
            {"pair -seed 1x", "-seed"}, {"pair -overlap 0.5x", "-overlap"}, {"scene -trees abc", "-trees"}})
     expectRefusal("pcl_ls3d_synth", args + " -o " + file("synth"), expect);
+  // Exit 1 as every tool's refusal (a return of -1 from main was exit 255).
+  EXPECT_EQ(runTool("pcl_ls3d_synth", "pair -seed 1x -o " + file("synth"), dir_.path.string()).code, 1);
   for (const auto& [args, expect] :
        std::vector<std::pair<std::string, std::string>>{{"-max_iter abc", "-max_iter"},
                                                         {"-max_obs 6x", "-max_obs"},
