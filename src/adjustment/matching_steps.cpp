@@ -1,6 +1,6 @@
 #include "matching_steps.h"
 
-#include "../rules/target_overlap.h"
+#include "rules/target_overlap.h"
 
 #include <pcl_ls3d/adjustment/surface_noise.h>
 

@@ -6,8 +6,8 @@
 #include <pcl_ls3d/adjustment/surface_matching_core.h>
 #include <pcl_ls3d/adjustment/surface_noise.h>
 
-#include "../rules/target_overlap.h"
 #include "matching_steps.h"
+#include "rules/target_overlap.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,8 +3,8 @@
 #include <pcl_ls3d/adjustment/normal_equations.h>
 #include <pcl_ls3d/adjustment/similarity_jacobian.h>
 
-#include "../adjustment/matching_steps.h"  // the engine's pair set-up
-#include "../rules/target_overlap.h"       // ... and its degeneracy check
+#include "adjustment/matching_steps.h"  // the engine's pair set-up
+#include "rules/target_overlap.h"       // ... and its degeneracy check
 
 #include <Eigen/Geometry>
 

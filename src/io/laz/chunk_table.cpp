@@ -5,7 +5,7 @@
 
 #include "integer_compressor.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 namespace pcl_ls3d {
 namespace io {

@@ -3,7 +3,7 @@
 
 #include "copc_hierarchy.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 #include <algorithm>
 #include <cmath>

@@ -3,6 +3,7 @@
 ///        the nodes they need (copc_reader.h).
 
 #include "copc_reader.h"
+#include "record_buffer.h"
 
 #include "laszip_items.h"
 #include "laz_chunk_reader.h"
@@ -35,25 +36,6 @@ nodeName(const CopcNode& n)
   return "COPC node " + std::to_string(n.key.level) + "-" + std::to_string(n.key.x) + "-" +
          std::to_string(n.key.y) + "-" + std::to_string(n.key.z);
 }
-
-/// A node's decoded records; grown, never initialised, so a hostile node that claims many points
-/// but decodes few touches only the pages its records fill.
-struct RecordBuffer
-{
-  std::unique_ptr<std::uint8_t[]> bytes;
-  std::size_t capacity = 0;
-
-  /// Null when the memory cannot be had (a hostile count): the caller refuses the chunk.
-  std::uint8_t*
-  reserve(std::size_t n)
-  {
-    if (n > capacity) {
-      bytes.reset(new (std::nothrow) std::uint8_t[n]);
-      capacity = bytes ? n : 0;
-    }
-    return bytes.get();
-  }
-};
 
 /// One decoder per thread (each holds its models) and one record buffer per thread.
 struct NodeWorkers

@@ -10,7 +10,7 @@
 #include "integer_compressor.h"
 #include "pointwise_items.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 namespace pcl_ls3d {
 namespace io {

@@ -4,7 +4,7 @@
 
 #include "laszip_items.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 #include <sstream>
 

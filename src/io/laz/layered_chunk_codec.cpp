@@ -6,7 +6,7 @@
 #include "laszip_items.h"
 #include "layered_items.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 #include <algorithm>
 #include <numeric>

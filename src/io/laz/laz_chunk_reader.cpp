@@ -3,10 +3,11 @@
 ///        decoding them, in parallel when the table allows (laz_chunk_reader.h).
 
 #include "laz_chunk_reader.h"
+#include "record_buffer.h"
 
 #include "chunk_table.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 #include <algorithm>
 #include <new>
@@ -59,25 +60,6 @@ evlrStart(const std::uint8_t* data, std::size_t size, const LasHeaderInfo& h)
     return size;
   return std::min<std::uint64_t>(las::get<std::uint64_t>(data + las::kEvlrStart), size);
 }
-
-/// A buffer for a chunk's records, grown (never initialised: a hostile chunk that claims many
-/// points but decodes few touches only the pages its decoded records fill).
-struct RecordBuffer
-{
-  std::unique_ptr<std::uint8_t[]> bytes;
-  std::size_t capacity = 0;
-
-  /// Null when the memory cannot be had (a hostile count): the caller refuses the chunk.
-  std::uint8_t*
-  reserve(std::size_t n)
-  {
-    if (n > capacity) {
-      bytes.reset(new (std::nothrow) std::uint8_t[n]);
-      capacity = bytes ? n : 0;
-    }
-    return bytes.get();
-  }
-};
 
 }  // namespace
 

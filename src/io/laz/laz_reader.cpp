@@ -7,8 +7,8 @@
 #include "copc_reader.h"
 #include "laz_chunk_reader.h"
 
-#include "../las_format.h"
-#include "../las_header.h"
+#include "io/las_format.h"
+#include "io/las_header.h"
 
 #include <algorithm>
 #include <cstring>

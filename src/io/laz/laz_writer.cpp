@@ -8,8 +8,8 @@
 #include "chunk_table.h"
 #include "laszip_items.h"
 
-#include "../las_format.h"
-#include "../las_header.h"
+#include "io/las_format.h"
+#include "io/las_header.h"
 
 #include <cstring>
 #include <fstream>

@@ -11,7 +11,7 @@
 #include "integer_compressor.h"
 #include "pointwise_items.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 #include <algorithm>
 #include <cstring>

@@ -3,7 +3,7 @@
 
 #include "point14_context.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 namespace pcl_ls3d {
 namespace io {

@@ -5,7 +5,7 @@
 
 #include "layered_items.h"
 
-#include "../las_format.h"
+#include "io/las_format.h"
 
 #include <algorithm>
 
