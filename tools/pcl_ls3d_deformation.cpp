@@ -388,6 +388,8 @@ parseOptions(int argc, char** argv, Options& o, std::string& why)
   if (parse_argument(argc, argv, "-map_format", format_text) >= 0 &&
       !pcl_ls3d::maps::parseMapFormat(format_text, o.map_format))
     return (why = "-map_format takes png, pdf or svg, not '" + format_text + "'"), false;
+  if (!format_text.empty() && o.map_prefix.empty())
+    return (why = "-map_format needs -map PREFIX (the map it formats)"), false;
   if (!parseSettings(argc, argv, o, why))
     return false;
   if (!crs_text.empty() && (o.crs_wkt = pcl_ls3d::maps::crsFromUserInput(crs_text, &why)).empty())

@@ -89,7 +89,7 @@ TEST(MapFormatTools, DeformationWritesTheFormatAsked)
   // Refused before the inputs are read: one line, exit 1, nothing written.
   for (const std::string& bad :
        {" -map " + s.file("x") + " -map_format jpg", " -map " + s.file("x") + " -map_format",
-        " -map " + s.file("no_such_folder/x") + " -map_format svg"}) {
+        " -map " + s.file("no_such_folder/x") + " -map_format svg", std::string(" -map_format pdf")}) {
     r = runTool("pcl_ls3d_deformation", pair + bad, s.dir.string());
     EXPECT_EQ(r.code, 1) << bad;
     EXPECT_EQ(lineCount(r.err), 1u) << bad << ": " << r.err;
@@ -98,6 +98,8 @@ TEST(MapFormatTools, DeformationWritesTheFormatAsked)
       runTool("pcl_ls3d_deformation", pair + " -map " + s.file("x") + " -map_format jpg", s.dir.string())
           .err.find("-map_format"),
       std::string::npos);
+  EXPECT_NE(runTool("pcl_ls3d_deformation", pair + " -map_format pdf", s.dir.string()).err.find("needs -map"),
+            std::string::npos);
   for (const char* name : {"x.png", "x.jpg", "x.tif", "x.svg"})
     EXPECT_FALSE(fs::exists(s.file(name))) << name;
   // An existing map is kept without -overwrite.
