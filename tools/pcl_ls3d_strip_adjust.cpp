@@ -209,6 +209,8 @@ bool
 checkOutputs(const Options& o, std::string& why)
 {
   const std::string& dir = o.request.output_dir;
+  if (o.request.maps_dir.empty() && o.request.map_format != maps::MapFormat::PNG)
+    return (why = "-map_format needs -maps DIR (the maps it formats)").empty();
   for (std::size_t k = 0; k < o.inputs.size(); ++k) {
     const std::string& in = o.inputs[k];
     std::error_code ec;  // no std::filesystem exception escapes: a refused path is one line

@@ -140,6 +140,10 @@ TEST(MapFormatTools, StripAdjustWritesEveryMapInTheFormatAsked)
   EXPECT_EQ(lineCount(r.err), 1u) << r.err;
   EXPECT_NE(r.err.find("-map_format"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(s.file("maps2")));
+  r = runTool("pcl_ls3d_strip_adjust", input + " -map_format pdf", s.dir.string());
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(lineCount(r.err), 1u) << r.err;
+  EXPECT_NE(r.err.find("needs -maps"), std::string::npos) << r.err;
 }
 
 // The staged strip adjustment carries the format in its plan file; a plan written before the
