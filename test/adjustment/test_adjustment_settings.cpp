@@ -43,7 +43,7 @@ TEST(SourceBlockFromGuess, ReproducesTheGuessAboutTheReductionOrigin)
   EXPECT_EQ(b.values[TX], 0.0);
   EXPECT_EQ(b.values[TY], 0.0);
   EXPECT_EQ(b.values[TZ], 0.0);
-  for (const Eigen::Vector3d x :
+  for (const Eigen::Vector3d& x :
        {Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(-40, 7, 12), Eigen::Vector3d(100, -50, -3)})
     EXPECT_LT((mapByBlock(b, x) - (guess * x.homogeneous()).head<3>()).norm(), 1e-9) << x.transpose();
   // L_e from the guess (the default), P_e from the settings.

@@ -176,8 +176,10 @@ TEST(Ls3dHonestSigma, SandwichCanBeSwitchedOff)
     const pcl_ls3d::AdjustmentReport& r = ls3d.getReport();
     ASSERT_TRUE(r.hasEstimate()) << r.message;
     EXPECT_EQ(r.precision_model.rfind(sandwich ? "spatial sandwich" : "formal", 0), 0u) << r.precision_model;
-    for (int i = 0; i < 6; ++i)
-      if (!sandwich)
+    for (int i = 0; i < 6; ++i) {
+      if (!sandwich) {
         EXPECT_NEAR(r.sigmas[i], r.sigmas_formal[i], 1e-12 * r.sigmas_formal[i]) << i;
+      }
+    }
   }
 }
