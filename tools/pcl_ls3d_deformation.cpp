@@ -294,69 +294,96 @@ struct Options
   def::DeformationSettings settings;
 };
 
+/// The numeric options as given (or their defaults), before they enter the settings.
+struct NumericOptions
+{
+  int subsets = 0, min_region = 10, refine = 10, max_iter = 30;
+  long long matching_points = 50000;
+  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, grow_k = 2.0;
+};
+
+/// The numeric options, each in its range (-map_cell straight into the options).
+bool
+parseNumbers(int argc, char** argv, NumericOptions& n, double& map_cell, std::string& why)
+{
+  using pcl_ls3d::tools::integerOption;
+  using pcl_ls3d::tools::numberOption;
+  return integerOption(argc, argv, "-subsets", n.subsets, why, 1, 10000000) &&
+         integerOption(argc, argv, "-min_region", n.min_region, why, 1, 1000000000) &&
+         integerOption(argc, argv, "-refine", n.refine, why, 0, 100) &&
+         integerOption(argc, argv, "-max_iter", n.max_iter, why, 1, 100000) &&
+         numberOption(argc, argv, "-grow_k", n.grow_k, why, 0.0, 1e6) &&
+         integerOption(argc, argv, "-matching_points", n.matching_points, why, 0, 1000000000000LL) &&
+         numberOption(argc, argv, "-seed", n.seed, why, 0, 4294967295.0) &&
+         numberOption(argc, argv, "-k", n.k, why, 1e-6, 1e6) &&
+         numberOption(argc, argv, "-contamination", n.contamination, why, 1e-6, 0.5) &&
+         numberOption(argc, argv, "-max_dist", n.max_dist, why, 1e-12) &&
+         numberOption(argc, argv, "-map_cell", map_cell, why, 1e-12);
+}
+
+/// -lod95 against -k and -grow_k: a conflict is an error; a default -grow_k that cannot grow
+/// the regions a warning.
+bool
+checkDetectionThresholds(int argc, char** argv, bool lod95, const NumericOptions& n, std::string& why)
+{
+  if (!optionConflict(argc, argv, lod95, n.k, n.grow_k, why))
+    return false;
+  if (!pcl_ls3d::tools::optionValue(argc, argv, "-grow_k") && n.grow_k >= (lod95 ? kLod95Factor : n.k))
+    print_warn("Warning: %s %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
+               "below it, or 0)\n",
+               lod95 ? "-lod95's threshold" : "-k", lod95 ? kLod95Factor : n.k, n.grow_k);
+  return true;
+}
+
+/// The robust matching's settings from the model and the numbers.
+void
+applyMatchingSettings(const NumericOptions& n, pcl_ls3d::ParameterModel model,
+                      pcl_ls3d::RobustMatchingSettings& m)
+{
+  m.adjustment.setParameterModel(model);
+  m.subsets = n.subsets;
+  m.contamination = n.contamination;
+  m.seed = static_cast<std::uint32_t>(n.seed);
+  if (model == pcl_ls3d::ParameterModel::SIMILARITY_7)
+    m.sample_size = 8;
+  else if (model == pcl_ls3d::ParameterModel::TRANSLATION_3)
+    m.sample_size = 4;
+  if (n.max_dist > 0.0)
+    m.adjustment.max_correspondence_distance = n.max_dist;
+  m.adjustment.max_iterations = n.max_iter;
+}
+
 /// -params, -subsets, ... into the deformation settings; false with the reason.
 bool
 parseSettings(int argc, char** argv, Options& o, std::string& why)
 {
   std::string estimator_text = "mm";
-  int subsets = 0, min_region = 10, refine = 10, max_iter = 30;
-  long long matching_points = 50000;
-  double k = 3.0, contamination = 0.5, max_dist = -1.0, seed = 1.0, grow_k = 2.0;
+  NumericOptions n;
   parse_argument(argc, argv, "-estimator", estimator_text);
   parse_argument(argc, argv, "-rule", o.rule_text);
-  using pcl_ls3d::tools::integerOption;
-  using pcl_ls3d::tools::numberOption;
-  using pcl_ls3d::tools::optionValue;
   pcl_ls3d::ParameterModel model = pcl_ls3d::ParameterModel::RIGID_6;
-  if (!pcl_ls3d::tools::parameterModelOption(argc, argv, {"6", "7", "3"}, model, why))
-    return false;
-  if (!integerOption(argc, argv, "-subsets", subsets, why, 1, 10000000) ||
-      !integerOption(argc, argv, "-min_region", min_region, why, 1, 1000000000) ||
-      !integerOption(argc, argv, "-refine", refine, why, 0, 100) ||
-      !integerOption(argc, argv, "-max_iter", max_iter, why, 1, 100000) ||
-      !numberOption(argc, argv, "-grow_k", grow_k, why, 0.0, 1e6) ||
-      !integerOption(argc, argv, "-matching_points", matching_points, why, 0, 1000000000000LL) ||
-      !numberOption(argc, argv, "-seed", seed, why, 0, 4294967295.0) ||
-      !numberOption(argc, argv, "-k", k, why, 1e-6, 1e6) ||
-      !numberOption(argc, argv, "-contamination", contamination, why, 1e-6, 0.5) ||
-      !numberOption(argc, argv, "-max_dist", max_dist, why, 1e-12) ||
-      !numberOption(argc, argv, "-map_cell", o.map_cell, why, 1e-12))
+  if (!pcl_ls3d::tools::parameterModelOption(argc, argv, {"6", "7", "3"}, model, why) ||
+      !parseNumbers(argc, argv, n, o.map_cell, why))
     return false;
   o.lod95 = find_switch(argc, argv, "-lod95");
-  if (!optionConflict(argc, argv, o.lod95, k, grow_k, why))
+  if (!checkDetectionThresholds(argc, argv, o.lod95, n, why))
     return false;
-  if (!optionValue(argc, argv, "-grow_k") && grow_k >= (o.lod95 ? kLod95Factor : k))
-    print_warn("Warning: %s %g is not above the default -grow_k %g: the regions do not grow (give -grow_k "
-               "below it, or 0)\n",
-               o.lod95 ? "-lod95's threshold" : "-k", o.lod95 ? kLod95Factor : k, grow_k);
-
   def::DeformationSettings& settings = o.settings;
-  pcl_ls3d::RobustMatchingSettings& m = settings.matching;
-  if (!pcl_ls3d::parseRobustMethod(estimator_text, m.method))
+  if (!pcl_ls3d::parseRobustMethod(estimator_text, settings.matching.method))
     return (why = "unknown -estimator " + estimator_text + " (mm, lms, md, m, huber, zuo, ls)"), false;
   if (!pcl_ls3d::parseConjugateRuleType(o.rule_text, settings.rule) ||
       settings.rule == pcl_ls3d::ConjugateRuleType::ICP)
     return (why = "unknown -rule " + o.rule_text + " (lzd or lnd)"), false;
-  m.adjustment.setParameterModel(model);
-  m.subsets = subsets;
-  m.contamination = contamination;
-  m.seed = static_cast<std::uint32_t>(seed);
-  if (model == pcl_ls3d::ParameterModel::SIMILARITY_7)
-    m.sample_size = 8;
-  else if (model == pcl_ls3d::ParameterModel::TRANSLATION_3)
-    m.sample_size = 4;
-  if (max_dist > 0.0)
-    m.adjustment.max_correspondence_distance = max_dist;
-  m.adjustment.max_iterations = max_iter;
-  settings.residuals.k = k;
+  applyMatchingSettings(n, model, settings.matching);
+  settings.residuals.k = n.k;
   if (o.lod95)
     settings.residuals.rule = def::DetectionRule::LOD95;
-  settings.regions.min_points = static_cast<std::size_t>(min_region);
-  settings.regions.grow_k = grow_k;
-  settings.refinement.max_rounds = refine;
+  settings.regions.min_points = static_cast<std::size_t>(n.min_region);
+  settings.regions.grow_k = n.grow_k;
+  settings.refinement.max_rounds = n.refine;
   // A model the user named is the model: rigid or nothing. The default may fall back.
-  settings.translation_when_undetermined = optionValue(argc, argv, "-params") == nullptr;
-  settings.matching_points = static_cast<std::size_t>(matching_points);
+  settings.translation_when_undetermined = pcl_ls3d::tools::optionValue(argc, argv, "-params") == nullptr;
+  settings.matching_points = static_cast<std::size_t>(n.matching_points);
   if (!settings.isValid(&why))
     return (why = "invalid settings: " + why), false;
   return true;

@@ -127,11 +127,81 @@ describeRegion(const pcl_ls3d::io::CloudInfo& info)
   return j;
 }
 
+std::vector<double>
+vec(const Eigen::Vector3d& v)
+{
+  return std::vector<double>{v[0], v[1], v[2]};
+}
+
+/// The CRS a LAS declares in its VLRs, or a PCD / PLY the tools wrote records in its header.
+void
+describeCrs(const pcl_ls3d::io::CloudInfo& info, nlohmann::json& j)
+{
+  const std::string wkt = pcl_ls3d::maps::crsOfFile(info);
+  if (wkt.empty())
+    return;
+  j[info.format == "las" ? "crs_declared" : "crs_recorded"] = pcl_ls3d::maps::crsName(wkt);
+  j["crs_units"] = {{"plan", pcl_ls3d::maps::crsLinearUnitName(wkt)},
+                    {"height", pcl_ls3d::maps::crsVerticalUnitName(wkt)},
+                    {"plan_units_per_height_unit", pcl_ls3d::maps::planUnitsPerHeightUnit(wkt)}};
+}
+
+/// "USER/ID (N B)" per VLR.
+std::vector<std::string>
+vlrList(const std::vector<pcl_ls3d::io::LasVlr>& records)
+{
+  std::vector<std::string> out;
+  for (const auto& v : records)
+    out.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" + std::to_string(v.data.size()) +
+                  " B)");
+  return out;
+}
+
+/// The LAS header's fields and its VLRs.
+nlohmann::json
+describeLasHeader(const pcl_ls3d::io::LasHeaderInfo& h)
+{
+  nlohmann::json l;
+  l["version"] = std::to_string(h.version_major) + "." + std::to_string(h.version_minor);
+  l["point_format"] = h.point_format;
+  l["record_length"] = h.record_length;
+  l["extra_bytes_per_record"] = h.extra_bytes_per_record;
+  l["header_size"] = h.header_size;
+  l["offset_to_points"] = h.offset_to_points;
+  l["global_encoding"] = h.global_encoding;
+  l["system_identifier"] = h.system_identifier;
+  l["generating_software"] = h.generating_software;
+  l["scale"] = vec(h.scale);
+  l["offset"] = vec(h.offset);
+  l["header_min"] = vec(h.min);
+  l["header_max"] = vec(h.max);
+  l["vlrs"] = vlrList(h.vlrs);
+  l["evlrs"] = vlrList(h.evlrs);
+  return l;
+}
+
+/// Point counts per classification (a SEGMENTS.pcd's: its objects' classes, IMRG) and per
+/// point-source id.
+void
+describeCounts(const pcl::PointCloud<pcl_ls3d::PointLiDAR>& cloud, const pcl_ls3d::io::CloudInfo& info,
+               nlohmann::json& j)
+{
+  const bool segments = info.segments_file;
+  if (!segments || info.hasField("classification")) {
+    std::map<int, std::size_t> classes;
+    for (const auto& p : cloud)
+      ++classes[p.classification];
+    for (const auto& [c, n] : classes)
+      j[segments ? "object_classes" : "classes"][std::to_string(c)] = n;
+  }
+  for (const auto& [id, idx] : pcl_ls3d::io::splitByPointSource(cloud))
+    j["point_source_ids"][std::to_string(id)] = idx.size();
+}
+
 nlohmann::json
 describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& cloud,
          const pcl_ls3d::io::CloudInfo& info, double ms)
 {
-  auto vec = [](const Eigen::Vector3d& v) { return std::vector<double>{v[0], v[1], v[2]}; };
   nlohmann::json j;
   j["file"] = path;
   j["format"] = info.format;
@@ -143,13 +213,7 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
   // applied the origin its header records; say so, as the file itself is not in that frame.
   if (info.has_file_origin)
     j["origin_applied"] = vec(info.file_origin);
-  // The CRS a LAS declares in its VLRs, or a PCD / PLY the tools wrote records in its header.
-  if (const std::string wkt = pcl_ls3d::maps::crsOfFile(info); !wkt.empty()) {
-    j[info.format == "las" ? "crs_declared" : "crs_recorded"] = pcl_ls3d::maps::crsName(wkt);
-    j["crs_units"] = {{"plan", pcl_ls3d::maps::crsLinearUnitName(wkt)},
-                      {"height", pcl_ls3d::maps::crsVerticalUnitName(wkt)},
-                      {"plan_units_per_height_unit", pcl_ls3d::maps::planUnitsPerHeightUnit(wkt)}};
-  }
+  describeCrs(info, j);
   j["min"] = vec(info.min_file);
   j["max"] = vec(info.max_file);
   j["fields"] = info.fields;
@@ -157,52 +221,17 @@ describe(const std::string& path, const pcl::PointCloud<pcl_ls3d::PointLiDAR>& c
     j["xyz_unmapped_columns"] = info.xyz_unmapped_columns;
   j["load_ms"] = ms;
   if (info.format == "las") {
-    const auto& h = info.las;
-    nlohmann::json l;
-    l["version"] = std::to_string(h.version_major) + "." + std::to_string(h.version_minor);
-    l["point_format"] = h.point_format;
-    l["record_length"] = h.record_length;
-    l["extra_bytes_per_record"] = h.extra_bytes_per_record;
-    l["header_size"] = h.header_size;
-    l["offset_to_points"] = h.offset_to_points;
-    l["global_encoding"] = h.global_encoding;
-    l["system_identifier"] = h.system_identifier;
-    l["generating_software"] = h.generating_software;
-    l["scale"] = vec(h.scale);
-    l["offset"] = vec(h.offset);
-    l["header_min"] = vec(h.min);
-    l["header_max"] = vec(h.max);
-    std::vector<std::string> vlrs;
-    for (const auto& v : h.vlrs)
-      vlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" + std::to_string(v.data.size()) +
-                     " B)");
-    l["vlrs"] = vlrs;
-    std::vector<std::string> evlrs;
-    for (const auto& v : h.evlrs)
-      evlrs.push_back(v.user_id + "/" + std::to_string(v.record_id) + " (" + std::to_string(v.data.size()) +
-                      " B)");
-    l["evlrs"] = evlrs;
-    j["las"] = l;
-    if (h.laz.compressed)
-      j["laz"] = describeLaz(h.laz);
-    if (h.copc.present)
-      j["copc"] = describeCopc(h.copc);
+    j["las"] = describeLasHeader(info.las);
+    if (info.las.laz.compressed)
+      j["laz"] = describeLaz(info.las.laz);
+    if (info.las.copc.present)
+      j["copc"] = describeCopc(info.las.copc);
   }
   if (info.region.applied)
     j["region"] = describeRegion(info);
-  const bool segments = info.segments_file;
-  if (segments)
+  if (info.segments_file)
     j["segments"] = describeSegments(path);
-  // A SEGMENTS.pcd's own classification field holds its objects' classes (IMRG).
-  if (!segments || info.hasField("classification")) {
-    std::map<int, std::size_t> classes;
-    for (const auto& p : cloud)
-      ++classes[p.classification];
-    for (const auto& [c, n] : classes)
-      j[segments ? "object_classes" : "classes"][std::to_string(c)] = n;
-  }
-  for (const auto& [id, idx] : pcl_ls3d::io::splitByPointSource(cloud))
-    j["point_source_ids"][std::to_string(id)] = idx.size();
+  describeCounts(cloud, info, j);
   return j;
 }
 

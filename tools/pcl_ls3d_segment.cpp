@@ -137,8 +137,9 @@ parseNumber(int argc, char** argv, const char* name, double& value, std::string&
   return tools::numberOption(argc, argv, name, value, error);
 }
 
+/// -mode and -level.
 bool
-parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string& error)
+methodOptions(int argc, char** argv, ev::SegmentationRunSettings& s, std::string& error)
 {
   std::string mode = "imrg";
   parse_argument(argc, argv, "-mode", mode);
@@ -156,18 +157,32 @@ parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string
     error = "unknown -level '" + level + "' (objects or planes)";
     return false;
   }
+  return true;
+}
+
+/// -k kmin,kmax: the neighbourhood range.
+bool
+neighbourhoodOption(int argc, char** argv, ev::SegmentationRunSettings& s, std::string& error)
+{
   std::string k;
-  if (parse_argument(argc, argv, "-k", k) >= 0) {
-    char *e1 = nullptr, *e2 = nullptr;
-    const long a = std::strtol(k.c_str(), &e1, 10);
-    const long b = (*e1 == ',') ? std::strtol(e1 + 1, &e2, 10) : 0;
-    if (*e1 != ',' || !e2 || *e2 != '\0' || a < 3 || b < a || b > 65535) {
-      error = "-k expects kmin,kmax with 3 <= kmin <= kmax, got '" + k + "'";
-      return false;
-    }
-    s.k_min = static_cast<int>(a);
-    s.k_max = static_cast<int>(b);
+  if (parse_argument(argc, argv, "-k", k) < 0)
+    return true;
+  char *e1 = nullptr, *e2 = nullptr;
+  const long a = std::strtol(k.c_str(), &e1, 10);
+  const long b = (*e1 == ',') ? std::strtol(e1 + 1, &e2, 10) : 0;
+  if (*e1 != ',' || !e2 || *e2 != '\0' || a < 3 || b < a || b > 65535) {
+    error = "-k expects kmin,kmax with 3 <= kmin <= kmax, got '" + k + "'";
+    return false;
   }
+  s.k_min = static_cast<int>(a);
+  s.k_max = static_cast<int>(b);
+  return true;
+}
+
+/// The thresholds, -threads and -min_fragment, each in its range.
+bool
+numericOptions(int argc, char** argv, ev::SegmentationRunSettings& s, std::string& error)
+{
   double threads = 0, min_fragment = -1;
   if (!parseNumber(argc, argv, "-min_fragment", min_fragment, error) ||
       !parseNumber(argc, argv, "-Nt", s.normal_angle_deg, error) ||
@@ -198,6 +213,15 @@ parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string
     }
     s.min_fragment_size = static_cast<int>(min_fragment);
   }
+  return true;
+}
+
+bool
+parseSettings(int argc, char** argv, ev::SegmentationRunSettings& s, std::string& error)
+{
+  if (!methodOptions(argc, argv, s, error) || !neighbourhoodOption(argc, argv, s, error) ||
+      !numericOptions(argc, argv, s, error))
+    return false;
   if (s.method == ev::SegmentationMethod::PclRegionGrowing && tools::optionValue(argc, argv, "-level")) {
     error = "-level applies to imrg and mrg, not to -mode pcl_rg";
     return false;

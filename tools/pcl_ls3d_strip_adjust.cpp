@@ -125,10 +125,10 @@ heldOutZOption(int argc, char** argv, double& z, std::string& why)
   return z > 0.0 || (why = "-held_out_z must be > 0 (inf: no test)").empty();
 }
 
+// -split and -reference: which points form the strips, and which strips are fixed.
 bool
-parseSettings(int argc, char** argv, Options& o, std::string& why)
+stripOptions(int argc, char** argv, Options& o, std::string& why)
 {
-  strips::StripAdjustmentSettings& s = o.request.plan.settings;
   std::string text;
   if (parse_argument(argc, argv, "-split", text) >= 0) {
     if (text != "psid")
@@ -140,6 +140,14 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
     for (std::string id; std::getline(ss, id, ',');)
       o.references.push_back(id);
   }
+  return true;
+}
+
+// -soft, -params, -rule, -estimator, -classes: the model and how it is observed.
+bool
+modelOptions(int argc, char** argv, strips::StripAdjustmentSettings& s, std::string& why)
+{
+  std::string text;
   std::vector<double> v;
   if (parse_argument(argc, argv, "-soft", text) >= 0) {
     if (!tools::parseNumberList(text, v) || v.size() != 3 || !(v[0] > 0 && v[1] > 0 && v[2] > 0))
@@ -162,9 +170,17 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
     for (double c : v)
       s.stable_classes.insert(static_cast<std::uint8_t>(c));
   }
-  // Numbers parsed strictly (tool_options.h): "6x" or "abc" is an error, not 6 or 0.
+  return true;
+}
+
+// The numeric options and -one_way. Numbers parsed strictly (tool_options.h): "6x" or "abc" is
+// an error, not 6 or 0; ranges stated here, in the options' own names (the settings' isValid()
+// speaks of fields).
+bool
+numericOptions(int argc, char** argv, Options& o, std::string& why)
+{
+  strips::StripAdjustmentSettings& s = o.request.plan.settings;
   long long count = -1, min_obs = -1;
-  // Ranges stated here, in the options' own names (the settings' isValid() speaks of fields).
   if (!tools::numberOption(argc, argv, "-spacing", s.observation_spacing, why, 0.0) ||
       !tools::integerOption(argc, argv, "-max_obs", count, why, 10, 2147483647) ||
       !tools::numberOption(argc, argv, "-max_dist", s.max_distance, why) ||
@@ -183,6 +199,15 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   s.both_directions = !find_switch(argc, argv, "-one_way");
   if (tools::optionValue(argc, argv, "-max_dist") && !(s.max_distance > 0.0))
     return (why = "-max_dist must be > 0").empty();
+  return true;
+}
+
+// -bands, the outputs, -map_format, the switches and -work.
+bool
+outputOptions(int argc, char** argv, Options& o, std::string& why)
+{
+  std::string text;
+  std::vector<double> v;
   if (parse_argument(argc, argv, "-bands", text) >= 0) {
     if (!tools::parseNumberList(text, v) || v.size() != 2 || !(v[0] > 0 && v[1] > v[0]))
       return (why = "-bands takes two increasing positive limits, e.g. 0.10,0.20").empty();
@@ -199,7 +224,15 @@ parseSettings(int argc, char** argv, Options& o, std::string& why)
   o.overwrite = find_switch(argc, argv, "-overwrite");
   o.quiet = find_switch(argc, argv, "-q");
   parse_argument(argc, argv, "-work", o.work);
-  return s.isValid(&why);
+  return true;
+}
+
+bool
+parseSettings(int argc, char** argv, Options& o, std::string& why)
+{
+  return stripOptions(argc, argv, o, why) && modelOptions(argc, argv, o.request.plan.settings, why) &&
+         numericOptions(argc, argv, o, why) && outputOptions(argc, argv, o, why) &&
+         o.request.plan.settings.isValid(&why);
 }
 
 // Before any input is read: every input once; the output folder must not hold an input

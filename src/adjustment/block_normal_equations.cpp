@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace pcl_ls3d {
@@ -143,34 +144,36 @@ weakestPivot(const Eigen::SimplicialLDLT<SparseMatrix>& ldlt, const SparseMatrix
   return worst;
 }
 
-GaussMarkovSolution
-solveSparse(const BlockNormalEquations& ne, const GaussMarkovProblem& problem)
+// Held parameters (infinite a-priori weight) are fixed; the others' a-priori observations
+// enter N and b.
+void
+addAprioriObservations(const GaussMarkovProblem& problem, SparseMatrix& N, Eigen::VectorXd& b,
+                       std::vector<bool>& fixed, std::vector<bool>& estimated)
 {
-  const Eigen::Index u = ne.unknowns();
-  GaussMarkovSolution sol;
-  sol.dx = Eigen::VectorXd::Zero(u);
-  sol.qxx = Eigen::MatrixXd::Zero(u, u);
-  sol.fixed.assign(static_cast<std::size_t>(u), false);
-  std::vector<bool> estimated(static_cast<std::size_t>(u), false);
-  SparseMatrix N = ne.sparseMatrix();
-  Eigen::VectorXd b = ne.rhs();
   const Eigen::VectorXd& pe = problem.apriori_weights;
-  for (Eigen::Index i = 0; i < u; ++i) {
+  for (Eigen::Index i = 0; i < N.rows(); ++i) {
     const std::size_t s = static_cast<std::size_t>(i);
-    sol.fixed[s] = std::isinf(pe[i]);
-    estimated[s] = !sol.fixed[s];
+    fixed[s] = std::isinf(pe[i]);
+    estimated[s] = !fixed[s];
     if (estimated[s] && pe[i] > 0.0) {
       N.coeffRef(i, i) += pe[i];
       b[i] += pe[i] * (problem.current[i] - problem.apriori_values[i]);
     }
   }
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt;
-  std::vector<int> idx;
-  for (;;) {  // rank test: drop the weakest pivot until all pass
+}
+
+// Rank test: drops the weakest pivot from `estimated` until all pass; `ldlt` then holds the
+// factor of the scaled reduced matrix over `idx`. False (`message` says why) when nothing is
+// determinable or a factorisation fails.
+bool
+rankTest(const SparseMatrix& N, const GaussMarkovProblem& problem, std::vector<bool>& estimated,
+         Eigen::SimplicialLDLT<SparseMatrix>& ldlt, std::vector<int>& idx, std::string& message)
+{
+  for (;;) {
     idx = indicesOf(estimated);
     if (idx.empty()) {
-      sol.message = "the geometry determines none of the free parameters (singular normal matrix)";
-      return sol;
+      message = "the geometry determines none of the free parameters (singular normal matrix)";
+      return false;
     }
     const SparseMatrix S = scaledReduced(N, idx, problem.scaling);
     // A shift far below the threshold keeps exactly dependent columns factorable (pivot ≈ shift).
@@ -182,31 +185,38 @@ solveSparse(const BlockNormalEquations& ne, const GaussMarkovProblem& problem)
     const int weak =
         ldlt.info() == Eigen::Success ? weakestPivot(ldlt, S, problem.determinability_threshold) : -2;
     if (weak == -2) {
-      sol.message = "sparse factorisation of the normal matrix failed";
-      return sol;
+      message = "sparse factorisation of the normal matrix failed";
+      return false;
     }
     if (weak < 0) {
       ldlt.compute(S);
       if (ldlt.info() != Eigen::Success) {
-        sol.message = "sparse factorisation of the normal matrix failed";
-        return sol;
+        message = "sparse factorisation of the normal matrix failed";
+        return false;
       }
-      break;
+      return true;
     }
     estimated[static_cast<std::size_t>(idx[static_cast<std::size_t>(weak)])] = false;
   }
+}
+
+// dx (eq. 10) and Qxx (eq. 14) of the estimated parameters `idx` from the factor of the scaled
+// reduced matrix: N_r⁻¹ = D S⁻¹ D. False (the message says why) when they are not finite.
+bool
+solveReduced(const Eigen::SimplicialLDLT<SparseMatrix>& ldlt, const Eigen::VectorXd& b,
+             const std::vector<int>& idx, const GaussMarkovProblem& problem, GaussMarkovSolution& sol)
+{
   const auto k = static_cast<Eigen::Index>(idx.size());
   Eigen::VectorXd scale(k), br(k);
   for (Eigen::Index r = 0; r < k; ++r) {
     scale[r] = problem.scaling[idx[static_cast<std::size_t>(r)]];
     br[r] = b[idx[static_cast<std::size_t>(r)]];
   }
-  // N_r⁻¹ = D S⁻¹ D.
   const Eigen::VectorXd dxr = -(scale.asDiagonal() * ldlt.solve(scale.asDiagonal() * br)).eval();   // eq. 10
   const Eigen::MatrixXd Qr = scale.asDiagonal() * ldlt.solve(Eigen::MatrixXd(scale.asDiagonal()));  // eq. 14
   if (!dxr.allFinite() || !Qr.allFinite()) {
     sol.message = "solve produced non-finite values";
-    return sol;
+    return false;
   }
   for (Eigen::Index r = 0; r < k; ++r) {
     const int i = idx[static_cast<std::size_t>(r)];
@@ -214,8 +224,27 @@ solveSparse(const BlockNormalEquations& ne, const GaussMarkovProblem& problem)
     for (Eigen::Index c = 0; c < k; ++c)
       sol.qxx(i, idx[static_cast<std::size_t>(c)]) = Qr(r, c);
   }
+  return true;
+}
+
+GaussMarkovSolution
+solveSparse(const BlockNormalEquations& ne, const GaussMarkovProblem& problem)
+{
+  const Eigen::Index u = ne.unknowns();
+  GaussMarkovSolution sol;
+  sol.dx = Eigen::VectorXd::Zero(u);
+  sol.qxx = Eigen::MatrixXd::Zero(u, u);
+  sol.fixed.assign(static_cast<std::size_t>(u), false);
+  std::vector<bool> estimated(static_cast<std::size_t>(u), false);
+  SparseMatrix N = ne.sparseMatrix();
+  Eigen::VectorXd b = ne.rhs();
+  addAprioriObservations(problem, N, b, sol.fixed, estimated);
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt;
+  std::vector<int> idx;
+  if (!rankTest(N, problem, estimated, ldlt, idx, sol.message) || !solveReduced(ldlt, b, idx, problem, sol))
+    return sol;
   sol.determinable = estimated;
-  sol.unknowns = static_cast<int>(k);
+  sol.unknowns = static_cast<int>(idx.size());
   const SparseMatrix N0 = ne.sparseMatrix();
   detail::fillResidualStatistics(N0, ne.rhs(), ne.ltpl(), ne.observations(), sol.dx, idx, problem, sol);
   sol.ok = true;

@@ -168,12 +168,109 @@ heldOutScaleFlagged(const QualityFigures& q, const AdjustmentSettings& s)
          q.held_out_scale_effect > s.held_out_noise_factor * q.expected_noise && q.expected_noise > 0.0;
 }
 
+namespace {
+
+// Appends one reason to the gate's list.
+void
+addReason(std::string& reasons, const std::string& r)
+{
+  reasons += (reasons.empty() ? "" : "; ") + r;
+}
+
+// The data fix the source's position far worse than the surfaces' noise, and the move lies
+// within that uncertainty ("" when not).
+std::string
+undeterminedMoveReason(const QualityFigures& q, const AdjustmentSettings& s)
+{
+  if (!moveUndetermined(q, s))
+    return "";
+  char buf[320];
+  std::snprintf(buf, sizeof(buf),
+                "the source moved %.3g, only %.3g x its position sigma %.3g (limit %.3g), which is "
+                "%.3g x the surfaces' own noise (limit %.3g): the data do not determine the move",
+                q.movement, q.movement / q.position_sigma, q.position_sigma, s.min_movement_significance,
+                q.position_sigma / q.expected_noise, s.max_position_sigma_ratio);
+  return buf;
+}
+
+// The rigid fit holds out a scale the data ask for ("" when not).
+std::string
+heldOutScaleReason(const QualityFigures& q, const AdjustmentSettings& s)
+{
+  if (!heldOutScaleFlagged(q, s))
+    return "";
+  // A scale beyond any plausible one is no missing model parameter: the fit itself is wrong.
+  const bool plausible = std::abs(q.held_out_scale) <= s.max_scale_deviation;
+  char buf[400];
+  std::snprintf(buf, sizeof(buf),
+                "the rigid fit holds out a scale the data ask for: freed, m - 1 would be %+.3g ppm, "
+                "%.3g x its sigma (limit %.3g), moving the source's edge by %.3g, %.3g x the "
+                "surfaces' noise (limit %.3g): %s",
+                1e6 * q.held_out_scale, std::abs(q.held_out_scale_z), s.held_out_z, q.held_out_scale_effect,
+                q.held_out_scale_effect / q.expected_noise, s.held_out_noise_factor,
+                plausible ? "free the scale (-params 7)"
+                          : "no plausible scale (max_scale_deviation): the fit itself is in doubt");
+  return buf;
+}
+
+// Signs that the fit does not match the data: σ0, the residuals across the surface, coverage,
+// rejections, and residuals grown since the guess.
+void
+misfitReasons(const QualityFigures& q, const AdjustmentSettings& s, std::string& reasons)
+{
+  if (q.sigma0_ratio > s.max_sigma0_ratio)
+    addReason(reasons, figure(q.noise_yardstick > q.expected_noise
+                                  ? "sigma0 is %.3g x the smallest noise the gate assumes, 0.001 x the point "
+                                    "spacing (limit %.3g)"
+                                  : "sigma0 is %.3g x the surfaces' own noise (limit %.3g)",
+                              q.sigma0_ratio, s.max_sigma0_ratio));
+  if (const std::string normal = normalResidualReason(q, s); !normal.empty())
+    addReason(reasons, normal);
+  if (q.coverage < s.min_coverage)
+    addReason(reasons,
+              figure("only %.3g of the source points over the target have an observation (limit %.3g)",
+                     q.coverage, s.min_coverage));
+  if (q.rejected_fraction > s.max_rejected_fraction)
+    addReason(reasons, figure("%.3g of the correspondences were rejected (limit %.3g)", q.rejected_fraction,
+                              s.max_rejected_fraction));
+  // Residuals within the surfaces' own noise are no sign of leaving the data, however small
+  // they were at the guess (two spinning scans from the same height: their ground rings
+  // coincide in the sensor frames to a fraction of the noise).
+  const double start_level = std::max(q.start_scale, q.expected_noise);
+  if (q.start_scale > 0.0 && q.final_scale > s.max_scale_growth * start_level)
+    addReason(reasons, figure("the residuals ended %.3g x larger than at the initial guess (limit %.3g): the "
+                              "adjustment moved away from the data",
+                              q.final_scale / start_level, s.max_scale_growth));
+}
+
+// Signs that the data do not determine the result: an undetermined move, a slide off the
+// overlap, a held-out scale, surfaces steeper than the rule measures.
+void
+determinationReasons(const QualityFigures& q, const AdjustmentSettings& s, std::string& reasons)
+{
+  // A move the data do support (significant) is kept, however weak the geometry.
+  if (const std::string move = undeterminedMoveReason(q, s); !move.empty())
+    addReason(reasons, move);
+  if (q.observations_kept < s.min_observations_kept)
+    addReason(reasons,
+              figure("the adjustment ended with %.3g of the correspondences it started with (limit %.3g): "
+                     "the source slid off the overlap",
+                     q.observations_kept, s.min_observations_kept));
+  if (const std::string scale = heldOutScaleReason(q, s); !scale.empty())
+    addReason(reasons, scale);
+  if (q.median_gradient > s.max_median_gradient)
+    addReason(reasons,
+              figure("most observations lie on surfaces steeper than the rule measures (median gradient "
+                     "%.3g, limit %.3g): use a normal-distance rule (LND)",
+                     q.median_gradient, s.max_median_gradient));
+}
+
+}  // namespace
+
 TerminationType
 applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimated,
                  const AdjustmentSettings& s, TerminationType termination, std::string& why)
 {
-  std::string reasons;
-  auto add = [&reasons](const std::string& r) { reasons += (reasons.empty() ? "" : "; ") + r; };
   const double scale_change = std::abs(in.estimate[SCALE] / in.start[SCALE] - 1.0);
   if (scale_estimated && scale_change > s.max_scale_deviation) {
     q.trustworthy = false;
@@ -182,62 +279,9 @@ applyQualityGate(QualityFigures& q, const QualityInputs& in, bool scale_estimate
                   scale_change, s.max_scale_deviation);
     return TerminationType::IMPLAUSIBLE_SCALE;
   }
-  if (q.sigma0_ratio > s.max_sigma0_ratio)
-    add(figure(
-        q.noise_yardstick > q.expected_noise
-            ? "sigma0 is %.3g x the smallest noise the gate assumes, 0.001 x the point spacing (limit %.3g)"
-            : "sigma0 is %.3g x the surfaces' own noise (limit %.3g)",
-        q.sigma0_ratio, s.max_sigma0_ratio));
-  if (const std::string normal = normalResidualReason(q, s); !normal.empty())
-    add(normal);
-  if (q.coverage < s.min_coverage)
-    add(figure("only %.3g of the source points over the target have an observation (limit %.3g)", q.coverage,
-               s.min_coverage));
-  if (q.rejected_fraction > s.max_rejected_fraction)
-    add(figure("%.3g of the correspondences were rejected (limit %.3g)", q.rejected_fraction,
-               s.max_rejected_fraction));
-  // Residuals within the surfaces' own noise are no sign of leaving the data, however small
-  // they were at the guess (two spinning scans from the same height: their ground rings
-  // coincide in the sensor frames to a fraction of the noise).
-  const double start_level = std::max(q.start_scale, q.expected_noise);
-  if (q.start_scale > 0.0 && q.final_scale > s.max_scale_growth * start_level)
-    add(figure("the residuals ended %.3g x larger than at the initial guess (limit %.3g): the "
-               "adjustment moved away from the data",
-               q.final_scale / start_level, s.max_scale_growth));
-  // Both: the data fix the source's position far worse than the surfaces' noise, and the move
-  // lies within that uncertainty. A move the data do support (significant) is kept, however
-  // weak the geometry.
-  if (moveUndetermined(q, s)) {
-    char buf[320];
-    std::snprintf(buf, sizeof(buf),
-                  "the source moved %.3g, only %.3g x its position sigma %.3g (limit %.3g), which is "
-                  "%.3g x the surfaces' own noise (limit %.3g): the data do not determine the move",
-                  q.movement, q.movement / q.position_sigma, q.position_sigma, s.min_movement_significance,
-                  q.position_sigma / q.expected_noise, s.max_position_sigma_ratio);
-    add(buf);
-  }
-  if (q.observations_kept < s.min_observations_kept)
-    add(figure("the adjustment ended with %.3g of the correspondences it started with (limit %.3g): "
-               "the source slid off the overlap",
-               q.observations_kept, s.min_observations_kept));
-  if (heldOutScaleFlagged(q, s)) {
-    // A scale beyond any plausible one is no missing model parameter: the fit itself is wrong.
-    const bool plausible = std::abs(q.held_out_scale) <= s.max_scale_deviation;
-    char buf[400];
-    std::snprintf(buf, sizeof(buf),
-                  "the rigid fit holds out a scale the data ask for: freed, m - 1 would be %+.3g ppm, "
-                  "%.3g x its sigma (limit %.3g), moving the source's edge by %.3g, %.3g x the "
-                  "surfaces' noise (limit %.3g): %s",
-                  1e6 * q.held_out_scale, std::abs(q.held_out_scale_z), s.held_out_z, q.held_out_scale_effect,
-                  q.held_out_scale_effect / q.expected_noise, s.held_out_noise_factor,
-                  plausible ? "free the scale (-params 7)"
-                            : "no plausible scale (max_scale_deviation): the fit itself is in doubt");
-    add(buf);
-  }
-  if (q.median_gradient > s.max_median_gradient)
-    add(figure("most observations lie on surfaces steeper than the rule measures (median gradient "
-               "%.3g, limit %.3g): use a normal-distance rule (LND)",
-               q.median_gradient, s.max_median_gradient));
+  std::string reasons;
+  misfitReasons(q, s, reasons);
+  determinationReasons(q, s, reasons);
   q.trustworthy = reasons.empty();
   if (q.trustworthy)
     return termination;

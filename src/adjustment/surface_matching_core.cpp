@@ -261,6 +261,135 @@ finish(const PairRun& run, const SourceRows& row, const Eigen::VectorXd& weights
   assess(run, row.set, weights, target, settings, held_out, report);
 }
 
+// Stage 1 after the blocks are set up: the report's frames and the run's a-priori figures.
+void
+prepareRun(PairRun& pair, const TargetSurface& target, const AdjustmentSettings& settings,
+           const std::vector<Eigen::Vector3d>& reduced, AdjustmentReport& report)
+{
+  report.local_origin_source = pair.setup.source.input_origin;
+  report.local_origin_target = pair.setup.source.output_origin;
+  pair.prepare(settings, reduced);
+  pair.spacing = estimatePointSpacing(target);
+}
+
+// One pair adjustment's inputs, engine parts and state, shared by the iteration's stages.
+struct PairLoop
+{
+  const std::vector<Eigen::Vector3d>& source;
+  const TargetSurface& target;
+  const RobustEstimator& estimator;
+  const AdjustmentSettings& settings;
+  const Eigen::Matrix4d& guess;
+  const IterationHooks& hooks;
+  PairMatcher& matcher;
+  ObservationWeighting& weighting;
+  const BlockLinearization& target_pose;
+  IterationControl& control;
+  PairRun& pair;
+  AdjustmentReport& report;
+};
+
+// How an iteration ended.
+enum class Step
+{
+  NEXT,       // go on iterating
+  CONVERGED,  // the estimate settled, or a hook stopped the loop
+  FAILED      // the report says why
+};
+
+// Stage 2: conjugate points of the sampled source points under the current pose (§2.2), less
+// those the observation filter drops; nullptr (the report says why) when the filter left none.
+const ObservationSet*
+matchObservations(PairLoop& L, int it)
+{
+  const ObservationSet& obs = L.matcher.match(BlockLinearization(L.pair.setup.source), L.target_pose,
+                                              {L.control.stride(), L.control.skipMissed(it)});
+  if (L.hooks.filter) {  // e.g. PCL's correspondence rejectors
+    std::vector<char> keep(obs.size(), 1);
+    L.hooks.filter(L.pair.setup.source.matrix(), obs, keep);
+    const bool had_some = !obs.empty();
+    L.matcher.keepOnly(keep);
+    if (had_some && obs.empty()) {
+      L.report.iterations = it - 1;
+      fail(L.report, TerminationType::TOO_FEW_OBSERVATIONS,
+           "the observation filter (e.g. PCL's correspondence rejectors) left none");
+      return nullptr;
+    }
+  }
+  return &obs;
+}
+
+// Enough observations to solve with; at the first iteration also the start's figures.
+bool
+observationsUsable(PairLoop& L, const ObservationSet& obs, int it)
+{
+  L.report.correspondences = obs.size();
+  if (obs.empty() && it == 1) {
+    noConjugatePoint(L.source, L.guess, L.target, L.pair.setup, L.report);
+    return false;
+  }
+  if (tooFewObservations(obs.size(), it, L.settings, L.report))
+    return false;
+  if (it == 1) {
+    L.pair.start_scale = robustScale(obs.distances());
+    L.pair.start_correspondences = obs.size();
+  }
+  return true;
+}
+
+// Stage 5: log, then let the iteration control decide (extrapolate, freeze, stop).
+Step
+decide(PairLoop& L, const NormalEquations& ne, const ObservationSet& obs, int it)
+{
+  PairRun& pair = L.pair;
+  IterationRecord rec = iterationRecord(it, ne, obs.size(), pair.sol);
+  L.report.observations_used = ne.n;
+  L.report.observations_rejected = obs.size() - ne.n;
+  L.report.termination = TerminationType::MAX_ITERATIONS;
+  const IterationControl::Decision next = L.control.next(pair.sol, pair.problem.scaling, it);
+  pair.setup.source.values += next.extrapolation * pair.sol.dx;
+  rec.extrapolated = next.extrapolation > 0.0;
+  rec.parameters = pair.setup.source.values;
+  L.report.log.push_back(rec);
+  if (next.freeze)
+    L.matcher.freeze();
+  const bool stop = L.hooks.after_iteration && L.hooks.after_iteration(rec, pair.setup.source.matrix(), obs);
+  // Converged while the annealed floor still set the cut: the estimate is the floor's, not
+  // the estimator's. Go on while the floor keeps halving, until the estimator's own cut rules.
+  const bool settled = next.converged && !L.weighting.floorBound() && !pair.reset;
+  if (settled || stop) {
+    L.report.termination = TerminationType::CONVERGED;
+    return Step::CONVERGED;
+  }
+  return Step::NEXT;
+}
+
+// One iteration: match (stage 2), weight, normal equations and solve (stages 3–4), decide (5).
+Step
+iterate(PairLoop& L, int it)
+{
+  PairRun& pair = L.pair;
+  if (it > 1) {  // the reach follows the fit (automatic_reach)
+    L.matcher.setReach(L.control.reach(pair.sol.sigma0, pair.spacing));
+    L.control.setCulling(L.matcher.culling());
+  }
+  const ObservationSet* matched = matchObservations(L, it);
+  if (!matched || !observationsUsable(L, *matched, it))
+    return Step::FAILED;
+  const ObservationSet& obs = *matched;
+  pair.eiv.update(pair.setup.source.values[SCALE], pair.sol.sigma0, meanSquaredGradient(obs));
+  const SourceRows row{L.matcher, obs, pair.eiv};
+  // Stages 3–4: robust weights (eq. 15), normal equations (eq. 8), solve (eqs. 9–11).
+  const Eigen::VectorXd& p =
+      L.weighting.compute(L.estimator, obs, row, pair.sol.sigma0, Matrix7d(pair.sol.qxx), it,
+                          annealedCut(pair.guess_uncertainty, it));
+  const NormalEquations ne = accumulateNormalEquations(row, p);
+  const std::vector<bool> held = noiseDominatedParameters(pair, L.target, row, p, ne);
+  if (!solveAndUpdate(pair, ne, held, it, L.settings, L.report))
+    return Step::FAILED;
+  return decide(L, ne, obs, it);
+}
+
 }  // namespace
 
 AdjustmentReport
@@ -281,72 +410,18 @@ SurfaceMatchingCore::run(const std::vector<Eigen::Vector3d>& source, const std::
   if (!setUpPair(source, target, guess, settings, pair.setup, reduced_))
     return fail(report, TerminationType::NO_OVERLAP,
                 "no source point falls over the target's extent under the initial guess");
-  report.local_origin_source = pair.setup.source.input_origin;
-  report.local_origin_target = pair.setup.source.output_origin;
-  pair.prepare(settings, reduced_);
-  pair.spacing = estimatePointSpacing(target);
+  prepareRun(pair, target, settings, reduced_, report);
   const BlockLinearization target_pose(pair.setup.target);
   matcher_.reset(reduced_, target, rule, settings.max_correspondence_distance);
   IterationControl control(settings, reduced_.size(), matcher_.culling(), pair.spacing);
-
+  PairLoop loop{source,   target,     estimator,   settings, guess, hooks_,
+                matcher_, weighting_, target_pose, control,  pair,  report};
   for (int it = 1; it <= settings.max_iterations; ++it) {
-    if (it > 1) {  // the reach follows the fit (automatic_reach)
-      matcher_.setReach(control.reach(pair.sol.sigma0, pair.spacing));
-      control.setCulling(matcher_.culling());
-    }
-    // Stage 2: conjugate points of the sampled source points under the current pose (§2.2).
-    const ObservationSet& obs = matcher_.match(BlockLinearization(pair.setup.source), target_pose,
-                                               {control.stride(), control.skipMissed(it)});
-    if (hooks_.filter) {  // e.g. PCL's correspondence rejectors
-      std::vector<char> keep(obs.size(), 1);
-      hooks_.filter(pair.setup.source.matrix(), obs, keep);
-      const bool had_some = !obs.empty();
-      matcher_.keepOnly(keep);
-      if (had_some && obs.empty()) {
-        report.iterations = it - 1;
-        return fail(report, TerminationType::TOO_FEW_OBSERVATIONS,
-                    "the observation filter (e.g. PCL's correspondence rejectors) left none");
-      }
-    }
-    report.correspondences = obs.size();
-    if (obs.empty() && it == 1)
-      return noConjugatePoint(source, guess, target, pair.setup, report);
-    if (tooFewObservations(obs.size(), it, settings, report))
+    const Step step = iterate(loop, it);
+    if (step == Step::FAILED)
       return report;
-    if (it == 1) {
-      pair.start_scale = robustScale(obs.distances());
-      pair.start_correspondences = obs.size();
-    }
-    pair.eiv.update(pair.setup.source.values[SCALE], pair.sol.sigma0, meanSquaredGradient(obs));
-    const SourceRows row{matcher_, obs, pair.eiv};
-    // Stages 3–4: robust weights (eq. 15), normal equations (eq. 8), solve (eqs. 9–11).
-    const Eigen::VectorXd& p =
-        weighting_.compute(estimator, obs, row, pair.sol.sigma0, Matrix7d(pair.sol.qxx), it,
-                           annealedCut(pair.guess_uncertainty, it));
-    const NormalEquations ne = accumulateNormalEquations(row, p);
-    const std::vector<bool> held = noiseDominatedParameters(pair, target, row, p, ne);
-    if (!solveAndUpdate(pair, ne, held, it, settings, report))
-      return report;
-    // Stage 5: log, then let the iteration control decide (extrapolate, freeze, stop).
-    IterationRecord rec = iterationRecord(it, ne, obs.size(), pair.sol);
-    report.observations_used = ne.n;
-    report.observations_rejected = obs.size() - ne.n;
-    report.termination = TerminationType::MAX_ITERATIONS;
-    const IterationControl::Decision next = control.next(pair.sol, pair.problem.scaling, it);
-    pair.setup.source.values += next.extrapolation * pair.sol.dx;
-    rec.extrapolated = next.extrapolation > 0.0;
-    rec.parameters = pair.setup.source.values;
-    report.log.push_back(rec);
-    if (next.freeze)
-      matcher_.freeze();
-    const bool stop = hooks_.after_iteration && hooks_.after_iteration(rec, pair.setup.source.matrix(), obs);
-    // Converged while the annealed floor still set the cut: the estimate is the floor's, not
-    // the estimator's. Go on while the floor keeps halving, until the estimator's own cut rules.
-    const bool settled = next.converged && !weighting_.floorBound() && !pair.reset;
-    if (settled || stop) {
-      report.termination = TerminationType::CONVERGED;
+    if (step == Step::CONVERGED)
       break;
-    }
   }
   finish(pair, SourceRows{matcher_, matcher_.observations(), pair.eiv}, weighting_.weights(), settings,
          target, source_indices, report);

@@ -248,6 +248,183 @@ keptScaleGate(const std::vector<Eigen::Vector3d>& points, const std::vector<int>
   report.message += (report.message.empty() ? "" : "; ") + std::string(why);
 }
 
+/// The settings deformation analysis runs the engine with.
+RobustMatchingSettings
+deformationSettings(const RobustMatchingSettings& settings)
+{
+  // Deformation analysis needs the residual of every epoch point: no automatic reach cutting
+  // the moved part out of the observations.
+  RobustMatchingSettings s = settings;
+  s.adjustment.automatic_reach = false;
+  // Rejecting the moved part is the method: up to the estimators' breakdown point, not the
+  // few per cent a good least-squares fit rejects.
+  s.adjustment.max_rejected_fraction = std::max(s.adjustment.max_rejected_fraction, 0.5);
+  return s;
+}
+
+/// Non-finite points are no observations (as PCL drops them); indices keep the caller's.
+void
+finiteObservations(const std::vector<Eigen::Vector3d>& all_points, const std::vector<int>& all_indices,
+                   std::vector<Eigen::Vector3d>& points, std::vector<int>& point_indices)
+{
+  points.reserve(all_points.size());
+  point_indices.reserve(all_points.size());
+  for (std::size_t i = 0; i < all_points.size(); ++i)
+    if (all_points[i].allFinite()) {
+      points.push_back(all_points[i]);
+      point_indices.push_back(i < all_indices.size() ? all_indices[i] : static_cast<int>(i));
+    }
+}
+
+/// One robust matching as Li et al. run it: the all-points least-squares start, the
+/// high-breakdown start (LMS, MM) and the final IRLS adjustment; each stage returns false when
+/// the report is final.
+class RobustMatchingRun
+{
+public:
+  RobustMatchingRun(const std::vector<Eigen::Vector3d>& points, const std::vector<int>& point_indices,
+                    const TargetSurface& reference, const ConjugateRule& rule,
+                    const RobustMatchingSettings& s, const Eigen::Matrix4d& guess,
+                    RobustMatchingReport& report)
+      : points_(points), point_indices_(point_indices), reference_(reference), rule_(rule), s_(s),
+        report_(report), from_(guess)
+  {}
+
+  bool
+  leastSquaresStart();
+  bool
+  highBreakdownStart();
+  void
+  finalAdjustment();
+
+private:
+  bool
+  highBreakdown() const
+  {
+    return s_.method == RobustMethod::LMS || s_.method == RobustMethod::MM;
+  }
+  /// A failure of the robust stages, which say where they began.
+  bool
+  failed(TerminationType type, const std::string& message)
+  {
+    fail(report_, type, start_note_.empty() ? message : start_note_ + "; from the guess: " + message);
+    return false;
+  }
+  RobustEstimator::Ptr
+  finalWeightFunction();
+  void
+  reportFinal(const RobustEstimator& w);
+
+  const std::vector<Eigen::Vector3d>& points_;
+  const std::vector<int>& point_indices_;
+  const TargetSurface& reference_;
+  const ConjugateRule& rule_;
+  const RobustMatchingSettings& s_;
+  RobustMatchingReport& report_;
+  SurfaceMatchingCore core_;  // one engine for both adjustments, as its buffers carry over
+  Eigen::Matrix4d from_;      // where the next stage begins
+  std::string start_note_;    // why the robust stages begin at the guess
+  double fixed_scale_ = 0.0;
+  std::vector<std::uint8_t> held_out_;  // MM: points beyond 2.5 ŝ of the start
+};
+
+/// 1. All-points least squares (Li: LHD with all matchable points).
+bool
+RobustMatchingRun::leastSquaresStart()
+{
+  if (!s_.least_squares_start && s_.method != RobustMethod::LEAST_SQUARES)
+    return true;
+  const LeastSquaresEstimator ls;
+  report_.start = core_.run(points_, point_indices_, reference_, rule_, ls, s_.adjustment, from_);
+  report_.iterations = report_.start.iterations;
+  // The start only brings the surfaces close: with much of the surface moved the quality gate
+  // rightly calls it untrustworthy, but its estimate is what the robust stages start from,
+  // unless it slid off the overlap. Plain least squares has no other answer; an input the
+  // start found nothing in, or a start that failed at the guess itself, is no better there.
+  start_note_ = startSlidOff(report_.start, s_.adjustment);
+  const bool nothing_to_retry = report_.start.termination == TerminationType::INVALID_INPUT ||
+                                report_.start.termination == TerminationType::NO_OVERLAP ||
+                                report_.start.iterations == 0;  // it failed at the guess itself
+  if (!report_.start.hasEstimate() && (s_.method == RobustMethod::LEAST_SQUARES || nothing_to_retry)) {
+    report_.adjustment = report_.start;
+    fail(report_, report_.start.termination, "least-squares start: " + report_.start.message);
+    return false;
+  }
+  if (start_note_.empty())
+    from_ = report_.start.transformation;
+  return true;
+}
+
+/// 2. High-breakdown start (LMS, MM): the fixed scale of the M-step and, for MM, the points
+/// held out of it.
+bool
+RobustMatchingRun::highBreakdownStart()
+{
+  if (!highBreakdown())
+    return true;
+  LinearizedMatching lin;
+  TerminationType failure = TerminationType::NO_OVERLAP;
+  std::string why;
+  if (!lin.reset(points_, reference_, rule_, s_.adjustment, from_, &why, &failure))
+    return failed(failure, why);
+  const std::size_t matched = lin.size();
+  if (matched < static_cast<std::size_t>(std::max(s_.sample_size, lin.freeParameters() + 1)))
+    return failed(TerminationType::TOO_FEW_OBSERVATIONS,
+                  "only " + std::to_string(matched) + " epoch points have a conjugate point (sample size " +
+                      std::to_string(s_.sample_size) + ")");
+  if (!highBreakdownSearch(lin, s_, report_))
+    return failed(TerminationType::SINGULAR,
+                  "no subset of " + std::to_string(s_.sample_size) + " points determined the parameters");
+  from_ = report_.high_breakdown_transformation;
+  if (!(s_.method == RobustMethod::LMS && s_.lms_scale == LmsScale::MAD))
+    fixed_scale_ = report_.high_breakdown_scale;
+  if (s_.method == RobustMethod::MM && s_.mm_hold_out_beyond_start)
+    held_out_ = beyondStart(lin, lin.parametersOf(from_), fixed_scale_, report_.held_out);
+  return true;
+}
+
+/// The method's weight function (none for LS), masked where MM holds points out.
+RobustEstimator::Ptr
+RobustMatchingRun::finalWeightFunction()
+{
+  RobustEstimator::Ptr w = weightFunction(s_.method, s_.constant, fixed_scale_);
+  if (!held_out_.empty())
+    w = std::make_shared<MaskedEstimator>(w, std::move(held_out_));
+  return w;
+}
+
+/// 3. The final adjustment: IRLS with the method's weight function (none for LS).
+void
+RobustMatchingRun::finalAdjustment()
+{
+  const RobustEstimator::Ptr w = finalWeightFunction();
+  if (s_.method == RobustMethod::LEAST_SQUARES)
+    report_.adjustment = report_.start;
+  else {
+    report_.adjustment = core_.run(points_, point_indices_, reference_, rule_, *w, s_.adjustment, from_);
+    report_.iterations += report_.adjustment.iterations;
+  }
+  reportFinal(*w);
+  if (highBreakdown())
+    keptScaleGate(points_, point_indices_, s_.max_kept_scale_ratio, report_);
+}
+
+/// The report's estimator, outcome and scale from the final adjustment.
+void
+RobustMatchingRun::reportFinal(const RobustEstimator& w)
+{
+  report_.estimator = highBreakdown() ? std::string(toString(s_.method)) + "(" +
+                                            std::to_string(report_.subsets_drawn) + " subsets) + " + w.name()
+                                      : w.name();
+  report_.termination = report_.adjustment.termination;
+  report_.message = report_.adjustment.message;
+  if (!start_note_.empty() && s_.method != RobustMethod::LEAST_SQUARES)
+    report_.message +=
+        (report_.message.empty() ? "" : "; ") + start_note_ + ": the robust stages began at the guess";
+  if (report_.adjustment.isSolutionUsable())
+    report_.scale = finalScale(w, report_.adjustment);
+}
+
 }  // namespace
 
 const char*
@@ -324,103 +501,19 @@ robustMatching(const std::vector<Eigen::Vector3d>& all_points, const std::vector
                const TargetSurface& reference, const ConjugateRule& rule,
                const RobustMatchingSettings& settings, const Eigen::Matrix4d& guess)
 {
-  // Deformation analysis needs the residual of every epoch point: no automatic reach cutting
-  // the moved part out of the observations.
-  RobustMatchingSettings s = settings;
-  s.adjustment.automatic_reach = false;
-  // Rejecting the moved part is the method: up to the estimators' breakdown point, not the
-  // few per cent a good least-squares fit rejects.
-  s.adjustment.max_rejected_fraction = std::max(s.adjustment.max_rejected_fraction, 0.5);
-  // Non-finite points are no observations (as PCL drops them); indices keep the caller's.
+  const RobustMatchingSettings s = deformationSettings(settings);
   std::vector<Eigen::Vector3d> points;
   std::vector<int> point_indices;
-  points.reserve(all_points.size());
-  point_indices.reserve(all_points.size());
-  for (std::size_t i = 0; i < all_points.size(); ++i)
-    if (all_points[i].allFinite()) {
-      points.push_back(all_points[i]);
-      point_indices.push_back(i < all_indices.size() ? all_indices[i] : static_cast<int>(i));
-    }
+  finiteObservations(all_points, all_indices, points, point_indices);
   RobustMatchingReport report;
   report.method = s.method;
   report.estimator = toString(s.method);
   std::string why;
   if (!s.isValid(&why))
     return fail(report, TerminationType::INVALID_INPUT, "invalid settings: " + why);
-
-  // 1. All-points least squares (Li: LHD with all matchable points).
-  SurfaceMatchingCore core;
-  const LeastSquaresEstimator ls;
-  Eigen::Matrix4d from = guess;
-  std::string start_note;  // why the robust stages begin at the guess
-  if (s.least_squares_start || s.method == RobustMethod::LEAST_SQUARES) {
-    report.start = core.run(points, point_indices, reference, rule, ls, s.adjustment, guess);
-    report.iterations = report.start.iterations;
-    // The start only brings the surfaces close: with much of the surface moved the quality gate
-    // rightly calls it untrustworthy, but its estimate is what the robust stages start from,
-    // unless it slid off the overlap. Plain least squares has no other answer; an input the
-    // start found nothing in, or a start that failed at the guess itself, is no better there.
-    start_note = startSlidOff(report.start, s.adjustment);
-    const bool nothing_to_retry = report.start.termination == TerminationType::INVALID_INPUT ||
-                                  report.start.termination == TerminationType::NO_OVERLAP ||
-                                  report.start.iterations == 0;  // it failed at the guess itself
-    if (!report.start.hasEstimate() && (s.method == RobustMethod::LEAST_SQUARES || nothing_to_retry)) {
-      report.adjustment = report.start;
-      return fail(report, report.start.termination, "least-squares start: " + report.start.message);
-    }
-    if (start_note.empty())
-      from = report.start.transformation;
-  }
-  double fixed_scale = 0.0;
-  std::vector<std::uint8_t> held_out;  // MM: points beyond 2.5 ŝ of the start
-  const auto failed = [&](TerminationType type, const std::string& message) {
-    return fail(report, type, start_note.empty() ? message : start_note + "; from the guess: " + message);
-  };
-
-  // 2. High-breakdown start (LMS, MM).
-  if (s.method == RobustMethod::LMS || s.method == RobustMethod::MM) {
-    LinearizedMatching lin;
-    TerminationType failure = TerminationType::NO_OVERLAP;
-    if (!lin.reset(points, reference, rule, s.adjustment, from, &why, &failure))
-      return failed(failure, why);
-    const std::size_t matched = lin.size();
-    if (matched < static_cast<std::size_t>(std::max(s.sample_size, lin.freeParameters() + 1)))
-      return failed(TerminationType::TOO_FEW_OBSERVATIONS,
-                    "only " + std::to_string(matched) + " epoch points have a conjugate point (sample size " +
-                        std::to_string(s.sample_size) + ")");
-    if (!highBreakdownSearch(lin, s, report))
-      return failed(TerminationType::SINGULAR,
-                    "no subset of " + std::to_string(s.sample_size) + " points determined the parameters");
-    from = report.high_breakdown_transformation;
-    if (!(s.method == RobustMethod::LMS && s.lms_scale == LmsScale::MAD))
-      fixed_scale = report.high_breakdown_scale;
-    if (s.method == RobustMethod::MM && s.mm_hold_out_beyond_start)
-      held_out = beyondStart(lin, lin.parametersOf(from), fixed_scale, report.held_out);
-  }
-
-  // 3. The final adjustment: IRLS with the method's weight function (none for LS).
-  RobustEstimator::Ptr w = weightFunction(s.method, s.constant, fixed_scale);
-  if (!held_out.empty())
-    w = std::make_shared<MaskedEstimator>(w, std::move(held_out));
-  if (s.method == RobustMethod::LEAST_SQUARES)
-    report.adjustment = report.start;
-  else {
-    report.adjustment = core.run(points, point_indices, reference, rule, *w, s.adjustment, from);
-    report.iterations += report.adjustment.iterations;
-  }
-  report.estimator = s.method == RobustMethod::LMS || s.method == RobustMethod::MM
-                         ? std::string(toString(s.method)) + "(" + std::to_string(report.subsets_drawn) +
-                               " subsets) + " + w->name()
-                         : w->name();
-  report.termination = report.adjustment.termination;
-  report.message = report.adjustment.message;
-  if (!start_note.empty() && s.method != RobustMethod::LEAST_SQUARES)
-    report.message +=
-        (report.message.empty() ? "" : "; ") + start_note + ": the robust stages began at the guess";
-  if (report.adjustment.isSolutionUsable())
-    report.scale = finalScale(*w, report.adjustment);
-  if (s.method == RobustMethod::LMS || s.method == RobustMethod::MM)
-    keptScaleGate(points, point_indices, s.max_kept_scale_ratio, report);
+  RobustMatchingRun run(points, point_indices, reference, rule, s, guess, report);
+  if (run.leastSquaresStart() && run.highBreakdownStart())
+    run.finalAdjustment();
   return report;
 }
 

@@ -58,25 +58,10 @@ scoreConfusion(const std::vector<ClassGroup>& groups, const std::vector<std::siz
   res.other = scoresOf(G, "other");
 }
 
-}  // namespace
-
-void
-computeScores(ClassScores& s)
-{
-  const auto tp = static_cast<double>(s.tp), fp = static_cast<double>(s.fp), fn = static_cast<double>(s.fn);
-  s.precision = (s.tp + s.fp) > 0 ? tp / (tp + fp) : kNaN;
-  s.recall = (s.tp + s.fn) > 0 ? tp / (tp + fn) : kNaN;
-  // 2PR/(P+R) = 2TP/(2TP+FP+FN): defined (0) even when P or R is undefined but the other is 0.
-  s.f1 = (s.tp + s.fp + s.fn) > 0 ? 2.0 * tp / (2.0 * tp + fp + fn) : kNaN;
-}
-
+/// Every segment index names one of the n reference labels (else `error` says which does not).
 bool
-evaluateSegmentation(const std::vector<pcl::PointIndices>& segments, const std::vector<int>& reference_labels,
-                     const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
-                     std::string& error)
+indicesInRange(const std::vector<pcl::PointIndices>& segments, std::size_t n, std::string& error)
 {
-  const std::size_t n = reference_labels.size();
-  const std::size_t G = settings.groups.size();
   for (std::size_t s = 0; s < segments.size(); ++s)
     for (int idx : segments[s].indices)
       if (idx < 0 || static_cast<std::size_t>(idx) >= n) {
@@ -84,27 +69,22 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments, const std::
                 std::to_string(n) + " reference labels";
         return false;
       }
+  return true;
+}
 
-  SegmentationEvaluation res;
-  res.method = result.method;
-  res.seconds = result.seconds;
-  res.segments = segments.size();
-  res.points_total = n;
-  const ClassLookup lookup(settings.groups, settings.excluded_codes);
-  std::vector<int> ref_group(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    ref_group[i] = lookup.groupOf(reference_labels[i]);
-    if (ref_group[i] != ClassLookup::kExcluded)
-      ++res.points_evaluated;
-  }
-
-  // Predicted column per point: G + 1 ("none") until a segment claims it.
-  const int none = static_cast<int>(G) + 1;
-  std::vector<int> predicted(n, none);
+/// Predicted column per point: its first segment's majority group, G + 1 ("none") until a
+/// segment claims it; counts the segments per column and the evaluation's segment figures.
+std::vector<int>
+predictedColumns(const std::vector<pcl::PointIndices>& segments, const std::vector<int>& ref_group,
+                 std::size_t G, std::size_t min_segment_size, std::vector<std::size_t>& segs_per_col,
+                 SegmentationEvaluation& res)
+{
+  const std::size_t n = ref_group.size();
+  std::vector<int> predicted(n, static_cast<int>(G) + 1);
   std::vector<char> claimed(n, 0);
-  std::vector<std::size_t> segs_per_col(G + 1, 0);
+  segs_per_col.assign(G + 1, 0);
   for (const auto& seg : segments) {
-    if (seg.indices.size() < settings.min_segment_size) {
+    if (seg.indices.size() < min_segment_size) {
       ++res.segments_too_small;
       continue;
     }
@@ -124,9 +104,18 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments, const std::
         predicted[i] = col;
     }
   }
+  return predicted;
+}
 
+/// The confusion matrix (rows: reference groups and "other"; columns: those, then "none") of
+/// the evaluated points.
+void
+fillConfusion(const std::vector<int>& ref_group, const std::vector<int>& predicted, std::size_t G,
+              SegmentationEvaluation& res)
+{
+  const int none = static_cast<int>(G) + 1;
   res.confusion.assign(G + 1, std::vector<std::size_t>(G + 2, 0));
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < ref_group.size(); ++i) {
     if (ref_group[i] == ClassLookup::kExcluded)
       continue;
     const std::size_t r = ref_group[i] == ClassLookup::kOther ? G : static_cast<std::size_t>(ref_group[i]);
@@ -134,7 +123,45 @@ evaluateSegmentation(const std::vector<pcl::PointIndices>& segments, const std::
     if (predicted[i] == none)
       ++res.points_unsegmented;
   }
+}
 
+}  // namespace
+
+void
+computeScores(ClassScores& s)
+{
+  const auto tp = static_cast<double>(s.tp), fp = static_cast<double>(s.fp), fn = static_cast<double>(s.fn);
+  s.precision = (s.tp + s.fp) > 0 ? tp / (tp + fp) : kNaN;
+  s.recall = (s.tp + s.fn) > 0 ? tp / (tp + fn) : kNaN;
+  // 2PR/(P+R) = 2TP/(2TP+FP+FN): defined (0) even when P or R is undefined but the other is 0.
+  s.f1 = (s.tp + s.fp + s.fn) > 0 ? 2.0 * tp / (2.0 * tp + fp + fn) : kNaN;
+}
+
+bool
+evaluateSegmentation(const std::vector<pcl::PointIndices>& segments, const std::vector<int>& reference_labels,
+                     const SegmentationEvaluationSettings& settings, SegmentationEvaluation& result,
+                     std::string& error)
+{
+  const std::size_t n = reference_labels.size();
+  const std::size_t G = settings.groups.size();
+  if (!indicesInRange(segments, n, error))
+    return false;
+  SegmentationEvaluation res;
+  res.method = result.method;
+  res.seconds = result.seconds;
+  res.segments = segments.size();
+  res.points_total = n;
+  const ClassLookup lookup(settings.groups, settings.excluded_codes);
+  std::vector<int> ref_group(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    ref_group[i] = lookup.groupOf(reference_labels[i]);
+    if (ref_group[i] != ClassLookup::kExcluded)
+      ++res.points_evaluated;
+  }
+  std::vector<std::size_t> segs_per_col;
+  const std::vector<int> predicted =
+      predictedColumns(segments, ref_group, G, settings.min_segment_size, segs_per_col, res);
+  fillConfusion(ref_group, predicted, G, res);
   scoreConfusion(settings.groups, segs_per_col, res);
   result = std::move(res);
   return true;

@@ -16,15 +16,13 @@ namespace evaluation {
 namespace {
 constexpr double kDegToRad = M_PI / 180.0;
 
+using MRG = MultiRuleRegionGrowing<pcl::PointXYZ>;
+
+/// The run's settings on the segmenter; what is unset (≤ 0, or negative: adaptive, the
+/// tools' convention) keeps the class's default.
 void
-runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
-             const std::vector<std::uint8_t>& number_of_returns, const SegmentationRunSettings& s,
-             SegmentationRun& run)
+configureMultiRule(const SegmentationRunSettings& s, MRG& seg)
 {
-  using MRG = MultiRuleRegionGrowing<pcl::PointXYZ>;
-  MRG seg;
-  seg.setInputCloud(cloud);
-  seg.setNumberOfReturns(number_of_returns);
   seg.setMode(s.method == SegmentationMethod::IMRG ? MRG::Mode::IMRG : MRG::Mode::MRG);
   if (s.k_min > 0 && s.k_max > 0)
     seg.setNeighbourhoodRange(s.k_min, s.k_max, seg.getNeighbourhoodRange().k_step);
@@ -32,7 +30,6 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
     seg.setNormalAngleThreshold(s.normal_angle_deg * kDegToRad);
   if (s.principal_angle_deg > 0.0)
     seg.setPrincipalAngleThreshold(s.principal_angle_deg * kDegToRad);
-  // Negative here means adaptive (the tools' convention), the class's default.
   if (s.residual_threshold >= 0.0)
     seg.setResidualThreshold(s.residual_threshold);
   if (s.distance_threshold >= 0.0)
@@ -45,15 +42,13 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
     seg.setNumberOfThreads(s.threads);
   if (s.min_fragment_size >= 0)
     seg.setMinFragmentSize(static_cast<std::size_t>(s.min_fragment_size));
-  const bool planes = s.level == SegmentationLevel::Planes;
-  seg.setOutputLevel(planes ? MRG::Level::Planes : MRG::Level::Objects);
+  seg.setOutputLevel(s.level == SegmentationLevel::Planes ? MRG::Level::Planes : MRG::Level::Objects);
+}
 
-  pcl::StopWatch watch;
-  seg.extract(run.segments);
-  run.seconds_segmentation = run.seconds_total = watch.getTimeSeconds();
-  run.other_level = seg.getClusters(planes ? MRG::Level::Objects : MRG::Level::Planes);
-  run.classes = seg.getClusterClasses(planes ? MRG::Level::Planes : MRG::Level::Objects);
-
+/// The thresholds the segmenter used, its merge figures and stage times.
+void
+recordMultiRuleFigures(const MRG& seg, SegmentationRun& run)
+{
   run.residual_threshold = seg.getResidualThreshold();
   const auto& m = seg.getMergeReport();
   run.distance_threshold = m.distance_threshold;
@@ -78,6 +73,12 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
   run.spacing = seg.getSpacing();
   run.growth_radius = seg.getGrowthRadius();
   run.volumetric_radius = seg.getVolumetricRadius();
+}
+
+/// Each point's dimensionality class and the count per class.
+void
+recordDimensionality(const MRG& seg, SegmentationRun& run)
+{
   using D = segmentation::Dimensionality;
   const std::vector<D> dims = seg.getDimensionality();
   run.dimensionality.reserve(dims.size());
@@ -98,6 +99,25 @@ runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
       break;
     }
   }
+}
+
+void
+runMultiRule(const pcl::PointCloud<pcl::PointXYZ>::ConstPtr& cloud,
+             const std::vector<std::uint8_t>& number_of_returns, const SegmentationRunSettings& s,
+             SegmentationRun& run)
+{
+  MRG seg;
+  seg.setInputCloud(cloud);
+  seg.setNumberOfReturns(number_of_returns);
+  configureMultiRule(s, seg);
+  const bool planes = s.level == SegmentationLevel::Planes;
+  pcl::StopWatch watch;
+  seg.extract(run.segments);
+  run.seconds_segmentation = run.seconds_total = watch.getTimeSeconds();
+  run.other_level = seg.getClusters(planes ? MRG::Level::Objects : MRG::Level::Planes);
+  run.classes = seg.getClusterClasses(planes ? MRG::Level::Planes : MRG::Level::Objects);
+  recordMultiRuleFigures(seg, run);
+  recordDimensionality(seg, run);
 }
 
 void

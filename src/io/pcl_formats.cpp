@@ -59,11 +59,34 @@ addField(pcl::PCLPointCloud2& c, const std::string& name, std::uint8_t datatype)
   c.point_step += static_cast<std::uint32_t>(typeSize(datatype));
 }
 
-}  // namespace
+// One point's fields in the blob's layout: x/y/z in double (restored with the origin) when
+// shifted, else in float.
+void
+packPoint(const PointLiDAR& q, const Eigen::Vector3d& origin, bool shifted, std::uint8_t* p)
+{
+  std::size_t at = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double v = static_cast<double>(q.data[k]) + origin[k];  // restore in double
+    if (shifted) {
+      std::memcpy(p + at, &v, 8);
+      at += 8;
+    } else {
+      const float f = q.data[k];
+      std::memcpy(p + at, &f, 4);
+      at += 4;
+    }
+  }
+  std::memcpy(p + at, &q.intensity, 4);
+  std::memcpy(p + at + 4, &q.gps_time, 8);
+  std::memcpy(p + at + 12, &q.point_source_id, 2);
+  p[at + 14] = q.classification;
+  p[at + 15] = q.return_number;
+  p[at + 16] = q.number_of_returns;
+}
 
-bool
-writePclFile(const std::string& path, const std::string& format, const pcl::PointCloud<PointLiDAR>& cloud,
-             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+// The cloud as a PCLPointCloud2 blob for PCL's binary writers.
+pcl::PCLPointCloud2
+lidarBlob(const pcl::PointCloud<PointLiDAR>& cloud, const Eigen::Vector3d& origin)
 {
   const bool shifted = !origin.isZero(0.0);
   const std::uint8_t xyz_type = shifted ? pcl::PCLPointField::FLOAT64 : pcl::PCLPointField::FLOAT32;
@@ -82,49 +105,48 @@ writePclFile(const std::string& path, const std::string& format, const pcl::Poin
   c.is_dense = cloud.is_dense;
   c.row_step = c.point_step * c.width;
   c.data.resize(static_cast<std::size_t>(c.row_step));
-  for (std::size_t i = 0; i < cloud.size(); ++i) {
-    const PointLiDAR& q = cloud[i];
-    std::uint8_t* p = c.data.data() + i * c.point_step;
-    std::size_t at = 0;
-    for (int k = 0; k < 3; ++k) {
-      const double v = static_cast<double>(q.data[k]) + origin[k];  // restore in double
-      if (shifted) {
-        std::memcpy(p + at, &v, 8);
-        at += 8;
-      } else {
-        const float f = q.data[k];
-        std::memcpy(p + at, &f, 4);
-        at += 4;
-      }
-    }
-    std::memcpy(p + at, &q.intensity, 4);
-    std::memcpy(p + at + 4, &q.gps_time, 8);
-    std::memcpy(p + at + 12, &q.point_source_id, 2);
-    p[at + 14] = q.classification;
-    p[at + 15] = q.return_number;
-    p[at + 16] = q.number_of_returns;
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    packPoint(cloud[i], origin, shifted, c.data.data() + i * c.point_step);
+  return c;
+}
+
+// Writes the file in the format; PCL's status (< 0: failed). May throw from PCL's writers.
+int
+writeFormat(const std::string& path, const std::string& format, const pcl::PointCloud<PointLiDAR>& cloud,
+            const Eigen::Vector3d& origin, const pcl::PCLPointCloud2& c, const SaveOptions& options)
+{
+  // ASCII: pcl_ls3d's own writers (ascii_writers.h) print every number exactly; PCL 1.13's
+  // print a fixed number of digits (PLY doubles: 6).
+  const bool crs = !options.crs_wkt.empty();
+  const std::string comments =
+      !crs ? "" : (format == "pcd" ? pcdCrsLine(options.crs_wkt) : plyCrsLine(options.crs_wkt)) + "\n";
+  if (!options.binary)
+    return (format == "pcd" ? writePcdAscii(path, cloud, origin, comments)
+                            : writePlyAscii(path, cloud, origin, comments))
+               ? 0
+               : -1;
+  if (format == "pcd") {
+    std::string why;  // names the path, which saveCloud() adds itself
+    return savePcdBinaryWithComments(path, c, comments, why) ? 0 : -1;
   }
+  // No camera element: other PLY readers do not expect one.
+  int status =
+      pcl::PLYWriter().writeBinary(path, c, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity(), false);
+  if (status >= 0 && !insertPlyComments(path, comments))
+    status = -1;
+  return status;
+}
+
+}  // namespace
+
+bool
+writePclFile(const std::string& path, const std::string& format, const pcl::PointCloud<PointLiDAR>& cloud,
+             const Eigen::Vector3d& origin, std::string& error, const SaveOptions& options)
+{
+  const pcl::PCLPointCloud2 c = lidarBlob(cloud, origin);
   int status = -1;
   try {
-    // ASCII: pcl_ls3d's own writers (ascii_writers.h) print every number exactly; PCL 1.13's
-    // print a fixed number of digits (PLY doubles: 6).
-    const bool crs = !options.crs_wkt.empty();
-    const std::string comments =
-        !crs ? "" : (format == "pcd" ? pcdCrsLine(options.crs_wkt) : plyCrsLine(options.crs_wkt)) + "\n";
-    if (!options.binary)
-      status = (format == "pcd" ? writePcdAscii(path, cloud, origin, comments)
-                                : writePlyAscii(path, cloud, origin, comments))
-                   ? 0
-                   : -1;
-    else if (format == "pcd") {
-      std::string why;  // names the path, which saveCloud() adds itself
-      status = savePcdBinaryWithComments(path, c, comments, why) ? 0 : -1;
-    } else {  // no camera element: other PLY readers do not expect one
-      status = pcl::PLYWriter().writeBinary(path, c, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity(),
-                                            false);
-      if (status >= 0 && !insertPlyComments(path, comments))
-        status = -1;
-    }
+    status = writeFormat(path, format, cloud, origin, c, options);
   } catch (const std::exception& e) {
     error = std::string("PCL ") + format + " writer failed: " + e.what();
     return false;

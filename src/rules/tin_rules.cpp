@@ -338,6 +338,60 @@ planeObservation(const Eigen::Vector3d& query, Eigen::Vector3d n, const Eigen::V
   out.add(n, d, query - d * n, variance);
   return true;
 }
+
+// The element's plane (normal n, point c) in the cache, in float as the cache keeps it.
+void
+storePlane(const Eigen::Vector3d& n, const Eigen::Vector3d& c, CorrespondenceCache& cache)
+{
+  cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
+                  static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
+}
+
+// LZD observes along z, so its neighbours must surround the query's vertical. A query far
+// above or below the surface (a height offset or a deformation of several point spacings on
+// steep relief) has its 3-D nearest neighbours on the nearest slope, one-sided: then the
+// search is repeated from the query moved vertically to the height found, until that height
+// settles (far above steep relief, the first height is an extrapolation of the nearest slope
+// and one step does not reach the surface).
+bool
+recentredLzdElement(const Eigen::Vector3d& query, const TargetSurface& target, int k,
+                    LzdRule::Surface surface, double max_distance, CorrespondenceCache& cache,
+                    std::array<Eigen::Vector3d, 3>& v, Eigen::Vector3d& n, Eigen::Vector3d& c)
+{
+  Eigen::Vector3d centre = query;
+  bool ok = false;
+  for (int attempt = 0; attempt < kMaxRecentring; ++attempt) {
+    double height = std::numeric_limits<double>::quiet_NaN();
+    ok = lzdElement(centre, target, k, surface, max_distance, cache, v, n, c, height);
+    // Near the surface already when the height moves the centre by less than a quarter of
+    // the neighbourhood's radius: a retry would find about the same set. (Not "less than the
+    // radius": seen from a query far above, every neighbour is at least that far away.)
+    if (attempt + 1 == kMaxRecentring || !std::isfinite(height) ||
+        std::abs(height - centre.z()) <= kRecentreFraction * neighbourhoodRadius())
+      break;
+    centre.z() = height;
+  }
+  return ok;
+}
+
+// Height difference along z from the plane n·(x − p) = 0 to the query as one observation.
+bool
+heightObservation(const Eigen::Vector3d& query, const Eigen::Vector3d& n, const Eigen::Vector3d& p,
+                  double max_distance, float variance, ConjugateObservations& out)
+{
+  if (!(std::abs(n.z()) > 1e-6 * n.norm()))  // vertical element: no height there
+    return false;
+  // Plane n·(x − p) = 0 at (query.x, query.y): z = p.z − (n.x dx + n.y dy) / n.z.
+  const double z = p.z() - (n.x() * (query.x() - p.x()) + n.y() * (query.y() - p.y())) / n.z();
+  const double d = query.z() - z;
+  if (!std::isfinite(d) || std::abs(d) > max_distance)
+    return false;
+  // l = z' − z(x', y'): its gradient w.r.t. x' is (−∂z/∂x, −∂z/∂y, 1), so a horizontal move
+  // over a slope changes the height difference (Rosenholm's rigorous LZD linearisation).
+  const Eigen::Vector3d gradient(n.x() / n.z(), n.y() / n.z(), 1.0);
+  out.add(gradient, d, Eigen::Vector3d(query.x(), query.y(), z), variance);
+  return true;
+}
 }  // namespace
 
 bool
@@ -373,8 +427,7 @@ LndRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
         n = (n - g.x() * e1 - g.y() * e2).normalized();
       }
       anchor(cache, query);
-      cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
-                      static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
+      storePlane(n, c, cache);
     }
     const Eigen::Vector3d n(cache.plane[0], cache.plane[1], cache.plane[2]);
     const Eigen::Vector3d c = towardsNearestSample(
@@ -412,32 +465,13 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
   Eigen::Vector3d n, p;  // plane normal and a point on it
   if (surface_ != Surface::TRIANGLE) {
     if (!cached || !reusable(cache, query)) {
-      // LZD observes along z, so its neighbours must surround the query's vertical. A query far
-      // above or below the surface (a height offset or a deformation of several point spacings
-      // on steep relief) has its 3-D nearest neighbours on the nearest slope, one-sided: then
-      // the search is repeated from the query moved vertically to the height found, until that
-      // height settles (far above steep relief, the first height is an extrapolation of the
-      // nearest slope and one step does not reach the surface).
-      Eigen::Vector3d centre = query, c;
-      bool ok = false;
-      for (int attempt = 0; attempt < kMaxRecentring; ++attempt) {
-        double height = std::numeric_limits<double>::quiet_NaN();
-        ok = lzdElement(centre, target, neighbours_, surface_, max_distance, cache, v, n, c, height);
-        // Near the surface already when the height moves the centre by less than a quarter of
-        // the neighbourhood's radius: a retry would find about the same set. (Not "less than the
-        // radius": seen from a query far above, every neighbour is at least that far away.)
-        if (attempt + 1 == kMaxRecentring || !std::isfinite(height) ||
-            std::abs(height - centre.z()) <= kRecentreFraction * neighbourhoodRadius())
-          break;
-        centre.z() = height;
-      }
-      if (!ok) {
+      Eigen::Vector3d c;
+      if (!recentredLzdElement(query, target, neighbours_, surface_, max_distance, cache, v, n, c)) {
         cache.vertices = {{-1, -1, -1}};
         return false;
       }
       anchor(cache, query);
-      cache.plane = {{static_cast<float>(n.x()), static_cast<float>(n.y()), static_cast<float>(n.z()),
-                      static_cast<float>(c.x()), static_cast<float>(c.y()), static_cast<float>(c.z())}};
+      storePlane(n, c, cache);
     }
     n = Eigen::Vector3d(cache.plane[0], cache.plane[1], cache.plane[2]);
     p = towardsNearestSample(query, target, cache,
@@ -455,18 +489,7 @@ LzdRule::findConjugate(const Eigen::Vector3d& query, const TargetSurface& target
     n = (v[1] - v[0]).cross(v[2] - v[0]);
     p = v[0];
   }
-  if (!(std::abs(n.z()) > 1e-6 * n.norm()))  // vertical element: no height there
-    return false;
-  // Plane n·(x − p) = 0 at (query.x, query.y): z = p.z − (n.x dx + n.y dy) / n.z.
-  const double z = p.z() - (n.x() * (query.x() - p.x()) + n.y() * (query.y() - p.y())) / n.z();
-  const double d = query.z() - z;
-  if (!std::isfinite(d) || std::abs(d) > max_distance)
-    return false;
-  // l = z' − z(x', y'): its gradient w.r.t. x' is (−∂z/∂x, −∂z/∂y, 1), so a horizontal move
-  // over a slope changes the height difference (Rosenholm's rigorous LZD linearisation).
-  const Eigen::Vector3d gradient(n.x() / n.z(), n.y() / n.z(), 1.0);
-  out.add(gradient, d, Eigen::Vector3d(query.x(), query.y(), z), cache.variance);
-  return true;
+  return heightObservation(query, n, p, max_distance, cache.variance, out);
 }
 
 }  // namespace pcl_ls3d

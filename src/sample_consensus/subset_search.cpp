@@ -125,6 +125,17 @@ worstKept(const std::vector<Candidate>& best, int K)
   return static_cast<int>(best.size()) < K ? std::numeric_limits<double>::infinity() : best.back().criterion;
 }
 
+/// The K best of all threads' candidates (sorted).
+std::vector<Candidate>
+mergeCandidates(std::vector<std::vector<Candidate>>& best, int K)
+{
+  std::vector<Candidate> all;
+  for (auto& b : best)
+    for (auto& c : b)
+      keepBest(all, std::move(c), K);
+  return all;
+}
+
 /// Residuals of the scored observations under X.
 void
 scoredResiduals(const SearchData& d, const LinearizedMatching& lin, const Vector7d& X, Eigen::VectorXd& v)
@@ -280,10 +291,7 @@ leastMedianOfSquares(const LinearizedMatching& lin, const SubsetSearchSettings& 
   }
   out.drawn = s.subsets;
   out.valid = valid;
-  std::vector<Candidate> all;
-  for (auto& b : best)
-    for (auto& c : b)
-      keepBest(all, std::move(c), K);
+  std::vector<Candidate> all = mergeCandidates(best, K);
   if (all.empty())
     return out;
   // Finalists re-scored on every observation (exact when the ranking used all of them).
@@ -306,83 +314,99 @@ leastMedianOfSquares(const LinearizedMatching& lin, const SubsetSearchSettings& 
   return out;
 }
 
-SubsetSearchResult
-leastTrimmedSquares(const LinearizedMatching& lin, const SubsetSearchSettings& s)
+namespace {
+
+/// One thread's buffers for C-steps on the scored observations.
+struct ScoredCStepBuffers
 {
-  SubsetSearchResult out;
-  const SearchData d = prepare(lin, s);
-  out.scored = d.scored.size();
-  const std::size_t m = lin.size();
-  if (d.points.size() < static_cast<std::size_t>(s.sample_size) || m == 0)
-    return out;
-  const int p = lin.freeParameters();
-  auto coverageOf = [&](std::size_t n) { return coverageCount(n, p, s.coverage); };
-  const std::size_t h_scored = coverageOf(d.scored.size()), h = coverageOf(m);
-  const int K = std::max(1, s.finalists);
+  std::vector<int> chosen, global;
+  Eigen::VectorXd v;
+  std::vector<std::pair<double, int>> buf;
+};
+
+/// `steps` C-steps from a subset's fit X on the scored observations: X becomes the last fit;
+/// returns its trimmed criterion over h of them.
+double
+scoredCSteps(const SearchData& d, const LinearizedMatching& lin, int steps, std::size_t h, Vector7d& X,
+             ScoredCStepBuffers& b)
+{
+  double crit = std::numeric_limits<double>::infinity();
+  for (int c = 0; c <= steps; ++c) {
+    scoredResiduals(d, lin, X, b.v);
+    crit = trimmedMeanSquared(b.v, h, b.buf, &b.chosen);
+    if (c == steps)
+      break;
+    b.global.resize(b.chosen.size());
+    for (std::size_t j = 0; j < b.chosen.size(); ++j)
+      b.global[j] = d.scored[static_cast<std::size_t>(b.chosen[j])];
+    if (!lin.fit(b.global.data(), b.global.size(), X))
+      break;
+  }
+  return crit;
+}
+
+/// The K best subsets after their start C-steps (h_scored of the scored observations kept);
+/// `valid` counts the subsets that determined the parameters.
+std::vector<Candidate>
+ltsCandidates(const SearchData& d, const LinearizedMatching& lin, const SubsetSearchSettings& s,
+              std::size_t h_scored, int K, int& valid)
+{
   std::vector<std::vector<Candidate>> best(static_cast<std::size_t>(threadCount()));
-  int valid = 0;
-#pragma omp parallel reduction(+ : valid)
+  int drawn_valid = 0;
+#pragma omp parallel reduction(+ : drawn_valid)
   {
     std::vector<Candidate>& mine = best[static_cast<std::size_t>(threadId())];
-    std::vector<int> obs, chosen, global;
-    Eigen::VectorXd v;
-    std::vector<std::pair<double, int>> buf;
+    std::vector<int> obs;
+    ScoredCStepBuffers buffers;
 #pragma omp for schedule(static)
     for (int k = 0; k < s.subsets; ++k) {
       Stream rng(s.seed, static_cast<std::uint64_t>(k) + 1);
       Vector7d X;
       if (!drawSubset(d, lin, s.sample_size, rng, obs) || !lin.fit(obs.data(), obs.size(), X))
         continue;
-      ++valid;
-      double crit = std::numeric_limits<double>::infinity();
-      for (int c = 0; c <= s.start_csteps; ++c) {  // C-steps on the scored observations
-        scoredResiduals(d, lin, X, v);
-        crit = trimmedMeanSquared(v, h_scored, buf, &chosen);
-        if (c == s.start_csteps)
-          break;
-        global.resize(chosen.size());
-        for (std::size_t j = 0; j < chosen.size(); ++j)
-          global[j] = d.scored[static_cast<std::size_t>(chosen[j])];
-        if (!lin.fit(global.data(), global.size(), X))
-          break;
-      }
+      ++drawn_valid;
+      const double crit = scoredCSteps(d, lin, s.start_csteps, h_scored, X, buffers);
       if (std::isfinite(crit) && crit < worstKept(mine, K))
         keepBest(mine, Candidate{crit, k, X, obs}, K);
     }
   }
-  out.drawn = s.subsets;
-  out.valid = valid;
-  std::vector<Candidate> all;
-  for (auto& b : best)
-    for (auto& c : b)
-      keepBest(all, std::move(c), K);
-  if (all.empty())
-    return out;
-  // Finalists: C-steps on all observations until the criterion stops decreasing.
-  std::vector<int> csteps(all.size(), 0);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (std::size_t f = 0; f < all.size(); ++f) {
-    Candidate& c = all[f];
-    Eigen::VectorXd v;
-    std::vector<std::pair<double, int>> buf;
-    std::vector<int> chosen;
-    lin.residuals(c.X, v);
-    c.criterion = trimmedMeanSquared(v, h, buf, &chosen);
-    for (int step = 0; step < s.max_csteps; ++step) {
-      Vector7d X;
-      if (!lin.fit(chosen.data(), chosen.size(), X))
-        break;
-      lin.residuals(X, v);
-      std::vector<int> next;
-      const double crit = trimmedMeanSquared(v, h, buf, &next);
-      ++csteps[f];
-      if (!(crit < c.criterion * (1.0 - 1e-12)))
-        break;  // C-steps never increase the criterion; equal means converged
-      c.criterion = crit;
-      c.X = X;
-      chosen.swap(next);
-    }
+  valid = drawn_valid;
+  return mergeCandidates(best, K);
+}
+
+/// A finalist's C-steps on all observations (h kept) until the criterion stops decreasing;
+/// returns the number of steps taken.
+int
+concentrate(const LinearizedMatching& lin, std::size_t h, int max_csteps, Candidate& c)
+{
+  Eigen::VectorXd v;
+  std::vector<std::pair<double, int>> buf;
+  std::vector<int> chosen;
+  lin.residuals(c.X, v);
+  c.criterion = trimmedMeanSquared(v, h, buf, &chosen);
+  int steps = 0;
+  for (int step = 0; step < max_csteps; ++step) {
+    Vector7d X;
+    if (!lin.fit(chosen.data(), chosen.size(), X))
+      break;
+    lin.residuals(X, v);
+    std::vector<int> next;
+    const double crit = trimmedMeanSquared(v, h, buf, &next);
+    ++steps;
+    if (!(crit < c.criterion * (1.0 - 1e-12)))
+      break;  // C-steps never increase the criterion; equal means converged
+    c.criterion = crit;
+    c.X = X;
+    chosen.swap(next);
   }
+  return steps;
+}
+
+/// The best finalist (ties to the earlier subset) as the search's result.
+void
+ltsWinner(const std::vector<Candidate>& all, const std::vector<int>& csteps, std::size_t h, std::size_t m,
+          SubsetSearchResult& out)
+{
   std::vector<std::size_t> order(all.size());
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a] < all[b]; });
@@ -395,6 +419,32 @@ leastTrimmedSquares(const LinearizedMatching& lin, const SubsetSearchSettings& s
   out.coverage = h;
   out.csteps = csteps[order.front()];
   out.scale = ltsScale(win.criterion, static_cast<double>(h) / static_cast<double>(m));
+}
+
+}  // namespace
+
+SubsetSearchResult
+leastTrimmedSquares(const LinearizedMatching& lin, const SubsetSearchSettings& s)
+{
+  SubsetSearchResult out;
+  const SearchData d = prepare(lin, s);
+  out.scored = d.scored.size();
+  const std::size_t m = lin.size();
+  if (d.points.size() < static_cast<std::size_t>(s.sample_size) || m == 0)
+    return out;
+  const int p = lin.freeParameters();
+  const std::size_t h_scored = coverageCount(d.scored.size(), p, s.coverage),
+                    h = coverageCount(m, p, s.coverage);
+  const int K = std::max(1, s.finalists);
+  std::vector<Candidate> all = ltsCandidates(d, lin, s, h_scored, K, out.valid);
+  out.drawn = s.subsets;
+  if (all.empty())
+    return out;
+  std::vector<int> csteps(all.size(), 0);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::size_t f = 0; f < all.size(); ++f)
+    csteps[f] = concentrate(lin, h, s.max_csteps, all[f]);
+  ltsWinner(all, csteps, h, m, out);
   return out;
 }
 

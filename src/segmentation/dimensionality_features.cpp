@@ -43,27 +43,22 @@ clampedEigenvalues(const Eigen::Vector3d& ascending)
   return ascending.cwiseMax(0.0);
 }
 
-}  // namespace
-
-PointFeatures
-computePointFeatures(const std::vector<Eigen::Vector3f>& sorted_neighbours,
-                     const NeighbourhoodSettings& settings)
+/// The tested neighbourhood size of least eigenentropy (sizes k_min, k_min + step, ... ≤
+/// min(k_max, n); only n itself if n < k_min): its covariance, size and entropy.
+Eigen::Matrix3d
+leastEntropyNeighbourhood(const std::vector<Eigen::Vector3f>& sorted_neighbours,
+                          const NeighbourhoodSettings& settings, int& best_k, double& best_entropy)
 {
-  PointFeatures f;
   const int n = static_cast<int>(sorted_neighbours.size());
-  if (n < 3 || settings.k_min < 3 || settings.k_step < 1)
-    return f;
   const int k_last = std::min(settings.k_max, n);
   const Eigen::Vector3d origin = sorted_neighbours.front().cast<double>();
-
-  // Tested sizes: k_min, k_min + step, ... ≤ min(k_max, n); only n itself if n < k_min.
   const int k_first = (n < settings.k_min) ? n : settings.k_min;
   const int k_end = (n < settings.k_min) ? n : k_last;
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   Eigen::Matrix3d sum_sq = Eigen::Matrix3d::Zero();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
-  double best_entropy = std::numeric_limits<double>::infinity();
-  int best_k = 0;
+  best_entropy = std::numeric_limits<double>::infinity();
+  best_k = 0;
   Eigen::Matrix3d best_cov = Eigen::Matrix3d::Zero();
   int next_k = k_first;
   for (int k = 1; k <= k_end; ++k) {
@@ -82,17 +77,22 @@ computePointFeatures(const std::vector<Eigen::Vector3f>& sorted_neighbours,
       best_cov = cov;
     }
   }
+  return best_cov;
+}
 
-  solver.computeDirect(best_cov, Eigen::ComputeEigenvectors);
+/// Dimensionality features, residual, normal and principal direction from the covariance.
+void
+shapeFeatures(const Eigen::Matrix3d& cov, PointFeatures& f)
+{
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver;
+  solver.computeDirect(cov, Eigen::ComputeEigenvectors);
   const Eigen::Vector3d lambda = clampedEigenvalues(solver.eigenvalues());  // ascending
   const double s1 = std::sqrt(lambda[2]), s2 = std::sqrt(lambda[1]), s3 = std::sqrt(lambda[0]);
-  f.k = static_cast<std::uint16_t>(best_k);
-  f.entropy = static_cast<float>(best_entropy);
   if (!(s1 > 0.0) || !std::isfinite(s1)) {
     // Zero extent (duplicates): isotropic by convention, never linear or planar.
     f.a3d = 1.f;
     f.dimensionality = Dimensionality::Volumetric;
-    return f;
+    return;
   }
   f.a1d = static_cast<float>((s1 - s2) / s1);
   f.a2d = static_cast<float>((s2 - s3) / s1);
@@ -109,6 +109,24 @@ computePointFeatures(const std::vector<Eigen::Vector3f>& sorted_neighbours,
     f.dimensionality = Dimensionality::Linear;
   else
     f.dimensionality = Dimensionality::Volumetric;
+}
+
+}  // namespace
+
+PointFeatures
+computePointFeatures(const std::vector<Eigen::Vector3f>& sorted_neighbours,
+                     const NeighbourhoodSettings& settings)
+{
+  PointFeatures f;
+  const int n = static_cast<int>(sorted_neighbours.size());
+  if (n < 3 || settings.k_min < 3 || settings.k_step < 1)
+    return f;
+  int best_k = 0;
+  double best_entropy = 0.0;
+  const Eigen::Matrix3d cov = leastEntropyNeighbourhood(sorted_neighbours, settings, best_k, best_entropy);
+  f.k = static_cast<std::uint16_t>(best_k);
+  f.entropy = static_cast<float>(best_entropy);
+  shapeFeatures(cov, f);
   return f;
 }
 

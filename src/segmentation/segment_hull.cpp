@@ -66,15 +66,11 @@ runQhull(std::vector<coordT>& coords, int dim, const Eigen::Vector3d& centre, Se
   return ok && !out.contour.empty();
 }
 
-}  // namespace
-
-SegmentHull
-computeSegmentHull(const std::vector<Eigen::Vector3f>& points)
+/// The mean of the points and the eigen decomposition of their covariance.
+Eigen::Vector3d
+principalAxes(const std::vector<Eigen::Vector3f>& points, Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>& es)
 {
-  SegmentHull out;
   const std::size_t n = points.size();
-  if (n == 0)
-    return out;
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
   for (const auto& p : points)
     mean += p.cast<double>();
@@ -85,41 +81,49 @@ computeSegmentHull(const std::vector<Eigen::Vector3f>& points)
     cov.noalias() += d * d.transpose();
   }
   cov /= static_cast<double>(n);
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
   es.computeDirect(cov);
-  const Eigen::Vector3d lambda = es.eigenvalues().cwiseMax(0.0);  // ascending
+  return mean;
+}
 
-  const auto all_points = [&]() {
-    out.contour.resize(n);
-    std::iota(out.contour.begin(), out.contour.end(), 0);
-  };
-  if (n < 4 || !(lambda[2] > 0.0)) {
-    out.kind = HullKind::Tiny;
-    all_points();
-    return out;
-  }
-  if (lambda[1] <= kHullDegeneracyTolerance * lambda[2]) {
-    out.kind = HullKind::Collinear;
-    const Eigen::Vector3d axis = es.eigenvectors().col(2);
-    std::vector<double> t(n);
-    for (std::size_t i = 0; i < n; ++i)
-      t[i] = axis.dot(points[i].cast<double>() - mean);
-    const auto mm = std::minmax_element(t.begin(), t.end());
-    out.contour = {static_cast<int>(mm.first - t.begin()), static_cast<int>(mm.second - t.begin())};
-    return out;
-  }
-  const bool flat = lambda[0] <= kHullDegeneracyTolerance * lambda[2];
-  if (!flat) {
-    std::vector<coordT> coords(3 * n);
-    for (std::size_t i = 0; i < n; ++i)
-      for (int k = 0; k < 3; ++k)
-        coords[3 * i + k] = static_cast<double>(points[i][k]) - mean[k];
-    if (runQhull(coords, 3, mean, out)) {
-      out.kind = HullKind::Solid;
-      return out;
-    }
-  }
-  // 2-D hull in the best-fit plane (the two largest principal directions).
+/// Every point is a contour point.
+void
+allPointsContour(std::size_t n, SegmentHull& out)
+{
+  out.contour.resize(n);
+  std::iota(out.contour.begin(), out.contour.end(), 0);
+}
+
+/// The two extreme points along the principal axis.
+void
+collinearContour(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3d& mean,
+                 const Eigen::Vector3d& axis, SegmentHull& out)
+{
+  const std::size_t n = points.size();
+  std::vector<double> t(n);
+  for (std::size_t i = 0; i < n; ++i)
+    t[i] = axis.dot(points[i].cast<double>() - mean);
+  const auto mm = std::minmax_element(t.begin(), t.end());
+  out.contour = {static_cast<int>(mm.first - t.begin()), static_cast<int>(mm.second - t.begin())};
+}
+
+/// 3-D hull of the centred points.
+bool
+solidHull(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3d& mean, SegmentHull& out)
+{
+  const std::size_t n = points.size();
+  std::vector<coordT> coords(3 * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k)
+      coords[3 * i + k] = static_cast<double>(points[i][k]) - mean[k];
+  return runQhull(coords, 3, mean, out);
+}
+
+/// 2-D hull in the best-fit plane (the two largest principal directions).
+bool
+flatHull(const std::vector<Eigen::Vector3f>& points, const Eigen::Vector3d& mean,
+         const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>& es, SegmentHull& out)
+{
+  const std::size_t n = points.size();
   std::vector<coordT> coords(2 * n);
   const Eigen::Vector3d u = es.eigenvectors().col(2), v = es.eigenvectors().col(1);
   for (std::size_t i = 0; i < n; ++i) {
@@ -127,16 +131,42 @@ computeSegmentHull(const std::vector<Eigen::Vector3f>& points)
     coords[2 * i] = u.dot(d);
     coords[2 * i + 1] = v.dot(d);
   }
-  if (runQhull(coords, 2, mean, out)) {
-    out.planes.clear();
-    out.kind = HullKind::Flat;
-    out.volume = 0.0;
+  return runQhull(coords, 2, mean, out);
+}
+
+}  // namespace
+
+SegmentHull
+computeSegmentHull(const std::vector<Eigen::Vector3f>& points)
+{
+  SegmentHull out;
+  const std::size_t n = points.size();
+  if (n == 0)
+    return out;
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es;
+  const Eigen::Vector3d mean = principalAxes(points, es);
+  const Eigen::Vector3d lambda = es.eigenvalues().cwiseMax(0.0);  // ascending
+  if (n < 4 || !(lambda[2] > 0.0)) {
+    out.kind = HullKind::Tiny;
+    allPointsContour(n, out);
     return out;
   }
+  if (lambda[1] <= kHullDegeneracyTolerance * lambda[2]) {
+    out.kind = HullKind::Collinear;
+    collinearContour(points, mean, es.eigenvectors().col(2), out);
+    return out;
+  }
+  const bool flat = lambda[0] <= kHullDegeneracyTolerance * lambda[2];
+  if (!flat && solidHull(points, mean, out)) {
+    out.kind = HullKind::Solid;
+    return out;
+  }
+  const bool planar = flatHull(points, mean, es, out);
   out.planes.clear();
-  out.kind = HullKind::Tiny;  // qhull refused both: keep every point as contour
   out.volume = 0.0;
-  all_points();
+  out.kind = planar ? HullKind::Flat : HullKind::Tiny;
+  if (!planar)  // qhull refused both: keep every point as contour
+    allPointsContour(n, out);
   return out;
 }
 

@@ -124,6 +124,73 @@ relabelRoots(MergeState& st, int n_segments, std::vector<int>& labels)
   return static_cast<std::size_t>(next);
 }
 
+/// How many initial hulls are of each kind.
+void
+recordHullKinds(const MergeState& st, MergeReport& rep)
+{
+  rep.hulls_tiny = st.hull_kinds[static_cast<int>(HullKind::Tiny)];
+  rep.hulls_collinear = st.hull_kinds[static_cast<int>(HullKind::Collinear)];
+  rep.hulls_flat = st.hull_kinds[static_cast<int>(HullKind::Flat)];
+  rep.hulls_solid = st.hull_kinds[static_cast<int>(HullKind::Solid)];
+}
+
+/// The merge loop's inputs: the state, the thresholds' stage and the rule.
+struct MergeLoop
+{
+  MergeState& st;
+  const std::vector<std::pair<int, double>>& nearest;  // each segment's initial nearest segment
+  const std::vector<double>& candidate_dv;             // its ΔV from the threshold stage (−1: none)
+  bool full;                                           // distance, similarity and volume rules
+  double floor;                                        // the volume floor of ΔV
+  MergeReport& rep;
+  std::vector<char> changed;  // hull differs from the initial one
+};
+
+/// Does S_s merge into its nearest segment S_j under the full rule (s_t, then V_t)? Then
+/// \a merged holds the union's hull.
+bool
+passesSimilarityAndVolume(const MergeLoop& L, int s, int j, SegmentHull& merged)
+{
+  const MergeState& st = L.st;
+  if (std::abs(st.meanResidual(s) - st.meanResidual(j)) > L.rep.similarity_threshold)
+    return false;
+  const bool unchanged = !L.changed[s] && !L.changed[j] && L.nearest[s].first == j;
+  if (unchanged && L.candidate_dv[s] > L.rep.volume_threshold)
+    return false;  // same pair, same hulls as in the threshold stage: ΔV already known
+  return !(detail::volumeChange(st, s, j, L.floor, &merged) > L.rep.volume_threshold);
+}
+
+/// Fig. 8: smallest segment first; merge into its nearest unfinished segment or finish it.
+void
+runMergeLoop(MergeLoop& L, int n_segments)
+{
+  MergeState& st = L.st;
+  std::vector<int> order(n_segments);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](int a, int b) { return st.members[a].size() < st.members[b].size(); });
+  std::vector<char> finished(n_segments, 0);
+  L.changed.assign(n_segments, 0);
+  for (const int s : order) {
+    finished[s] = 1;  // S_1 leaves S_u whatever happens
+    const auto [j, d] = detail::nearestSegment(st, s, L.rep.distance_threshold, finished);
+    if (j < 0 || d > L.rep.distance_threshold)
+      continue;
+    SegmentHull merged;
+    if (L.full) {
+      if (!passesSimilarityAndVolume(L, s, j, merged))
+        continue;
+    } else {
+      std::vector<int> ids = st.contour[j];
+      ids.insert(ids.end(), st.contour[s].begin(), st.contour[s].end());
+      merged = detail::hullOfContour(st, ids);
+    }
+    mergeInto(st, s, j, merged);
+    L.changed[j] = 1;
+    ++L.rep.merges;
+  }
+}
+
 }  // namespace
 
 MergeReport
@@ -149,10 +216,7 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
   pcl::StopWatch watch;
   detail::buildState(points, labels, residuals, n_segments, threads, st);
   const double t_hulls = watch.getTimeSeconds();
-  rep.hulls_tiny = st.hull_kinds[static_cast<int>(HullKind::Tiny)];
-  rep.hulls_collinear = st.hull_kinds[static_cast<int>(HullKind::Collinear)];
-  rep.hulls_flat = st.hull_kinds[static_cast<int>(HullKind::Flat)];
-  rep.hulls_solid = st.hull_kinds[static_cast<int>(HullKind::Solid)];
+  recordHullKinds(st, rep);
 
   std::vector<double> D;
   const std::vector<std::pair<int, double>> nearest = nearestSegments(st, n_segments, threads, D);
@@ -167,37 +231,8 @@ mergeSegments(const std::vector<Eigen::Vector3f>& points, std::vector<int>& labe
       full ? chooseVolumeThreshold(st, nearest, settings, floor, threads, rep, candidate_dv) : inf;
 
   const double t_thresholds = watch.getTimeSeconds();
-  // Fig. 8: smallest segment first; merge into its nearest unfinished segment or finish it.
-  std::vector<int> order(n_segments);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(),
-                   [&](int a, int b) { return st.members[a].size() < st.members[b].size(); });
-  std::vector<char> finished(n_segments, 0);
-  std::vector<char> changed(n_segments, 0);  // hull differs from the initial one
-  for (const int s : order) {
-    finished[s] = 1;  // S_1 leaves S_u whatever happens
-    const auto [j, d] = detail::nearestSegment(st, s, rep.distance_threshold, finished);
-    if (j < 0 || d > rep.distance_threshold)
-      continue;
-    SegmentHull merged;
-    if (full) {
-      if (std::abs(st.meanResidual(s) - st.meanResidual(j)) > rep.similarity_threshold)
-        continue;
-      const bool unchanged = !changed[s] && !changed[j] && nearest[s].first == j;
-      if (unchanged && candidate_dv[s] > rep.volume_threshold)
-        continue;  // same pair, same hulls as in the threshold stage: ΔV already known
-      if (detail::volumeChange(st, s, j, floor, &merged) > rep.volume_threshold)
-        continue;
-    } else {
-      std::vector<int> ids = st.contour[j];
-      ids.insert(ids.end(), st.contour[s].begin(), st.contour[s].end());
-      merged = detail::hullOfContour(st, ids);
-    }
-    mergeInto(st, s, j, merged);
-    changed[j] = 1;
-    ++rep.merges;
-  }
-
+  MergeLoop loop{st, nearest, candidate_dv, full, floor, rep, {}};
+  runMergeLoop(loop, n_segments);
   PCL_DEBUG("[pcl_ls3d::segmentation::mergeSegments] hulls %.2f s, nearest %.2f s, "
             "thresholds %.2f s, loop %.2f s; %zu contour points.\n",
             t_hulls, t_nearest - t_hulls, t_thresholds - t_nearest, watch.getTimeSeconds() - t_thresholds,

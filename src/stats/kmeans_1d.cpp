@@ -42,73 +42,75 @@ quantileSeeds(const std::vector<double>& sorted, std::size_t k)
   }
   return seeds;
 }
-}  // namespace
 
-KMeans1DResult
-kMeans1D(const std::vector<double>& values, std::size_t k, std::size_t max_iterations)
+/// The finite values, ascending.
+std::vector<double>
+finiteSorted(const std::vector<double>& values)
 {
-  KMeans1DResult res;
-  res.assignments.assign(values.size(), -1);
-  res.smallest_gap = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> sorted;
   for (double x : values)
     if (std::isfinite(x))
       sorted.push_back(x);
-  if (sorted.empty() || k == 0)
-    return res;
-  res.valid = true;
   std::sort(sorted.begin(), sorted.end());
-  std::vector<double> distinct = sorted;
-  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  return sorted;
+}
 
-  std::vector<double>& centres = res.centres;
-  centres = distinct.size() <= k ? distinct : quantileSeeds(sorted, k);
-  const bool exact = distinct.size() <= k;
-
-  std::vector<int> assign(values.size(), -1);
-  for (std::size_t it = 0; it < (exact ? 1 : max_iterations); ++it) {
-    bool changed = false;
-    for (std::size_t i = 0; i < values.size(); ++i) {
-      if (!std::isfinite(values[i]))
-        continue;
-      const int c = nearestCentre(centres, values[i]);
-      changed |= (c != assign[i]);
-      assign[i] = c;
-    }
-    res.iterations = it + 1;
-    if (!changed && it > 0) {
-      res.converged = true;
-      break;
-    }
-    // Update step: means; an empty cluster takes the value farthest from its centre.
-    std::vector<double> sum(centres.size(), 0.0);
-    std::vector<std::size_t> cnt(centres.size(), 0);
-    for (std::size_t i = 0; i < values.size(); ++i)
-      if (assign[i] >= 0) {
-        sum[static_cast<std::size_t>(assign[i])] += values[i];
-        ++cnt[static_cast<std::size_t>(assign[i])];
-      }
-    for (std::size_t c = 0; c < centres.size(); ++c) {
-      if (cnt[c] > 0) {
-        centres[c] = sum[c] / static_cast<double>(cnt[c]);
-        continue;
-      }
-      double far = -1.0;
-      for (std::size_t i = 0; i < values.size(); ++i)
-        if (assign[i] >= 0) {
-          const double d = std::abs(values[i] - centres[static_cast<std::size_t>(assign[i])]);
-          if (d > far) {
-            far = d;
-            centres[c] = values[i];
-          }
-        }
-    }
-    std::sort(centres.begin(), centres.end());
+/// Assignment step: each finite value to its nearest centre; true when any assignment changed.
+bool
+assignToNearest(const std::vector<double>& values, const std::vector<double>& centres,
+                std::vector<int>& assign)
+{
+  bool changed = false;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i]))
+      continue;
+    const int c = nearestCentre(centres, values[i]);
+    changed |= (c != assign[i]);
+    assign[i] = c;
   }
-  if (exact)
-    res.converged = true;
+  return changed;
+}
 
-  // Final assignment against the final (sorted) centres, sizes and within-cluster SS.
+/// The value farthest from its assigned centre, or `fallback` when nothing is assigned.
+double
+farthestValue(const std::vector<double>& values, const std::vector<int>& assign,
+              const std::vector<double>& centres, double fallback)
+{
+  double far = -1.0, value = fallback;
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (assign[i] >= 0) {
+      const double d = std::abs(values[i] - centres[static_cast<std::size_t>(assign[i])]);
+      if (d > far) {
+        far = d;
+        value = values[i];
+      }
+    }
+  return value;
+}
+
+/// Update step: means; an empty cluster takes the value farthest from its centre. Centres stay
+/// ascending.
+void
+updateCentres(const std::vector<double>& values, const std::vector<int>& assign, std::vector<double>& centres)
+{
+  std::vector<double> sum(centres.size(), 0.0);
+  std::vector<std::size_t> cnt(centres.size(), 0);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (assign[i] >= 0) {
+      sum[static_cast<std::size_t>(assign[i])] += values[i];
+      ++cnt[static_cast<std::size_t>(assign[i])];
+    }
+  for (std::size_t c = 0; c < centres.size(); ++c)
+    centres[c] = cnt[c] > 0 ? sum[c] / static_cast<double>(cnt[c])
+                            : farthestValue(values, assign, centres, centres[c]);
+  std::sort(centres.begin(), centres.end());
+}
+
+/// Final assignment against the final (sorted) centres, sizes and within-cluster SS.
+void
+finalAssignment(const std::vector<double>& values, KMeans1DResult& res)
+{
+  const std::vector<double>& centres = res.centres;
   res.sizes.assign(centres.size(), 0);
   res.within_ss = 0.0;
   for (std::size_t i = 0; i < values.size(); ++i) {
@@ -120,11 +122,53 @@ kMeans1D(const std::vector<double>& values, std::size_t k, std::size_t max_itera
     const double d = values[i] - centres[static_cast<std::size_t>(c)];
     res.within_ss += d * d;
   }
+}
+
+/// The smallest difference of neighbouring ascending centres (NaN for fewer than two).
+double
+smallestGap(const std::vector<double>& centres)
+{
+  double smallest = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t c = 1; c < centres.size(); ++c) {
     const double gap = centres[c] - centres[c - 1];
-    if (std::isnan(res.smallest_gap) || gap < res.smallest_gap)
-      res.smallest_gap = gap;
+    if (std::isnan(smallest) || gap < smallest)
+      smallest = gap;
   }
+  return smallest;
+}
+}  // namespace
+
+KMeans1DResult
+kMeans1D(const std::vector<double>& values, std::size_t k, std::size_t max_iterations)
+{
+  KMeans1DResult res;
+  res.assignments.assign(values.size(), -1);
+  res.smallest_gap = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> sorted = finiteSorted(values);
+  if (sorted.empty() || k == 0)
+    return res;
+  res.valid = true;
+  std::vector<double> distinct = sorted;
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+
+  std::vector<double>& centres = res.centres;
+  centres = distinct.size() <= k ? distinct : quantileSeeds(sorted, k);
+  const bool exact = distinct.size() <= k;
+
+  std::vector<int> assign(values.size(), -1);
+  for (std::size_t it = 0; it < (exact ? 1 : max_iterations); ++it) {
+    const bool changed = assignToNearest(values, centres, assign);
+    res.iterations = it + 1;
+    if (!changed && it > 0) {
+      res.converged = true;
+      break;
+    }
+    updateCentres(values, assign, centres);
+  }
+  if (exact)
+    res.converged = true;
+  finalAssignment(values, res);
+  res.smallest_gap = smallestGap(centres);
   return res;
 }
 

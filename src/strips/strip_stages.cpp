@@ -58,6 +58,71 @@ phaseName(BlockState::Phase p)
   return p == BlockState::Phase::ITERATE ? "iterate" : p == BlockState::Phase::EVALUATE ? "evaluate" : "done";
 }
 
+// The overlap that match job `job` works on; false (`error` says why) when there is no such
+// job or the adjustment is finished.
+bool
+jobOverlap(const PlanFile& f, const BlockState& state, int job, int& index, std::string& error)
+{
+  const std::vector<int> jobs = f.plan.jobs();
+  if (job < 0 || static_cast<std::size_t>(job) >= jobs.size()) {
+    error = "match job " + std::to_string(job) + " does not exist (" + std::to_string(jobs.size()) + " jobs)";
+    return false;
+  }
+  if (state.phase == BlockState::Phase::DONE) {
+    error = "the adjustment is finished; nothing to match";
+    return false;
+  }
+  index = jobs[static_cast<std::size_t>(job)];
+  return true;
+}
+
+// The matcher's memory from the job's previous run (none before the first iteration).
+bool
+restoreMatcher(const WorkDir& work, int job, const BlockState& state, OverlapMatcher& matcher,
+               std::string& error)
+{
+  if (state.iteration == 0)
+    return true;
+  std::array<PairMatcher::State, 2> memory;
+  if (!readMatcherState(work.matcher(job), memory, error) || !matcher.restore(std::move(memory))) {
+    error =
+        error.empty() ? "matcher state of job " + std::to_string(job) + " does not fit its points" : error;
+    return false;
+  }
+  return true;
+}
+
+// The overlap's contribution at the strips' poses: its normal equations while iterating (the
+// discrepancies before, at the first iteration), its figures and the discrepancies after at
+// evaluation.
+bool
+contributeOverlap(const WorkDir& work, int job, const PlanFile& f, const BlockState& state, const Overlap& o,
+                  const OverlapSelection& selection, OverlapMatcher& matcher, OverlapContribution& c,
+                  std::string& error)
+{
+  DiscrepancyEvaluator evaluator(selection, f.plan.settings.max_distance);
+  const std::vector<ParameterBlock> blocks = state.blocks(f.plan);
+  const ParameterBlock &bi = blocks[static_cast<std::size_t>(o.i)],
+                       &bj = blocks[static_cast<std::size_t>(o.j)];
+  const MatchInput in = matchInput(f.plan, state, o.i, o.j);
+  OverlapSamples samples;
+  if (state.phase == BlockState::Phase::ITERATE) {
+    if (state.iteration == 0) {
+      samples.before = evaluator.evaluate(bi, bj);
+      if (!writeSamples(work.samples(job), samples, error))
+        return false;
+    }
+    c = matcher.contribute(bi, bj, in);
+    return true;
+  }
+  c = matcher.evaluate(bi, bj, in, f.plan.precision_cell);
+  if (!readSamples(work.samples(job), samples, error))
+    return false;
+  samples.after = evaluator.evaluate(bi, bj);
+  samples.noise = evaluator.ownNoise(bi, bj);
+  return writeSamples(work.samples(job), samples, error);
+}
+
 }  // namespace
 
 std::vector<Eigen::Matrix4d>
@@ -100,18 +165,9 @@ stageMatch(const WorkDir& work, int job, std::string& error)
 {
   PlanFile f;
   BlockState state;
-  if (!readBoth(work, f, state, error))
+  int index = -1;
+  if (!readBoth(work, f, state, error) || !jobOverlap(f, state, job, index, error))
     return false;
-  const std::vector<int> jobs = f.plan.jobs();
-  if (job < 0 || static_cast<std::size_t>(job) >= jobs.size()) {
-    error = "match job " + std::to_string(job) + " does not exist (" + std::to_string(jobs.size()) + " jobs)";
-    return false;
-  }
-  if (state.phase == BlockState::Phase::DONE) {
-    error = "the adjustment is finished; nothing to match";
-    return false;
-  }
-  const int index = jobs[static_cast<std::size_t>(job)];
   const Overlap& o = f.plan.overlaps[static_cast<std::size_t>(index)];
   PairData pair;
   if (!loadPair(f, o, pair, error))
@@ -123,37 +179,10 @@ stageMatch(const WorkDir& work, int job, std::string& error)
   OverlapMatcher matcher(selection, *rule, *estimator, s,
                          stripNoise(*selection.backward.surface, pair.footprints.density(0)),
                          stripNoise(*selection.forward.surface, pair.footprints.density(1)));
-  if (state.iteration > 0) {
-    std::array<PairMatcher::State, 2> memory;
-    if (!readMatcherState(work.matcher(job), memory, error) || !matcher.restore(std::move(memory))) {
-      error =
-          error.empty() ? "matcher state of job " + std::to_string(job) + " does not fit its points" : error;
-      return false;
-    }
-  }
-  DiscrepancyEvaluator evaluator(selection, s.max_distance);
-  const std::vector<ParameterBlock> blocks = state.blocks(f.plan);
-  const ParameterBlock &bi = blocks[static_cast<std::size_t>(o.i)],
-                       &bj = blocks[static_cast<std::size_t>(o.j)];
-  const MatchInput in = matchInput(f.plan, state, o.i, o.j);
   OverlapContribution c;
-  OverlapSamples samples;
-  if (state.phase == BlockState::Phase::ITERATE) {
-    if (state.iteration == 0) {
-      samples.before = evaluator.evaluate(bi, bj);
-      if (!writeSamples(work.samples(job), samples, error))
-        return false;
-    }
-    c = matcher.contribute(bi, bj, in);
-  } else {
-    c = matcher.evaluate(bi, bj, in, f.plan.precision_cell);
-    if (!readSamples(work.samples(job), samples, error))
-      return false;
-    samples.after = evaluator.evaluate(bi, bj);
-    samples.noise = evaluator.ownNoise(bi, bj);
-    if (!writeSamples(work.samples(job), samples, error))
-      return false;
-  }
+  if (!restoreMatcher(work, job, state, matcher, error) ||
+      !contributeOverlap(work, job, f, state, o, selection, matcher, c, error))
+    return false;
   c.overlap = index;
   c.i = o.i;
   c.j = o.j;

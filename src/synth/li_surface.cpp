@@ -86,41 +86,57 @@ gatheredNodes(int n, DeformationPosition position, std::size_t k)
   return order;
 }
 
-LiSurface
-makeLiSurface(const LiSurfaceSettings& s)
+namespace {
+
+/// The square grid's node coordinates, centred on the origin.
+struct NodeGrid
 {
-  LiSurface out;
-  out.reference.reset(new pcl::PointCloud<PointLiDAR>);
-  out.mate.reset(new pcl::PointCloud<PointLiDAR>);
-  out.truth = s.truth;
-  std::string why;
-  if (!s.isValid(&why)) {
-    PCL_ERROR("[pcl_ls3d::synth::makeLiSurface] invalid settings: %s\n", why.c_str());
-    return out;
+  int n;
+  double spacing, half;
+
+  double
+  x(std::size_t i) const
+  {
+    return -half + spacing * static_cast<double>(i % n);
   }
-  const int n = s.grid_size;
-  const std::size_t total = static_cast<std::size_t>(n) * n;
-  const double half = 0.5 * (n - 1) * s.spacing;
-  auto nodeX = [&](std::size_t i) { return -half + s.spacing * static_cast<double>(i % n); };
-  auto nodeY = [&](std::size_t i) { return -half + s.spacing * static_cast<double>(i / n); };
+  double
+  y(std::size_t i) const
+  {
+    return -half + spacing * static_cast<double>(i / n);
+  }
+};
 
-  // Heights rescaled to exactly `relief` peak-to-peak, centred on 0.
+/// Heights of the nodes rescaled to exactly `relief` peak-to-peak, centred on 0.
+std::vector<double>
+nodeHeights(const LiSurfaceSettings& s, const NodeGrid& grid, std::size_t total)
+{
   const Terrain terrain(s.seed, 1.0, s.wavelength);
-  out.height.resize(total);
+  std::vector<double> height(total);
   for (std::size_t i = 0; i < total; ++i)
-    out.height[i] = terrain.height(nodeX(i), nodeY(i));
-  const auto mm = std::minmax_element(out.height.begin(), out.height.end());
+    height[i] = terrain.height(grid.x(i), grid.y(i));
+  const auto mm = std::minmax_element(height.begin(), height.end());
   const double lo = *mm.first, range = *mm.second - *mm.first;
-  for (double& h : out.height)
+  for (double& h : height)
     h = range > 0.0 ? s.relief * ((h - lo) / range - 0.5) : 0.0;
+  return height;
+}
 
+/// The deformed nodes (deformation_percent of them, gathered at the position).
+void
+markDeformed(const LiSurfaceSettings& s, std::size_t total, LiSurface& out)
+{
   const auto k = static_cast<std::size_t>(std::lround(s.deformation_percent / 100.0 * total));
-  out.deformed_indices = gatheredNodes(n, s.position, k);
+  out.deformed_indices = gatheredNodes(s.grid_size, s.position, k);
   out.deformed.assign(total, 0);
   for (int i : out.deformed_indices)
     out.deformed[i] = 1;
   out.percent = 100.0 * static_cast<double>(k) / static_cast<double>(total);
+}
 
+/// The reference and the mate (noise, deformation, then the inverse of the truth) per node.
+void
+samplePoints(const LiSurfaceSettings& s, const NodeGrid& grid, std::size_t total, LiSurface& out)
+{
   Random rng(s.seed, 0x11u, 0u);
   out.deformation.assign(total, 0.0);
   out.mate_noise.resize(total);
@@ -129,7 +145,7 @@ makeLiSurface(const LiSurfaceSettings& s)
   out.reference->resize(total);
   out.mate->resize(total);
   for (std::size_t i = 0; i < total; ++i) {
-    const double x = nodeX(i), y = nodeY(i);
+    const double x = grid.x(i), y = grid.y(i);
     const double ref_noise = s.noise_on_reference ? rng.normal(0.0, sigma) : 0.0;
     out.mate_noise[i] = rng.normal(0.0, sigma);
     if (out.deformed[i])
@@ -144,6 +160,28 @@ makeLiSurface(const LiSurfaceSettings& s)
     q.classification = 2;
     q.point_source_id = 2;
   }
+}
+
+}  // namespace
+
+LiSurface
+makeLiSurface(const LiSurfaceSettings& s)
+{
+  LiSurface out;
+  out.reference.reset(new pcl::PointCloud<PointLiDAR>);
+  out.mate.reset(new pcl::PointCloud<PointLiDAR>);
+  out.truth = s.truth;
+  std::string why;
+  if (!s.isValid(&why)) {
+    PCL_ERROR("[pcl_ls3d::synth::makeLiSurface] invalid settings: %s\n", why.c_str());
+    return out;
+  }
+  const int n = s.grid_size;
+  const std::size_t total = static_cast<std::size_t>(n) * n;
+  const NodeGrid grid{n, s.spacing, 0.5 * (n - 1) * s.spacing};
+  out.height = nodeHeights(s, grid, total);
+  markDeformed(s, total, out);
+  samplePoints(s, grid, total, out);
   for (auto* c : {out.reference.get(), out.mate.get()}) {
     c->width = static_cast<std::uint32_t>(total);
     c->height = 1;

@@ -200,6 +200,45 @@ sampleWalls(const SceneSettings& s, const detail::SceneLayout& layout, const Ter
   }
 }
 
+/// Points along the towers' and wires' members, from one sequential stream.
+void
+sampleMembers(const SceneSettings& s, const detail::SceneLayout& layout, Random& rng, double time,
+              Collected& out)
+{
+  for (const auto& m : layout.members) {
+    const double length = (m.b - m.a).norm();
+    const auto n = static_cast<std::size_t>(std::ceil(length / s.line_spacing));
+    const std::uint8_t cls = layout.objects[m.object].classification;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double u = (static_cast<double>(k) + rng.uniform()) / static_cast<double>(n);
+      out.add(detail::segmentPoint(m, u) + rng.normal3(s.noise_sigma), cls, m.object, time);
+    }
+  }
+}
+
+/// The blocks' points and labels concatenated in order, with the point count per object and
+/// roof plane.
+void
+assembleScene(const std::vector<Collected>& blocks, const detail::SceneLayout& layout, LabelledScene& scene)
+{
+  scene.objects = layout.objects;
+  scene.planes = layout.planes;
+  for (const auto& b : blocks) {
+    scene.cloud->insert(scene.cloud->end(), b.points.begin(), b.points.end());
+    scene.object_id.insert(scene.object_id.end(), b.ids.begin(), b.ids.end());
+    scene.plane_id.insert(scene.plane_id.end(), b.planes.begin(), b.planes.end());
+  }
+  for (int id : scene.object_id)
+    if (id >= 0)
+      ++scene.objects[id].point_count;
+  for (int id : scene.plane_id)
+    if (id >= 0)
+      ++scene.planes[static_cast<std::size_t>(id)].point_count;
+  scene.cloud->width = static_cast<std::uint32_t>(scene.cloud->size());
+  scene.cloud->height = 1;
+  scene.cloud->is_dense = true;
+}
+
 }  // namespace
 
 LabelledScene
@@ -239,32 +278,8 @@ makeScene(const SceneSettings& s)
   Collected& extra = blocks.back();
   const double t_extra = 1e-5 * static_cast<double>(pulses) + 1.0;
   sampleWalls(s, layout, terrain, rng, t_extra, extra);
-  for (const auto& m : layout.members) {
-    const double length = (m.b - m.a).norm();
-    const auto n = static_cast<std::size_t>(std::ceil(length / s.line_spacing));
-    const std::uint8_t cls = layout.objects[m.object].classification;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double u = (static_cast<double>(k) + rng.uniform()) / static_cast<double>(n);
-      extra.add(detail::segmentPoint(m, u) + rng.normal3(s.noise_sigma), cls, m.object, t_extra);
-    }
-  }
-
-  scene.objects = layout.objects;
-  scene.planes = layout.planes;
-  for (const auto& b : blocks) {
-    scene.cloud->insert(scene.cloud->end(), b.points.begin(), b.points.end());
-    scene.object_id.insert(scene.object_id.end(), b.ids.begin(), b.ids.end());
-    scene.plane_id.insert(scene.plane_id.end(), b.planes.begin(), b.planes.end());
-  }
-  for (int id : scene.object_id)
-    if (id >= 0)
-      ++scene.objects[id].point_count;
-  for (int id : scene.plane_id)
-    if (id >= 0)
-      ++scene.planes[static_cast<std::size_t>(id)].point_count;
-  scene.cloud->width = static_cast<std::uint32_t>(scene.cloud->size());
-  scene.cloud->height = 1;
-  scene.cloud->is_dense = true;
+  sampleMembers(s, layout, rng, t_extra, extra);
+  assembleScene(blocks, layout, scene);
   return scene;
 }
 

@@ -162,6 +162,58 @@ layOut(const StripSettings& s, StripBlock& block, double da, std::size_t n_c, Ei
   return lines;
 }
 
+/// Samples the strips' points: each point's scan position on its flight line, its hit on the
+/// landscape with noise, in its strip's distorted frame.
+struct StripSampler
+{
+  const StripSettings& s;
+  const StripBlock& block;
+  const std::vector<FlightLine>& lines;
+  const std::vector<std::vector<Eigen::Vector2d>>& phase;  // per strip and scan line
+  const Landscape& landscape;
+  std::size_t n_c;  // points per scan line
+  double da;        // scan line spacing
+  std::vector<Eigen::Matrix4d> inverse;
+  std::vector<std::size_t> firsts;
+
+  void
+  indexStrips()
+  {
+    for (const auto& st : block.strips) {
+      inverse.push_back(st.transform.matrix().inverse());
+      firsts.push_back(st.first_index);
+    }
+  }
+
+  PointLiDAR
+  point(std::size_t idx, Random& rng) const
+  {
+    const std::size_t strip =
+        static_cast<std::size_t>(std::upper_bound(firsts.begin(), firsts.end(), idx) - firsts.begin()) - 1;
+    const std::size_t local = idx - firsts[strip];
+    const std::size_t k = local / n_c, j = local % n_c;
+    const double f = (static_cast<double>(j) + 0.5) / static_cast<double>(n_c);
+    const Eigen::Vector2d& uv = phase[strip][k];
+    const double fu = (static_cast<double>(j) + uv.x()) / static_cast<double>(n_c);
+    const bool reverse = s.pattern == ScanPattern::ZIGZAG && (k % 2 == 1);
+    const double across = ((reverse ? 1.0 - fu : fu) - 0.5) * s.swath_width;
+    const double along_pos = (static_cast<double>(k) + f) * da;
+    const double along_ground = along_pos + (uv.y() - 0.5) * da;
+    const FlightLine& fl = lines[strip];
+    const StripTruth& st = block.strips[strip];
+    const Eigen::Vector2d xy = fl.c + (along_ground - 0.5 * fl.length) * fl.d + across * fl.a;
+    const Hit hit = landscape.hit(xy.x(), xy.y(), rng);
+    const Eigen::Vector4d p(xy.x(), xy.y(), hit.z, 1.0);
+    const Eigen::Vector4d noisy = p + (Eigen::Vector4d() << rng.normal3(s.noise_sigma), 0.0).finished();
+    PointLiDAR q = detail::makePoint((inverse[strip] * noisy).head<3>());
+    q.classification = hit.classification;
+    q.intensity = static_cast<float>(hit.intensity_base + rng.uniform(-10.0, 10.0));
+    q.point_source_id = st.point_source_id;
+    q.gps_time = st.start_time + along_pos / s.speed;
+    return q;
+  }
+};
+
 }  // namespace
 
 StripBlock
@@ -198,37 +250,10 @@ makeStripBlock(const StripSettings& s)
   cloud.width = static_cast<std::uint32_t>(total);
   cloud.height = 1;
   cloud.is_dense = true;
-  std::vector<Eigen::Matrix4d> inverse;
-  std::vector<std::size_t> firsts;
-  for (const auto& st : block.strips) {
-    inverse.push_back(st.transform.matrix().inverse());
-    firsts.push_back(st.first_index);
-  }
-  detail::forEachBlocked(total, s.seed, 0x5791u, [&](std::size_t idx, Random& rng) {
-    const std::size_t strip =
-        static_cast<std::size_t>(std::upper_bound(firsts.begin(), firsts.end(), idx) - firsts.begin()) - 1;
-    const std::size_t local = idx - firsts[strip];
-    const std::size_t k = local / n_c, j = local % n_c;
-    const double f = (static_cast<double>(j) + 0.5) / static_cast<double>(n_c);
-    const Eigen::Vector2d& uv = phase[strip][k];
-    const double fu = (static_cast<double>(j) + uv.x()) / static_cast<double>(n_c);
-    const bool reverse = s.pattern == ScanPattern::ZIGZAG && (k % 2 == 1);
-    const double across = ((reverse ? 1.0 - fu : fu) - 0.5) * s.swath_width;
-    const double along_pos = (static_cast<double>(k) + f) * da;
-    const double along_ground = along_pos + (uv.y() - 0.5) * da;
-    const FlightLine& fl = lines[strip];
-    const StripTruth& st = block.strips[strip];
-    const Eigen::Vector2d xy = fl.c + (along_ground - 0.5 * fl.length) * fl.d + across * fl.a;
-    const Hit hit = landscape->hit(xy.x(), xy.y(), rng);
-    const Eigen::Vector4d p(xy.x(), xy.y(), hit.z, 1.0);
-    const Eigen::Vector4d noisy = p + (Eigen::Vector4d() << rng.normal3(s.noise_sigma), 0.0).finished();
-    PointLiDAR& q = cloud[idx];
-    q = detail::makePoint((inverse[strip] * noisy).head<3>());
-    q.classification = hit.classification;
-    q.intensity = static_cast<float>(hit.intensity_base + rng.uniform(-10.0, 10.0));
-    q.point_source_id = st.point_source_id;
-    q.gps_time = st.start_time + along_pos / s.speed;
-  });
+  StripSampler sampler{s, block, lines, phase, *landscape, n_c, da, {}, {}};
+  sampler.indexStrips();
+  detail::forEachBlocked(total, s.seed, 0x5791u,
+                         [&](std::size_t idx, Random& rng) { cloud[idx] = sampler.point(idx, rng); });
   return block;
 }
 
