@@ -4,7 +4,7 @@
 ///        the epoch onto the reference (estimators/robust_matching.h), the residual field with σ
 ///        and significance (residual_field.h), and connected regions with area, displacement and
 ///        volume (deformation_regions.h), the stable part matched again without the regions
-///        (stable_refinement.h). PCL-free; detectDeformation() below takes PCL clouds.
+///        (stable_refinement.h). PCL-free: pcl_ls3d_deformation loads the clouds and calls it.
 
 #include <pcl_ls3d/deformation/deformation_regions.h>
 #include <pcl_ls3d/deformation/residual_field.h>

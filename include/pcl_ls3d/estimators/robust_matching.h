@@ -17,7 +17,7 @@
 ///      both fixed scales at most the neighbour-difference noise of that fit (beyond the paper);
 ///   3. the report of the last adjustment: parameters with the engine's σ (spatial sandwich),
 ///      weights, residuals and redundancy numbers, σ̂, subsets, rounds and why it stopped.
-/// PCL-free; the PCL face is estimators/robust_surface_matching.h.
+/// PCL-free; the PCL face is sample_consensus/sac_model_surface_matching.h.
 
 #include <pcl_ls3d/adjustment/adjustment_report.h>
 #include <pcl_ls3d/adjustment/adjustment_settings.h>
