@@ -2,6 +2,7 @@
 #include <pcl_ls3d/adjustment/block_normal_equations.h>
 #include <pcl_ls3d/adjustment/noise_floor.h>
 #include <pcl_ls3d/adjustment/omitted_parameters.h>
+#include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/strips/block_precision.h>
 #include <pcl_ls3d/strips/model_adequacy.h>
 
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 
 namespace pcl_ls3d {
 namespace strips {
@@ -126,10 +128,7 @@ ownNoiseOf(const StripAdjustmentReport& report, int k)
     if (o.j == k && o.noise_j.count > 0)
       noise.push_back(o.noise_j.sigma_mad);
   }
-  if (noise.empty())
-    return report.sigma0;
-  std::nth_element(noise.begin(), noise.begin() + static_cast<std::ptrdiff_t>(noise.size() / 2), noise.end());
-  return noise[noise.size() / 2];
+  return noise.empty() ? report.sigma0 : stats::medianHigh(std::move(noise));
 }
 
 // Why the block is not tested (empty: it is).

@@ -1,5 +1,6 @@
 // The report of a strip block adjustment from the stages' results (strip_block_adjustment.h).
 #include <pcl_ls3d/estimators/robust_estimator.h>
+#include <pcl_ls3d/stats/descriptive.h>
 #include <pcl_ls3d/strips/block_precision.h>
 #include <pcl_ls3d/strips/model_adequacy.h>
 #include <pcl_ls3d/strips/strip_block_adjustment.h>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 namespace pcl_ls3d {
 namespace strips {
@@ -167,8 +169,7 @@ spreadNotConfirmed(const StripAdjustmentReport& report, const StripPlan& plan)
   }
   if (used == 0 || 2 * grew <= used)
     return {};
-  std::nth_element(noise.begin(), noise.begin() + static_cast<std::ptrdiff_t>(noise.size() / 2), noise.end());
-  const double own_noise = noise[noise.size() / 2];
+  const double own_noise = stats::medianHigh(std::move(noise));
   if (!(moved > own_noise))
     return {};
   char buf[320];
